@@ -1,0 +1,104 @@
+//! The bodies of `twinray info`, `render` and `compare`: every input is checked before any
+//! GPU work, and files are written only once everything has succeeded.
+
+use crate::{CompareArgs, FrameArgs, GlobalArgs, RenderArgs};
+use anyhow::{Context as _, Result};
+use std::process::ExitCode;
+use std::sync::Arc;
+use twinray::compare::hit_count;
+use twinray::output::{check_png_target, write_png};
+use twinray::render::check_size;
+use twinray::report::compare_sets;
+use twinray::{Context, ContextOptions, Error, RenderOptions, Scene, Validation};
+
+fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
+    let options = ContextOptions {
+        validation: if global.validate { Validation::Required } else { Validation::Off },
+        device_filter: global.device.clone(),
+    };
+    Context::new(&options).context("setting up Vulkan")
+}
+
+/// Size from the flags, or the scene's; checked against twinray's limits.
+fn render_options(scene: &Scene, frame: &FrameArgs) -> Result<RenderOptions, Error> {
+    let width = frame.width.unwrap_or(scene.file.image.width);
+    let height = frame.height.unwrap_or(scene.file.image.height);
+    check_size(width, height).map_err(Error::Input)?;
+    Ok(RenderOptions { width, height, warmup: frame.warmup, runs: frame.runs })
+}
+
+pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
+    let ctx = context(global)?;
+    let i = &ctx.info;
+    if json {
+        println!("{}", serde_json::to_string_pretty(i)?);
+    } else {
+        println!("device      {} ({})", i.name, i.device_type);
+        println!("driver      {} {}", i.driver_name, i.driver_info);
+        println!("vulkan      {}", i.api_version);
+        println!(
+            "sbt         handle size {}, handle alignment {}, base alignment {}",
+            i.shader_group_handle_size, i.shader_group_handle_alignment, i.shader_group_base_alignment
+        );
+        println!("recursion   max depth {}", i.max_ray_recursion_depth);
+        println!(
+            "dispatch    max {} invocations, image side {}",
+            i.max_ray_dispatch_invocation_count, i.max_image_dimension_2d
+        );
+        let timing = if i.timestamp_valid_bits > 0 {
+            format!("{} ns per tick, {} valid bits", i.timestamp_period_ns, i.timestamp_valid_bits)
+        } else {
+            "not available on this queue".into()
+        };
+        println!("timestamps  {timing}");
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
+    let scene = Scene::load(args.scene.as_deref())?;
+    let opts = render_options(&scene, &args.frame)?;
+    check_png_target(&args.out)?;
+    let ctx = context(global)?;
+    let out = twinray::render(&ctx, &scene, &args.shaders, &opts)?;
+    write_png(&args.out, out.width, out.height, &out.rgba)?;
+    let median = out.median_ms();
+    if args.frame.json {
+        let value = serde_json::json!({
+            "scene": scene.name(),
+            "device": ctx.info.name,
+            "set": args.shaders.to_string(),
+            "width": out.width,
+            "height": out.height,
+            "out": args.out,
+            "gpu_ms": median,
+            "gpu_ms_runs": out.gpu_ms,
+            "hit_pixels": hit_count(&out),
+        });
+        println!("{value}");
+    } else {
+        let ms = median.map_or("n/a".into(), |m| format!("{m:.3} ms (median of {})", out.gpu_ms.len()));
+        println!("{} {}x{} with {} on {}: GPU {ms}", scene.name(), out.width, out.height, args.shaders, ctx.info.name);
+        println!("wrote {}", args.out.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
+    let scene = Scene::load(args.scene.as_deref())?;
+    let opts = render_options(&scene, &args.frame)?;
+    if args.out_dir.exists() && !args.out_dir.is_dir() {
+        return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
+    }
+    let ctx = context(global)?;
+    let comparison = compare_sets(&ctx, &scene, &args.a, &args.b, &opts)?;
+    comparison.write_images(&args.out_dir)?;
+    let report = &comparison.report;
+    if args.frame.json {
+        println!("{}", serde_json::to_string(report)?);
+    } else {
+        print!("{}", report.summary());
+        println!("  wrote a.png, b.png, diff.png in {}", args.out_dir.display());
+    }
+    Ok(if report.pass { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}

@@ -1,0 +1,204 @@
+//! Comparing two renders of one scene: image error, hit/miss agreement, a difference image a
+//! person can read at a glance, and the verdict against the scene's parity tolerance.
+
+use crate::render::RenderOutput;
+use crate::scene::Parity;
+use serde::Serialize;
+use twinray_shared::bindings::NO_HIT;
+
+/// Image and hit-id differences between two renders of the same size.
+#[derive(Clone, Debug, Serialize)]
+pub struct ImageDiff {
+    /// Root mean square difference over the RGB channels, in [0, 1].
+    pub rmse: f64,
+    /// Peak signal-to-noise ratio in dB; infinite (JSON null) when the images are identical.
+    pub psnr: f64,
+    /// Largest difference of any channel, in 8-bit steps.
+    pub max_abs_diff: u8,
+    /// Pixels where some channel differs by more than the scene's threshold.
+    pub pixels_over_threshold: u64,
+    /// Pixels whose primary rays hit different primitives (or one hit and one missed).
+    pub hit_mismatches: u64,
+    /// Of those, pixels not on a silhouette in either image: these should never happen.
+    pub hit_mismatches_off_silhouette: u64,
+}
+
+/// `ImageDiff` judged against a scene's tolerance.
+pub fn verdict(diff: &ImageDiff, parity: &Parity, pixels: u64) -> Vec<String> {
+    let fraction = |n: u64| n as f64 / pixels.max(1) as f64;
+    let mut failures = Vec::new();
+    if diff.rmse > parity.max_rmse {
+        failures.push(format!("rmse {:.6} > {}", diff.rmse, parity.max_rmse));
+    }
+    if fraction(diff.pixels_over_threshold) > parity.max_pixels_over_threshold {
+        failures.push(format!(
+            "{} pixels differ by more than {} steps (> {} of all)",
+            diff.pixels_over_threshold, parity.pixel_threshold, parity.max_pixels_over_threshold
+        ));
+    }
+    if fraction(diff.hit_mismatches) > parity.max_hit_mismatches {
+        failures.push(format!("{} hit mismatches (> {} of all)", diff.hit_mismatches, parity.max_hit_mismatches));
+    }
+    if diff.hit_mismatches_off_silhouette > 0 {
+        failures.push(format!("{} hit mismatches away from any silhouette", diff.hit_mismatches_off_silhouette));
+    }
+    failures
+}
+
+pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDiff {
+    let mut sum_sq = 0.0f64;
+    let mut max_abs = 0u8;
+    let mut over = 0u64;
+    for (pa, pb) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)) {
+        let d = channel_diff(pa, pb);
+        for c in 0..3 {
+            let x = f64::from(pa[c]) / 255.0 - f64::from(pb[c]) / 255.0;
+            sum_sq += x * x;
+        }
+        max_abs = max_abs.max(d);
+        over += u64::from(d > pixel_threshold);
+    }
+    let samples = (a.rgba.len() / 4 * 3).max(1) as f64;
+    let rmse = (sum_sq / samples).sqrt();
+    let (mismatches, off_silhouette) = hit_mismatches(a, b);
+    ImageDiff {
+        rmse,
+        psnr: if rmse > 0.0 { -20.0 * rmse.log10() } else { f64::INFINITY },
+        max_abs_diff: max_abs,
+        pixels_over_threshold: over,
+        hit_mismatches: mismatches,
+        hit_mismatches_off_silhouette: off_silhouette,
+    }
+}
+
+/// Largest RGB channel difference of two pixels.
+fn channel_diff(pa: &[u8], pb: &[u8]) -> u8 {
+    (0..3).map(|c| pa[c].abs_diff(pb[c])).max().unwrap_or(0)
+}
+
+fn hit_mismatches(a: &RenderOutput, b: &RenderOutput) -> (u64, u64) {
+    let (w, h) = (a.width as usize, a.height as usize);
+    let mut total = 0;
+    let mut off = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let i = y * w + x;
+            if a.hit_ids[i] != b.hit_ids[i] {
+                total += 1;
+                if !on_silhouette(&a.hit_ids, w, h, x, y) && !on_silhouette(&b.hit_ids, w, h, x, y) {
+                    off += 1;
+                }
+            }
+        }
+    }
+    (total, off)
+}
+
+/// True when a pixel of the 3x3 neighbourhood of (x, y) saw something else.
+fn on_silhouette(ids: &[u32], w: usize, h: usize, x: usize, y: usize) -> bool {
+    let id = ids[y * w + x];
+    (y.saturating_sub(1)..=(y + 1).min(h - 1))
+        .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| ids[ny * w + nx] != id))
+}
+
+/// RGBA8 difference image: image A in dim grey for context; differing pixels as a heat map
+/// (difference amplified 16x: dark red for one step, through orange and yellow, to white for 16
+/// steps or more); hit/miss or primitive mismatches in cyan.
+pub fn diff_image(a: &RenderOutput, b: &RenderOutput) -> Vec<u8> {
+    let mut out = Vec::with_capacity(a.rgba.len());
+    for (i, (pa, pb)) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)).enumerate() {
+        let d = channel_diff(pa, pb);
+        let rgb = if a.hit_ids[i] != b.hit_ids[i] {
+            [0, 255, 255]
+        } else if d > 0 {
+            heat((f32::from(d) * 16.0 / 255.0).min(1.0))
+        } else {
+            let grey = ((u16::from(pa[0]) + u16::from(pa[1]) + u16::from(pa[2])) / 12) as u8;
+            [grey; 3]
+        };
+        out.extend_from_slice(&[rgb[0], rgb[1], rgb[2], 255]);
+    }
+    out
+}
+
+/// Black-body style ramp: t = 0 dark red, 0.5 orange-yellow, 1 white.
+fn heat(t: f32) -> [u8; 3] {
+    let r = 0.5 + 0.5 * (t * 3.0).min(1.0);
+    let g = (t * 1.5 - 0.25).clamp(0.0, 1.0);
+    let b = (t * 2.0 - 1.0).clamp(0.0, 1.0);
+    [(r * 255.0) as u8, (g * 255.0) as u8, (b * 255.0) as u8]
+}
+
+/// Pixels whose primary ray hit something.
+pub fn hit_count(output: &RenderOutput) -> u64 {
+    output.hit_ids.iter().filter(|&&id| id != NO_HIT).count() as u64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn output(rgba: Vec<u8>, hit_ids: Vec<u32>, width: u32) -> RenderOutput {
+        let height = hit_ids.len() as u32 / width;
+        RenderOutput { width, height, rgba, hit_ids, gpu_ms: vec![] }
+    }
+
+    #[test]
+    fn identical_images_have_zero_error() {
+        let a = output(vec![10; 16], vec![1, 2, 3, NO_HIT], 2);
+        let d = diff(&a, &a, 1);
+        assert_eq!((d.rmse, d.max_abs_diff, d.hit_mismatches), (0.0, 0, 0));
+        assert!(d.psnr.is_infinite());
+    }
+
+    #[test]
+    fn counts_channel_differences_and_mismatches() {
+        let a = output(vec![0; 16], vec![1; 4], 2);
+        let mut rgba = vec![0; 16];
+        rgba[0] = 5; // pixel 0, red, 5 steps
+        rgba[5] = 1; // pixel 1, green, 1 step
+        let b = output(rgba, vec![1, 1, 1, 2], 2);
+        let d = diff(&a, &b, 2);
+        assert_eq!(d.max_abs_diff, 5);
+        assert_eq!(d.pixels_over_threshold, 1);
+        assert_eq!(d.hit_mismatches, 1);
+        // In a 2x2 image every pixel touches the one that differs in b: all on a silhouette.
+        assert_eq!(d.hit_mismatches_off_silhouette, 0);
+        let want = ((25.0 + 1.0) / (255.0f64 * 255.0) / 12.0).sqrt();
+        assert!((d.rmse - want).abs() < 1e-12);
+    }
+
+    #[test]
+    fn mismatch_inside_a_uniform_region_is_off_silhouette() {
+        let a = output(vec![0; 4 * 9], vec![7; 9], 3);
+        let mut ids = vec![7; 9];
+        ids[4] = 8;
+        let b = output(vec![0; 4 * 9], ids, 3);
+        // The centre pixel differs; in b its neighbours differ from it, so it is a silhouette there.
+        assert_eq!(diff(&a, &b, 0).hit_mismatches_off_silhouette, 0);
+        let c = output(vec![0; 4 * 9], vec![8; 9], 3);
+        assert_eq!(diff(&a, &c, 0).hit_mismatches_off_silhouette, 9);
+    }
+
+    #[test]
+    fn verdict_names_each_failure() {
+        let parity =
+            Parity { max_rmse: 0.01, pixel_threshold: 2, max_pixels_over_threshold: 0.0, max_hit_mismatches: 0.5 };
+        let d = ImageDiff {
+            rmse: 0.02,
+            psnr: 34.0,
+            max_abs_diff: 9,
+            pixels_over_threshold: 1,
+            hit_mismatches: 1,
+            hit_mismatches_off_silhouette: 1,
+        };
+        let f = verdict(&d, &parity, 4);
+        assert_eq!(f.len(), 3, "{f:?}");
+        assert!(verdict(
+            &ImageDiff { rmse: 0.0, pixels_over_threshold: 0, hit_mismatches_off_silhouette: 0, ..d },
+            &parity,
+            4
+        )
+        .is_empty());
+    }
+}

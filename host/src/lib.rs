@@ -1,0 +1,19 @@
+//! twinray: render ray tracing scenes with Rust (rust-gpu) or GLSL shader sets, or any
+//! per-stage mix, through one ash host, and compare the two image for image and in GPU time.
+
+pub mod compare;
+pub mod error;
+pub mod output;
+pub mod render;
+pub mod report;
+pub mod scene;
+pub mod shader_set;
+pub mod stats;
+pub mod vk;
+
+pub use error::{Error, Result};
+pub use render::{render, RenderOptions, RenderOutput};
+pub use scene::Scene;
+pub use shader_set::{Language, ShaderSet, Stage};
+pub use vk::context::{Context, ContextOptions};
+pub use vk::validation::Validation;

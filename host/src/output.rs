@@ -1,0 +1,66 @@
+//! Writing results: PNG files are written to a temporary file beside the target and renamed,
+//! so a failure never leaves a partial file behind.
+
+use crate::error::{Error, Result};
+use std::path::{Path, PathBuf};
+
+/// Writes an RGBA8 image as PNG at `path`, atomically.
+pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
+    let tmp = temp_path(path);
+    let saved =
+        image::save_buffer_with_format(&tmp, rgba, width, height, image::ColorType::Rgba8, image::ImageFormat::Png);
+    if let Err(source) = saved {
+        let _ = std::fs::remove_file(&tmp);
+        return Err(Error::Png { path: path.to_path_buf(), source });
+    }
+    std::fs::rename(&tmp, path).map_err(|source| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::Io { what: "renaming a finished PNG to", path: path.to_path_buf(), source }
+    })
+}
+
+/// Checks up front that `path` can be written: a PNG name in an existing directory.
+pub fn check_png_target(path: &Path) -> Result<()> {
+    let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !is_png {
+        return Err(Error::Input(format!("output {}: the file name must end in .png", path.display())));
+    }
+    let dir = parent_dir(path);
+    if !dir.is_dir() {
+        return Err(Error::Input(format!("output {}: directory {} does not exist", path.display(), dir.display())));
+    }
+    Ok(())
+}
+
+fn parent_dir(path: &Path) -> PathBuf {
+    match path.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    }
+}
+
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    parent_dir(path).join(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn writes_png_and_leaves_no_temp_file() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.png");
+        write_png(&path, 1, 1, &[1, 2, 3, 255]).unwrap();
+        let names: Vec<_> = std::fs::read_dir(dir.path()).unwrap().map(|e| e.unwrap().file_name()).collect();
+        assert_eq!(names, vec![std::ffi::OsString::from("x.png")]);
+    }
+
+    #[test]
+    fn rejects_non_png_names_and_missing_directories() {
+        assert!(check_png_target(Path::new("out.jpg")).is_err());
+        assert!(check_png_target(Path::new("/no/such/dir/out.png")).is_err());
+        assert!(check_png_target(Path::new("out.png")).is_ok());
+    }
+}

@@ -1,0 +1,274 @@
+//! Rendering a scene with a shader set: build the acceleration structures, pipeline and SBT,
+//! trace (warm-up runs, then timed runs between timestamps), read back colour and hit ids.
+
+use crate::error::{Error, Result};
+use crate::scene::{sphere_bounds, Scene};
+use crate::shader_set::ShaderSet;
+use crate::vk::accel::{build_aabb_blas, build_single_instance_tlas, AccelStruct};
+use crate::vk::buffer::Buffer;
+use crate::vk::commands::{memory_barrier, OneShot};
+use crate::vk::context::Context;
+use crate::vk::descriptors::{DescriptorSet, DescriptorTargets};
+use crate::vk::image::{StorageImage, COLOR_RANGE};
+use crate::vk::pipeline::{pool_sizes, RtPipeline, GROUP_COUNTS};
+use crate::vk::sbt::ShaderBindingTable;
+use crate::vk::timing::Timestamps;
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
+use twinray_shared::bindings as b;
+
+/// Largest image side, and largest pixel count, twinray accepts before asking the device.
+pub const MAX_SIDE: u32 = 16384;
+pub const MAX_PIXELS: u64 = 8192 * 8192;
+
+/// Checks an image size against twinray's own limits.
+pub fn check_size(width: u32, height: u32) -> std::result::Result<(), String> {
+    if width == 0 || height == 0 {
+        return Err(format!("image size {width}x{height}: width and height must be at least 1"));
+    }
+    if width > MAX_SIDE || height > MAX_SIDE || u64::from(width) * u64::from(height) > MAX_PIXELS {
+        return Err(format!(
+            "image size {width}x{height} is too large (at most {MAX_SIDE} per side and {MAX_PIXELS} pixels)"
+        ));
+    }
+    Ok(())
+}
+
+#[derive(Clone, Copy, Debug)]
+pub struct RenderOptions {
+    pub width: u32,
+    pub height: u32,
+    /// Untimed traces before the timed ones.
+    pub warmup: u32,
+    /// Timed traces (at least one trace always runs).
+    pub runs: u32,
+}
+
+/// What a render produced.
+pub struct RenderOutput {
+    pub width: u32,
+    pub height: u32,
+    /// Row-major RGBA8, top row first.
+    pub rgba: Vec<u8>,
+    /// Primitive id per pixel, or `NO_HIT`.
+    pub hit_ids: Vec<u32>,
+    /// GPU milliseconds of each timed trace; empty when the device cannot time.
+    pub gpu_ms: Vec<f64>,
+}
+
+impl RenderOutput {
+    /// Median GPU time of the timed traces.
+    pub fn median_ms(&self) -> Option<f64> {
+        crate::stats::median(&self.gpu_ms)
+    }
+}
+
+/// The scene's GPU data; kept alive until the trace has completed.
+struct SceneResources {
+    _blas: AccelStruct,
+    tlas: AccelStruct,
+    spheres: Buffer,
+    camera: Buffer,
+}
+
+pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderOptions) -> Result<RenderOutput> {
+    check_size(opts.width, opts.height).map_err(Error::Input)?;
+    check_device_limits(ctx, opts)?;
+    let one_shot = OneShot::new(ctx)?;
+    let resources = upload_scene(ctx, &one_shot, scene, opts)?;
+    let image = StorageImage::new(ctx, opts.width, opts.height)?;
+    let pixels = u64::from(opts.width) * u64::from(opts.height);
+    let hit_ids = Buffer::new(
+        ctx,
+        "hit ids",
+        pixels * 4,
+        vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC,
+        MemoryLocation::GpuOnly,
+    )?;
+    let pipeline = RtPipeline::new(ctx, set)?;
+    let targets = DescriptorTargets {
+        tlas: resources.tlas.raw,
+        tlas_binding: b::BINDING_TLAS,
+        image_view: image.view,
+        image_binding: b::BINDING_IMAGE,
+        buffers: vec![
+            (b::BINDING_CAMERA, resources.camera.raw, vk::DescriptorType::UNIFORM_BUFFER),
+            (b::BINDING_SPHERES, resources.spheres.raw, vk::DescriptorType::STORAGE_BUFFER),
+            (b::BINDING_HIT_IDS, hit_ids.raw, vk::DescriptorType::STORAGE_BUFFER),
+        ],
+    };
+    let descriptors = DescriptorSet::new(ctx, pipeline.set_layout, &pool_sizes(), &targets)?;
+    let sbt = ShaderBindingTable::new(ctx, pipeline.raw, GROUP_COUNTS)?;
+    let timestamps = Timestamps::new(ctx, opts.runs)?;
+    let readback_usage = vk::BufferUsageFlags::TRANSFER_DST;
+    let image_readback = Buffer::new(ctx, "image readback", pixels * 4, readback_usage, MemoryLocation::GpuToCpu)?;
+    let ids_readback = Buffer::new(ctx, "hit id readback", pixels * 4, readback_usage, MemoryLocation::GpuToCpu)?;
+    let trace =
+        Trace { pipeline: &pipeline, descriptors: &descriptors, sbt: &sbt, timestamps: timestamps.as_ref(), opts };
+    one_shot.run(|device, cmd| {
+        transition_to_general(device, cmd, image.raw);
+        trace.record(ctx, cmd);
+        let written = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+        memory_barrier(device, cmd, written, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));
+        copy_out(device, cmd, &image, &image_readback, &hit_ids, &ids_readback);
+        let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
+        memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
+        Ok(())
+    })?;
+    let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
+    let pixel_bytes = pixels as usize * 4;
+    Ok(RenderOutput {
+        width: opts.width,
+        height: opts.height,
+        rgba: image_readback.mapped()?[..pixel_bytes].to_vec(),
+        hit_ids: bytemuck::pod_collect_to_vec(&ids_readback.mapped()?[..pixel_bytes]),
+        gpu_ms,
+    })
+}
+
+fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {
+    let info = &ctx.info;
+    let invocations = u64::from(opts.width) * u64::from(opts.height);
+    if opts.width.max(opts.height) > info.max_image_dimension_2d
+        || invocations > u64::from(info.max_ray_dispatch_invocation_count)
+    {
+        return Err(Error::Input(format!(
+            "image size {}x{} exceeds what {} allows (image side {}, ray dispatch {} invocations)",
+            opts.width, opts.height, info.name, info.max_image_dimension_2d, info.max_ray_dispatch_invocation_count
+        )));
+    }
+    Ok(())
+}
+
+fn upload_scene(ctx: &Arc<Context>, one_shot: &OneShot, scene: &Scene, opts: &RenderOptions) -> Result<SceneResources> {
+    let spheres = scene.spheres();
+    let aabbs: Vec<_> = spheres
+        .iter()
+        .map(|s| {
+            let (lo, hi) = sphere_bounds(s);
+            vk::AabbPositionsKHR { min_x: lo.x, min_y: lo.y, min_z: lo.z, max_x: hi.x, max_y: hi.y, max_z: hi.z }
+        })
+        .collect();
+    let blas = build_aabb_blas(ctx, one_shot, &aabbs)?;
+    let tlas = build_single_instance_tlas(ctx, one_shot, &blas)?;
+    let camera = scene.camera_uniform(opts.width, opts.height);
+    Ok(SceneResources {
+        _blas: blas,
+        tlas,
+        spheres: Buffer::with_data(
+            ctx,
+            "spheres",
+            bytemuck::cast_slice(&spheres),
+            vk::BufferUsageFlags::STORAGE_BUFFER,
+        )?,
+        camera: Buffer::with_data(ctx, "camera", bytemuck::bytes_of(&camera), vk::BufferUsageFlags::UNIFORM_BUFFER)?,
+    })
+}
+
+/// What one trace command needs.
+struct Trace<'a> {
+    pipeline: &'a RtPipeline,
+    descriptors: &'a DescriptorSet,
+    sbt: &'a ShaderBindingTable,
+    timestamps: Option<&'a Timestamps>,
+    opts: &'a RenderOptions,
+}
+
+impl Trace<'_> {
+    /// Warm-up traces, then timed traces, each waiting for the previous one's writes.
+    fn record(&self, ctx: &Context, cmd: vk::CommandBuffer) {
+        let device = &ctx.device;
+        let bind = vk::PipelineBindPoint::RAY_TRACING_KHR;
+        if let Some(t) = self.timestamps {
+            t.reset(cmd);
+        }
+        // SAFETY: cmd is recording; pipeline and set are alive until the submit completes.
+        unsafe {
+            device.cmd_bind_pipeline(cmd, bind, self.pipeline.raw);
+            device.cmd_bind_descriptor_sets(
+                cmd,
+                bind,
+                self.pipeline.layout,
+                b::DESCRIPTOR_SET,
+                &[self.descriptors.raw],
+                &[],
+            );
+        }
+        let total = self.opts.warmup + self.opts.runs.max(1);
+        for i in 0..total {
+            if i > 0 {
+                let rt = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+                memory_barrier(device, cmd, rt, (rt.0, vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::SHADER_READ));
+            }
+            let timed = i.checked_sub(self.opts.warmup).filter(|_| self.timestamps.is_some());
+            if let (Some(t), Some(k)) = (self.timestamps, timed) {
+                t.begin(cmd, k);
+            }
+            // SAFETY: the SBT regions point into a live buffer laid out for this pipeline.
+            unsafe {
+                ctx.rt.cmd_trace_rays(
+                    cmd,
+                    &self.sbt.raygen,
+                    &self.sbt.miss,
+                    &self.sbt.hit,
+                    &Default::default(),
+                    self.opts.width,
+                    self.opts.height,
+                    1,
+                )
+            };
+            if let (Some(t), Some(k)) = (self.timestamps, timed) {
+                t.end(cmd, k);
+            }
+        }
+    }
+}
+
+fn transition_to_general(device: &ash::Device, cmd: vk::CommandBuffer, image: vk::Image) {
+    let barrier = [vk::ImageMemoryBarrier::default()
+        .src_access_mask(vk::AccessFlags::empty())
+        .dst_access_mask(vk::AccessFlags::SHADER_WRITE)
+        .old_layout(vk::ImageLayout::UNDEFINED)
+        .new_layout(vk::ImageLayout::GENERAL)
+        .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
+        .image(image)
+        .subresource_range(COLOR_RANGE)];
+    // SAFETY: cmd is recording; the image is alive.
+    unsafe {
+        device.cmd_pipeline_barrier(
+            cmd,
+            vk::PipelineStageFlags::TOP_OF_PIPE,
+            vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR,
+            vk::DependencyFlags::empty(),
+            &[],
+            &[],
+            &barrier,
+        )
+    };
+}
+
+fn copy_out(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    image: &StorageImage,
+    image_dst: &Buffer,
+    ids: &Buffer,
+    ids_dst: &Buffer,
+) {
+    let region = [vk::BufferImageCopy::default()
+        .image_subresource(vk::ImageSubresourceLayers {
+            aspect_mask: vk::ImageAspectFlags::COLOR,
+            mip_level: 0,
+            base_array_layer: 0,
+            layer_count: 1,
+        })
+        .image_extent(image.extent.into())];
+    let ids_region = [vk::BufferCopy::default().size(ids.size)];
+    // SAFETY: cmd is recording; sizes match (4 bytes per pixel on both sides).
+    unsafe {
+        device.cmd_copy_image_to_buffer(cmd, image.raw, vk::ImageLayout::GENERAL, image_dst.raw, &region);
+        device.cmd_copy_buffer(cmd, ids.raw, ids_dst.raw, &ids_region);
+    }
+}

@@ -1,0 +1,130 @@
+//! `compare`: render one scene with two shader sets, measure how they differ in image and in
+//! GPU time, judge that against the scene's tolerance, and write the images.
+
+use crate::compare::{diff, diff_image, verdict, ImageDiff};
+use crate::error::{Error, Result};
+use crate::output::write_png;
+use crate::render::{render, RenderOptions, RenderOutput};
+use crate::scene::Scene;
+use crate::shader_set::ShaderSet;
+use crate::vk::context::Context;
+use serde::Serialize;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The result of comparing set `a` against set `b`; serialised as `compare --json` prints it.
+#[derive(Clone, Debug, Serialize)]
+pub struct CompareReport {
+    pub scene: String,
+    pub device: String,
+    pub width: u32,
+    pub height: u32,
+    pub set_a: String,
+    pub set_b: String,
+    #[serde(flatten)]
+    pub diff: ImageDiff,
+    pub pixel_threshold: u8,
+    /// Median GPU milliseconds of the timed traces of each set; null when the device cannot time.
+    pub gpu_ms_a: Option<f64>,
+    pub gpu_ms_b: Option<f64>,
+    /// gpu_ms_a / gpu_ms_b.
+    pub ratio: Option<f64>,
+    /// Timed traces per set (after `warmup` untimed ones).
+    pub runs: u32,
+    pub warmup: u32,
+    pub pass: bool,
+    /// Why `pass` is false, one line per broken tolerance.
+    pub failures: Vec<String>,
+}
+
+/// Both renders and the report on them.
+pub struct Comparison {
+    pub a: RenderOutput,
+    pub b: RenderOutput,
+    pub report: CompareReport,
+}
+
+pub fn compare_sets(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set_a: &ShaderSet,
+    set_b: &ShaderSet,
+    opts: &RenderOptions,
+) -> Result<Comparison> {
+    let a = render(ctx, scene, set_a, opts)?;
+    let b = render(ctx, scene, set_b, opts)?;
+    let parity = scene.file.parity;
+    let diff = diff(&a, &b, parity.pixel_threshold);
+    let failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
+    let (gpu_ms_a, gpu_ms_b) = (a.median_ms(), b.median_ms());
+    let report = CompareReport {
+        scene: scene.name().to_string(),
+        device: ctx.info.name.clone(),
+        width: opts.width,
+        height: opts.height,
+        set_a: set_a.to_string(),
+        set_b: set_b.to_string(),
+        diff,
+        pixel_threshold: parity.pixel_threshold,
+        gpu_ms_a,
+        gpu_ms_b,
+        ratio: gpu_ms_a.zip(gpu_ms_b).filter(|(_, b)| *b > 0.0).map(|(a, b)| a / b),
+        runs: opts.runs,
+        warmup: opts.warmup,
+        pass: failures.is_empty(),
+        failures,
+    };
+    Ok(Comparison { a, b, report })
+}
+
+impl Comparison {
+    /// Writes `a.png`, `b.png` and `diff.png` into `dir`, creating it if needed.
+    pub fn write_images(&self, dir: &Path) -> Result<()> {
+        std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.into(), source })?;
+        let (w, h) = (self.a.width, self.a.height);
+        write_png(&dir.join("a.png"), w, h, &self.a.rgba)?;
+        write_png(&dir.join("b.png"), w, h, &self.b.rgba)?;
+        write_png(&dir.join("diff.png"), w, h, &diff_image(&self.a, &self.b))
+    }
+}
+
+impl CompareReport {
+    /// The human-readable summary `compare` prints.
+    pub fn summary(&self) -> String {
+        let ms = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.3} ms"));
+        let pixels = (u64::from(self.width) * u64::from(self.height)).max(1) as f64;
+        let pct = |n: u64| 100.0 * n as f64 / pixels;
+        let d = &self.diff;
+        let mut s = format!(
+            "scene {} {}x{} on {}\n  a = {:<28} GPU {} (median of {})\n  b = {:<28} GPU {}\n  ratio a/b {}\n",
+            self.scene,
+            self.width,
+            self.height,
+            self.device,
+            self.set_a,
+            ms(self.gpu_ms_a),
+            self.runs,
+            self.set_b,
+            ms(self.gpu_ms_b),
+            self.ratio.map_or("n/a".into(), |r| format!("{r:.3}")),
+        );
+        s += &format!(
+            "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette\n",
+            d.rmse,
+            if d.psnr.is_finite() { format!("{:.1} dB", d.psnr) } else { "inf".into() },
+            d.max_abs_diff,
+            self.pixel_threshold,
+            d.pixels_over_threshold,
+            pct(d.pixels_over_threshold),
+            d.hit_mismatches,
+            pct(d.hit_mismatches),
+            d.hit_mismatches_off_silhouette,
+        );
+        if self.pass {
+            s += "  PASS: within the scene's parity tolerance\n";
+        } else {
+            s += &format!("  FAIL: {}\n", self.failures.join("; "));
+        }
+        s
+    }
+}

@@ -1,0 +1,98 @@
+//! A Vulkan buffer and its memory, released together on drop.
+
+use super::context::Context;
+use crate::error::{Error, Result, VkContext};
+use ash::vk;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
+
+pub struct Buffer {
+    ctx: Arc<Context>,
+    pub raw: vk::Buffer,
+    pub size: u64,
+    allocation: Option<Allocation>,
+}
+
+impl Buffer {
+    /// An uninitialised buffer of `size` bytes (at least 1) at `location`.
+    pub fn new(
+        ctx: &Arc<Context>,
+        name: &str,
+        size: u64,
+        usage: vk::BufferUsageFlags,
+        location: MemoryLocation,
+    ) -> Result<Self> {
+        let size = size.max(1);
+        let info = vk::BufferCreateInfo::default().size(size).usage(usage).sharing_mode(vk::SharingMode::EXCLUSIVE);
+        // SAFETY: valid create info; the buffer is destroyed in Drop.
+        let raw = unsafe { ctx.device.create_buffer(&info, None) }.call("vkCreateBuffer")?;
+        let mut buffer = Buffer { ctx: ctx.clone(), raw, size, allocation: None };
+        // SAFETY: raw is a live buffer of this device.
+        let requirements = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
+        let allocation = ctx
+            .allocator()
+            .allocate(&AllocationCreateDesc {
+                name,
+                requirements,
+                location,
+                linear: true,
+                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+            })
+            .map_err(|source| Error::Allocation { what: format!("buffer {name} ({size} bytes)"), source })?;
+        // SAFETY: the allocation was made for this buffer's requirements.
+        unsafe { ctx.device.bind_buffer_memory(raw, allocation.memory(), allocation.offset()) }
+            .call("vkBindBufferMemory")?;
+        buffer.allocation = Some(allocation);
+        Ok(buffer)
+    }
+
+    /// A host-visible buffer holding `data`.
+    pub fn with_data(ctx: &Arc<Context>, name: &str, data: &[u8], usage: vk::BufferUsageFlags) -> Result<Self> {
+        let mut buffer = Self::new(ctx, name, data.len() as u64, usage, MemoryLocation::CpuToGpu)?;
+        buffer.write(data)?;
+        Ok(buffer)
+    }
+
+    /// Copies `data` to the start of a host-visible buffer.
+    pub fn write(&mut self, data: &[u8]) -> Result<()> {
+        let mapped = self.mapped_mut()?;
+        let len = data.len().min(mapped.len());
+        mapped[..len].copy_from_slice(&data[..len]);
+        Ok(())
+    }
+
+    /// The mapped bytes of a host-visible buffer.
+    pub fn mapped(&self) -> Result<&[u8]> {
+        self.allocation
+            .as_ref()
+            .and_then(|a| a.mapped_slice())
+            .ok_or_else(|| Error::Unsupported("buffer memory is not host-visible".into()))
+    }
+
+    fn mapped_mut(&mut self) -> Result<&mut [u8]> {
+        self.allocation
+            .as_mut()
+            .and_then(|a| a.mapped_slice_mut())
+            .ok_or_else(|| Error::Unsupported("buffer memory is not host-visible".into()))
+    }
+
+    /// The buffer's device address; it must have been made with SHADER_DEVICE_ADDRESS.
+    pub fn device_address(&self) -> vk::DeviceAddress {
+        let info = vk::BufferDeviceAddressInfo::default().buffer(self.raw);
+        // SAFETY: the buffer is live and was created with SHADER_DEVICE_ADDRESS usage.
+        unsafe { self.ctx.device.get_buffer_device_address(&info) }
+    }
+}
+
+impl Drop for Buffer {
+    fn drop(&mut self) {
+        // SAFETY: the GPU work using this buffer has completed (every submit waits on a fence).
+        unsafe { self.ctx.device.destroy_buffer(self.raw, None) };
+        if let Some(allocation) = self.allocation.take() {
+            if let Err(e) = self.ctx.allocator().free(allocation) {
+                log::error!("freeing buffer memory: {e}");
+            }
+        }
+    }
+}

@@ -1,0 +1,74 @@
+//! Recording a command buffer, submitting it and waiting for it: the only way twinray submits.
+
+use super::context::Context;
+use crate::error::{Result, VkContext};
+use ash::vk;
+use std::sync::Arc;
+
+/// A command pool with one primary command buffer and a fence.
+pub struct OneShot {
+    ctx: Arc<Context>,
+    pool: vk::CommandPool,
+    pub cmd: vk::CommandBuffer,
+    fence: vk::Fence,
+}
+
+impl OneShot {
+    pub fn new(ctx: &Arc<Context>) -> Result<Self> {
+        // The one command buffer is re-recorded for each run(): it must be individually resettable.
+        let pool_info = vk::CommandPoolCreateInfo::default()
+            .queue_family_index(ctx.queue_family)
+            .flags(vk::CommandPoolCreateFlags::RESET_COMMAND_BUFFER);
+        // SAFETY: valid create info; destroyed in Drop (with its command buffer).
+        let pool = unsafe { ctx.device.create_command_pool(&pool_info, None) }.call("vkCreateCommandPool")?;
+        let mut one = OneShot { ctx: ctx.clone(), pool, cmd: vk::CommandBuffer::null(), fence: vk::Fence::null() };
+        let alloc = vk::CommandBufferAllocateInfo::default().command_pool(pool).command_buffer_count(1);
+        // SAFETY: the pool is live.
+        one.cmd = unsafe { ctx.device.allocate_command_buffers(&alloc) }.call("vkAllocateCommandBuffers")?[0];
+        // SAFETY: valid create info; destroyed in Drop.
+        one.fence = unsafe { ctx.device.create_fence(&vk::FenceCreateInfo::default(), None) }.call("vkCreateFence")?;
+        Ok(one)
+    }
+
+    /// Records with `record`, submits, waits, and fails on any validation error it caused.
+    pub fn run(&self, record: impl FnOnce(&ash::Device, vk::CommandBuffer) -> Result<()>) -> Result<()> {
+        let device = &self.ctx.device;
+        let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
+        // SAFETY: the command buffer is not in use (every run waits for its fence).
+        unsafe { device.begin_command_buffer(self.cmd, &begin) }.call("vkBeginCommandBuffer")?;
+        record(device, self.cmd)?;
+        // SAFETY: recording started above.
+        unsafe { device.end_command_buffer(self.cmd) }.call("vkEndCommandBuffer")?;
+        let cmds = [self.cmd];
+        let submit = [vk::SubmitInfo::default().command_buffers(&cmds)];
+        // SAFETY: the buffer is recorded; the fence is unsignalled; waiting keeps resources alive.
+        unsafe {
+            device.reset_fences(&[self.fence]).call("vkResetFences")?;
+            device.queue_submit(self.ctx.queue, &submit, self.fence).call("vkQueueSubmit")?;
+            device.wait_for_fences(&[self.fence], true, u64::MAX).call("vkWaitForFences")?;
+        }
+        self.ctx.check_validation()
+    }
+}
+
+impl Drop for OneShot {
+    fn drop(&mut self) {
+        // SAFETY: run() waits for completion, so the command buffer is idle.
+        unsafe {
+            self.ctx.device.destroy_fence(self.fence, None);
+            self.ctx.device.destroy_command_pool(self.pool, None);
+        }
+    }
+}
+
+/// A global memory barrier between two pipeline stages.
+pub fn memory_barrier(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    (src_stage, src_access): (vk::PipelineStageFlags, vk::AccessFlags),
+    (dst_stage, dst_access): (vk::PipelineStageFlags, vk::AccessFlags),
+) {
+    let barrier = [vk::MemoryBarrier::default().src_access_mask(src_access).dst_access_mask(dst_access)];
+    // SAFETY: cmd is recording.
+    unsafe { device.cmd_pipeline_barrier(cmd, src_stage, dst_stage, vk::DependencyFlags::empty(), &barrier, &[], &[]) };
+}

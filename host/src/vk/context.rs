@@ -1,0 +1,230 @@
+//! The Vulkan context: instance, optional validation messenger, device, queue, allocator and
+//! the ray tracing loaders. Everything else holds an `Arc<Context>`, so it is dropped last.
+
+use super::device_select::{self, Candidate, REQUIRED_EXTENSIONS};
+use super::validation::{self, Messenger, Validation, ValidationLog};
+use crate::error::{Error, Result, VkContext};
+use ash::{ext::debug_utils, khr, vk};
+use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use std::mem::ManuallyDrop;
+use std::sync::{Arc, Mutex};
+
+/// What a device is and can do, as reported by `twinray info` and used to lay out the SBT.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct DeviceInfo {
+    pub name: String,
+    pub device_type: String,
+    pub api_version: String,
+    pub driver_name: String,
+    pub driver_info: String,
+    pub shader_group_handle_size: u32,
+    pub shader_group_handle_alignment: u32,
+    pub shader_group_base_alignment: u32,
+    pub max_ray_recursion_depth: u32,
+    pub max_ray_dispatch_invocation_count: u32,
+    pub max_image_dimension_2d: u32,
+    pub min_scratch_offset_alignment: u32,
+    /// Nanoseconds per timestamp tick.
+    pub timestamp_period_ns: f32,
+    /// Valid bits of timestamps on the queue used; 0 means no GPU timing.
+    pub timestamp_valid_bits: u32,
+}
+
+/// Options for [`Context::new`].
+#[derive(Clone, Debug)]
+pub struct ContextOptions {
+    pub validation: Validation,
+    /// Only devices whose name contains this (case-insensitive).
+    pub device_filter: Option<String>,
+}
+
+pub struct Context {
+    pub entry: ash::Entry,
+    pub instance: ash::Instance,
+    pub physical: vk::PhysicalDevice,
+    pub device: ash::Device,
+    pub queue: vk::Queue,
+    pub queue_family: u32,
+    pub accel: khr::acceleration_structure::Device,
+    pub rt: khr::ray_tracing_pipeline::Device,
+    pub info: DeviceInfo,
+    allocator: ManuallyDrop<Mutex<Allocator>>,
+    messenger: Option<Messenger>,
+    // Boxed so the messenger's user-data pointer stays put; dropped after the messenger.
+    validation_log: Box<ValidationLog>,
+}
+
+impl Context {
+    pub fn new(options: &ContextOptions) -> Result<Arc<Self>> {
+        // SAFETY: loading the system Vulkan loader; its entry points are used as documented.
+        let entry = unsafe { ash::Entry::load() }?;
+        let validation_log = Box::<ValidationLog>::default();
+        let validate = options.validation == Validation::Required;
+        if validate && !layer_available(&entry)? {
+            return Err(Error::Unsupported(
+                "validation was requested but VK_LAYER_KHRONOS_validation is not installed \
+                 (Debian: apt-get install vulkan-validationlayers; or run cargo xtask setup)"
+                    .into(),
+            ));
+        }
+        let instance = create_instance(&entry, validate, &validation_log)?;
+        let messenger = if validate {
+            let loader = debug_utils::Instance::new(&entry, &instance);
+            let info = validation::messenger_info(&validation_log);
+            // SAFETY: validation_log is boxed and outlives the messenger (see Drop).
+            let raw =
+                unsafe { loader.create_debug_utils_messenger(&info, None) }.call("vkCreateDebugUtilsMessengerEXT")?;
+            Some(Messenger { loader, raw })
+        } else {
+            None
+        };
+        let created = device_select::pick(&instance, options.device_filter.as_deref())
+            .and_then(|candidate| Ok((create_device(&instance, &candidate)?, candidate)));
+        let (device, candidate) = match created {
+            Ok(made) => made,
+            Err(e) => {
+                destroy_instance(&instance, messenger);
+                return Err(e);
+            }
+        };
+        let info = device_info(&instance, candidate.physical, candidate.queue_family, candidate.name);
+        let allocator = Allocator::new(&AllocatorCreateDesc {
+            instance: instance.clone(),
+            device: device.clone(),
+            physical_device: candidate.physical,
+            debug_settings: Default::default(),
+            buffer_device_address: true,
+            allocation_sizes: Default::default(),
+        })
+        .map_err(|source| Error::Allocation { what: "the allocator".into(), source })?;
+        // SAFETY: the queue family was created with one queue.
+        let queue = unsafe { device.get_device_queue(candidate.queue_family, 0) };
+        Ok(Arc::new(Context {
+            accel: khr::acceleration_structure::Device::new(&instance, &device),
+            rt: khr::ray_tracing_pipeline::Device::new(&instance, &device),
+            entry,
+            instance,
+            physical: candidate.physical,
+            device,
+            queue,
+            queue_family: candidate.queue_family,
+            info,
+            allocator: ManuallyDrop::new(Mutex::new(allocator)),
+            messenger,
+            validation_log,
+        }))
+    }
+
+    /// The allocator; poisoning is ignored because the allocator holds no invariant a panic breaks.
+    pub fn allocator(&self) -> std::sync::MutexGuard<'_, Allocator> {
+        self.allocator.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// Fails if the validation layer reported errors since the last check.
+    pub fn check_validation(&self) -> Result<()> {
+        let errors = self.validation_log.take_errors();
+        match errors.first() {
+            None => Ok(()),
+            Some(first) => Err(Error::Validation { count: errors.len(), first: first.clone() }),
+        }
+    }
+}
+
+impl Drop for Context {
+    fn drop(&mut self) {
+        // SAFETY: every object made from the device holds an Arc<Context>, so none is alive now;
+        // the allocator goes before the device, the messenger before the instance.
+        unsafe {
+            let _ = self.device.device_wait_idle();
+            ManuallyDrop::drop(&mut self.allocator);
+            self.device.destroy_device(None);
+        }
+        destroy_instance(&self.instance, self.messenger.take());
+    }
+}
+
+fn destroy_instance(instance: &ash::Instance, messenger: Option<Messenger>) {
+    // SAFETY: nothing made from the instance is alive any more.
+    unsafe {
+        if let Some(m) = messenger {
+            m.loader.destroy_debug_utils_messenger(m.raw, None);
+        }
+        instance.destroy_instance(None);
+    }
+}
+
+fn layer_available(entry: &ash::Entry) -> Result<bool> {
+    // SAFETY: plain enumeration.
+    let layers = unsafe { entry.enumerate_instance_layer_properties() }.call("vkEnumerateInstanceLayerProperties")?;
+    Ok(layers.iter().any(|l| l.layer_name_as_c_str() == Ok(validation::LAYER_NAME)))
+}
+
+fn create_instance(entry: &ash::Entry, validate: bool, log: &ValidationLog) -> Result<ash::Instance> {
+    let app = vk::ApplicationInfo::default()
+        .application_name(c"twinray")
+        .engine_name(c"twinray")
+        .api_version(vk::API_VERSION_1_2);
+    let layers = [validation::LAYER_NAME.as_ptr()];
+    let extensions = [debug_utils::NAME.as_ptr()];
+    let mut messenger_info = validation::messenger_info(log);
+    let mut info = vk::InstanceCreateInfo::default().application_info(&app);
+    if validate {
+        // The chained messenger also reports errors of vkCreateInstance/vkDestroyInstance.
+        info = info.enabled_layer_names(&layers).enabled_extension_names(&extensions).push_next(&mut messenger_info);
+    }
+    // SAFETY: all pointers in `info` live until the call returns.
+    unsafe { entry.create_instance(&info, None) }.call("vkCreateInstance")
+}
+
+fn create_device(instance: &ash::Instance, candidate: &Candidate) -> Result<ash::Device> {
+    let priorities = [1.0];
+    let queues =
+        [vk::DeviceQueueCreateInfo::default().queue_family_index(candidate.queue_family).queue_priorities(&priorities)];
+    let extensions: Vec<_> = REQUIRED_EXTENSIONS.iter().map(|e| e.as_ptr()).collect();
+    let mut f12 = vk::PhysicalDeviceVulkan12Features::default().buffer_device_address(true).vulkan_memory_model(true);
+    let mut accel = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
+    let mut rt = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default().ray_tracing_pipeline(true);
+    let info = vk::DeviceCreateInfo::default()
+        .queue_create_infos(&queues)
+        .enabled_extension_names(&extensions)
+        .push_next(&mut f12)
+        .push_next(&mut accel)
+        .push_next(&mut rt);
+    // SAFETY: the candidate supports every extension and feature enabled here.
+    unsafe { instance.create_device(candidate.physical, &info, None) }.call("vkCreateDevice")
+}
+
+fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_family: u32, name: String) -> DeviceInfo {
+    let mut rt = vk::PhysicalDeviceRayTracingPipelinePropertiesKHR::default();
+    let mut accel = vk::PhysicalDeviceAccelerationStructurePropertiesKHR::default();
+    let mut driver = vk::PhysicalDeviceDriverProperties::default();
+    let mut props2 =
+        vk::PhysicalDeviceProperties2::default().push_next(&mut rt).push_next(&mut accel).push_next(&mut driver);
+    // SAFETY: the chained structs live until the call returns.
+    unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
+    let props = props2.properties;
+    // SAFETY: physical comes from this instance.
+    let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
+    let text = |c: Result<&std::ffi::CStr, _>| c.map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
+    DeviceInfo {
+        name,
+        device_type: format!("{:?}", props.device_type),
+        api_version: format!(
+            "{}.{}.{}",
+            vk::api_version_major(props.api_version),
+            vk::api_version_minor(props.api_version),
+            vk::api_version_patch(props.api_version)
+        ),
+        driver_name: text(driver.driver_name_as_c_str()),
+        driver_info: text(driver.driver_info_as_c_str()),
+        shader_group_handle_size: rt.shader_group_handle_size,
+        shader_group_handle_alignment: rt.shader_group_handle_alignment,
+        shader_group_base_alignment: rt.shader_group_base_alignment,
+        max_ray_recursion_depth: rt.max_ray_recursion_depth,
+        max_ray_dispatch_invocation_count: rt.max_ray_dispatch_invocation_count,
+        max_image_dimension_2d: props.limits.max_image_dimension2_d,
+        min_scratch_offset_alignment: accel.min_acceleration_structure_scratch_offset_alignment,
+        timestamp_period_ns: props.limits.timestamp_period,
+        timestamp_valid_bits: families.get(queue_family as usize).map_or(0, |f| f.timestamp_valid_bits),
+    }
+}

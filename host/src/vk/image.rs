@@ -1,0 +1,90 @@
+//! The storage image the ray generation stage writes (rgba8), with its memory and view.
+
+use super::context::Context;
+use crate::error::{Error, Result, VkContext};
+use ash::vk;
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
+
+pub const FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
+
+pub struct StorageImage {
+    ctx: Arc<Context>,
+    pub raw: vk::Image,
+    pub view: vk::ImageView,
+    pub extent: vk::Extent2D,
+    allocation: Option<Allocation>,
+}
+
+impl StorageImage {
+    /// A device-local rgba8 image usable as a storage image and a copy source.
+    pub fn new(ctx: &Arc<Context>, width: u32, height: u32) -> Result<Self> {
+        // SAFETY: plain query on a live physical device.
+        let format_props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, FORMAT) };
+        if !format_props.optimal_tiling_features.contains(vk::FormatFeatureFlags::STORAGE_IMAGE) {
+            return Err(Error::Unsupported("the device cannot use R8G8B8A8_UNORM as a storage image".into()));
+        }
+        let extent = vk::Extent2D { width, height };
+        let info = vk::ImageCreateInfo::default()
+            .image_type(vk::ImageType::TYPE_2D)
+            .format(FORMAT)
+            .extent(extent.into())
+            .mip_levels(1)
+            .array_layers(1)
+            .samples(vk::SampleCountFlags::TYPE_1)
+            .tiling(vk::ImageTiling::OPTIMAL)
+            .usage(vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC)
+            .initial_layout(vk::ImageLayout::UNDEFINED);
+        // SAFETY: valid create info; destroyed in Drop.
+        let raw = unsafe { ctx.device.create_image(&info, None) }.call("vkCreateImage")?;
+        let mut image = StorageImage { ctx: ctx.clone(), raw, view: vk::ImageView::null(), extent, allocation: None };
+        // SAFETY: raw is a live image of this device.
+        let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
+        let allocation = ctx
+            .allocator()
+            .allocate(&AllocationCreateDesc {
+                name: "output image",
+                requirements,
+                location: MemoryLocation::GpuOnly,
+                linear: false,
+                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+            })
+            .map_err(|source| Error::Allocation { what: format!("output image {width}x{height}"), source })?;
+        // SAFETY: the allocation was made for this image's requirements.
+        unsafe { ctx.device.bind_image_memory(raw, allocation.memory(), allocation.offset()) }
+            .call("vkBindImageMemory")?;
+        image.allocation = Some(allocation);
+        let view_info = vk::ImageViewCreateInfo::default()
+            .image(raw)
+            .view_type(vk::ImageViewType::TYPE_2D)
+            .format(FORMAT)
+            .subresource_range(COLOR_RANGE);
+        // SAFETY: the image is bound to memory.
+        image.view = unsafe { ctx.device.create_image_view(&view_info, None) }.call("vkCreateImageView")?;
+        Ok(image)
+    }
+}
+
+pub const COLOR_RANGE: vk::ImageSubresourceRange = vk::ImageSubresourceRange {
+    aspect_mask: vk::ImageAspectFlags::COLOR,
+    base_mip_level: 0,
+    level_count: 1,
+    base_array_layer: 0,
+    layer_count: 1,
+};
+
+impl Drop for StorageImage {
+    fn drop(&mut self) {
+        // SAFETY: the GPU work using this image has completed; a null view is ignored.
+        unsafe {
+            self.ctx.device.destroy_image_view(self.view, None);
+            self.ctx.device.destroy_image(self.raw, None);
+        }
+        if let Some(allocation) = self.allocation.take() {
+            if let Err(e) = self.ctx.allocator().free(allocation) {
+                log::error!("freeing image memory: {e}");
+            }
+        }
+    }
+}

@@ -1,0 +1,13 @@
+//! Thin, self-releasing wrappers over the Vulkan objects twinray uses.
+
+pub mod accel;
+pub mod buffer;
+pub mod commands;
+pub mod context;
+pub mod descriptors;
+pub mod device_select;
+pub mod image;
+pub mod pipeline;
+pub mod sbt;
+pub mod timing;
+pub mod validation;

@@ -1,0 +1,50 @@
+//! Compiles the `twinray-shaders` crate to SPIR-V 1.4 with rust-gpu, one module per entry point.
+//!
+//! Usage: `twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir>`.
+//! Run by `cargo xtask shaders`; it lives outside the stable workspace because
+//! rustc_codegen_spirv must be compiled by the pinned nightly.
+
+use spirv_builder::{Capability, ModuleResult, SpirvBuilder, SpirvMetadata};
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+/// Vulkan 1.1 environment with SPIR-V 1.4, the first version ray tracing modules may use.
+const TARGET: &str = "spirv-unknown-vulkan1.1-spv1.4";
+
+fn main() -> ExitCode {
+    let args: Vec<PathBuf> = std::env::args_os().skip(1).map(PathBuf::from).collect();
+    let [crate_dir, out_dir, target_dir] = args.as_slice() else {
+        eprintln!("usage: twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir>");
+        return ExitCode::from(2);
+    };
+    match build(crate_dir, out_dir, target_dir) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("error: {message}");
+            ExitCode::FAILURE
+        }
+    }
+}
+
+fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf) -> Result<(), String> {
+    let result = SpirvBuilder::new(crate_dir, TARGET)
+        .capability(Capability::RayTracingKHR)
+        .extension("SPV_KHR_ray_tracing")
+        .multimodule(true)
+        // No OpName/OpLine: the committed modules then depend only on the code, not on paths.
+        .spirv_metadata(SpirvMetadata::None)
+        .deny_warnings(true)
+        .target_dir_path(target_dir.clone())
+        .build()
+        .map_err(|e| format!("spirv-builder failed: {e}"))?;
+    let ModuleResult::MultiModule(modules) = &result.module else {
+        return Err("spirv-builder returned a single module although multimodule was asked".into());
+    };
+    std::fs::create_dir_all(out_dir).map_err(|e| format!("creating {}: {e}", out_dir.display()))?;
+    for (entry, path) in modules {
+        let dest = out_dir.join(format!("{entry}.spv"));
+        std::fs::copy(path, &dest).map_err(|e| format!("copying {} to {}: {e}", path.display(), dest.display()))?;
+        println!("{entry} -> {}", dest.display());
+    }
+    Ok(())
+}

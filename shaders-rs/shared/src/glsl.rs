@@ -1,0 +1,150 @@
+//! Generates `shaders-glsl/twinray_layout.glsl`, the GLSL mirror of [`crate::layout`] and
+//! [`crate::bindings`], so the two shader sets cannot read different layouts.
+//!
+//! Each field is listed with its GLSL type; the Rust offset comes from `offset_of!`, and
+//! [`GlslStruct::check`] verifies it against the std140/std430 rules for that GLSL type (for
+//! the types used here the two rules agree), and that the fields cover the whole struct.
+
+use crate::bindings::*;
+use crate::layout::{CameraUniform, RayPayload, Sphere};
+use crate::shading::{LIGHT_DIRECTION, MISS_GREY};
+use std::fmt::Write;
+use std::mem::{offset_of, size_of};
+
+/// One field of a mirrored struct.
+pub struct GlslField {
+    pub glsl_type: &'static str,
+    pub name: &'static str,
+    pub offset: usize,
+}
+
+/// A Rust struct and the GLSL declaration that mirrors it.
+pub struct GlslStruct {
+    pub name: &'static str,
+    pub size: usize,
+    pub fields: Vec<GlslField>,
+}
+
+macro_rules! glsl_struct {
+    ($ty:ident { $($field:ident : $glsl:literal),* $(,)? }) => {
+        GlslStruct {
+            name: stringify!($ty),
+            size: size_of::<$ty>(),
+            fields: vec![$(GlslField {
+                glsl_type: $glsl,
+                name: stringify!($field),
+                offset: offset_of!($ty, $field),
+            }),*],
+        }
+    };
+}
+
+/// Every struct the GLSL set reads or writes.
+pub fn structs() -> Vec<GlslStruct> {
+    vec![
+        glsl_struct!(CameraUniform { view_inverse: "mat4", proj_inverse: "mat4" }),
+        glsl_struct!(Sphere { center_radius: "vec4", color: "vec4" }),
+        glsl_struct!(RayPayload { color: "vec4", primitive: "uint" }),
+    ]
+}
+
+/// (size, alignment) of a GLSL type under std430 (equal to std140 for these types).
+fn glsl_size_align(glsl_type: &str) -> Option<(usize, usize)> {
+    match glsl_type {
+        "float" | "uint" | "int" => Some((4, 4)),
+        "vec4" | "uvec4" | "ivec4" => Some((16, 16)),
+        "mat4" => Some((64, 16)),
+        _ => None,
+    }
+}
+
+impl GlslStruct {
+    /// Checks that GLSL would place every field where Rust does, and that no bytes are unlisted.
+    pub fn check(&self) -> Result<(), String> {
+        let mut end = 0usize;
+        let mut struct_align = 1usize;
+        for f in &self.fields {
+            let (size, align) = glsl_size_align(f.glsl_type)
+                .ok_or_else(|| format!("{}.{}: unsupported GLSL type {}", self.name, f.name, f.glsl_type))?;
+            let glsl_offset = end.next_multiple_of(align);
+            if glsl_offset != f.offset {
+                return Err(format!("{}.{}: GLSL offset {glsl_offset}, Rust offset {}", self.name, f.name, f.offset));
+            }
+            end = glsl_offset + size;
+            struct_align = struct_align.max(align);
+        }
+        let glsl_size = end.next_multiple_of(struct_align);
+        if glsl_size != self.size {
+            return Err(format!("{}: GLSL size {glsl_size}, Rust size {}", self.name, self.size));
+        }
+        Ok(())
+    }
+}
+
+/// The text of `twinray_layout.glsl`.
+pub fn layout_include() -> Result<String, String> {
+    let mut s = String::new();
+    s.push_str("// Generated from twinray-shared by `cargo xtask shaders`; do not edit.\n");
+    s.push_str("#ifndef TWINRAY_LAYOUT_GLSL\n#define TWINRAY_LAYOUT_GLSL\n\n");
+    let uints = [
+        ("DESCRIPTOR_SET", DESCRIPTOR_SET),
+        ("BINDING_TLAS", BINDING_TLAS),
+        ("BINDING_IMAGE", BINDING_IMAGE),
+        ("BINDING_CAMERA", BINDING_CAMERA),
+        ("BINDING_SPHERES", BINDING_SPHERES),
+        ("BINDING_HIT_IDS", BINDING_HIT_IDS),
+        ("NO_HIT", NO_HIT),
+    ];
+    for (name, value) in uints {
+        writeln!(s, "#define {name} {value}u").map_err(|e| e.to_string())?;
+    }
+    let floats = [("T_MIN", T_MIN), ("T_MAX", T_MAX), ("MISS_GREY", MISS_GREY)];
+    for (name, value) in floats {
+        writeln!(s, "#define {name} {value:?}").map_err(|e| e.to_string())?;
+    }
+    let l = LIGHT_DIRECTION;
+    writeln!(s, "#define LIGHT_DIRECTION vec3({:?}, {:?}, {:?})", l.x, l.y, l.z).map_err(|e| e.to_string())?;
+    for st in structs() {
+        st.check()?;
+        writeln!(s, "\n// {} bytes, as twinray_shared::layout::{}", st.size, st.name).map_err(|e| e.to_string())?;
+        writeln!(s, "struct {} {{", st.name).map_err(|e| e.to_string())?;
+        for f in &st.fields {
+            writeln!(s, "    {} {}; // offset {}", f.glsl_type, f.name, f.offset).map_err(|e| e.to_string())?;
+        }
+        s.push_str("};\n");
+    }
+    s.push_str("\n#endif\n");
+    Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_struct_matches_glsl_rules() {
+        for st in structs() {
+            st.check().unwrap_or_else(|e| panic!("{e}"));
+        }
+    }
+
+    #[test]
+    fn check_catches_a_misplaced_field() {
+        let bad = GlslStruct {
+            name: "Bad",
+            size: 32,
+            fields: vec![
+                GlslField { glsl_type: "uint", name: "a", offset: 0 },
+                GlslField { glsl_type: "vec4", name: "b", offset: 4 },
+            ],
+        };
+        assert!(bad.check().unwrap_err().contains("Bad.b"));
+    }
+
+    #[test]
+    fn check_catches_unlisted_bytes() {
+        let mut sphere = glsl_struct!(Sphere { center_radius: "vec4", color: "vec4" });
+        sphere.fields.pop();
+        assert!(sphere.check().unwrap_err().contains("size"));
+    }
+}

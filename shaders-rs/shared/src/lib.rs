@@ -1,0 +1,18 @@
+//! twinray's shared GPU contract: buffer layouts, binding numbers and the math both the Rust
+//! shaders and the host (tests, CPU reference) use. `no_std` on SPIR-V, `std` on the CPU.
+#![cfg_attr(target_arch = "spirv", no_std)]
+
+pub mod bindings;
+pub mod camera;
+pub mod layout;
+pub mod shading;
+pub mod sphere;
+
+#[cfg(not(target_arch = "spirv"))]
+pub mod catalog;
+#[cfg(not(target_arch = "spirv"))]
+pub mod glsl;
+#[cfg(not(target_arch = "spirv"))]
+pub mod spirv_info;
+
+pub use glam;

@@ -1,0 +1,166 @@
+//! `cargo xtask shaders [--check]`: builds the Rust set with rust-gpu and the GLSL set with
+//! glslangValidator, validates every module with spirv-val, checks each declares the entry
+//! point, SPIR-V version and bindings the host expects, and installs them in `spirv/` (or, with
+//! `--check`, fails if the committed modules differ).
+
+use crate::process::{self, have, output, repo_root};
+use crate::setup::NIGHTLY;
+use anyhow::{bail, Context, Result};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use twinray_shared::bindings as b;
+use twinray_shared::catalog::{Language, ModuleSpec, MODULES};
+use twinray_shared::spirv_info::{self, ModuleInfo};
+
+const LAYOUT_INCLUDE: &str = "shaders-glsl/twinray_layout.glsl";
+
+pub fn run(check: bool) -> Result<()> {
+    let root = repo_root();
+    for tool in ["glslangValidator", "spirv-val"] {
+        if !have(tool) {
+            bail!("{tool} not found: run `cargo xtask setup` (Debian packages glslang-tools, spirv-tools)");
+        }
+    }
+    sync_layout_include(&root, check)?;
+    let scratch = root.join("target/xtask-shaders");
+    for language in Language::ALL {
+        let dir = scratch.join(language.name());
+        if dir.exists() {
+            std::fs::remove_dir_all(&dir)?;
+        }
+        std::fs::create_dir_all(&dir)?;
+    }
+    build_rust(&root, &scratch.join("rust"))?;
+    build_glsl(&root, &scratch.join("glsl"))?;
+    let mut stale = Vec::new();
+    for spec in MODULES {
+        let infos = Language::ALL.map(|language| check_module(&scratch, &spec, language));
+        let [rust, glsl] = infos;
+        let (rust, glsl) = (rust?, glsl?);
+        if rust.bindings != glsl.bindings {
+            bail!("{}: Rust binds {:?} but GLSL binds {:?}", spec.name, rust.bindings, glsl.bindings);
+        }
+        for language in Language::ALL {
+            let built = scratch.join(language.name()).join(format!("{}.spv", spec.name));
+            let committed = root.join(spec.spirv_path(language));
+            if check {
+                if std::fs::read(&committed).ok() != Some(std::fs::read(&built)?) {
+                    stale.push(spec.spirv_path(language));
+                }
+            } else {
+                std::fs::create_dir_all(committed.parent().unwrap_or(&root))?;
+                std::fs::copy(&built, &committed).with_context(|| format!("installing {}", committed.display()))?;
+            }
+        }
+    }
+    if !stale.is_empty() {
+        bail!("committed SPIR-V is stale (run `cargo xtask shaders` and commit): {}", stale.join(", "));
+    }
+    println!(
+        "shaders: {} modules per set built, validated and {}",
+        MODULES.len(),
+        if check { "up to date" } else { "installed in spirv/" }
+    );
+    Ok(())
+}
+
+/// Writes (or checks) the GLSL mirror of the shared layout.
+fn sync_layout_include(root: &Path, check: bool) -> Result<()> {
+    let text = twinray_shared::glsl::layout_include().map_err(anyhow::Error::msg)?;
+    let path = root.join(LAYOUT_INCLUDE);
+    let current = std::fs::read_to_string(&path).unwrap_or_default();
+    if current == text {
+        return Ok(());
+    }
+    if check {
+        bail!("{LAYOUT_INCLUDE} differs from twinray-shared's layout: run `cargo xtask shaders` and commit");
+    }
+    std::fs::write(&path, text)?;
+    println!("shaders: regenerated {LAYOUT_INCLUDE}");
+    Ok(())
+}
+
+/// Where the builder's build outlives a fresh clone, so CI pays for rustc_codegen_spirv once.
+fn cache_dir() -> PathBuf {
+    let base = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+        .unwrap_or_else(|| repo_root().join("target"));
+    base.join("twinray")
+}
+
+/// A command on the pinned nightly, without the outer (stable) cargo's toolchain variables.
+fn nightly(program: &str) -> Command {
+    let mut command = Command::new("rustup");
+    command.args(["run", NIGHTLY, program]);
+    for var in ["RUSTUP_TOOLCHAIN", "RUSTC", "RUSTDOC", "CARGO", "RUSTC_WRAPPER", "CARGO_TARGET_DIR"] {
+        command.env_remove(var);
+    }
+    command
+}
+
+fn build_rust(root: &Path, out: &Path) -> Result<()> {
+    let cache = cache_dir();
+    let target = cache.join("builder-target");
+    println!("shaders: building the rust-gpu builder (first time about 9 minutes; cached in {})", target.display());
+    process::run(
+        nightly("cargo")
+            .args(["build", "--release", "--manifest-path"])
+            .arg(root.join("shaders-rs/builder/Cargo.toml"))
+            .env("CARGO_TARGET_DIR", &target),
+    )?;
+    // spirv-builder looks for librustc_codegen_spirv.so on the library path.
+    let deps = target.join("release");
+    process::run(
+        nightly(&target.join("release/twinray-shader-builder").to_string_lossy())
+            .arg(root.join("shaders-rs/shaders"))
+            .arg(out)
+            .arg(cache.join("shader-target"))
+            .env("LD_LIBRARY_PATH", deps),
+    )
+    .context("building the Rust shaders")
+}
+
+fn build_glsl(root: &Path, out: &Path) -> Result<()> {
+    for spec in MODULES {
+        let source = root.join("shaders-glsl").join(spec.glsl_source);
+        process::run(
+            Command::new("glslangValidator")
+                .args(["-V", "--target-env", "spirv1.4", "-o"])
+                .arg(out.join(format!("{}.spv", spec.name)))
+                .arg(&source),
+        )
+        .with_context(|| format!("compiling {}", source.display()))?;
+    }
+    Ok(())
+}
+
+/// Validates one built module and checks what it declares.
+fn check_module(scratch: &Path, spec: &ModuleSpec, language: Language) -> Result<ModuleInfo> {
+    let path = scratch.join(language.name()).join(format!("{}.spv", spec.name));
+    let label = format!("{} {}", language.name(), spec.name);
+    output(Command::new("spirv-val").args(["--target-env", "vulkan1.1spv1.4"]).arg(&path))
+        .with_context(|| format!("spirv-val rejected {label}"))?;
+    let bytes = std::fs::read(&path).with_context(|| format!("{label}: reading {}", path.display()))?;
+    let info = spirv_info::parse(&bytes).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    check_declarations(&info, spec, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    Ok(info)
+}
+
+/// The SPIR-V version, the one entry point and the bindings the host expects.
+pub fn check_declarations(info: &ModuleInfo, spec: &ModuleSpec, language: Language) -> Result<(), String> {
+    if info.version != (1, 4) {
+        return Err(format!("SPIR-V {}.{}, expected 1.4", info.version.0, info.version.1));
+    }
+    let want = (spec.stage.execution_model(), spec.entry_point(language).to_string());
+    if !info.entry_points.contains(&want) {
+        return Err(format!("no {} entry point {:?} (found {:?})", spec.stage.name(), want.1, info.entry_points));
+    }
+    let known = [b::BINDING_TLAS, b::BINDING_IMAGE, b::BINDING_CAMERA, b::BINDING_SPHERES, b::BINDING_HIT_IDS];
+    for &(set, binding) in &info.bindings {
+        if set != b::DESCRIPTOR_SET || !known.contains(&binding) {
+            return Err(format!("binds set {set} binding {binding}, which twinray_shared::bindings does not define"));
+        }
+    }
+    Ok(())
+}
