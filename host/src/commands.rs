@@ -99,6 +99,7 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
     } else {
         print!("{}", report.summary());
         println!("  wrote a.png, b.png, diff.png in {}", args.out_dir.display());
+        println!("  diff.png: {}", twinray::compare::DIFF_LEGEND);
     }
     Ok(if report.pass { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }

@@ -6,17 +6,24 @@ use crate::scene::Parity;
 use serde::Serialize;
 use twinray_shared::bindings::NO_HIT;
 
-/// Image and hit-id differences between two renders of the same size.
-#[derive(Clone, Debug, Serialize)]
-pub struct ImageDiff {
+/// Colour differences between two RGBA8 images of the same size (alpha ignored).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct ColorDiff {
     /// Root mean square difference over the RGB channels, in [0, 1].
     pub rmse: f64,
     /// Peak signal-to-noise ratio in dB; infinite (JSON null) when the images are identical.
     pub psnr: f64,
     /// Largest difference of any channel, in 8-bit steps.
     pub max_abs_diff: u8,
-    /// Pixels where some channel differs by more than the scene's threshold.
+    /// Pixels where some channel differs by more than the threshold.
     pub pixels_over_threshold: u64,
+}
+
+/// Image and hit-id differences between two renders of the same size.
+#[derive(Clone, Debug, Serialize)]
+pub struct ImageDiff {
+    #[serde(flatten)]
+    pub color: ColorDiff,
     /// Pixels whose primary rays hit different primitives (or one hit and one missed).
     pub hit_mismatches: u64,
     /// Of those, pixels not on a silhouette in either image: these should never happen.
@@ -27,15 +34,7 @@ pub struct ImageDiff {
 pub fn verdict(diff: &ImageDiff, parity: &Parity, pixels: u64) -> Vec<String> {
     let fraction = |n: u64| n as f64 / pixels.max(1) as f64;
     let mut failures = Vec::new();
-    if diff.rmse > parity.max_rmse {
-        failures.push(format!("rmse {:.6} > {}", diff.rmse, parity.max_rmse));
-    }
-    if fraction(diff.pixels_over_threshold) > parity.max_pixels_over_threshold {
-        failures.push(format!(
-            "{} pixels differ by more than {} steps (> {} of all)",
-            diff.pixels_over_threshold, parity.pixel_threshold, parity.max_pixels_over_threshold
-        ));
-    }
+    failures.extend(color_verdict(&diff.color, parity, pixels));
     if fraction(diff.hit_mismatches) > parity.max_hit_mismatches {
         failures.push(format!("{} hit mismatches (> {} of all)", diff.hit_mismatches, parity.max_hit_mismatches));
     }
@@ -45,11 +44,32 @@ pub fn verdict(diff: &ImageDiff, parity: &Parity, pixels: u64) -> Vec<String> {
     failures
 }
 
+/// The colour part of [`verdict`], for comparisons without hit ids (golden images).
+pub fn color_verdict(diff: &ColorDiff, parity: &Parity, pixels: u64) -> Vec<String> {
+    let mut failures = Vec::new();
+    if diff.rmse > parity.max_rmse {
+        failures.push(format!("rmse {:.6} > {}", diff.rmse, parity.max_rmse));
+    }
+    if diff.pixels_over_threshold as f64 / pixels.max(1) as f64 > parity.max_pixels_over_threshold {
+        failures.push(format!(
+            "{} pixels differ by more than {} steps (> {} of all)",
+            diff.pixels_over_threshold, parity.pixel_threshold, parity.max_pixels_over_threshold
+        ));
+    }
+    failures
+}
+
 pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDiff {
+    let (hit_mismatches, hit_mismatches_off_silhouette) = hit_mismatches(a, b);
+    ImageDiff { color: color_diff(&a.rgba, &b.rgba, pixel_threshold), hit_mismatches, hit_mismatches_off_silhouette }
+}
+
+/// Colour error of RGBA8 image `b` against `a`.
+pub fn color_diff(a: &[u8], b: &[u8], pixel_threshold: u8) -> ColorDiff {
     let mut sum_sq = 0.0f64;
     let mut max_abs = 0u8;
     let mut over = 0u64;
-    for (pa, pb) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)) {
+    for (pa, pb) in a.chunks_exact(4).zip(b.chunks_exact(4)) {
         let d = channel_diff(pa, pb);
         for c in 0..3 {
             let x = f64::from(pa[c]) / 255.0 - f64::from(pb[c]) / 255.0;
@@ -58,16 +78,13 @@ pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDif
         max_abs = max_abs.max(d);
         over += u64::from(d > pixel_threshold);
     }
-    let samples = (a.rgba.len() / 4 * 3).max(1) as f64;
+    let samples = (a.len() / 4 * 3).max(1) as f64;
     let rmse = (sum_sq / samples).sqrt();
-    let (mismatches, off_silhouette) = hit_mismatches(a, b);
-    ImageDiff {
+    ColorDiff {
         rmse,
         psnr: if rmse > 0.0 { -20.0 * rmse.log10() } else { f64::INFINITY },
         max_abs_diff: max_abs,
         pixels_over_threshold: over,
-        hit_mismatches: mismatches,
-        hit_mismatches_off_silhouette: off_silhouette,
     }
 }
 
@@ -101,9 +118,12 @@ fn on_silhouette(ids: &[u32], w: usize, h: usize, x: usize, y: usize) -> bool {
         .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| ids[ny * w + nx] != id))
 }
 
+/// Legend of [`diff_image`], printed beside it.
+pub const DIFF_LEGEND: &str = "dim grey = equal, red = 1 step, yellow = 8, white = 16+, cyan = hit mismatch";
+
 /// RGBA8 difference image: image A in dim grey for context; differing pixels as a heat map
-/// (difference amplified 16x: dark red for one step, through orange and yellow, to white for 16
-/// steps or more); hit/miss or primitive mismatches in cyan.
+/// (bright red for one 8-bit step, through yellow at 8, to white at 16 or more); hit/miss or
+/// primitive mismatches in cyan. Even a one-step difference stands out against the grey.
 pub fn diff_image(a: &RenderOutput, b: &RenderOutput) -> Vec<u8> {
     let mut out = Vec::with_capacity(a.rgba.len());
     for (i, (pa, pb)) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)).enumerate() {
@@ -111,7 +131,7 @@ pub fn diff_image(a: &RenderOutput, b: &RenderOutput) -> Vec<u8> {
         let rgb = if a.hit_ids[i] != b.hit_ids[i] {
             [0, 255, 255]
         } else if d > 0 {
-            heat((f32::from(d) * 16.0 / 255.0).min(1.0))
+            heat((f32::from(d) / 16.0).min(1.0))
         } else {
             let grey = ((u16::from(pa[0]) + u16::from(pa[1]) + u16::from(pa[2])) / 12) as u8;
             [grey; 3]
@@ -121,12 +141,11 @@ pub fn diff_image(a: &RenderOutput, b: &RenderOutput) -> Vec<u8> {
     out
 }
 
-/// Black-body style ramp: t = 0 dark red, 0.5 orange-yellow, 1 white.
+/// Ramp from red (t near 0) through yellow (t = 0.5) to white (t = 1).
 fn heat(t: f32) -> [u8; 3] {
-    let r = 0.5 + 0.5 * (t * 3.0).min(1.0);
-    let g = (t * 1.5 - 0.25).clamp(0.0, 1.0);
+    let g = (t * 2.0).clamp(0.0, 1.0);
     let b = (t * 2.0 - 1.0).clamp(0.0, 1.0);
-    [(r * 255.0) as u8, (g * 255.0) as u8, (b * 255.0) as u8]
+    [255, (g * 255.0) as u8, (b * 255.0) as u8]
 }
 
 /// Pixels whose primary ray hit something.
@@ -147,8 +166,8 @@ mod tests {
     fn identical_images_have_zero_error() {
         let a = output(vec![10; 16], vec![1, 2, 3, NO_HIT], 2);
         let d = diff(&a, &a, 1);
-        assert_eq!((d.rmse, d.max_abs_diff, d.hit_mismatches), (0.0, 0, 0));
-        assert!(d.psnr.is_infinite());
+        assert_eq!((d.color.rmse, d.color.max_abs_diff, d.hit_mismatches), (0.0, 0, 0));
+        assert!(d.color.psnr.is_infinite());
     }
 
     #[test]
@@ -159,13 +178,13 @@ mod tests {
         rgba[5] = 1; // pixel 1, green, 1 step
         let b = output(rgba, vec![1, 1, 1, 2], 2);
         let d = diff(&a, &b, 2);
-        assert_eq!(d.max_abs_diff, 5);
-        assert_eq!(d.pixels_over_threshold, 1);
+        assert_eq!(d.color.max_abs_diff, 5);
+        assert_eq!(d.color.pixels_over_threshold, 1);
         assert_eq!(d.hit_mismatches, 1);
         // In a 2x2 image every pixel touches the one that differs in b: all on a silhouette.
         assert_eq!(d.hit_mismatches_off_silhouette, 0);
         let want = ((25.0 + 1.0) / (255.0f64 * 255.0) / 12.0).sqrt();
-        assert!((d.rmse - want).abs() < 1e-12);
+        assert!((d.color.rmse - want).abs() < 1e-12);
     }
 
     #[test]
@@ -184,21 +203,12 @@ mod tests {
     fn verdict_names_each_failure() {
         let parity =
             Parity { max_rmse: 0.01, pixel_threshold: 2, max_pixels_over_threshold: 0.0, max_hit_mismatches: 0.5 };
-        let d = ImageDiff {
-            rmse: 0.02,
-            psnr: 34.0,
-            max_abs_diff: 9,
-            pixels_over_threshold: 1,
-            hit_mismatches: 1,
-            hit_mismatches_off_silhouette: 1,
-        };
+        let color = ColorDiff { rmse: 0.02, psnr: 34.0, max_abs_diff: 9, pixels_over_threshold: 1 };
+        let d = ImageDiff { color, hit_mismatches: 1, hit_mismatches_off_silhouette: 1 };
         let f = verdict(&d, &parity, 4);
         assert_eq!(f.len(), 3, "{f:?}");
-        assert!(verdict(
-            &ImageDiff { rmse: 0.0, pixels_over_threshold: 0, hit_mismatches_off_silhouette: 0, ..d },
-            &parity,
-            4
-        )
-        .is_empty());
+        let good = ColorDiff { rmse: 0.0, pixels_over_threshold: 0, ..color };
+        let ok = ImageDiff { color: good, hit_mismatches: 1, hit_mismatches_off_silhouette: 0 };
+        assert!(verdict(&ok, &parity, 4).is_empty());
     }
 }

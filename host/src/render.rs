@@ -107,9 +107,15 @@ pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderO
     let trace =
         Trace { pipeline: &pipeline, descriptors: &descriptors, sbt: &sbt, timestamps: timestamps.as_ref(), opts };
     one_shot.run(|device, cmd| {
-        transition_to_general(device, cmd, image.raw);
+        let rt = vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR;
+        let unused = (vk::ImageLayout::UNDEFINED, vk::PipelineStageFlags::TOP_OF_PIPE, vk::AccessFlags::empty());
+        let storage = (vk::ImageLayout::GENERAL, rt, vk::AccessFlags::SHADER_WRITE);
+        let copy_src =
+            (vk::ImageLayout::TRANSFER_SRC_OPTIMAL, vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ);
+        transition(device, cmd, image.raw, unused, storage);
         trace.record(ctx, cmd);
-        let written = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+        transition(device, cmd, image.raw, storage, copy_src);
+        let written = (rt, vk::AccessFlags::SHADER_WRITE);
         memory_barrier(device, cmd, written, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));
         copy_out(device, cmd, &image, &image_readback, &hit_ids, &ids_readback);
         let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
@@ -225,28 +231,25 @@ impl Trace<'_> {
     }
 }
 
-fn transition_to_general(device: &ash::Device, cmd: vk::CommandBuffer, image: vk::Image) {
+/// Layout transition of the output image, with the access and stage masks of both sides.
+fn transition(
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    image: vk::Image,
+    (old_layout, src_stage, src_access): (vk::ImageLayout, vk::PipelineStageFlags, vk::AccessFlags),
+    (new_layout, dst_stage, dst_access): (vk::ImageLayout, vk::PipelineStageFlags, vk::AccessFlags),
+) {
     let barrier = [vk::ImageMemoryBarrier::default()
-        .src_access_mask(vk::AccessFlags::empty())
-        .dst_access_mask(vk::AccessFlags::SHADER_WRITE)
-        .old_layout(vk::ImageLayout::UNDEFINED)
-        .new_layout(vk::ImageLayout::GENERAL)
+        .src_access_mask(src_access)
+        .dst_access_mask(dst_access)
+        .old_layout(old_layout)
+        .new_layout(new_layout)
         .src_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
         .dst_queue_family_index(vk::QUEUE_FAMILY_IGNORED)
         .image(image)
         .subresource_range(COLOR_RANGE)];
     // SAFETY: cmd is recording; the image is alive.
-    unsafe {
-        device.cmd_pipeline_barrier(
-            cmd,
-            vk::PipelineStageFlags::TOP_OF_PIPE,
-            vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR,
-            vk::DependencyFlags::empty(),
-            &[],
-            &[],
-            &barrier,
-        )
-    };
+    unsafe { device.cmd_pipeline_barrier(cmd, src_stage, dst_stage, vk::DependencyFlags::empty(), &[], &[], &barrier) };
 }
 
 fn copy_out(
@@ -268,7 +271,7 @@ fn copy_out(
     let ids_region = [vk::BufferCopy::default().size(ids.size)];
     // SAFETY: cmd is recording; sizes match (4 bytes per pixel on both sides).
     unsafe {
-        device.cmd_copy_image_to_buffer(cmd, image.raw, vk::ImageLayout::GENERAL, image_dst.raw, &region);
+        device.cmd_copy_image_to_buffer(cmd, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, image_dst.raw, &region);
         device.cmd_copy_buffer(cmd, ids.raw, ids_dst.raw, &ids_region);
     }
 }

@@ -94,7 +94,7 @@ impl CompareReport {
         let ms = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.3} ms"));
         let pixels = (u64::from(self.width) * u64::from(self.height)).max(1) as f64;
         let pct = |n: u64| 100.0 * n as f64 / pixels;
-        let d = &self.diff;
+        let d = &self.diff.color;
         let mut s = format!(
             "scene {} {}x{} on {}\n  a = {:<28} GPU {} (median of {})\n  b = {:<28} GPU {}\n  ratio a/b {}\n",
             self.scene,
@@ -116,9 +116,9 @@ impl CompareReport {
             self.pixel_threshold,
             d.pixels_over_threshold,
             pct(d.pixels_over_threshold),
-            d.hit_mismatches,
-            pct(d.hit_mismatches),
-            d.hit_mismatches_off_silhouette,
+            self.diff.hit_mismatches,
+            pct(self.diff.hit_mismatches),
+            self.diff.hit_mismatches_off_silhouette,
         );
         if self.pass {
             s += "  PASS: within the scene's parity tolerance\n";

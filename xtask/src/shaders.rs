@@ -8,7 +8,6 @@ use crate::setup::NIGHTLY;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use twinray_shared::bindings as b;
 use twinray_shared::catalog::{Language, ModuleSpec, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 
@@ -143,24 +142,6 @@ fn check_module(scratch: &Path, spec: &ModuleSpec, language: Language) -> Result
         .with_context(|| format!("spirv-val rejected {label}"))?;
     let bytes = std::fs::read(&path).with_context(|| format!("{label}: reading {}", path.display()))?;
     let info = spirv_info::parse(&bytes).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-    check_declarations(&info, spec, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    spec.check_declarations(&info, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     Ok(info)
-}
-
-/// The SPIR-V version, the one entry point and the bindings the host expects.
-pub fn check_declarations(info: &ModuleInfo, spec: &ModuleSpec, language: Language) -> Result<(), String> {
-    if info.version != (1, 4) {
-        return Err(format!("SPIR-V {}.{}, expected 1.4", info.version.0, info.version.1));
-    }
-    let want = (spec.stage.execution_model(), spec.entry_point(language).to_string());
-    if !info.entry_points.contains(&want) {
-        return Err(format!("no {} entry point {:?} (found {:?})", spec.stage.name(), want.1, info.entry_points));
-    }
-    let known = [b::BINDING_TLAS, b::BINDING_IMAGE, b::BINDING_CAMERA, b::BINDING_SPHERES, b::BINDING_HIT_IDS];
-    for &(set, binding) in &info.bindings {
-        if set != b::DESCRIPTOR_SET || !known.contains(&binding) {
-            return Err(format!("binds set {set} binding {binding}, which twinray_shared::bindings does not define"));
-        }
-    }
-    Ok(())
 }

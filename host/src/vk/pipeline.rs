@@ -19,7 +19,7 @@ pub struct RtPipeline {
 }
 
 /// (binding, type, stages) of every descriptor, from the shared binding numbers.
-fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 5] {
+pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 5] {
     use vk::ShaderStageFlags as S;
     [
         (b::BINDING_TLAS, vk::DescriptorType::ACCELERATION_STRUCTURE_KHR, S::RAYGEN_KHR),
@@ -134,7 +134,8 @@ fn create_pipeline(ctx: &Context, layout: vk::PipelineLayout, modules: &[StageMo
         .ok_or(Error::Vulkan { call: "vkCreateRayTracingPipelinesKHR", result: vk::Result::ERROR_UNKNOWN })
 }
 
-fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
+/// The Vulkan stage flag of a twinray stage.
+pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
     match stage {
         Stage::Raygen => vk::ShaderStageFlags::RAYGEN_KHR,
         Stage::Miss => vk::ShaderStageFlags::MISS_KHR,

@@ -2,6 +2,9 @@
 //! its entry point in each language and where its SPIR-V is committed. The host resolves shader
 //! sets from it; `cargo xtask shaders` builds and checks exactly these modules.
 
+use crate::bindings as b;
+use crate::spirv_info::ModuleInfo;
+
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Language {
     Rust,
@@ -83,4 +86,33 @@ impl ModuleSpec {
 
 impl Language {
     pub const ALL: [Language; 2] = [Language::Rust, Language::Glsl];
+}
+
+/// Every (descriptor set, binding) a module may declare: those of `crate::bindings`.
+pub const KNOWN_BINDINGS: [(u32, u32); 5] = [
+    (b::DESCRIPTOR_SET, b::BINDING_TLAS),
+    (b::DESCRIPTOR_SET, b::BINDING_IMAGE),
+    (b::DESCRIPTOR_SET, b::BINDING_CAMERA),
+    (b::DESCRIPTOR_SET, b::BINDING_SPHERES),
+    (b::DESCRIPTOR_SET, b::BINDING_HIT_IDS),
+];
+
+impl ModuleSpec {
+    /// Checks what a compiled module declares: SPIR-V 1.4, this spec's entry point with the
+    /// stage's execution model, and only bindings defined in `crate::bindings`.
+    pub fn check_declarations(&self, info: &ModuleInfo, language: Language) -> Result<(), String> {
+        if info.version != (1, 4) {
+            return Err(format!("SPIR-V {}.{}, expected 1.4", info.version.0, info.version.1));
+        }
+        let want = (self.stage.execution_model(), self.entry_point(language).to_string());
+        if !info.entry_points.contains(&want) {
+            return Err(format!("no {} entry point {:?} (found {:?})", self.stage.name(), want.1, info.entry_points));
+        }
+        match info.bindings.iter().find(|b| !KNOWN_BINDINGS.contains(b)) {
+            Some((set, binding)) => {
+                Err(format!("binds set {set} binding {binding}, which twinray_shared::bindings does not define"))
+            }
+            None => Ok(()),
+        }
+    }
 }

@@ -1,0 +1,131 @@
+//! The `twinray` command end to end: bad input gives a one-line error naming what and where,
+//! exit code 2, no panic and no file written; good input renders, compares and prints JSON.
+//! Renders run on lavapipe with --validate, so a validation error fails them.
+
+use std::path::Path;
+use std::process::{Command, Output};
+
+fn twinray(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_twinray")).args(args).current_dir(dir).output().expect("running twinray")
+}
+
+/// Asserts exit code 2, one line on stderr containing each of `needles`, and an empty `dir`.
+fn assert_bad_input(args: &[&str], needles: &[&str]) {
+    let dir = tempfile::tempdir().unwrap();
+    let out = twinray(args, dir.path());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{args:?}: not one line: {stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "{args:?}: {stderr:?} does not mention {n:?}");
+    }
+    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
+    assert!(left.is_empty(), "{args:?} left files behind: {left:?}");
+}
+
+#[test]
+fn missing_scene_file() {
+    assert_bad_input(&["render", "no/such/scene.toml", "--out", "x.png"], &["no/such/scene.toml", "no such file"]);
+    assert_bad_input(&["compare", "nosuchscene"], &["nosuchscene", "built-ins: spheres"]);
+}
+
+#[test]
+fn unreadable_scene_file() {
+    // A directory exists but cannot be read as a file.
+    assert_bad_input(&["render", ".", "--out", "x.png"], &["scene .", "cannot read"]);
+}
+
+#[test]
+fn malformed_scene_file_reports_line_and_column() {
+    let dir = tempfile::tempdir().unwrap();
+    let bad = dir.path().join("bad.toml");
+    std::fs::write(&bad, "name = \"x\"\n[image]\nwidth = \"wide\"\n").unwrap();
+    let bad = bad.to_string_lossy().into_owned();
+    assert_bad_input(&["render", &bad, "--out", "x.png"], &[&bad, "line 3, column 9"]);
+}
+
+#[test]
+fn impossible_values_in_scene_file_are_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = include_str!("../../scenes/spheres.toml").replace("radius_min = 0.5", "radius_min = -1.0");
+    let bad = dir.path().join("negative.toml");
+    std::fs::write(&bad, text).unwrap();
+    assert_bad_input(&["render", &bad.to_string_lossy(), "--out", "x.png"], &["spheres.radius_min must be > 0"]);
+}
+
+#[test]
+fn unknown_shader_set_or_stage() {
+    assert_bad_input(&["render", "--shaders", "hlsl", "--out", "x.png"], &["--shaders", "unknown language \"hlsl\""]);
+    assert_bad_input(&["render", "--shaders", "rust,anyhit=glsl", "--out", "x.png"], &["unknown stage \"anyhit\""]);
+    assert_bad_input(&["compare", "--b", "rust,intersection"], &["--b", "STAGE=LANGUAGE"]);
+}
+
+#[test]
+fn zero_or_oversized_resolution() {
+    assert_bad_input(&["render", "--width", "0", "--out", "x.png"], &["0x512", "at least 1"]);
+    assert_bad_input(&["render", "--height", "100000", "--out", "x.png"], &["512x100000", "too large"]);
+    assert_bad_input(&["compare", "--width", "16384", "--height", "16384"], &["too large"]);
+    // clap reads -3 as an unknown flag; the message names it.
+    assert_bad_input(&["render", "--width", "-3", "--out", "x.png"], &["'-3'"]);
+}
+
+#[test]
+fn unwritable_output() {
+    assert_bad_input(&["render", "--out", "x.jpg"], &["x.jpg", ".png"]);
+    assert_bad_input(&["render", "--out", "missing/dir/x.png"], &["missing/dir", "does not exist"]);
+}
+
+#[test]
+fn help_documents_every_command() {
+    let dir = tempfile::tempdir().unwrap();
+    for args in [&["--help"][..], &["info", "--help"], &["render", "--help"], &["compare", "--help"]] {
+        let out = twinray(args, dir.path());
+        assert!(out.status.success(), "{args:?}");
+        assert!(String::from_utf8_lossy(&out.stdout).contains("Usage:"), "{args:?}");
+    }
+}
+
+#[test]
+fn render_writes_png_and_json() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["--validate", "render", "--shaders", "glsl,intersection=rust", "--width", "64", "--height", "48"];
+    let out = twinray(&[&args[..], &["--runs", "2", "--warmup", "0", "--out", "r.png", "--json"]].concat(), dir.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("render --json prints JSON");
+    assert_eq!((json["width"].as_u64(), json["height"].as_u64()), (Some(64), Some(48)));
+    assert_eq!(json["set"], "glsl,intersection=rust");
+    assert_eq!(json["gpu_ms_runs"].as_array().map(Vec::len), Some(2));
+    let png = image::open(dir.path().join("r.png")).expect("a readable PNG");
+    assert_eq!((png.width(), png.height()), (64, 48));
+}
+
+#[test]
+fn compare_prints_json_with_the_documented_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["--validate", "compare", "--width", "96", "--height", "96", "--runs", "2", "--warmup", "1"];
+    let out = twinray(&[&args[..], &["--out-dir", "cmp", "--json"]].concat(), dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    let json: serde_json::Value = serde_json::from_str(&stdout).expect("compare --json prints JSON");
+    let keys = [
+        "scene",
+        "width",
+        "height",
+        "rmse",
+        "psnr",
+        "max_abs_diff",
+        "pixels_over_threshold",
+        "hit_mismatches",
+        "gpu_ms_a",
+        "gpu_ms_b",
+        "ratio",
+        "pass",
+    ];
+    for key in keys {
+        assert!(json.get(key).is_some(), "missing {key} in {stdout}");
+    }
+    assert_eq!(out.status.success(), json["pass"] == true, "exit code must follow pass");
+    for name in ["a.png", "b.png", "diff.png"] {
+        assert!(dir.path().join("cmp").join(name).is_file(), "{name} not written");
+    }
+}
