@@ -56,7 +56,7 @@ fn major(version: &str) -> Option<u32> {
 
 fn ensure_mesa() -> Result<()> {
     let current = dpkg_version("mesa-vulkan-drivers");
-    if current.as_deref().and_then(major).is_some_and(|m| m >= MIN_MESA_MAJOR) {
+    if has_ray_tracing_mesa(current.as_deref()) {
         return Ok(());
     }
     let codename = os_codename();
@@ -71,10 +71,14 @@ fn ensure_mesa() -> Result<()> {
     }
     apt_install(&["mesa-vulkan-drivers"], release)?;
     let installed = dpkg_version("mesa-vulkan-drivers");
-    if !installed.as_deref().and_then(major).is_some_and(|m| m >= MIN_MESA_MAJOR) {
+    if !has_ray_tracing_mesa(installed.as_deref()) {
         bail!("mesa-vulkan-drivers {installed:?} installed, but ray tracing on lavapipe needs {MIN_MESA_MAJOR}+");
     }
     Ok(())
+}
+
+fn has_ray_tracing_mesa(version: Option<&str>) -> bool {
+    version.and_then(major).is_some_and(|m| m >= MIN_MESA_MAJOR)
 }
 
 fn os_codename() -> Option<String> {

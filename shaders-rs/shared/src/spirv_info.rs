@@ -26,7 +26,7 @@ pub struct ModuleInfo {
 
 /// Reads `bytes` as a little-endian SPIR-V module.
 pub fn parse(bytes: &[u8]) -> Result<ModuleInfo, String> {
-    if bytes.len() % 4 != 0 || bytes.len() < 20 {
+    if !bytes.len().is_multiple_of(4) || bytes.len() < 20 {
         return Err(format!("{} bytes is not a SPIR-V module", bytes.len()));
     }
     let words: Vec<u32> = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
