@@ -11,6 +11,7 @@ layout(location = 0) rayPayloadInEXT RayPayload payload;
 
 void main() {
     Sphere s = spheres[gl_PrimitiveID];
+    // Object space is world space here: the scene's one instance has the identity transform.
     vec3 hit = gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * gl_RayTmaxEXT;
     vec3 normal = normalize(hit - s.center_radius.xyz);
     payload.color = vec4(lambert(s.color.xyz, normal), 1.0);

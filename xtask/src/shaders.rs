@@ -32,13 +32,17 @@ pub fn run(check: bool) -> Result<()> {
     build_rust(&root, &scratch.join("rust"))?;
     build_glsl(&root, &scratch.join("glsl"))?;
     let mut stale = Vec::new();
+    println!("{:<22} {:>12} {:>12} {:>12} {:>12}", "module", "rust bytes", "glsl bytes", "rust instrs", "glsl instrs");
     for spec in MODULES {
-        let infos = Language::ALL.map(|language| check_module(&scratch, &spec, language));
-        let [rust, glsl] = infos;
-        let (rust, glsl) = (rust?, glsl?);
+        let [rust, glsl] = Language::ALL.map(|language| check_module(&scratch, &spec, language));
+        let ((rust, rust_bytes), (glsl, glsl_bytes)) = (rust?, glsl?);
         if rust.bindings != glsl.bindings {
             bail!("{}: Rust binds {:?} but GLSL binds {:?}", spec.name, rust.bindings, glsl.bindings);
         }
+        println!(
+            "{:<22} {rust_bytes:>12} {glsl_bytes:>12} {:>12} {:>12}",
+            spec.name, rust.instruction_count, glsl.instruction_count
+        );
         for language in Language::ALL {
             let built = scratch.join(language.name()).join(format!("{}.spv", spec.name));
             let committed = root.join(spec.spirv_path(language));
@@ -134,8 +138,8 @@ fn build_glsl(root: &Path, out: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Validates one built module and checks what it declares.
-fn check_module(scratch: &Path, spec: &ModuleSpec, language: Language) -> Result<ModuleInfo> {
+/// Validates one built module and checks what it declares; returns what it declares and its size.
+fn check_module(scratch: &Path, spec: &ModuleSpec, language: Language) -> Result<(ModuleInfo, usize)> {
     let path = scratch.join(language.name()).join(format!("{}.spv", spec.name));
     let label = format!("{} {}", language.name(), spec.name);
     output(Command::new("spirv-val").args(["--target-env", "vulkan1.1spv1.4"]).arg(&path))
@@ -143,5 +147,5 @@ fn check_module(scratch: &Path, spec: &ModuleSpec, language: Language) -> Result
     let bytes = std::fs::read(&path).with_context(|| format!("{label}: reading {}", path.display()))?;
     let info = spirv_info::parse(&bytes).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     spec.check_declarations(&info, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-    Ok(info)
+    Ok((info, bytes.len()))
 }

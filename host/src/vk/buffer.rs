@@ -3,7 +3,7 @@
 use super::context::Context;
 use crate::error::{Error, Result, VkContext};
 use ash::vk;
-use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
@@ -30,16 +30,7 @@ impl Buffer {
         let mut buffer = Buffer { ctx: ctx.clone(), raw, size, allocation: None };
         // SAFETY: raw is a live buffer of this device.
         let requirements = unsafe { ctx.device.get_buffer_memory_requirements(raw) };
-        let allocation = ctx
-            .allocator()
-            .allocate(&AllocationCreateDesc {
-                name,
-                requirements,
-                location,
-                linear: true,
-                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
-            })
-            .map_err(|source| Error::Allocation { what: format!("buffer {name} ({size} bytes)"), source })?;
+        let allocation = ctx.allocate(&format!("buffer {name} ({size} bytes)"), requirements, location, true)?;
         // SAFETY: the allocation was made for this buffer's requirements.
         unsafe { ctx.device.bind_buffer_memory(raw, allocation.memory(), allocation.offset()) }
             .call("vkBindBufferMemory")?;
@@ -54,11 +45,14 @@ impl Buffer {
         Ok(buffer)
     }
 
-    /// Copies `data` to the start of a host-visible buffer.
+    /// Copies `data` to the start of a host-visible buffer large enough for it.
     pub fn write(&mut self, data: &[u8]) -> Result<()> {
         let mapped = self.mapped_mut()?;
-        let len = data.len().min(mapped.len());
-        mapped[..len].copy_from_slice(&data[..len]);
+        let capacity = mapped.len();
+        let target = mapped
+            .get_mut(..data.len())
+            .ok_or_else(|| Error::Unsupported(format!("writing {} bytes into a buffer of {capacity}", data.len())))?;
+        target.copy_from_slice(data);
         Ok(())
     }
 
@@ -90,9 +84,7 @@ impl Drop for Buffer {
         // SAFETY: the GPU work using this buffer has completed (every submit waits on a fence).
         unsafe { self.ctx.device.destroy_buffer(self.raw, None) };
         if let Some(allocation) = self.allocation.take() {
-            if let Err(e) = self.ctx.allocator().free(allocation) {
-                log::error!("freeing buffer memory: {e}");
-            }
+            self.ctx.free(allocation);
         }
     }
 }

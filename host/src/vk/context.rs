@@ -5,7 +5,8 @@ use super::device_select::{self, Candidate, REQUIRED_EXTENSIONS};
 use super::validation::{self, Messenger, Validation, ValidationLog};
 use crate::error::{Error, Result, VkContext};
 use ash::{ext::debug_utils, khr, vk};
-use gpu_allocator::vulkan::{Allocator, AllocatorCreateDesc};
+use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme, Allocator, AllocatorCreateDesc};
+use gpu_allocator::MemoryLocation;
 use std::mem::ManuallyDrop;
 use std::sync::{Arc, Mutex};
 
@@ -118,6 +119,31 @@ impl Context {
     /// The allocator; poisoning is ignored because the allocator holds no invariant a panic breaks.
     pub fn allocator(&self) -> std::sync::MutexGuard<'_, Allocator> {
         self.allocator.lock().unwrap_or_else(|p| p.into_inner())
+    }
+
+    /// Device memory for a resource with these requirements; `what` names it in errors.
+    pub fn allocate(
+        &self,
+        what: &str,
+        requirements: vk::MemoryRequirements,
+        location: MemoryLocation,
+        linear: bool,
+    ) -> Result<Allocation> {
+        let desc = AllocationCreateDesc {
+            name: what,
+            requirements,
+            location,
+            linear,
+            allocation_scheme: AllocationScheme::GpuAllocatorManaged,
+        };
+        self.allocator().allocate(&desc).map_err(|source| Error::Allocation { what: what.into(), source })
+    }
+
+    /// Returns memory from [`Context::allocate`]; failures are logged, as they happen in Drop.
+    pub fn free(&self, allocation: Allocation) {
+        if let Err(e) = self.allocator().free(allocation) {
+            log::error!("freeing device memory: {e}");
+        }
     }
 
     /// Fails if the validation layer reported errors since the last check.

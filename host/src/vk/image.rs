@@ -3,7 +3,7 @@
 use super::context::Context;
 use crate::error::{Error, Result, VkContext};
 use ash::vk;
-use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme};
+use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
@@ -41,16 +41,8 @@ impl StorageImage {
         let mut image = StorageImage { ctx: ctx.clone(), raw, view: vk::ImageView::null(), extent, allocation: None };
         // SAFETY: raw is a live image of this device.
         let requirements = unsafe { ctx.device.get_image_memory_requirements(raw) };
-        let allocation = ctx
-            .allocator()
-            .allocate(&AllocationCreateDesc {
-                name: "output image",
-                requirements,
-                location: MemoryLocation::GpuOnly,
-                linear: false,
-                allocation_scheme: AllocationScheme::GpuAllocatorManaged,
-            })
-            .map_err(|source| Error::Allocation { what: format!("output image {width}x{height}"), source })?;
+        let what = format!("output image {width}x{height}");
+        let allocation = ctx.allocate(&what, requirements, MemoryLocation::GpuOnly, false)?;
         // SAFETY: the allocation was made for this image's requirements.
         unsafe { ctx.device.bind_image_memory(raw, allocation.memory(), allocation.offset()) }
             .call("vkBindImageMemory")?;
@@ -82,9 +74,7 @@ impl Drop for StorageImage {
             self.ctx.device.destroy_image(self.raw, None);
         }
         if let Some(allocation) = self.allocation.take() {
-            if let Err(e) = self.ctx.allocator().free(allocation) {
-                log::error!("freeing image memory: {e}");
-            }
+            self.ctx.free(allocation);
         }
     }
 }

@@ -68,6 +68,7 @@ pub fn sphere_closest_hit(
     #[spirv(incoming_ray_payload)] payload: &mut RayPayload,
 ) {
     let s = spheres[primitive_id as usize];
+    // Object space is world space here: the scene's one instance has the identity transform.
     let normal = (origin + direction * t_hit - s.center_radius.xyz()).normalize();
     payload.color = shading::lambert(s.color.xyz(), normal).extend(1.0);
     payload.primitive = primitive_id;
