@@ -73,6 +73,18 @@ struct SceneResources {
 }
 
 pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderOptions) -> Result<RenderOutput> {
+    let output = render_and_release(ctx, scene, set, opts)?;
+    // Every object of the render is destroyed by now: catch what the layer said about that too.
+    ctx.check_validation()?;
+    Ok(output)
+}
+
+fn render_and_release(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    opts: &RenderOptions,
+) -> Result<RenderOutput> {
     check_size(opts.width, opts.height).map_err(Error::Input)?;
     check_device_limits(ctx, opts)?;
     let one_shot = OneShot::new(ctx)?;
