@@ -8,8 +8,9 @@
 //! flips is noise, anything beyond it a real difference. The negative control shows the
 //! tolerance is tight enough to catch a change far smaller than a shader slip.
 
+use std::sync::Arc;
 use twinray::compare::{diff, verdict};
-use twinray::RenderOutput;
+use twinray::{Context, RenderOutput, Scene};
 use twinray_tests::{default_scene, render, validated_context, TEST_SIZE};
 
 fn failures(a: &RenderOutput, b: &RenderOutput) -> Vec<String> {
@@ -19,12 +20,18 @@ fn failures(a: &RenderOutput, b: &RenderOutput) -> Vec<String> {
     verdict(&d, &parity, u64::from(TEST_SIZE * TEST_SIZE))
 }
 
-#[test]
-fn rust_and_glsl_sets_agree_within_tolerance() {
+/// The default scene rendered with each whole set.
+fn both_sets() -> (Arc<Context>, Scene, RenderOutput, RenderOutput) {
     let ctx = validated_context();
     let scene = default_scene();
     let rust = render(&ctx, &scene, "rust");
     let glsl = render(&ctx, &scene, "glsl");
+    (ctx, scene, rust, glsl)
+}
+
+#[test]
+fn rust_and_glsl_sets_agree_within_tolerance() {
+    let (_, _, rust, glsl) = both_sets();
     let f = failures(&rust, &glsl);
     assert!(f.is_empty(), "rust vs glsl: {f:?}");
     // The image is not trivially empty: most pixels see a sphere, some see the background.
@@ -34,10 +41,7 @@ fn rust_and_glsl_sets_agree_within_tolerance() {
 
 #[test]
 fn per_stage_mixes_agree_with_both_sets() {
-    let ctx = validated_context();
-    let scene = default_scene();
-    let rust = render(&ctx, &scene, "rust");
-    let glsl = render(&ctx, &scene, "glsl");
+    let (ctx, scene, rust, glsl) = both_sets();
     for mix in ["rust,intersection=glsl", "glsl,closest_hit=rust", "glsl,raygen=rust,miss=rust"] {
         let out = render(&ctx, &scene, mix);
         for (name, other) in [("rust", &rust), ("glsl", &glsl)] {

@@ -19,12 +19,18 @@ fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
     Context::new(&options).context("setting up Vulkan")
 }
 
-/// Size from the flags, or the scene's; checked against twinray's limits.
-fn render_options(scene: &Scene, frame: &FrameArgs) -> Result<RenderOptions, Error> {
+/// (warm-up, timed) traces when not given: `render` wants an image quickly, `compare` a
+/// GPU-time ratio that is a median over several traces.
+const RENDER_TRACES: (u32, u32) = (0, 1);
+const COMPARE_TRACES: (u32, u32) = (2, 10);
+
+/// Size from the flags, or the scene's, checked against twinray's limits; trace counts from the
+/// flags or `(warmup, runs)`.
+fn render_options(scene: &Scene, frame: &FrameArgs, (warmup, runs): (u32, u32)) -> Result<RenderOptions, Error> {
     let width = frame.width.unwrap_or(scene.file.image.width);
     let height = frame.height.unwrap_or(scene.file.image.height);
     check_size(width, height).map_err(Error::Input)?;
-    Ok(RenderOptions { width, height, warmup: frame.warmup, runs: frame.runs })
+    Ok(RenderOptions { width, height, warmup: frame.warmup.unwrap_or(warmup), runs: frame.runs.unwrap_or(runs) })
 }
 
 pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
@@ -57,7 +63,7 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
 
 pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     let scene = Scene::load(args.scene.as_deref())?;
-    let opts = render_options(&scene, &args.frame)?;
+    let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     check_png_target(&args.out)?;
     let ctx = context(global)?;
     let out = twinray::render(&ctx, &scene, &args.shaders, &opts)?;
@@ -86,7 +92,7 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
 
 pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
     let scene = Scene::load(args.scene.as_deref())?;
-    let opts = render_options(&scene, &args.frame)?;
+    let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
     }

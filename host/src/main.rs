@@ -57,12 +57,12 @@ pub struct FrameArgs {
     /// Image height in pixels [default: the scene's].
     #[arg(long)]
     height: Option<u32>,
-    /// Timed traces; the median GPU time is reported.
-    #[arg(long, default_value_t = 10)]
-    runs: u32,
-    /// Untimed traces before the timed ones.
-    #[arg(long, default_value_t = 2)]
-    warmup: u32,
+    /// Timed traces; the median GPU time is reported [default: render 1, compare 10].
+    #[arg(long)]
+    runs: Option<u32>,
+    /// Untimed traces before the timed ones [default: render 0, compare 2].
+    #[arg(long)]
+    warmup: Option<u32>,
     /// Print one JSON object instead of text.
     #[arg(long)]
     json: bool,
