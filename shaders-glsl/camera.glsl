@@ -1,13 +1,22 @@
-// Twin of twinray_shared::camera: the primary ray through the centre of a pixel.
+// Twin of twinray_shared::camera: primary rays through a point of a pixel.
 #ifndef TWINRAY_CAMERA_GLSL
 #define TWINRAY_CAMERA_GLSL
 #include "twinray_layout.glsl"
 
-void primary_ray(CameraUniform camera, uvec2 pixel, uvec2 size, out vec3 origin, out vec3 direction) {
-    vec2 uv = (vec2(pixel) + vec2(0.5)) / vec2(size);
+// offset in [0, 1)^2, (0.5, 0.5) being the pixel centre.
+void primary_ray(FrameUniform frame, uvec2 pixel, uvec2 size, vec2 offset, out vec3 origin, out vec3 direction) {
+    vec2 uv = (vec2(pixel) + offset) / vec2(size);
     vec2 ndc = uv * 2.0 - vec2(1.0);
-    origin = (camera.view_inverse * vec4(0.0, 0.0, 0.0, 1.0)).xyz;
-    vec4 target = camera.proj_inverse * vec4(ndc.x, ndc.y, 1.0, 1.0);
-    direction = (camera.view_inverse * vec4(normalize(target.xyz), 0.0)).xyz;
+    origin = (frame.view_inverse * vec4(0.0, 0.0, 0.0, 1.0)).xyz;
+    vec4 target = frame.proj_inverse * vec4(ndc.x, ndc.y, 1.0, 1.0);
+    direction = (frame.view_inverse * vec4(normalize(target.xyz), 0.0)).xyz;
+}
+
+// Sample (sx, sy) of m x m stratified, jittered samples: the centre when m is 1.
+vec2 sample_offset(uint sx, uint sy, uint m, float r1, float r2) {
+    if (m == 1u) {
+        return vec2(0.5);
+    }
+    return vec2((float(sx) + r1) / float(m), (float(sy) + r2) / float(m));
 }
 #endif

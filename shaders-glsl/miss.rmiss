@@ -1,12 +1,14 @@
 #version 460
-// Twin of twinray_shaders::miss: grey background, no primitive.
+// Twin of twinray_shaders::miss: primary rays that hit nothing see the background.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 #include "twinray_layout.glsl"
 
-layout(location = 0) rayPayloadInEXT RayPayload payload;
+layout(set = DESCRIPTOR_SET, binding = BINDING_FRAME) uniform Frame { FrameUniform frame; };
+
+layout(location = 0) rayPayloadInEXT HitPayload payload;
 
 void main() {
-    payload.color = vec4(MISS_GREY, MISS_GREY, MISS_GREY, 1.0);
-    payload.primitive = NO_HIT;
+    payload.color = frame.background;
+    payload.ids = uvec4(NO_HIT);
 }

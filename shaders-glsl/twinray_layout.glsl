@@ -5,31 +5,92 @@
 #define DESCRIPTOR_SET 0u
 #define BINDING_TLAS 0u
 #define BINDING_IMAGE 1u
-#define BINDING_CAMERA 2u
-#define BINDING_SPHERES 3u
-#define BINDING_HIT_IDS 4u
+#define BINDING_FRAME 2u
+#define BINDING_OBJECTS 3u
+#define BINDING_PRIMITIVES 4u
+#define BINDING_MATERIALS 5u
+#define BINDING_LIGHTS 6u
+#define BINDING_HIT_IDS 7u
+#define MISS_PRIMARY 0u
+#define MISS_SHADOW 1u
+#define MASK_OCCLUDER 1u
+#define MASK_EMITTER 2u
+#define SPEC_SHADOWS 0u
+#define SPEC_SAMPLES_PER_SIDE 1u
+#define MATERIAL_DIFFUSE 0u
+#define MATERIAL_EMISSIVE 1u
+#define MATERIAL_CHECKER 2u
+#define LIGHT_DIRECTIONAL 0u
+#define LIGHT_POINT 1u
+#define LIGHT_RECT 2u
+#define HIT_KIND_SPHERE 1u
 #define NO_HIT 4294967295u
 #define T_MIN 0.1
 #define T_MAX 1000.0
-#define MISS_GREY 0.3
-#define LIGHT_DIRECTION vec3(1.0, 1.0, 1.0)
+#define OFFSET_ORIGIN 0.03125
+#define OFFSET_FLOAT_SCALE 1.5258789e-5
+#define OFFSET_INT_SCALE 256.0
 
-// 128 bytes, as twinray_shared::layout::CameraUniform
-struct CameraUniform {
+// 160 bytes, as twinray_shared::layout::FrameUniform
+struct FrameUniform {
     mat4 view_inverse; // offset 0
     mat4 proj_inverse; // offset 64
+    vec4 background; // offset 128
+    uint light_count; // offset 144
+    uint seed; // offset 148
+    uint _pad0; // offset 152
+    uint _pad1; // offset 156
 };
 
-// 32 bytes, as twinray_shared::layout::Sphere
-struct Sphere {
-    vec4 center_radius; // offset 0
-    vec4 color; // offset 16
+// 16 bytes, as twinray_shared::layout::ObjectData
+struct ObjectData {
+    uint material; // offset 0
+    uint primitive_base; // offset 4
+    uint _pad0; // offset 8
+    uint _pad1; // offset 12
 };
 
-// 32 bytes, as twinray_shared::layout::RayPayload
-struct RayPayload {
-    vec4 color; // offset 0
-    uint primitive; // offset 16
+// 48 bytes, as twinray_shared::layout::Primitive
+struct Primitive {
+    vec4 a; // offset 0
+    vec4 b; // offset 16
+    vec4 tint; // offset 32
+};
+
+// 48 bytes, as twinray_shared::layout::Material
+struct Material {
+    uint kind; // offset 0
+    uint _pad0; // offset 4
+    uint _pad1; // offset 8
+    uint _pad2; // offset 12
+    vec4 color_a; // offset 16
+    vec4 color_b; // offset 32
+};
+
+// 80 bytes, as twinray_shared::layout::Light
+struct Light {
+    uint kind; // offset 0
+    uint samples; // offset 4
+    uint shadows; // offset 8
+    uint _pad0; // offset 12
+    vec4 position; // offset 16
+    vec4 radiance; // offset 32
+    vec4 u; // offset 48
+    vec4 v; // offset 64
+};
+
+// 80 bytes, as twinray_shared::layout::HitPayload
+struct HitPayload {
+    vec4 position; // offset 0
+    vec4 shading_normal; // offset 16
+    vec4 geometric_normal; // offset 32
+    vec4 color; // offset 48
+    uvec4 ids; // offset 64
+};
+
+// 4 bytes, as twinray_shared::layout::ShadowPayload
+struct ShadowPayload {
+    uint occluded; // offset 0
 };
 
 #endif

@@ -1,10 +1,9 @@
 //! Comparing two renders of one scene: image error, hit/miss agreement, a difference image a
 //! person can read at a glance, and the verdict against the scene's parity tolerance.
 
-use crate::render::RenderOutput;
+use crate::render::{RenderOutput, NO_HIT_ID};
 use crate::scene::Parity;
 use serde::Serialize;
-use twinray_shared::bindings::NO_HIT;
 
 /// Colour differences between two RGBA8 images of the same size (alpha ignored).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
@@ -112,7 +111,7 @@ fn hit_mismatches(a: &RenderOutput, b: &RenderOutput) -> (u64, u64) {
 }
 
 /// True when a pixel of the 3x3 neighbourhood of (x, y) saw something else.
-fn on_silhouette(ids: &[u32], w: usize, h: usize, x: usize, y: usize) -> bool {
+fn on_silhouette(ids: &[u64], w: usize, h: usize, x: usize, y: usize) -> bool {
     let id = ids[y * w + x];
     (y.saturating_sub(1)..=(y + 1).min(h - 1))
         .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| ids[ny * w + nx] != id))
@@ -150,21 +149,21 @@ fn heat(t: f32) -> [u8; 3] {
 
 /// Pixels whose primary ray hit something.
 pub fn hit_count(output: &RenderOutput) -> u64 {
-    output.hit_ids.iter().filter(|&&id| id != NO_HIT).count() as u64
+    output.hit_ids.iter().filter(|&&id| id != NO_HIT_ID).count() as u64
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
 
-    fn output(rgba: Vec<u8>, hit_ids: Vec<u32>, width: u32) -> RenderOutput {
+    fn output(rgba: Vec<u8>, hit_ids: Vec<u64>, width: u32) -> RenderOutput {
         let height = hit_ids.len() as u32 / width;
         RenderOutput { width, height, rgba, hit_ids, gpu_ms: vec![] }
     }
 
     #[test]
     fn identical_images_have_zero_error() {
-        let a = output(vec![10; 16], vec![1, 2, 3, NO_HIT], 2);
+        let a = output(vec![10; 16], vec![1, 2, 3, NO_HIT_ID], 2);
         let d = diff(&a, &a, 1);
         assert_eq!((d.color.rmse, d.color.max_abs_diff, d.hit_mismatches), (0.0, 0, 0));
         assert!(d.color.psnr.is_infinite());

@@ -2,21 +2,24 @@
 //! trace (warm-up runs, then timed runs between timestamps), read back colour and hit ids.
 
 use crate::error::{Error, Result};
-use crate::scene::{sphere_bounds, Scene};
+use crate::scene::{Scene, SceneData};
 use crate::shader_set::ShaderSet;
-use crate::vk::accel::{build_aabb_blas, build_single_instance_tlas, AccelStruct};
+use crate::vk::accel::{build_aabb_blas, build_tlas, AccelStruct, InstanceRecord};
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::{memory_barrier, OneShot};
 use crate::vk::context::Context;
 use crate::vk::descriptors::{DescriptorSet, DescriptorTargets};
 use crate::vk::image::{StorageImage, COLOR_RANGE};
-use crate::vk::pipeline::{pool_sizes, RtPipeline, GROUP_COUNTS};
+use crate::vk::pipeline::{pool_sizes, RtPipeline};
 use crate::vk::sbt::ShaderBindingTable;
 use crate::vk::timing::Timestamps;
 use ash::vk;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
+
+/// `RenderOutput::hit_ids` of a pixel whose first primary ray hit nothing.
+pub const NO_HIT_ID: u64 = u64::MAX;
 
 /// Largest image side, and largest pixel count, twinray accepts before asking the device.
 pub const MAX_SIDE: u32 = 16384;
@@ -51,8 +54,9 @@ pub struct RenderOutput {
     pub height: u32,
     /// Row-major RGBA8, top row first.
     pub rgba: Vec<u8>,
-    /// Primitive id per pixel, or `NO_HIT`.
-    pub hit_ids: Vec<u32>,
+    /// Per pixel, what the first primary ray hit: object index << 32 | primitive index, or
+    /// [`NO_HIT_ID`].
+    pub hit_ids: Vec<u64>,
     /// GPU milliseconds of each timed trace; empty when the device cannot time.
     pub gpu_ms: Vec<f64>,
 }
@@ -66,10 +70,10 @@ impl RenderOutput {
 
 /// The scene's GPU data; kept alive until the trace has completed.
 struct SceneResources {
-    _blas: AccelStruct,
+    _blases: Vec<AccelStruct>,
     tlas: AccelStruct,
-    spheres: Buffer,
-    camera: Buffer,
+    /// (binding, buffer) of every storage and uniform buffer the scene provides.
+    buffers: Vec<(u32, vk::DescriptorType, Buffer)>,
 }
 
 pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderOptions) -> Result<RenderOutput> {
@@ -88,34 +92,34 @@ fn render_and_release(
     check_size(opts.width, opts.height).map_err(Error::Input)?;
     check_device_limits(ctx, opts)?;
     let one_shot = OneShot::new(ctx)?;
-    let resources = upload_scene(ctx, &one_shot, scene, opts)?;
+    let data = scene.build();
+    let resources = upload_scene(ctx, &one_shot, scene, &data, opts)?;
     let image = StorageImage::new(ctx, opts.width, opts.height)?;
     let pixels = u64::from(opts.width) * u64::from(opts.height);
     let hit_ids = Buffer::new(
         ctx,
         "hit ids",
-        pixels * 4,
+        pixels * 8,
         vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC,
         MemoryLocation::GpuOnly,
     )?;
-    let pipeline = RtPipeline::new(ctx, set)?;
+    let pipeline = RtPipeline::new(ctx, set, &data.plan)?;
+    let mut buffers: Vec<_> =
+        resources.buffers.iter().map(|(binding, ty, buffer)| (*binding, buffer.raw, *ty)).collect();
+    buffers.push((b::BINDING_HIT_IDS, hit_ids.raw, vk::DescriptorType::STORAGE_BUFFER));
     let targets = DescriptorTargets {
         tlas: resources.tlas.raw,
         tlas_binding: b::BINDING_TLAS,
         image_view: image.view,
         image_binding: b::BINDING_IMAGE,
-        buffers: vec![
-            (b::BINDING_CAMERA, resources.camera.raw, vk::DescriptorType::UNIFORM_BUFFER),
-            (b::BINDING_SPHERES, resources.spheres.raw, vk::DescriptorType::STORAGE_BUFFER),
-            (b::BINDING_HIT_IDS, hit_ids.raw, vk::DescriptorType::STORAGE_BUFFER),
-        ],
+        buffers,
     };
     let descriptors = DescriptorSet::new(ctx, pipeline.set_layout, &pool_sizes(), &targets)?;
-    let sbt = ShaderBindingTable::new(ctx, pipeline.raw, GROUP_COUNTS)?;
+    let sbt = ShaderBindingTable::new(ctx, pipeline.raw, pipeline.group_counts)?;
     let timestamps = Timestamps::new(ctx, opts.runs)?;
     let readback_usage = vk::BufferUsageFlags::TRANSFER_DST;
     let image_readback = Buffer::new(ctx, "image readback", pixels * 4, readback_usage, MemoryLocation::GpuToCpu)?;
-    let ids_readback = Buffer::new(ctx, "hit id readback", pixels * 4, readback_usage, MemoryLocation::GpuToCpu)?;
+    let ids_readback = Buffer::new(ctx, "hit id readback", pixels * 8, readback_usage, MemoryLocation::GpuToCpu)?;
     let trace =
         Trace { pipeline: &pipeline, descriptors: &descriptors, sbt: &sbt, timestamps: timestamps.as_ref(), opts };
     one_shot.run(|device, cmd| {
@@ -140,7 +144,13 @@ fn render_and_release(
         width: opts.width,
         height: opts.height,
         rgba: image_readback.mapped()?[..pixel_bytes].to_vec(),
-        hit_ids: bytemuck::pod_collect_to_vec(&ids_readback.mapped()?[..pixel_bytes]),
+        hit_ids: ids_readback.mapped()?[..2 * pixel_bytes]
+            .chunks_exact(8)
+            .map(|p| {
+                u64::from(u32::from_le_bytes([p[0], p[1], p[2], p[3]])) << 32
+                    | u64::from(u32::from_le_bytes([p[4], p[5], p[6], p[7]]))
+            })
+            .collect(),
         gpu_ms,
     })
 }
@@ -159,29 +169,46 @@ fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {
     Ok(())
 }
 
-fn upload_scene(ctx: &Arc<Context>, one_shot: &OneShot, scene: &Scene, opts: &RenderOptions) -> Result<SceneResources> {
-    let spheres = scene.spheres();
-    let aabbs: Vec<_> = spheres
+fn upload_scene(
+    ctx: &Arc<Context>,
+    one_shot: &OneShot,
+    scene: &Scene,
+    data: &SceneData,
+    opts: &RenderOptions,
+) -> Result<SceneResources> {
+    let blases = data.blases.iter().map(|aabbs| build_aabb_blas(ctx, one_shot, aabbs)).collect::<Result<Vec<_>>>()?;
+    let instances: Vec<_> = data
+        .instances
         .iter()
-        .map(|s| {
-            let (lo, hi) = sphere_bounds(s);
-            vk::AabbPositionsKHR { min_x: lo.x, min_y: lo.y, min_z: lo.z, max_x: hi.x, max_y: hi.y, max_z: hi.z }
+        .map(|i| InstanceRecord {
+            object_to_world: i.object_to_world,
+            custom_index: i.object,
+            mask: i.mask,
+            sbt_offset: i.hit_group,
+            blas_address: blases[i.blas].address,
         })
         .collect();
-    let blas = build_aabb_blas(ctx, one_shot, &aabbs)?;
-    let tlas = build_single_instance_tlas(ctx, one_shot, &blas)?;
-    let camera = scene.camera_uniform(opts.width, opts.height);
-    Ok(SceneResources {
-        _blas: blas,
-        tlas,
-        spheres: Buffer::with_data(
-            ctx,
-            "spheres",
-            bytemuck::cast_slice(&spheres),
-            vk::BufferUsageFlags::STORAGE_BUFFER,
-        )?,
-        camera: Buffer::with_data(ctx, "camera", bytemuck::bytes_of(&camera), vk::BufferUsageFlags::UNIFORM_BUFFER)?,
-    })
+    let tlas = build_tlas(ctx, one_shot, &instances)?;
+    let frame = scene.frame_uniform(opts.width, opts.height);
+    let storage = vk::DescriptorType::STORAGE_BUFFER;
+    let buffers = vec![
+        (b::BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER, upload(ctx, "frame", bytemuck::bytes_of(&frame))?),
+        (b::BINDING_OBJECTS, storage, upload(ctx, "objects", bytemuck::cast_slice(&data.objects))?),
+        (b::BINDING_PRIMITIVES, storage, upload(ctx, "primitives", bytemuck::cast_slice(&data.primitives))?),
+        (b::BINDING_MATERIALS, storage, upload(ctx, "materials", bytemuck::cast_slice(&data.materials))?),
+        (b::BINDING_LIGHTS, storage, upload(ctx, "lights", bytemuck::cast_slice(&data.lights))?),
+    ];
+    Ok(SceneResources { _blases: blases, tlas, buffers })
+}
+
+/// A host-visible buffer usable as a uniform or storage buffer; an empty slice still gets a
+/// (zeroed) element's worth of memory, so every binding has a valid buffer.
+fn upload(ctx: &Arc<Context>, name: &str, bytes: &[u8]) -> Result<Buffer> {
+    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER;
+    if bytes.is_empty() {
+        return Buffer::with_data(ctx, name, &[0; 256], usage);
+    }
+    Buffer::with_data(ctx, name, bytes, usage)
 }
 
 /// What one trace command needs.

@@ -27,12 +27,14 @@ fn embedded_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
     Some(match (language, name) {
         (Language::Rust, "raygen") => embedded!("rust", "raygen"),
         (Language::Rust, "miss") => embedded!("rust", "miss"),
+        (Language::Rust, "shadow_miss") => embedded!("rust", "shadow_miss"),
         (Language::Rust, "sphere_intersection") => embedded!("rust", "sphere_intersection"),
-        (Language::Rust, "sphere_closest_hit") => embedded!("rust", "sphere_closest_hit"),
+        (Language::Rust, "procedural_closest_hit") => embedded!("rust", "procedural_closest_hit"),
         (Language::Glsl, "raygen") => embedded!("glsl", "raygen"),
         (Language::Glsl, "miss") => embedded!("glsl", "miss"),
+        (Language::Glsl, "shadow_miss") => embedded!("glsl", "shadow_miss"),
         (Language::Glsl, "sphere_intersection") => embedded!("glsl", "sphere_intersection"),
-        (Language::Glsl, "sphere_closest_hit") => embedded!("glsl", "sphere_closest_hit"),
+        (Language::Glsl, "procedural_closest_hit") => embedded!("glsl", "procedural_closest_hit"),
         _ => return None,
     })
 }

@@ -45,13 +45,42 @@ fn malformed_scene_file_reports_line_and_column() {
     assert_bad_input(&["render", &bad, "--out", "x.png"], &[&bad, "line 3, column 9"]);
 }
 
+/// The default scene with `from` replaced by `to` (and `extra` appended), as a file in `dir`.
+fn edited_scene(dir: &Path, from: &str, to: &str, extra: &str) -> String {
+    let text = include_str!("../../scenes/spheres.toml");
+    assert!(text.contains(from), "the default scene no longer contains {from:?}");
+    let path = dir.join("edited.toml");
+    std::fs::write(&path, text.replace(from, to) + extra).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
 #[test]
 fn impossible_values_in_scene_file_are_named() {
-    let dir = tempfile::tempdir().unwrap();
-    let text = include_str!("../../scenes/spheres.toml").replace("radius_min = 0.5", "radius_min = -1.0");
-    let bad = dir.path().join("negative.toml");
-    std::fs::write(&bad, text).unwrap();
-    assert_bad_input(&["render", &bad.to_string_lossy(), "--out", "x.png"], &["spheres.radius_min must be > 0"]);
+    let rect = "\n[[lights]]\nkind = \"rect\"\ncenter = [0.0, 9.0, 0.0]\nu = [1.0, 0.0, 0.0]\nv = [2.0, 0.0, 0.0]\ncolor = [1.0, 1.0, 1.0]\nintensity = 1.0\n";
+    let cases = [
+        ("radius_min = 0.5", "radius_min = -1.0", "", "shape \"field\": radius_min must be > 0"),
+        (
+            "color = [1.0, 1.0, 1.0]\nintensity = 1.0",
+            "color = [nan, 1.0, 1.0]\nintensity = 1.0",
+            "",
+            "lights[0]: color must be finite",
+        ),
+        (
+            "material = \"white\"",
+            "material = \"whyte\"",
+            "",
+            "objects[0] (shape \"field\"): unknown material \"whyte\" (materials: white)",
+        ),
+        ("shape = \"field\"", "shape = \"feild\"", "", "objects[0] (shape \"feild\"): unknown shape"),
+        ("fov_y_degrees = 45.0", "fov_y_degrees = 180.0", "", "camera.fov_y_degrees must be in (0, 180)"),
+        ("material = \"white\"", "material = \"white\"\nscale = [1.0, 0.0, 1.0]", "", "scale must not be zero"),
+        ("name = \"spheres\"", "name = \"spheres\"", rect, "lights[1]: u and v span no area (zero-area light)"),
+    ];
+    for (from, to, extra, message) in cases {
+        let dir = tempfile::tempdir().unwrap();
+        let scene = edited_scene(dir.path(), from, to, extra);
+        assert_bad_input(&["render", &scene, "--out", "x.png"], &[&scene, message]);
+    }
 }
 
 #[test]

@@ -56,6 +56,7 @@ pub fn run(check: bool) -> Result<()> {
             }
         }
     }
+    stale.extend(unlisted_modules(&root)?);
     if !stale.is_empty() {
         bail!("committed SPIR-V is stale (run `cargo xtask shaders` and commit): {}", stale.join(", "));
     }
@@ -65,6 +66,22 @@ pub fn run(check: bool) -> Result<()> {
         if check { "up to date" } else { "installed in spirv/" }
     );
     Ok(())
+}
+
+/// Committed `.spv` files that no longer belong to a module of the catalog.
+fn unlisted_modules(root: &Path) -> Result<Vec<String>> {
+    let mut extra = Vec::new();
+    for language in Language::ALL {
+        let dir = root.join("spirv").join(language.name());
+        for entry in std::fs::read_dir(&dir).with_context(|| format!("listing {}", dir.display()))? {
+            let name = entry?.file_name().to_string_lossy().into_owned();
+            let listed = MODULES.iter().any(|m| format!("{}.spv", m.name) == name);
+            if !listed {
+                extra.push(format!("spirv/{}/{name} (not in the module catalog: delete it)", language.name()));
+            }
+        }
+    }
+    Ok(extra)
 }
 
 /// Writes (or checks) the GLSL mirror of the shared layout.

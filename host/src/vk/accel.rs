@@ -1,10 +1,12 @@
-//! Bottom- and top-level acceleration structures: one BLAS of AABBs, one TLAS of instances.
+//! Bottom- and top-level acceleration structures: BLASes of AABBs, and a TLAS of instances.
 
 use super::buffer::Buffer;
 use super::commands::{memory_barrier, OneShot};
 use super::context::Context;
 use crate::error::{Result, VkContext};
+use crate::scene::Aabb;
 use ash::vk;
+use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
@@ -22,8 +24,20 @@ impl Drop for AccelStruct {
     }
 }
 
+/// One TLAS instance: a BLAS placed by an affine transform.
+#[derive(Clone, Copy, Debug)]
+pub struct InstanceRecord {
+    pub object_to_world: Mat4,
+    /// The instance custom index (24 bits).
+    pub custom_index: u32,
+    pub mask: u32,
+    /// The instance's SBT record offset (24 bits).
+    pub sbt_offset: u32,
+    pub blas_address: vk::DeviceAddress,
+}
+
 /// A BLAS over axis-aligned boxes, one procedural primitive each, all opaque.
-pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[vk::AabbPositionsKHR]) -> Result<AccelStruct> {
+pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[Aabb]) -> Result<AccelStruct> {
     let bytes: Vec<u8> = aabbs.iter().flat_map(aabb_bytes).collect();
     let usage = vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
         | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
@@ -38,9 +52,9 @@ pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[vk::Aabb
     build(ctx, one_shot, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, aabbs.len() as u32, "blas")
 }
 
-/// A TLAS with one instance of `blas` under the identity transform.
-pub fn build_single_instance_tlas(ctx: &Arc<Context>, one_shot: &OneShot, blas: &AccelStruct) -> Result<AccelStruct> {
-    let instance = instance_bytes(blas.address);
+/// A TLAS over `instances`.
+pub fn build_tlas(ctx: &Arc<Context>, one_shot: &OneShot, instances: &[InstanceRecord]) -> Result<AccelStruct> {
+    let instance: Vec<u8> = instances.iter().flat_map(instance_bytes).collect();
     let usage = vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
         | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
     let instance_buffer = Buffer::with_data(ctx, "instances", &instance, usage)?;
@@ -50,7 +64,7 @@ pub fn build_single_instance_tlas(ctx: &Arc<Context>, one_shot: &OneShot, blas: 
     let geometry = vk::AccelerationStructureGeometryKHR::default()
         .geometry_type(vk::GeometryTypeKHR::INSTANCES)
         .geometry(vk::AccelerationStructureGeometryDataKHR { instances: data });
-    build(ctx, one_shot, vk::AccelerationStructureTypeKHR::TOP_LEVEL, geometry, 1, "tlas")
+    build(ctx, one_shot, vk::AccelerationStructureTypeKHR::TOP_LEVEL, geometry, instances.len() as u32, "tlas")
 }
 
 fn build(
@@ -126,28 +140,46 @@ fn build(
     Ok(accel)
 }
 
-fn aabb_bytes(b: &vk::AabbPositionsKHR) -> Vec<u8> {
-    [b.min_x, b.min_y, b.min_z, b.max_x, b.max_y, b.max_z].iter().flat_map(|v| v.to_le_bytes()).collect()
+/// VkAabbPositionsKHR as bytes.
+fn aabb_bytes(b: &Aabb) -> Vec<u8> {
+    [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
-/// VkAccelerationStructureInstanceKHR as bytes: identity 3x4 transform, custom index 0,
-/// mask 0xff, SBT offset 0, culling off (procedural geometry has no facing), BLAS address.
-fn instance_bytes(blas_address: vk::DeviceAddress) -> Vec<u8> {
-    let transform: [f32; 12] = [1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0];
-    let mut bytes: Vec<u8> = transform.iter().flat_map(|v| v.to_le_bytes()).collect();
-    let custom_index_and_mask: u32 = 0xff << 24;
+/// VkAccelerationStructureInstanceKHR as bytes: the 3x4 row-major transform, custom index and
+/// mask, SBT offset and flags (culling off: procedural geometry has no facing), BLAS address.
+fn instance_bytes(r: &InstanceRecord) -> Vec<u8> {
+    let m = r.object_to_world;
+    let rows = [m.row(0), m.row(1), m.row(2)];
+    let mut bytes: Vec<u8> = rows.iter().flat_map(|row| row.to_array()).flat_map(f32::to_le_bytes).collect();
+    let custom_index_and_mask = (r.custom_index & 0x00ff_ffff) | ((r.mask & 0xff) << 24);
     let flags = vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE.as_raw();
-    let sbt_offset_and_flags: u32 = flags << 24;
+    let sbt_offset_and_flags = (r.sbt_offset & 0x00ff_ffff) | (flags << 24);
     bytes.extend_from_slice(&custom_index_and_mask.to_le_bytes());
     bytes.extend_from_slice(&sbt_offset_and_flags.to_le_bytes());
-    bytes.extend_from_slice(&blas_address.to_le_bytes());
+    bytes.extend_from_slice(&r.blas_address.to_le_bytes());
     bytes
 }
 
 #[cfg(test)]
 mod tests {
+    use super::*;
+
     #[test]
-    fn instance_record_has_vulkan_size() {
-        assert_eq!(super::instance_bytes(0).len(), size_of::<ash::vk::AccelerationStructureInstanceKHR>());
+    fn instance_record_has_vulkan_layout() {
+        let record = InstanceRecord {
+            object_to_world: Mat4::from_translation(glam::Vec3::new(1.0, 2.0, 3.0)),
+            custom_index: 5,
+            mask: 2,
+            sbt_offset: 7,
+            blas_address: 0x1234,
+        };
+        let bytes = instance_bytes(&record);
+        assert_eq!(bytes.len(), size_of::<vk::AccelerationStructureInstanceKHR>());
+        let word = |i: usize| u32::from_le_bytes([bytes[4 * i], bytes[4 * i + 1], bytes[4 * i + 2], bytes[4 * i + 3]]);
+        // Row 0 is (1, 0, 0, tx): the translation sits in the fourth column.
+        assert_eq!(f32::from_bits(word(3)), 1.0);
+        assert_eq!(f32::from_bits(word(11)), 3.0);
+        assert_eq!(word(12), 5 | (2 << 24));
+        assert_eq!(word(13) & 0x00ff_ffff, 7);
     }
 }

@@ -1,32 +1,42 @@
-//! The ray tracing pipeline of the sphere scene: its descriptor set layout, pipeline layout,
-//! and groups (raygen, miss, one procedural hit group) built from a resolved shader set.
+//! The ray tracing pipeline of a scene, from its plan: ray generation, the primary miss shader,
+//! the shadow miss shader only if some light casts shadows, and one hit group per shape kind the
+//! scene uses. Shaders come from a resolved shader set; specialisation constants carry the
+//! plan's sample count and shadow switch into ray generation.
 
 use super::context::Context;
 use crate::error::{Error, Result, VkContext};
-use crate::shader_set::{ShaderSet, Stage, StageModule, MODULES};
+use crate::scene::PipelinePlan;
+use crate::shader_set::{ShaderSet, Stage, StageModule};
 use ash::vk;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
-
-/// Groups per SBT region (raygen, miss, hit), in the order of `twinray_shared::bindings::GROUP_*`.
-pub const GROUP_COUNTS: [u32; 3] = [1, 1, 1];
+use twinray_shared::catalog;
 
 pub struct RtPipeline {
     ctx: Arc<Context>,
     pub set_layout: vk::DescriptorSetLayout,
     pub layout: vk::PipelineLayout,
     pub raw: vk::Pipeline,
+    /// Groups per SBT region (raygen, miss, hit).
+    pub group_counts: [u32; 3],
+    /// Names of the modules in the pipeline, in stage order (for tests and reports).
+    pub modules: Vec<&'static str>,
 }
 
 /// (binding, type, stages) of every descriptor, from the shared binding numbers.
-pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 5] {
+pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 8] {
+    use vk::DescriptorType as D;
     use vk::ShaderStageFlags as S;
+    let hit = S::INTERSECTION_KHR | S::CLOSEST_HIT_KHR;
     [
-        (b::BINDING_TLAS, vk::DescriptorType::ACCELERATION_STRUCTURE_KHR, S::RAYGEN_KHR),
-        (b::BINDING_IMAGE, vk::DescriptorType::STORAGE_IMAGE, S::RAYGEN_KHR),
-        (b::BINDING_CAMERA, vk::DescriptorType::UNIFORM_BUFFER, S::RAYGEN_KHR),
-        (b::BINDING_SPHERES, vk::DescriptorType::STORAGE_BUFFER, S::INTERSECTION_KHR | S::CLOSEST_HIT_KHR),
-        (b::BINDING_HIT_IDS, vk::DescriptorType::STORAGE_BUFFER, S::RAYGEN_KHR),
+        (b::BINDING_TLAS, D::ACCELERATION_STRUCTURE_KHR, S::RAYGEN_KHR),
+        (b::BINDING_IMAGE, D::STORAGE_IMAGE, S::RAYGEN_KHR),
+        (b::BINDING_FRAME, D::UNIFORM_BUFFER, S::RAYGEN_KHR | S::MISS_KHR),
+        (b::BINDING_OBJECTS, D::STORAGE_BUFFER, hit),
+        (b::BINDING_PRIMITIVES, D::STORAGE_BUFFER, hit),
+        (b::BINDING_MATERIALS, D::STORAGE_BUFFER, S::CLOSEST_HIT_KHR),
+        (b::BINDING_LIGHTS, D::STORAGE_BUFFER, S::RAYGEN_KHR),
+        (b::BINDING_HIT_IDS, D::STORAGE_BUFFER, S::RAYGEN_KHR),
     ]
 }
 
@@ -35,8 +45,28 @@ pub fn pool_sizes() -> Vec<vk::DescriptorPoolSize> {
     descriptor_bindings().iter().map(|&(_, ty, _)| vk::DescriptorPoolSize { ty, descriptor_count: 1 }).collect()
 }
 
+/// Module names of a plan's pipeline, each once, in stage order: raygen, misses, hit modules.
+pub fn plan_modules(plan: &PipelinePlan) -> Vec<&'static str> {
+    let mut names = vec!["raygen", "miss"];
+    if plan.shadows {
+        names.push("shadow_miss");
+    }
+    for group in &plan.hit_groups {
+        names.extend(group.intersection_module());
+        names.push(group.closest_hit_module());
+    }
+    let mut seen = Vec::new();
+    names.retain(|n| {
+        !seen.contains(n) && {
+            seen.push(*n);
+            true
+        }
+    });
+    names
+}
+
 impl RtPipeline {
-    pub fn new(ctx: &Arc<Context>, set: &ShaderSet) -> Result<Self> {
+    pub fn new(ctx: &Arc<Context>, set: &ShaderSet, plan: &PipelinePlan) -> Result<Self> {
         let bindings: Vec<_> = descriptor_bindings()
             .iter()
             .map(|&(binding, ty, stages)| {
@@ -51,14 +81,28 @@ impl RtPipeline {
         // SAFETY: valid create info; destroyed in Drop.
         let set_layout =
             unsafe { ctx.device.create_descriptor_set_layout(&info, None) }.call("vkCreateDescriptorSetLayout")?;
-        let mut pipeline =
-            RtPipeline { ctx: ctx.clone(), set_layout, layout: vk::PipelineLayout::null(), raw: vk::Pipeline::null() };
+        let names = plan_modules(plan);
+        let misses = if plan.shadows { 2 } else { 1 };
+        let mut pipeline = RtPipeline {
+            ctx: ctx.clone(),
+            set_layout,
+            layout: vk::PipelineLayout::null(),
+            raw: vk::Pipeline::null(),
+            group_counts: [1, misses, plan.hit_groups.len() as u32],
+            modules: names.clone(),
+        };
         let layouts = [set_layout];
         let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts);
         // SAFETY: valid create info; destroyed in Drop.
         pipeline.layout = unsafe { ctx.device.create_pipeline_layout(&info, None) }.call("vkCreatePipelineLayout")?;
-        let modules = MODULES.iter().map(|spec| set.resolve(spec)).collect::<Result<Vec<_>>>()?;
-        pipeline.raw = create_pipeline(ctx, pipeline.layout, &modules)?;
+        let modules = names
+            .iter()
+            .map(|name| {
+                let spec = catalog::module(name).ok_or_else(|| Error::Unsupported(format!("no module {name}")))?;
+                set.resolve(&spec)
+            })
+            .collect::<Result<Vec<_>>>()?;
+        pipeline.raw = create_pipeline(ctx, pipeline.layout, &modules, plan)?;
         Ok(pipeline)
     }
 }
@@ -78,7 +122,19 @@ impl Drop for Modules<'_> {
     }
 }
 
-fn create_pipeline(ctx: &Context, layout: vk::PipelineLayout, modules: &[StageModule]) -> Result<vk::Pipeline> {
+fn create_pipeline(
+    ctx: &Context,
+    layout: vk::PipelineLayout,
+    modules: &[StageModule],
+    plan: &PipelinePlan,
+) -> Result<vk::Pipeline> {
+    let spec_data = [u32::from(plan.shadows), plan.samples_per_side];
+    let spec_entries = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE]
+        .iter()
+        .enumerate()
+        .map(|(i, &id)| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i as u32, size: 4 })
+        .collect::<Vec<_>>();
+    let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(bytemuck::cast_slice(&spec_data));
     let mut made = Modules { ctx, raw: Vec::new() };
     let mut stages = Vec::new();
     for m in modules {
@@ -89,16 +145,15 @@ fn create_pipeline(ctx: &Context, layout: vk::PipelineLayout, modules: &[StageMo
         // SAFETY: the code was validated by spirv-val at build time (cargo xtask shaders).
         let module = unsafe { ctx.device.create_shader_module(&info, None) }.call("vkCreateShaderModule")?;
         made.raw.push(module);
-        stages.push(
-            vk::PipelineShaderStageCreateInfo::default().stage(stage_flag(m.spec.stage)).module(module).name(&m.entry),
-        );
+        let mut stage =
+            vk::PipelineShaderStageCreateInfo::default().stage(stage_flag(m.spec.stage)).module(module).name(&m.entry);
+        if m.spec.stage == Stage::Raygen {
+            stage = stage.specialization_info(&spec);
+        }
+        stages.push(stage);
     }
-    let index = |stage: Stage| modules.iter().position(|m| m.spec.stage == stage).map(|i| i as u32);
-    let (Some(raygen), Some(miss), Some(intersection), Some(closest_hit)) =
-        (index(Stage::Raygen), index(Stage::Miss), index(Stage::Intersection), index(Stage::ClosestHit))
-    else {
-        return Err(Error::Unsupported("the shader set lacks a stage".into()));
-    };
+    let index =
+        |name: &str| modules.iter().position(|m| m.spec.name == name).map_or(vk::SHADER_UNUSED_KHR, |i| i as u32);
     let general = |shader| {
         vk::RayTracingShaderGroupCreateInfoKHR::default()
             .ty(vk::RayTracingShaderGroupTypeKHR::GENERAL)
@@ -107,17 +162,25 @@ fn create_pipeline(ctx: &Context, layout: vk::PipelineLayout, modules: &[StageMo
             .any_hit_shader(vk::SHADER_UNUSED_KHR)
             .intersection_shader(vk::SHADER_UNUSED_KHR)
     };
-    // Order fixed by twinray_shared::bindings::GROUP_*.
-    let groups = [
-        general(raygen),
-        general(miss),
-        vk::RayTracingShaderGroupCreateInfoKHR::default()
-            .ty(vk::RayTracingShaderGroupTypeKHR::PROCEDURAL_HIT_GROUP)
-            .general_shader(vk::SHADER_UNUSED_KHR)
-            .closest_hit_shader(closest_hit)
-            .any_hit_shader(vk::SHADER_UNUSED_KHR)
-            .intersection_shader(intersection),
-    ];
+    // SBT order: raygen, miss (MISS_PRIMARY), shadow miss (MISS_SHADOW), then the hit groups.
+    let mut groups = vec![general(index("raygen")), general(index("miss"))];
+    if plan.shadows {
+        groups.push(general(index("shadow_miss")));
+    }
+    for group in &plan.hit_groups {
+        let ty = match group.intersection_module() {
+            Some(_) => vk::RayTracingShaderGroupTypeKHR::PROCEDURAL_HIT_GROUP,
+            None => vk::RayTracingShaderGroupTypeKHR::TRIANGLES_HIT_GROUP,
+        };
+        groups.push(
+            vk::RayTracingShaderGroupCreateInfoKHR::default()
+                .ty(ty)
+                .general_shader(vk::SHADER_UNUSED_KHR)
+                .closest_hit_shader(index(group.closest_hit_module()))
+                .any_hit_shader(vk::SHADER_UNUSED_KHR)
+                .intersection_shader(group.intersection_module().map_or(vk::SHADER_UNUSED_KHR, index)),
+        );
+    }
     let info = [vk::RayTracingPipelineCreateInfoKHR::default()
         .stages(&stages)
         .groups(&groups)

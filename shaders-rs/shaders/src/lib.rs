@@ -1,75 +1,125 @@
 //! twinray's Rust ray tracing stages. Each `pub fn` with a `#[spirv(...)]` stage attribute is an
 //! entry point; `cargo xtask shaders` writes one SPIR-V module per entry point to `spirv/rust/`.
 //! Bindings are literals here because attributes need them; a test checks them against
-//! `twinray_shared::bindings`.
+//! `twinray_shared::bindings`. Ray generation shades; the hit stages only describe the surface.
 #![cfg_attr(target_arch = "spirv", no_std)]
 
-use spirv_std::glam::{UVec3, Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
-use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
-use spirv_std::{spirv, Image};
-use twinray_shared::bindings::{NO_HIT, T_MAX, T_MIN};
-use twinray_shared::layout::{CameraUniform, RayPayload, Sphere};
-use twinray_shared::{camera, shading, sphere};
+mod trace;
 
-/// One primary ray per pixel; writes the colour and the primitive id it hit.
+use spirv_std::glam::{UVec3, UVec4, Vec3, Vec3Swizzles, Vec4Swizzles};
+use spirv_std::matrix::Matrix4x3;
+use spirv_std::ray_tracing::AccelerationStructure;
+use spirv_std::{spirv, Image};
+use twinray_shared::bindings::{HIT_KIND_SPHERE, NO_HIT};
+use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
+use twinray_shared::{camera, random, shading, sphere};
+
+/// M x M primary samples per pixel; shades each and writes the mean colour and the ids of what
+/// the first sample hit.
 #[spirv(ray_generation)]
+#[allow(clippy::too_many_arguments)]
 pub fn raygen(
     #[spirv(launch_id)] launch_id: UVec3,
     #[spirv(launch_size)] launch_size: UVec3,
     #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
     #[spirv(descriptor_set = 0, binding = 1)] image: &Image!(2D, format = rgba8, sampled = false),
-    #[spirv(uniform, descriptor_set = 0, binding = 2)] camera: &CameraUniform,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] hit_ids: &mut [u32],
-    #[spirv(ray_payload)] payload: &mut RayPayload,
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &[Light],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] hit_ids: &mut [u32],
+    #[spirv(spec_constant(id = 0, default = 0))] shadows: u32,
+    #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
+    #[spirv(ray_payload)] payload: &mut HitPayload,
+    #[spirv(ray_payload)] shadow: &mut ShadowPayload,
 ) {
-    let ray = camera::primary_ray(camera, launch_id.xy(), launch_size.xy());
-    // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
-    unsafe {
-        tlas.trace_ray(RayFlags::OPAQUE, 0xff, 0, 0, 0, ray.origin, T_MIN, ray.direction, T_MAX, payload);
+    let pixel = launch_id.xy();
+    let pixel_index = launch_id.y * launch_size.x + launch_id.x;
+    let mut sum = Vec3::ZERO;
+    for sy in 0..samples_per_side {
+        for sx in 0..samples_per_side {
+            let sample = sy * samples_per_side + sx;
+            let r1 = random::random(frame.seed, pixel_index, sample, 0);
+            let r2 = random::random(frame.seed, pixel_index, sample, 1);
+            let offset = camera::sample_offset(sx, sy, samples_per_side, r1, r2);
+            let ray = camera::primary_ray(frame, pixel, launch_size.xy(), offset);
+            trace::primary(tlas, ray, payload);
+            if sample == 0 {
+                hit_ids[2 * pixel_index as usize] = payload.ids.x;
+                hit_ids[2 * pixel_index as usize + 1] = payload.ids.y;
+            }
+            sum += trace::shade(tlas, frame, lights, shadows != 0, payload, shadow, pixel_index, sample);
+        }
     }
+    let color = sum / (samples_per_side * samples_per_side) as f32;
     // SAFETY: launch_id lies inside the image, which the host sizes to the launch.
-    unsafe { image.write(launch_id.xy(), payload.color) };
-    hit_ids[(launch_id.y * launch_size.x + launch_id.x) as usize] = payload.primitive;
+    unsafe { image.write(pixel, color.extend(1.0)) };
 }
 
-/// Background: grey, no primitive.
+/// Primary rays that hit nothing see the background.
 #[spirv(miss)]
-pub fn miss(#[spirv(incoming_ray_payload)] payload: &mut RayPayload) {
-    payload.color = Vec4::new(shading::MISS_GREY, shading::MISS_GREY, shading::MISS_GREY, 1.0);
-    payload.primitive = NO_HIT;
+pub fn miss(
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
+    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+) {
+    payload.color = frame.background;
+    payload.ids = UVec4::splat(NO_HIT);
 }
 
-/// Analytic sphere of the AABB `primitive_id`.
+/// A shadow ray that reaches its light.
+#[spirv(miss)]
+pub fn shadow_miss(#[spirv(incoming_ray_payload)] shadow: &mut ShadowPayload) {
+    shadow.occluded = 0;
+}
+
+/// Analytic sphere of the AABB `primitive_id`; reports the object-space normal.
 #[spirv(intersection)]
 pub fn sphere_intersection(
+    #[spirv(instance_custom_index)] object: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(object_ray_origin)] origin: Vec3,
     #[spirv(object_ray_direction)] direction: Vec3,
     #[spirv(ray_tmin)] t_min: f32,
     #[spirv(ray_tmax)] t_max: f32,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] spheres: &[Sphere],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+    #[spirv(hit_attribute)] normal: &mut Vec3,
 ) {
-    let s = spheres[primitive_id as usize].center_radius;
+    let s = primitives[(objects[object as usize].primitive_base + primitive_id) as usize].a;
     let roots = sphere::intersect(origin, direction, s.xyz(), s.w);
     if let Some(t) = sphere::reported_root(roots, t_min, t_max) {
+        *normal = (origin + direction * t - s.xyz()) / s.w;
         // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
-        unsafe { spirv_std::arch::report_intersection(t, 0) };
+        unsafe { spirv_std::arch::report_intersection(t, HIT_KIND_SPHERE) };
     }
 }
 
-/// Lambert shading of the sphere that was hit; the normal is recomputed from the hit point.
+/// Every procedural shape: the surface from the reported object-space normal.
 #[spirv(closest_hit)]
-pub fn sphere_closest_hit(
+#[allow(clippy::too_many_arguments)]
+pub fn procedural_closest_hit(
+    #[spirv(instance_custom_index)] object: u32,
     #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(object_ray_origin)] origin: Vec3,
-    #[spirv(object_ray_direction)] direction: Vec3,
-    #[spirv(ray_tmax)] t_hit: f32,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] spheres: &[Sphere],
-    #[spirv(incoming_ray_payload)] payload: &mut RayPayload,
+    #[spirv(hit_kind)] hit_kind: u32,
+    #[spirv(world_ray_origin)] origin: Vec3,
+    #[spirv(world_ray_direction)] direction: Vec3,
+    #[spirv(object_ray_origin)] object_origin: Vec3,
+    #[spirv(object_ray_direction)] object_direction: Vec3,
+    #[spirv(ray_tmax)] t: f32,
+    #[spirv(world_to_object)] world_to_object: Matrix4x3,
+    #[spirv(hit_attribute)] normal: &Vec3,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
 ) {
-    let s = spheres[primitive_id as usize];
-    // Object space is world space here: the scene's one instance has the identity transform.
-    let normal = (origin + direction * t_hit - s.center_radius.xyz()).normalize();
-    payload.color = shading::lambert(s.color.xyz(), normal).extend(1.0);
-    payload.primitive = primitive_id;
+    let data = objects[object as usize];
+    let material = materials[data.material as usize];
+    let tint = primitives[(data.primitive_base + primitive_id) as usize].tint.xyz();
+    let world = shading::world_normal(world_to_object.to_mat3(), *normal);
+    let facing = shading::face_forward(world, direction);
+    let color = shading::material_color(&material, object_origin + object_direction * t) * tint;
+    payload.position = (origin + direction * t).extend(t);
+    payload.shading_normal = facing.extend(0.0);
+    payload.geometric_normal = facing.extend(0.0);
+    payload.color = color.extend(1.0);
+    payload.ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
 }

@@ -1,4 +1,5 @@
-//! Descriptor bindings, shader-group order and ray constants shared by both shader sets.
+//! Descriptor bindings, kind codes, specialisation constants and ray constants shared by both
+//! shader sets.
 //!
 //! The Rust shaders must spell bindings as literals in `#[spirv(...)]` attributes; a test reads
 //! the decorations back from every compiled module and checks them against these constants.
@@ -9,19 +10,46 @@ pub const DESCRIPTOR_SET: u32 = 0;
 pub const BINDING_TLAS: u32 = 0;
 /// Output colour, a storage image of format rgba8.
 pub const BINDING_IMAGE: u32 = 1;
-/// [`crate::layout::CameraUniform`], a uniform buffer.
-pub const BINDING_CAMERA: u32 = 2;
-/// `[Sphere]`, a storage buffer indexed by primitive id.
-pub const BINDING_SPHERES: u32 = 3;
-/// `[u32]` per pixel: primitive id hit by the primary ray, or [`NO_HIT`].
-pub const BINDING_HIT_IDS: u32 = 4;
+/// [`crate::layout::FrameUniform`], a uniform buffer.
+pub const BINDING_FRAME: u32 = 2;
+/// `[ObjectData]`, indexed by the instance custom index.
+pub const BINDING_OBJECTS: u32 = 3;
+/// `[Primitive]`: parameters of procedural primitives, from each object's `primitive_base`.
+pub const BINDING_PRIMITIVES: u32 = 4;
+/// `[Material]`.
+pub const BINDING_MATERIALS: u32 = 5;
+/// `[Light]`, `FrameUniform::light_count` of them.
+pub const BINDING_LIGHTS: u32 = 6;
+/// `[u32]`, two per pixel: object and primitive hit by the first primary ray, or [`NO_HIT`].
+pub const BINDING_HIT_IDS: u32 = 7;
 
-/// Shader groups in pipeline order; the shader binding table follows it.
-pub const GROUP_RAYGEN: u32 = 0;
-pub const GROUP_MISS: u32 = 1;
-pub const GROUP_SPHERE_HIT: u32 = 2;
+/// Miss shader indices in the shader binding table.
+pub const MISS_PRIMARY: u32 = 0;
+pub const MISS_SHADOW: u32 = 1;
 
-/// Written to the hit-id buffer (and the payload) when a ray hits nothing.
+/// Instance masks: shadow rays see only occluders; emissive objects show but cast no shadow.
+pub const MASK_OCCLUDER: u32 = 0x01;
+pub const MASK_EMITTER: u32 = 0x02;
+
+/// Specialisation constants: whether any light casts shadows (0/1), and M for M x M primary
+/// samples per pixel.
+pub const SPEC_SHADOWS: u32 = 0;
+pub const SPEC_SAMPLES_PER_SIDE: u32 = 1;
+
+/// Material kinds (`Material::kind`).
+pub const MATERIAL_DIFFUSE: u32 = 0;
+pub const MATERIAL_EMISSIVE: u32 = 1;
+pub const MATERIAL_CHECKER: u32 = 2;
+
+/// Light kinds (`Light::kind`).
+pub const LIGHT_DIRECTIONAL: u32 = 0;
+pub const LIGHT_POINT: u32 = 1;
+pub const LIGHT_RECT: u32 = 2;
+
+/// Hit kinds reported by the intersection shaders: which shape was hit.
+pub const HIT_KIND_SPHERE: u32 = 1;
+
+/// Written to the hit-id buffer (and `HitPayload::ids.w`) when a ray hits nothing.
 pub const NO_HIT: u32 = 0xffff_ffff;
 /// Primary ray interval.
 pub const T_MIN: f32 = 0.1;

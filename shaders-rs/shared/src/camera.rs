@@ -1,7 +1,7 @@
-//! Primary rays: from the inverse view and projection through the centre of a pixel.
+//! Primary rays: from the inverse view and projection through a point of a pixel.
 
-use crate::layout::CameraUniform;
-use glam::{UVec2, Vec2, Vec3, Vec4Swizzles};
+use crate::layout::FrameUniform;
+use glam::{UVec2, Vec2, Vec3, Vec4, Vec4Swizzles};
 
 /// A ray with origin and (unit) direction.
 #[derive(Clone, Copy)]
@@ -10,12 +10,22 @@ pub struct Ray {
     pub direction: Vec3,
 }
 
-/// The ray through the centre of `pixel` in an image of `size` pixels (y down, as in Vulkan).
-pub fn primary_ray(camera: &CameraUniform, pixel: UVec2, size: UVec2) -> Ray {
-    let uv = (pixel.as_vec2() + Vec2::splat(0.5)) / size.as_vec2();
+/// The ray through `pixel + offset` in an image of `size` pixels (y down, as in Vulkan);
+/// `offset` in [0, 1)^2, (0.5, 0.5) being the pixel centre.
+pub fn primary_ray(frame: &FrameUniform, pixel: UVec2, size: UVec2, offset: Vec2) -> Ray {
+    let uv = (pixel.as_vec2() + offset) / size.as_vec2();
     let ndc = uv * 2.0 - Vec2::ONE;
-    let origin = (camera.view_inverse * glam::Vec4::new(0.0, 0.0, 0.0, 1.0)).xyz();
-    let target = camera.proj_inverse * glam::Vec4::new(ndc.x, ndc.y, 1.0, 1.0);
-    let direction = (camera.view_inverse * target.xyz().normalize().extend(0.0)).xyz();
+    let origin = (frame.view_inverse * Vec4::new(0.0, 0.0, 0.0, 1.0)).xyz();
+    let target = frame.proj_inverse * Vec4::new(ndc.x, ndc.y, 1.0, 1.0);
+    let direction = (frame.view_inverse * target.xyz().normalize().extend(0.0)).xyz();
     Ray { origin, direction }
+}
+
+/// Offset of sample `(sx, sy)` of `m` x `m` stratified, jittered samples in a pixel: the
+/// centre of the pixel when `m` is 1, else `(r1, r2)` places it inside its stratum.
+pub fn sample_offset(sx: u32, sy: u32, m: u32, r1: f32, r2: f32) -> Vec2 {
+    if m == 1 {
+        return Vec2::splat(0.5);
+    }
+    Vec2::new((sx as f32 + r1) / m as f32, (sy as f32 + r2) / m as f32)
 }

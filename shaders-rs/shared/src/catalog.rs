@@ -61,13 +61,20 @@ pub struct ModuleSpec {
     pub glsl_source: &'static str,
 }
 
-/// Every module of both sets; `cargo xtask shaders` builds and checks exactly these.
-pub const MODULES: [ModuleSpec; 4] = [
+/// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A pipeline
+/// uses only those its scene needs.
+pub const MODULES: [ModuleSpec; 5] = [
     ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl_source: "raygen.rgen" },
     ModuleSpec { name: "miss", stage: Stage::Miss, glsl_source: "miss.rmiss" },
+    ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl_source: "shadow.rmiss" },
     ModuleSpec { name: "sphere_intersection", stage: Stage::Intersection, glsl_source: "sphere.rint" },
-    ModuleSpec { name: "sphere_closest_hit", stage: Stage::ClosestHit, glsl_source: "sphere.rchit" },
+    ModuleSpec { name: "procedural_closest_hit", stage: Stage::ClosestHit, glsl_source: "procedural.rchit" },
 ];
+
+/// The module called `name`.
+pub fn module(name: &str) -> Option<ModuleSpec> {
+    MODULES.iter().copied().find(|m| m.name == name)
+}
 
 impl ModuleSpec {
     /// The entry point's name in this language's module.
@@ -89,11 +96,14 @@ impl Language {
 }
 
 /// Every (descriptor set, binding) a module may declare: those of `crate::bindings`.
-pub const KNOWN_BINDINGS: [(u32, u32); 5] = [
+pub const KNOWN_BINDINGS: [(u32, u32); 8] = [
     (b::DESCRIPTOR_SET, b::BINDING_TLAS),
     (b::DESCRIPTOR_SET, b::BINDING_IMAGE),
-    (b::DESCRIPTOR_SET, b::BINDING_CAMERA),
-    (b::DESCRIPTOR_SET, b::BINDING_SPHERES),
+    (b::DESCRIPTOR_SET, b::BINDING_FRAME),
+    (b::DESCRIPTOR_SET, b::BINDING_OBJECTS),
+    (b::DESCRIPTOR_SET, b::BINDING_PRIMITIVES),
+    (b::DESCRIPTOR_SET, b::BINDING_MATERIALS),
+    (b::DESCRIPTOR_SET, b::BINDING_LIGHTS),
     (b::DESCRIPTOR_SET, b::BINDING_HIT_IDS),
 ];
 

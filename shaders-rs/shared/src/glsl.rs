@@ -6,8 +6,8 @@
 //! the types used here the two rules agree), and that the fields cover the whole struct.
 
 use crate::bindings::*;
-use crate::layout::{CameraUniform, RayPayload, Sphere};
-use crate::shading::{LIGHT_DIRECTION, MISS_GREY};
+use crate::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
+use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
 use std::fmt::Write;
 use std::mem::{offset_of, size_of};
 
@@ -42,9 +42,43 @@ macro_rules! glsl_struct {
 /// Every struct the GLSL set reads or writes.
 pub fn structs() -> Vec<GlslStruct> {
     vec![
-        glsl_struct!(CameraUniform { view_inverse: "mat4", proj_inverse: "mat4" }),
-        glsl_struct!(Sphere { center_radius: "vec4", color: "vec4" }),
-        glsl_struct!(RayPayload { color: "vec4", primitive: "uint" }),
+        glsl_struct!(FrameUniform {
+            view_inverse: "mat4",
+            proj_inverse: "mat4",
+            background: "vec4",
+            light_count: "uint",
+            seed: "uint",
+            _pad0: "uint",
+            _pad1: "uint",
+        }),
+        glsl_struct!(ObjectData { material: "uint", primitive_base: "uint", _pad0: "uint", _pad1: "uint" }),
+        glsl_struct!(Primitive { a: "vec4", b: "vec4", tint: "vec4" }),
+        glsl_struct!(Material {
+            kind: "uint",
+            _pad0: "uint",
+            _pad1: "uint",
+            _pad2: "uint",
+            color_a: "vec4",
+            color_b: "vec4"
+        }),
+        glsl_struct!(Light {
+            kind: "uint",
+            samples: "uint",
+            shadows: "uint",
+            _pad0: "uint",
+            position: "vec4",
+            radiance: "vec4",
+            u: "vec4",
+            v: "vec4",
+        }),
+        glsl_struct!(HitPayload {
+            position: "vec4",
+            shading_normal: "vec4",
+            geometric_normal: "vec4",
+            color: "vec4",
+            ids: "uvec4",
+        }),
+        glsl_struct!(ShadowPayload { occluded: "uint" }),
     ]
 }
 
@@ -90,20 +124,40 @@ pub fn layout_include() -> Result<String, String> {
         ("DESCRIPTOR_SET", DESCRIPTOR_SET),
         ("BINDING_TLAS", BINDING_TLAS),
         ("BINDING_IMAGE", BINDING_IMAGE),
-        ("BINDING_CAMERA", BINDING_CAMERA),
-        ("BINDING_SPHERES", BINDING_SPHERES),
+        ("BINDING_FRAME", BINDING_FRAME),
+        ("BINDING_OBJECTS", BINDING_OBJECTS),
+        ("BINDING_PRIMITIVES", BINDING_PRIMITIVES),
+        ("BINDING_MATERIALS", BINDING_MATERIALS),
+        ("BINDING_LIGHTS", BINDING_LIGHTS),
         ("BINDING_HIT_IDS", BINDING_HIT_IDS),
+        ("MISS_PRIMARY", MISS_PRIMARY),
+        ("MISS_SHADOW", MISS_SHADOW),
+        ("MASK_OCCLUDER", MASK_OCCLUDER),
+        ("MASK_EMITTER", MASK_EMITTER),
+        ("SPEC_SHADOWS", SPEC_SHADOWS),
+        ("SPEC_SAMPLES_PER_SIDE", SPEC_SAMPLES_PER_SIDE),
+        ("MATERIAL_DIFFUSE", MATERIAL_DIFFUSE),
+        ("MATERIAL_EMISSIVE", MATERIAL_EMISSIVE),
+        ("MATERIAL_CHECKER", MATERIAL_CHECKER),
+        ("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL),
+        ("LIGHT_POINT", LIGHT_POINT),
+        ("LIGHT_RECT", LIGHT_RECT),
+        ("HIT_KIND_SPHERE", HIT_KIND_SPHERE),
         ("NO_HIT", NO_HIT),
     ];
     for (name, value) in uints {
         writeln!(s, "#define {name} {value}u").map_err(|e| e.to_string())?;
     }
-    let floats = [("T_MIN", T_MIN), ("T_MAX", T_MAX), ("MISS_GREY", MISS_GREY)];
+    let floats = [
+        ("T_MIN", T_MIN),
+        ("T_MAX", T_MAX),
+        ("OFFSET_ORIGIN", OFFSET_ORIGIN),
+        ("OFFSET_FLOAT_SCALE", OFFSET_FLOAT_SCALE),
+        ("OFFSET_INT_SCALE", OFFSET_INT_SCALE),
+    ];
     for (name, value) in floats {
         writeln!(s, "#define {name} {value:?}").map_err(|e| e.to_string())?;
     }
-    let l = LIGHT_DIRECTION;
-    writeln!(s, "#define LIGHT_DIRECTION vec3({:?}, {:?}, {:?})", l.x, l.y, l.z).map_err(|e| e.to_string())?;
     for st in structs() {
         st.check()?;
         writeln!(s, "\n// {} bytes, as twinray_shared::layout::{}", st.size, st.name).map_err(|e| e.to_string())?;
@@ -143,8 +197,8 @@ mod tests {
 
     #[test]
     fn check_catches_unlisted_bytes() {
-        let mut sphere = glsl_struct!(Sphere { center_radius: "vec4", color: "vec4" });
-        sphere.fields.pop();
-        assert!(sphere.check().unwrap_err().contains("size"));
+        let mut primitive = glsl_struct!(Primitive { a: "vec4", b: "vec4", tint: "vec4" });
+        primitive.fields.pop();
+        assert!(primitive.check().unwrap_err().contains("size"));
     }
 }

@@ -1,40 +1,114 @@
 //! Every struct that crosses the CPU/GPU line, defined once. `#[repr(C)]`, built from scalars,
-//! `Vec4` and `Mat4` only, so std140/std430 and Rust agree; sizes are asserted at compile time.
+//! `Vec4`, `UVec4` and `Mat4` only, so std140/std430 and Rust agree; sizes are asserted at
+//! compile time, and `glsl.rs` generates the GLSL mirror from the same fields.
 
-use glam::{Mat4, Vec4};
+use glam::{Mat4, UVec4, Vec4};
 
-/// Uniform buffer at [`crate::bindings::BINDING_CAMERA`].
+/// Uniform buffer at [`crate::bindings::BINDING_FRAME`].
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
 #[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
-pub struct CameraUniform {
+pub struct FrameUniform {
     /// Camera-to-world transform.
     pub view_inverse: Mat4,
     /// Clip-to-camera transform.
     pub proj_inverse: Mat4,
+    /// rgb: colour of rays that hit nothing; w: unused.
+    pub background: Vec4,
+    /// Number of lights in the light buffer.
+    pub light_count: u32,
+    /// Seed of the per-pixel, per-sample random sequence.
+    pub seed: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
 }
-const _: () = assert!(core::mem::size_of::<CameraUniform>() == 128);
+const _: () = assert!(core::mem::size_of::<FrameUniform>() == 160);
 
-/// One element of the storage buffer at [`crate::bindings::BINDING_SPHERES`].
+/// Per object (TLAS instance), indexed by the instance custom index.
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
 #[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
-pub struct Sphere {
-    /// xyz: centre, w: radius.
-    pub center_radius: Vec4,
-    /// rgb: albedo, w: unused (1).
-    pub color: Vec4,
+pub struct ObjectData {
+    /// Index into the material buffer.
+    pub material: u32,
+    /// Index of this object's primitive 0 in the primitive buffer.
+    pub primitive_base: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
 }
-const _: () = assert!(core::mem::size_of::<Sphere>() == 32);
+const _: () = assert!(core::mem::size_of::<ObjectData>() == 16);
 
-/// The payload of primary rays, written by the closest-hit and miss stages.
+/// One procedural primitive in object space. Sphere: `a` = centre and radius.
 #[repr(C)]
 #[derive(Clone, Copy)]
-pub struct RayPayload {
-    /// rgb: shaded colour, w: 1.
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct Primitive {
+    pub a: Vec4,
+    pub b: Vec4,
+    /// rgb: multiplies the material's colour (a sphere field's per-sphere colour); w: unused.
+    pub tint: Vec4,
+}
+const _: () = assert!(core::mem::size_of::<Primitive>() == 48);
+
+/// A material. Diffuse: `color_a` is the albedo. Emissive: `color_a` is the emitted radiance.
+/// Checker: `color_a` and `color_b` alternate in cubes of side `1 / color_b.w` in object space.
+#[repr(C)]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct Material {
+    pub kind: u32,
+    pub _pad0: u32,
+    pub _pad1: u32,
+    pub _pad2: u32,
+    pub color_a: Vec4,
+    pub color_b: Vec4,
+}
+const _: () = assert!(core::mem::size_of::<Material>() == 48);
+
+/// A light. Directional: `position` holds the unit direction towards the light. Point: the
+/// position. Rect: the centre, with edge vectors `u` and `v`, sampled `samples` x `samples`.
+#[repr(C)]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct Light {
+    pub kind: u32,
+    /// Shadow samples per side (rect lights).
+    pub samples: u32,
+    /// 1 when the light casts shadows.
+    pub shadows: u32,
+    pub _pad0: u32,
+    pub position: Vec4,
+    /// rgb: colour times intensity.
+    pub radiance: Vec4,
+    pub u: Vec4,
+    pub v: Vec4,
+}
+const _: () = assert!(core::mem::size_of::<Light>() == 80);
+
+/// The payload of primary rays: what the closest-hit stage found, for ray generation to shade.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct HitPayload {
+    /// xyz: world-space hit point; w: the ray parameter t.
+    pub position: Vec4,
+    /// xyz: world-space unit normal for shading, facing the ray's origin.
+    pub shading_normal: Vec4,
+    /// xyz: world-space unit geometric normal, facing the ray's origin (for ray offsets).
+    pub geometric_normal: Vec4,
+    /// rgb: albedo, or emitted radiance for emissive materials, or the background on a miss.
     pub color: Vec4,
-    /// Primitive id that was hit, or [`crate::bindings::NO_HIT`].
-    pub primitive: u32,
+    /// x: object, y: primitive, z: material kind, w: hit kind, or `NO_HIT` on a miss.
+    pub ids: UVec4,
+}
+
+/// The payload of shadow rays: 1 until the shadow miss stage clears it.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct ShadowPayload {
+    pub occluded: u32,
 }

@@ -5,6 +5,9 @@
 pub mod bindings;
 pub mod camera;
 pub mod layout;
+pub mod lighting;
+pub mod offset;
+pub mod random;
 pub mod shading;
 pub mod sphere;
 

@@ -1,0 +1,191 @@
+//! Rejects well-formed scene files with impossible values, naming the field or object.
+
+use super::file::{CameraDesc, LightDesc, MaterialDesc, ObjectDesc, Parity, SceneFile, ShapeDesc};
+use crate::render::check_size;
+use glam::Vec3;
+
+/// Largest number of primitives one shape may have, and of objects in a scene.
+pub const MAX_PRIMITIVES: u32 = 1 << 20;
+pub const MAX_OBJECTS: usize = 1 << 20;
+/// Largest M (M x M primary samples) and N (N x N shadow samples per rect light).
+pub const MAX_SAMPLES_PER_SIDE: u32 = 16;
+
+type Checked = Result<(), String>;
+
+fn finite(name: &str, values: &[f32]) -> Checked {
+    if values.iter().all(|v| v.is_finite()) {
+        Ok(())
+    } else {
+        Err(format!("{name} must be finite numbers (got {values:?})"))
+    }
+}
+
+fn color(name: &str, c: [f32; 3]) -> Checked {
+    finite(name, &c)?;
+    if c.iter().any(|v| *v < 0.0) {
+        return Err(format!("{name} must not be negative (got {c:?})"));
+    }
+    Ok(())
+}
+
+fn positive(name: &str, v: f32) -> Checked {
+    if v > 0.0 && v.is_finite() {
+        Ok(())
+    } else {
+        Err(format!("{name} must be > 0 (got {v})"))
+    }
+}
+
+fn samples(name: &str, n: u32) -> Checked {
+    if (1..=MAX_SAMPLES_PER_SIDE).contains(&n) {
+        Ok(())
+    } else {
+        Err(format!("{name} must be in 1..={MAX_SAMPLES_PER_SIDE} (got {n})"))
+    }
+}
+
+pub fn check(scene: &SceneFile) -> Checked {
+    check_size(scene.image.width, scene.image.height).map_err(|e| format!("image: {e}"))?;
+    samples("image.samples", scene.image.samples)?;
+    samples("shadow_samples", scene.shadow_samples)?;
+    check_camera(&scene.camera)?;
+    color("background", scene.background)?;
+    for (name, m) in &scene.materials {
+        check_material(m).map_err(|e| format!("material {name:?}: {e}"))?;
+    }
+    for (i, light) in scene.lights.iter().enumerate() {
+        check_light(light).map_err(|e| format!("lights[{i}]: {e}"))?;
+    }
+    for (name, shape) in &scene.shapes {
+        check_shape(shape).map_err(|e| format!("shape {name:?}: {e}"))?;
+    }
+    if scene.objects.is_empty() || scene.objects.len() > MAX_OBJECTS {
+        return Err(format!("a scene needs 1..={MAX_OBJECTS} objects (got {})", scene.objects.len()));
+    }
+    for (i, object) in scene.objects.iter().enumerate() {
+        check_object(scene, object).map_err(|e| format!("objects[{i}] (shape {:?}): {e}", object.shape))?;
+    }
+    check_parity(&scene.parity)
+}
+
+fn check_camera(c: &CameraDesc) -> Checked {
+    finite("camera.eye", &c.eye)?;
+    finite("camera.target", &c.target)?;
+    finite("camera.up", &c.up)?;
+    let forward = Vec3::from(c.target) - Vec3::from(c.eye);
+    if forward.length_squared() == 0.0 {
+        return Err("camera.eye and camera.target must differ".into());
+    }
+    if forward.cross(Vec3::from(c.up)).length_squared() == 0.0 {
+        return Err("camera.up must not be zero or parallel to the view direction".into());
+    }
+    if !(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0) {
+        return Err(format!("camera.fov_y_degrees must be in (0, 180) (got {})", c.fov_y_degrees));
+    }
+    Ok(())
+}
+
+fn check_material(m: &MaterialDesc) -> Checked {
+    match m {
+        MaterialDesc::Diffuse { color: c } => color("color", *c),
+        MaterialDesc::Emissive { color: c, intensity } => {
+            color("color", *c)?;
+            positive("intensity", *intensity)
+        }
+        MaterialDesc::Checker { colors, scale } => {
+            color("colors[0]", colors[0])?;
+            color("colors[1]", colors[1])?;
+            positive("scale", *scale)
+        }
+    }
+}
+
+fn check_light(light: &LightDesc) -> Checked {
+    match light {
+        LightDesc::Directional { direction, color: c, intensity, .. } => {
+            finite("direction", direction)?;
+            if Vec3::from(*direction).length_squared() == 0.0 {
+                return Err("direction must not be zero".into());
+            }
+            color("color", *c)?;
+            positive("intensity", *intensity)
+        }
+        LightDesc::Point { position, color: c, intensity, .. } => {
+            finite("position", position)?;
+            color("color", *c)?;
+            positive("intensity", *intensity)
+        }
+        LightDesc::Rect { center, u, v, color: c, intensity, samples: n, .. } => {
+            finite("center", center)?;
+            finite("u", u)?;
+            finite("v", v)?;
+            if Vec3::from(*u).cross(Vec3::from(*v)).length_squared() == 0.0 {
+                return Err("u and v span no area (zero-area light)".into());
+            }
+            color("color", *c)?;
+            positive("intensity", *intensity)?;
+            n.map_or(Ok(()), |n| samples("samples", n))
+        }
+    }
+}
+
+fn check_shape(shape: &ShapeDesc) -> Checked {
+    match shape {
+        ShapeDesc::Sphere { radius } => positive("radius", *radius),
+        ShapeDesc::SphereField { count, center_min, center_max, radius_min, radius_max, .. } => {
+            if *count == 0 || *count > MAX_PRIMITIVES {
+                return Err(format!("count must be in 1..={MAX_PRIMITIVES} (got {count})"));
+            }
+            finite("center_min", center_min)?;
+            finite("center_max", center_max)?;
+            if (0..3).any(|i| center_min[i] > center_max[i]) {
+                return Err("center_min must not exceed center_max".into());
+            }
+            positive("radius_min", *radius_min)?;
+            if !(radius_max >= radius_min && radius_max.is_finite()) {
+                return Err(format!("radius_max must be >= radius_min (got {radius_max})"));
+            }
+            Ok(())
+        }
+    }
+}
+
+fn check_object(scene: &SceneFile, object: &ObjectDesc) -> Checked {
+    if !scene.shapes.contains_key(&object.shape) {
+        return Err(format!("unknown shape {:?} (shapes: {})", object.shape, names(scene.shapes.keys())));
+    }
+    if !scene.materials.contains_key(&object.material) {
+        return Err(format!("unknown material {:?} (materials: {})", object.material, names(scene.materials.keys())));
+    }
+    finite("translate", &object.translate)?;
+    finite("rotate", &object.rotate)?;
+    let scale = object.scale.axes();
+    finite("scale", &scale)?;
+    if scale.contains(&0.0) {
+        return Err(format!("scale must not be zero on any axis (got {scale:?})"));
+    }
+    Ok(())
+}
+
+fn names<'a>(keys: impl Iterator<Item = &'a String>) -> String {
+    let list: Vec<&str> = keys.map(String::as_str).collect();
+    if list.is_empty() {
+        "none".into()
+    } else {
+        list.join(", ")
+    }
+}
+
+fn check_parity(p: &Parity) -> Checked {
+    if !(p.max_rmse.is_finite() && p.max_rmse >= 0.0) {
+        return Err(format!("parity.max_rmse must be >= 0 (got {})", p.max_rmse));
+    }
+    for (name, v) in
+        [("max_pixels_over_threshold", p.max_pixels_over_threshold), ("max_hit_mismatches", p.max_hit_mismatches)]
+    {
+        if !(0.0..=1.0).contains(&v) {
+            return Err(format!("parity.{name} is a fraction of pixels, in [0, 1] (got {v})"));
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,171 @@
+//! The scene file format (TOML), as serde reads it. `docs/scene-format.md` documents every
+//! field; `check.rs` rejects impossible values; `build.rs` turns a scene into GPU data.
+
+use serde::Deserialize;
+use std::collections::BTreeMap;
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SceneFile {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    pub image: ImageDesc,
+    pub camera: CameraDesc,
+    /// Colour of rays that hit nothing.
+    #[serde(default = "default_background")]
+    pub background: [f32; 3],
+    /// Shadow samples per side of rect lights that do not set their own.
+    #[serde(default = "default_shadow_samples")]
+    pub shadow_samples: u32,
+    #[serde(default)]
+    pub materials: BTreeMap<String, MaterialDesc>,
+    #[serde(default)]
+    pub lights: Vec<LightDesc>,
+    pub shapes: BTreeMap<String, ShapeDesc>,
+    pub objects: Vec<ObjectDesc>,
+    pub parity: Parity,
+}
+
+fn default_background() -> [f32; 3] {
+    [0.3; 3]
+}
+
+fn default_shadow_samples() -> u32 {
+    4
+}
+
+fn one() -> u32 {
+    1
+}
+
+fn yes() -> bool {
+    true
+}
+
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImageDesc {
+    pub width: u32,
+    pub height: u32,
+    /// M: M x M stratified, jittered primary rays per pixel.
+    #[serde(default = "one")]
+    pub samples: u32,
+    /// Seed of every random sequence (jitter, light samples).
+    #[serde(default)]
+    pub seed: u32,
+}
+
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CameraDesc {
+    pub eye: [f32; 3],
+    pub target: [f32; 3],
+    pub up: [f32; 3],
+    pub fov_y_degrees: f32,
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum MaterialDesc {
+    Diffuse {
+        color: [f32; 3],
+    },
+    Emissive {
+        color: [f32; 3],
+        intensity: f32,
+    },
+    /// Alternating cubes of side `1 / scale` in object space.
+    Checker {
+        colors: [[f32; 3]; 2],
+        scale: f32,
+    },
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum LightDesc {
+    /// `direction` points towards the light.
+    Directional {
+        direction: [f32; 3],
+        color: [f32; 3],
+        intensity: f32,
+        #[serde(default = "yes")]
+        shadows: bool,
+    },
+    Point {
+        position: [f32; 3],
+        color: [f32; 3],
+        intensity: f32,
+        #[serde(default = "yes")]
+        shadows: bool,
+    },
+    /// A rectangle centred at `center` with edge vectors `u` and `v`, emitting from both faces.
+    Rect {
+        center: [f32; 3],
+        u: [f32; 3],
+        v: [f32; 3],
+        color: [f32; 3],
+        intensity: f32,
+        samples: Option<u32>,
+        #[serde(default = "yes")]
+        shadows: bool,
+    },
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
+pub enum ShapeDesc {
+    /// A sphere centred at the object's origin.
+    Sphere { radius: f32 },
+    /// `count` spheres with centres uniform in the box and radii uniform in the range, each
+    /// with its own colour (which tints the material), placed by SplitMix64 from `seed`.
+    SphereField { count: u32, seed: u64, center_min: [f32; 3], center_max: [f32; 3], radius_min: f32, radius_max: f32 },
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ObjectDesc {
+    pub shape: String,
+    pub material: String,
+    #[serde(default)]
+    pub translate: [f32; 3],
+    /// Degrees about x, then y, then z.
+    #[serde(default)]
+    pub rotate: [f32; 3],
+    #[serde(default)]
+    pub scale: Scale,
+}
+
+/// A uniform scale factor, or one per axis.
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum Scale {
+    Uniform(f32),
+    PerAxis([f32; 3]),
+}
+
+impl Default for Scale {
+    fn default() -> Self {
+        Scale::Uniform(1.0)
+    }
+}
+
+impl Scale {
+    pub fn axes(self) -> [f32; 3] {
+        match self {
+            Scale::Uniform(s) => [s; 3],
+            Scale::PerAxis(v) => v,
+        }
+    }
+}
+
+/// How close two shader sets' renders of this scene must be.
+#[derive(Clone, Copy, Debug, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Parity {
+    pub max_rmse: f64,
+    pub pixel_threshold: u8,
+    pub max_pixels_over_threshold: f64,
+    pub max_hit_mismatches: f64,
+}

@@ -1,0 +1,49 @@
+// Twin of twinray_shared::lighting: one sample of a light as seen from a point.
+#ifndef TWINRAY_LIGHTING_GLSL
+#define TWINRAY_LIGHTING_GLSL
+#include "twinray_layout.glsl"
+
+struct LightSample {
+    vec3 direction;
+    float distance;
+    vec3 irradiance;
+};
+
+LightSample light_sample(Light light, vec3 point, uint i, uint j, float r1, float r2) {
+    vec3 radiance = light.radiance.xyz;
+    if (light.kind == LIGHT_DIRECTIONAL) {
+        return LightSample(light.position.xyz, T_MAX, radiance);
+    }
+    vec3 target;
+    if (light.kind == LIGHT_POINT) {
+        target = light.position.xyz;
+    } else {
+        float n = float(light.samples);
+        float s = (float(i) + r1) / n - 0.5;
+        float t = (float(j) + r2) / n - 0.5;
+        target = light.position.xyz + light.u.xyz * s + light.v.xyz * t;
+    }
+    vec3 to_light = target - point;
+    float distance_sq = dot(to_light, to_light);
+    float distance = sqrt(distance_sq);
+    vec3 direction = to_light / distance;
+    vec3 irradiance;
+    if (light.kind == LIGHT_POINT) {
+        irradiance = radiance / distance_sq;
+    } else {
+        // Area light, two-sided: radiance x cosine at the light x solid angle of one stratum.
+        vec3 area_normal = cross(light.u.xyz, light.v.xyz);
+        float cos_light = abs(dot(area_normal, direction)) / length(area_normal);
+        float n = float(light.samples);
+        irradiance = radiance * (cos_light * length(area_normal) / (n * n * distance_sq));
+    }
+    return LightSample(direction, distance, irradiance);
+}
+
+uint light_samples_per_side(Light light) {
+    if (light.kind == LIGHT_DIRECTIONAL || light.kind == LIGHT_POINT) {
+        return 1u;
+    }
+    return light.samples;
+}
+#endif

@@ -1,0 +1,29 @@
+#version 460
+// Twin of twinray_shaders::procedural_closest_hit: every procedural shape, described from the
+// reported object-space normal.
+#extension GL_EXT_ray_tracing : require
+#extension GL_GOOGLE_include_directive : require
+#include "twinray_layout.glsl"
+#include "shading.glsl"
+
+layout(set = DESCRIPTOR_SET, binding = BINDING_OBJECTS, std430) readonly buffer Objects { ObjectData objects[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { Primitive primitives[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials { Material materials[]; };
+
+layout(location = 0) rayPayloadInEXT HitPayload payload;
+hitAttributeEXT vec3 normal;
+
+void main() {
+    ObjectData data = objects[gl_InstanceCustomIndexEXT];
+    Material material = materials[data.material];
+    vec3 tint = primitives[data.primitive_base + gl_PrimitiveID].tint.xyz;
+    vec3 world = world_normal(mat3(gl_WorldToObjectEXT), normal);
+    vec3 facing = face_forward(world, gl_WorldRayDirectionEXT);
+    float t = gl_RayTmaxEXT;
+    vec3 color = material_color(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t) * tint;
+    payload.position = vec4(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t);
+    payload.shading_normal = vec4(facing, 0.0);
+    payload.geometric_normal = vec4(facing, 0.0);
+    payload.color = vec4(color, 1.0);
+    payload.ids = uvec4(gl_InstanceCustomIndexEXT, gl_PrimitiveID, material.kind, gl_HitKindEXT);
+}

@@ -1,0 +1,48 @@
+// Twin of twinray_shaders::trace: primary rays, and shading with shadow rays to every light.
+// Included by raygen.rgen after it declares tlas, frame, lights, payload and shadow_payload.
+#ifndef TWINRAY_TRACE_GLSL
+#define TWINRAY_TRACE_GLSL
+#include "lighting.glsl"
+#include "offset.glsl"
+#include "random.glsl"
+
+void trace_primary(vec3 origin, vec3 direction) {
+    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xff, 0, 0, MISS_PRIMARY, origin, T_MIN, direction, T_MAX, 0);
+}
+
+bool visible(vec3 origin, vec3 direction, float distance) {
+    shadow_payload.occluded = 1u;
+    uint flags = gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT;
+    traceRayEXT(tlas, flags, MASK_OCCLUDER, 0, 0, MISS_SHADOW, origin, 0.0, direction, distance, 1);
+    return shadow_payload.occluded == 0u;
+}
+
+// shadows: whether any light casts shadows (a specialisation constant).
+vec3 shade(bool shadows, uint pixel, uint sample_index) {
+    if (payload.ids.w == NO_HIT || payload.ids.z == MATERIAL_EMISSIVE) {
+        return payload.color.xyz;
+    }
+    vec3 point = payload.position.xyz;
+    vec3 normal = payload.shading_normal.xyz;
+    vec3 origin = offset_ray(point, payload.geometric_normal.xyz);
+    vec3 light_sum = vec3(0.0);
+    for (uint l = 0u; l < frame.light_count; l++) {
+        Light light = lights[l];
+        uint n = light_samples_per_side(light);
+        for (uint j = 0u; j < n; j++) {
+            for (uint i = 0u; i < n; i++) {
+                uint dimension = 2u + 2u * (l * 64u + j * n + i);
+                float r1 = random(frame.seed, pixel, sample_index, dimension);
+                float r2 = random(frame.seed, pixel, sample_index, dimension + 1u);
+                LightSample s = light_sample(light, point, i, j, r1, r2);
+                float cosine = dot(normal, s.direction);
+                bool casts = shadows && light.shadows != 0u;
+                if (cosine > 0.0 && (!casts || visible(origin, s.direction, s.distance))) {
+                    light_sum += s.irradiance * cosine;
+                }
+            }
+        }
+    }
+    return payload.color.xyz * light_sum;
+}
+#endif

@@ -1,0 +1,87 @@
+//! Tracing from ray generation: primary rays, and shading with shadow rays to every light.
+//! Free functions rather than a struct of references: rust-gpu cannot keep references in a
+//! struct (logical SPIR-V has no pointers to pointers).
+
+use spirv_std::glam::{Vec3, Vec4Swizzles};
+use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
+use twinray_shared::bindings::{MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MAX, T_MIN};
+use twinray_shared::camera::Ray;
+use twinray_shared::layout::{FrameUniform, HitPayload, Light, ShadowPayload};
+use twinray_shared::{lighting, offset, random};
+
+/// Traces a primary ray into `payload`.
+pub fn primary(tlas: &AccelerationStructure, ray: Ray, payload: &mut HitPayload) {
+    // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
+    unsafe {
+        tlas.trace_ray(
+            RayFlags::OPAQUE,
+            0xff,
+            0,
+            0,
+            MISS_PRIMARY as i32,
+            ray.origin,
+            T_MIN,
+            ray.direction,
+            T_MAX,
+            payload,
+        );
+    }
+}
+
+/// Colour seen along a primary ray: the background, an emitter's radiance, or the albedo times
+/// the light arriving from every light (with shadows where lights cast them, and `shadows`, a
+/// specialisation constant, is on).
+#[allow(clippy::too_many_arguments)]
+pub fn shade(
+    tlas: &AccelerationStructure,
+    frame: &FrameUniform,
+    lights: &[Light],
+    shadows: bool,
+    hit: &HitPayload,
+    shadow: &mut ShadowPayload,
+    pixel: u32,
+    sample: u32,
+) -> Vec3 {
+    if hit.ids.w == NO_HIT || hit.ids.z == MATERIAL_EMISSIVE {
+        return hit.color.xyz();
+    }
+    let point = hit.position.xyz();
+    let normal = hit.shading_normal.xyz();
+    let origin = offset::offset_ray(point, hit.geometric_normal.xyz());
+    let mut light_sum = Vec3::ZERO;
+    for l in 0..frame.light_count {
+        let light = lights[l as usize];
+        let n = lighting::samples_per_side(&light);
+        for j in 0..n {
+            for i in 0..n {
+                let dimension = 2 + 2 * (l * 64 + j * n + i);
+                let r1 = random::random(frame.seed, pixel, sample, dimension);
+                let r2 = random::random(frame.seed, pixel, sample, dimension + 1);
+                let s = lighting::sample(&light, point, i, j, r1, r2);
+                let cosine = normal.dot(s.direction);
+                let casts = shadows && light.shadows != 0;
+                if cosine > 0.0 && (!casts || visible(tlas, origin, s.direction, s.distance, shadow)) {
+                    light_sum += s.irradiance * cosine;
+                }
+            }
+        }
+    }
+    hit.color.xyz() * light_sum
+}
+
+/// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`.
+fn visible(
+    tlas: &AccelerationStructure,
+    origin: Vec3,
+    direction: Vec3,
+    distance: f32,
+    shadow: &mut ShadowPayload,
+) -> bool {
+    shadow.occluded = 1;
+    let flags = RayFlags::OPAQUE | RayFlags::TERMINATE_ON_FIRST_HIT | RayFlags::SKIP_CLOSEST_HIT_SHADER;
+    // SAFETY: as in `primary`; the shadow miss shader is in the SBT whenever shadows are on.
+    unsafe {
+        tlas.trace_ray(flags, MASK_OCCLUDER as i32, 0, 0, MISS_SHADOW as i32, origin, 0.0, direction, distance, shadow);
+    }
+    shadow.occluded == 0
+}
