@@ -20,7 +20,7 @@ void main() {
     vec3 world = world_normal(mat3(gl_WorldToObjectEXT), normal);
     vec3 facing = face_forward(world, gl_WorldRayDirectionEXT);
     float t = gl_RayTmaxEXT;
-    vec3 color = material_color(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t) * tint;
+    vec3 color = material_color(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, normal) * tint;
     payload.position = vec4(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t);
     payload.shading_normal = vec4(facing, 0.0);
     payload.geometric_normal = vec4(facing, 0.0);

@@ -12,9 +12,13 @@ vec3 face_forward(vec3 n, vec3 d) {
     return dot(n, d) > 0.0 ? -n : n;
 }
 
-vec3 material_color(Material material, vec3 object_point) {
+// The checker is evaluated CHECKER_DEPTH cells below the surface: on a plane through a cell
+// boundary it would otherwise flip with the rounding of each hit point.
+vec3 material_color(Material material, vec3 object_point, vec3 object_normal) {
     if (material.kind == MATERIAL_CHECKER) {
-        vec3 cell = floor(object_point * material.color_b.w);
+        float scale = material.color_b.w;
+        vec3 inside = object_point - normalize(object_normal) * (CHECKER_DEPTH / scale);
+        vec3 cell = floor(inside * scale);
         int parity = int(cell.x + cell.y + cell.z) & 1;
         return parity == 0 ? material.color_a.xyz : material.color_b.xyz;
     }

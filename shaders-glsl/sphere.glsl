@@ -2,14 +2,19 @@
 #ifndef TWINRAY_SPHERE_GLSL
 #define TWINRAY_SPHERE_GLSL
 
-// Returns false on a miss; otherwise near <= far are the two ray parameters.
-bool sphere_intersect(vec3 origin, vec3 direction, vec3 center, float radius, out float near, out float far) {
+#include "twinray_layout.glsl"
+
+// Returns false on a miss; otherwise near <= far are the two ray parameters. on_surface: the ray
+// starts on the sphere (|c| <= SPHERE_ON_SURFACE r^2), so one root is its own origin.
+bool sphere_intersect(vec3 origin, vec3 direction, vec3 center, float radius, out float near, out float far,
+                      out bool on_surface) {
     near = 0.0;
     far = 0.0;
     vec3 f = origin - center;
     float a = dot(direction, direction);
     float half_b = dot(f, direction);
     float c = dot(f, f) - radius * radius;
+    on_surface = abs(c) <= SPHERE_ON_SURFACE * radius * radius;
     // b'^2 - ac written as a * (r^2 - |f_perp|^2): no cancellation when the sphere is far away.
     vec3 f_perp = f - direction * (half_b / a);
     float discriminant = a * (radius * radius - dot(f_perp, f_perp));
@@ -25,9 +30,14 @@ bool sphere_intersect(vec3 origin, vec3 direction, vec3 center, float radius, ou
     return true;
 }
 
-// The root to report for [t_min, t_max]: the near one, or the far one when the ray starts inside.
-bool sphere_reported_root(float near, float far, float t_min, float t_max, out float t) {
-    t = near >= t_min ? near : far;
+// The root to report for [t_min, t_max]: the near one, or the far one when the ray starts
+// inside; for a ray starting on the surface, only the root farther from t = 0.
+bool sphere_reported_root(float near, float far, bool on_surface, float t_min, float t_max, out float t) {
+    if (on_surface) {
+        t = abs(near) < abs(far) ? far : near;
+    } else {
+        t = near >= t_min ? near : far;
+    }
     return t >= t_min && t <= t_max;
 }
 #endif

@@ -29,11 +29,13 @@ fn embedded_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
         (Language::Rust, "miss") => embedded!("rust", "miss"),
         (Language::Rust, "shadow_miss") => embedded!("rust", "shadow_miss"),
         (Language::Rust, "sphere_intersection") => embedded!("rust", "sphere_intersection"),
+        (Language::Rust, "plane_intersection") => embedded!("rust", "plane_intersection"),
         (Language::Rust, "procedural_closest_hit") => embedded!("rust", "procedural_closest_hit"),
         (Language::Glsl, "raygen") => embedded!("glsl", "raygen"),
         (Language::Glsl, "miss") => embedded!("glsl", "miss"),
         (Language::Glsl, "shadow_miss") => embedded!("glsl", "shadow_miss"),
         (Language::Glsl, "sphere_intersection") => embedded!("glsl", "sphere_intersection"),
+        (Language::Glsl, "plane_intersection") => embedded!("glsl", "plane_intersection"),
         (Language::Glsl, "procedural_closest_hit") => embedded!("glsl", "procedural_closest_hit"),
         _ => return None,
     })

@@ -7,17 +7,20 @@ use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
 use twinray_shared::bindings as b;
 use twinray_shared::layout::{FrameUniform, Light, Material, ObjectData, Primitive};
+use twinray_shared::plane::DISK;
 
 /// The hit groups twinray can build, in the order they take in the shader binding table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum HitGroup {
     Sphere,
+    Plane,
 }
 
 impl HitGroup {
     pub fn name(self) -> &'static str {
         match self {
             HitGroup::Sphere => "sphere",
+            HitGroup::Plane => "plane",
         }
     }
 
@@ -25,12 +28,13 @@ impl HitGroup {
     pub fn intersection_module(self) -> Option<&'static str> {
         match self {
             HitGroup::Sphere => Some("sphere_intersection"),
+            HitGroup::Plane => Some("plane_intersection"),
         }
     }
 
     pub fn closest_hit_module(self) -> &'static str {
         match self {
-            HitGroup::Sphere => "procedural_closest_hit",
+            HitGroup::Sphere | HitGroup::Plane => "procedural_closest_hit",
         }
     }
 }
@@ -138,6 +142,7 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
 fn hit_group(shape: &ShapeDesc) -> HitGroup {
     match shape {
         ShapeDesc::Sphere { .. } | ShapeDesc::SphereField { .. } => HitGroup::Sphere,
+        ShapeDesc::Rectangle { .. } | ShapeDesc::Disk { .. } => HitGroup::Plane,
     }
 }
 
@@ -153,6 +158,15 @@ fn sphere(center: Vec3, radius: f32, tint: Vec3) -> (Primitive, Aabb) {
     (primitive, Aabb { min: center - Vec3::splat(radius), max: center + Vec3::splat(radius) })
 }
 
+/// A rectangle (half extents in `a.xy`) or disk (`a.x` radius, `disk` = DISK) in y = 0. Its box
+/// gets a thickness of a thousandth of its size: zero-thickness boxes are legal in Vulkan but
+/// leave grazing rays to each implementation's slab test.
+fn plane(a: Vec4, disk: f32) -> (Vec<Primitive>, Vec<Aabb>) {
+    let half = Vec3::new(a.x, a.x.max(a.y) * 1e-3, a.y);
+    let primitive = Primitive { a, b: Vec4::new(disk, 0.0, 0.0, 0.0), tint: Vec4::ONE };
+    (vec![primitive], vec![Aabb { min: -half, max: half }])
+}
+
 /// The primitives of a shape and their boxes, in object space.
 fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
     match *shape {
@@ -160,6 +174,8 @@ fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
             let (p, b) = sphere(Vec3::ZERO, radius, Vec3::ONE);
             (vec![p], vec![b])
         }
+        ShapeDesc::Rectangle { size } => plane(Vec4::new(size[0] / 2.0, size[1] / 2.0, 0.0, 0.0), 0.0),
+        ShapeDesc::Disk { radius } => plane(Vec4::new(radius, radius, 0.0, 0.0), DISK),
         ShapeDesc::SphereField { count, seed, center_min, center_max, radius_min, radius_max } => {
             let mut rng = SplitMix64(seed);
             let (lo, hi) = (Vec3::from(center_min), Vec3::from(center_max));

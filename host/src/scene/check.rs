@@ -131,7 +131,11 @@ fn check_light(light: &LightDesc) -> Checked {
 
 fn check_shape(shape: &ShapeDesc) -> Checked {
     match shape {
-        ShapeDesc::Sphere { radius } => positive("radius", *radius),
+        ShapeDesc::Sphere { radius } | ShapeDesc::Disk { radius } => positive("radius", *radius),
+        ShapeDesc::Rectangle { size } => {
+            positive("size[0]", size[0])?;
+            positive("size[1]", size[1])
+        }
         ShapeDesc::SphereField { count, center_min, center_max, radius_min, radius_max, .. } => {
             if *count == 0 || *count > MAX_PRIMITIVES {
                 return Err(format!("count must be in 1..={MAX_PRIMITIVES} (got {count})"));

@@ -118,6 +118,11 @@ pub enum LightDesc {
 pub enum ShapeDesc {
     /// A sphere centred at the object's origin.
     Sphere { radius: f32 },
+    /// A rectangle in the object's xz plane, centred at its origin, facing +y: `size` is its
+    /// extent along x and z.
+    Rectangle { size: [f32; 2] },
+    /// A disk in the object's xz plane, centred at its origin, facing +y.
+    Disk { radius: f32 },
     /// `count` spheres with centres uniform in the box and radii uniform in the range, each
     /// with its own colour (which tints the material), placed by SplitMix64 from `seed`.
     SphereField { count: u32, seed: u64, center_min: [f32; 3], center_max: [f32; 3], radius_min: f32, radius_max: f32 },

@@ -10,9 +10,9 @@ use spirv_std::glam::{UVec3, UVec4, Vec3, Vec3Swizzles, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::AccelerationStructure;
 use spirv_std::{spirv, Image};
-use twinray_shared::bindings::{HIT_KIND_SPHERE, NO_HIT};
+use twinray_shared::bindings::{HIT_KIND_PLANE, HIT_KIND_SPHERE, NO_HIT};
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
-use twinray_shared::{camera, random, shading, sphere};
+use twinray_shared::{camera, plane, random, shading, sphere};
 
 /// M x M primary samples per pixel; shades each and writes the mean colour and the ids of what
 /// the first sample hit.
@@ -92,6 +92,28 @@ pub fn sphere_intersection(
     }
 }
 
+/// Rectangle or disk in the plane y = 0 of object space; reports the normal +y.
+#[spirv(intersection)]
+#[allow(clippy::too_many_arguments)]
+pub fn plane_intersection(
+    #[spirv(instance_custom_index)] object: u32,
+    #[spirv(primitive_id)] primitive_id: u32,
+    #[spirv(object_ray_origin)] origin: Vec3,
+    #[spirv(object_ray_direction)] direction: Vec3,
+    #[spirv(ray_tmin)] t_min: f32,
+    #[spirv(ray_tmax)] t_max: f32,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+    #[spirv(hit_attribute)] normal: &mut Vec3,
+) {
+    let p = primitives[(objects[object as usize].primitive_base + primitive_id) as usize];
+    if let Some(t) = plane::intersect(origin, direction, &p, t_min, t_max) {
+        *normal = Vec3::Y;
+        // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
+        unsafe { spirv_std::arch::report_intersection(t, HIT_KIND_PLANE) };
+    }
+}
+
 /// Every procedural shape: the surface from the reported object-space normal.
 #[spirv(closest_hit)]
 #[allow(clippy::too_many_arguments)]
@@ -116,7 +138,7 @@ pub fn procedural_closest_hit(
     let tint = primitives[(data.primitive_base + primitive_id) as usize].tint.xyz();
     let world = shading::world_normal(world_to_object.to_mat3(), *normal);
     let facing = shading::face_forward(world, direction);
-    let color = shading::material_color(&material, object_origin + object_direction * t) * tint;
+    let color = shading::material_color(&material, object_origin + object_direction * t, *normal) * tint;
     payload.position = (origin + direction * t).extend(t);
     payload.shading_normal = facing.extend(0.0);
     payload.geometric_normal = facing.extend(0.0);

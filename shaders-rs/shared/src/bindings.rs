@@ -48,6 +48,7 @@ pub const LIGHT_RECT: u32 = 2;
 
 /// Hit kinds reported by the intersection shaders: which shape was hit.
 pub const HIT_KIND_SPHERE: u32 = 1;
+pub const HIT_KIND_PLANE: u32 = 2;
 
 /// Written to the hit-id buffer (and `HitPayload::ids.w`) when a ray hits nothing.
 pub const NO_HIT: u32 = 0xffff_ffff;

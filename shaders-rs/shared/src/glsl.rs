@@ -8,6 +8,9 @@
 use crate::bindings::*;
 use crate::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
 use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
+use crate::plane::DISK;
+use crate::shading::CHECKER_DEPTH;
+use crate::sphere::ON_SURFACE;
 use std::fmt::Write;
 use std::mem::{offset_of, size_of};
 
@@ -143,6 +146,7 @@ pub fn layout_include() -> Result<String, String> {
         ("LIGHT_POINT", LIGHT_POINT),
         ("LIGHT_RECT", LIGHT_RECT),
         ("HIT_KIND_SPHERE", HIT_KIND_SPHERE),
+        ("HIT_KIND_PLANE", HIT_KIND_PLANE),
         ("NO_HIT", NO_HIT),
     ];
     for (name, value) in uints {
@@ -154,6 +158,9 @@ pub fn layout_include() -> Result<String, String> {
         ("OFFSET_ORIGIN", OFFSET_ORIGIN),
         ("OFFSET_FLOAT_SCALE", OFFSET_FLOAT_SCALE),
         ("OFFSET_INT_SCALE", OFFSET_INT_SCALE),
+        ("SPHERE_ON_SURFACE", ON_SURFACE),
+        ("PLANE_DISK", DISK),
+        ("CHECKER_DEPTH", CHECKER_DEPTH),
     ];
     for (name, value) in floats {
         writeln!(s, "#define {name} {value:?}").map_err(|e| e.to_string())?;

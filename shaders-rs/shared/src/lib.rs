@@ -7,6 +7,7 @@ pub mod camera;
 pub mod layout;
 pub mod lighting;
 pub mod offset;
+pub mod plane;
 pub mod random;
 pub mod shading;
 pub mod sphere;

@@ -1,0 +1,55 @@
+//! Bounded planes in object space: the plane y = 0 with normal +y, limited to the rectangle
+//! |x| <= a.x, |z| <= a.y, or, for a disk (b.x = 1), to x^2 + z^2 <= a.x^2.
+
+use crate::layout::Primitive;
+use glam::Vec3;
+
+/// `Primitive::b.x` of a disk.
+pub const DISK: f32 = 1.0;
+
+/// The ray parameter where the ray meets the bounded plane within `[t_min, t_max]`, if any.
+/// A ray parallel to the plane (direction.y = 0) never meets it: no division by zero.
+pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<f32> {
+    if direction.y == 0.0 {
+        return None;
+    }
+    let t = -origin.y / direction.y;
+    if !(t >= t_min && t <= t_max) {
+        return None;
+    }
+    let p = origin + direction * t;
+    let a = primitive.a;
+    let inside =
+        if primitive.b.x == DISK { p.x * p.x + p.z * p.z <= a.x * a.x } else { p.x.abs() <= a.x && p.z.abs() <= a.y };
+    if inside {
+        Some(t)
+    } else {
+        None
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec4;
+
+    fn rect(hx: f32, hz: f32) -> Primitive {
+        Primitive { a: Vec4::new(hx, hz, 0.0, 0.0), b: Vec4::ZERO, tint: Vec4::ONE }
+    }
+
+    #[test]
+    fn hits_inside_and_misses_outside() {
+        let down = Vec3::new(0.0, -1.0, 0.0);
+        assert_eq!(intersect(Vec3::new(0.5, 2.0, -0.5), down, &rect(1.0, 1.0), 0.0, 10.0), Some(2.0));
+        assert_eq!(intersect(Vec3::new(1.5, 2.0, 0.0), down, &rect(1.0, 1.0), 0.0, 10.0), None);
+        let disk = Primitive { b: Vec4::new(DISK, 0.0, 0.0, 0.0), ..rect(1.0, 0.0) };
+        assert_eq!(intersect(Vec3::new(0.8, 2.0, 0.8), down, &disk, 0.0, 10.0), None);
+        assert_eq!(intersect(Vec3::new(0.6, 2.0, 0.6), down, &disk, 0.0, 10.0), Some(2.0));
+    }
+
+    #[test]
+    fn parallel_and_receding_rays_miss() {
+        assert_eq!(intersect(Vec3::new(0.0, 0.0, -5.0), Vec3::Z, &rect(1.0, 1.0), 0.0, 10.0), None);
+        assert_eq!(intersect(Vec3::new(0.0, 1.0, 0.0), Vec3::Y, &rect(1.0, 1.0), 0.0, 10.0), None);
+    }
+}
