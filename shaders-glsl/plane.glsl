@@ -4,8 +4,10 @@
 #include "twinray_layout.glsl"
 
 // A ray parallel to the plane never meets it: no division by zero.
-bool plane_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t) {
+bool plane_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
+                     out vec3 n) {
     t = 0.0;
+    n = vec3(0.0, 1.0, 0.0);
     if (direction.y == 0.0) {
         return false;
     }

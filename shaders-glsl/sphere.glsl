@@ -40,4 +40,18 @@ bool sphere_reported_root(float near, float far, bool on_surface, float t_min, f
     }
     return t >= t_min && t <= t_max;
 }
+
+// The sphere of a primitive (centre a.xyz, radius a.w) in the common procedural form.
+bool sphere_hit(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
+    vec4 s = primitive.a;
+    float near, far;
+    bool on_surface;
+    n = vec3(0.0);
+    if (!(sphere_intersect(origin, direction, s.xyz, s.w, near, far, on_surface)
+          && sphere_reported_root(near, far, on_surface, t_min, t_max, t))) {
+        return false;
+    }
+    n = (origin + direction * t - s.xyz) / s.w;
+    return true;
+}
 #endif

@@ -14,6 +14,10 @@ use twinray_shared::plane::DISK;
 pub enum HitGroup {
     Sphere,
     Plane,
+    Box,
+    Cylinder,
+    Cone,
+    Torus,
 }
 
 impl HitGroup {
@@ -21,6 +25,10 @@ impl HitGroup {
         match self {
             HitGroup::Sphere => "sphere",
             HitGroup::Plane => "plane",
+            HitGroup::Box => "box",
+            HitGroup::Cylinder => "cylinder",
+            HitGroup::Cone => "cone",
+            HitGroup::Torus => "torus",
         }
     }
 
@@ -29,12 +37,21 @@ impl HitGroup {
         match self {
             HitGroup::Sphere => Some("sphere_intersection"),
             HitGroup::Plane => Some("plane_intersection"),
+            HitGroup::Box => Some("box_intersection"),
+            HitGroup::Cylinder => Some("cylinder_intersection"),
+            HitGroup::Cone => Some("cone_intersection"),
+            HitGroup::Torus => Some("torus_intersection"),
         }
     }
 
     pub fn closest_hit_module(self) -> &'static str {
         match self {
-            HitGroup::Sphere | HitGroup::Plane => "procedural_closest_hit",
+            HitGroup::Sphere
+            | HitGroup::Plane
+            | HitGroup::Box
+            | HitGroup::Cylinder
+            | HitGroup::Cone
+            | HitGroup::Torus => "procedural_closest_hit",
         }
     }
 }
@@ -143,6 +160,10 @@ fn hit_group(shape: &ShapeDesc) -> HitGroup {
     match shape {
         ShapeDesc::Sphere { .. } | ShapeDesc::SphereField { .. } => HitGroup::Sphere,
         ShapeDesc::Rectangle { .. } | ShapeDesc::Disk { .. } => HitGroup::Plane,
+        ShapeDesc::Box { .. } => HitGroup::Box,
+        ShapeDesc::Cylinder { .. } => HitGroup::Cylinder,
+        ShapeDesc::Cone { .. } => HitGroup::Cone,
+        ShapeDesc::Torus { .. } => HitGroup::Torus,
     }
 }
 
@@ -156,6 +177,12 @@ pub fn object_transform(translate: [f32; 3], rotate_degrees: [f32; 3], scale: [f
 fn sphere(center: Vec3, radius: f32, tint: Vec3) -> (Primitive, Aabb) {
     let primitive = Primitive { a: center.extend(radius), b: Vec4::ZERO, tint: tint.extend(1.0) };
     (primitive, Aabb { min: center - Vec3::splat(radius), max: center + Vec3::splat(radius) })
+}
+
+/// One primitive with parameters `a` and a box of half extents `half` about the origin.
+fn single(a: Vec3, half: Vec3) -> (Vec<Primitive>, Vec<Aabb>) {
+    let primitive = Primitive { a: a.extend(0.0), b: Vec4::ZERO, tint: Vec4::ONE };
+    (vec![primitive], vec![Aabb { min: -half, max: half }])
 }
 
 /// A rectangle (half extents in `a.xy`) or disk (`a.x` radius, `disk` = DISK) in y = 0. Its box
@@ -176,6 +203,14 @@ fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
         }
         ShapeDesc::Rectangle { size } => plane(Vec4::new(size[0] / 2.0, size[1] / 2.0, 0.0, 0.0), 0.0),
         ShapeDesc::Disk { radius } => plane(Vec4::new(radius, radius, 0.0, 0.0), DISK),
+        ShapeDesc::Box { size } => single(Vec3::from(size) / 2.0, Vec3::from(size) / 2.0),
+        ShapeDesc::Cylinder { radius, height } | ShapeDesc::Cone { radius, height } => {
+            single(Vec3::new(radius, height / 2.0, 0.0), Vec3::new(radius, height / 2.0, radius))
+        }
+        ShapeDesc::Torus { major_radius, minor_radius } => {
+            let outer = major_radius + minor_radius;
+            single(Vec3::new(major_radius, minor_radius, 0.0), Vec3::new(outer, minor_radius, outer))
+        }
         ShapeDesc::SphereField { count, seed, center_min, center_max, radius_min, radius_max } => {
             let mut rng = SplitMix64(seed);
             let (lo, hi) = (Vec3::from(center_min), Vec3::from(center_max));

@@ -136,6 +136,25 @@ fn check_shape(shape: &ShapeDesc) -> Checked {
             positive("size[0]", size[0])?;
             positive("size[1]", size[1])
         }
+        ShapeDesc::Box { size } => {
+            positive("size[0]", size[0])?;
+            positive("size[1]", size[1])?;
+            positive("size[2]", size[2])
+        }
+        ShapeDesc::Cylinder { radius, height } | ShapeDesc::Cone { radius, height } => {
+            positive("radius", *radius)?;
+            positive("height", *height)
+        }
+        ShapeDesc::Torus { major_radius, minor_radius } => {
+            positive("major_radius", *major_radius)?;
+            positive("minor_radius", *minor_radius)?;
+            if minor_radius >= major_radius {
+                return Err(format!(
+                    "minor_radius must be < major_radius (got {minor_radius} >= {major_radius}): a spindle torus is not supported"
+                ));
+            }
+            Ok(())
+        }
         ShapeDesc::SphereField { count, center_min, center_max, radius_min, radius_max, .. } => {
             if *count == 0 || *count > MAX_PRIMITIVES {
                 return Err(format!("count must be in 1..={MAX_PRIMITIVES} (got {count})"));

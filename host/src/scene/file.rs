@@ -123,6 +123,16 @@ pub enum ShapeDesc {
     Rectangle { size: [f32; 2] },
     /// A disk in the object's xz plane, centred at its origin, facing +y.
     Disk { radius: f32 },
+    /// An axis-aligned box centred at the object's origin; `size` is its extent along x, y, z.
+    Box { size: [f32; 3] },
+    /// A capped cylinder about the object's y axis, centred at its origin.
+    Cylinder { radius: f32, height: f32 },
+    /// A capped cone about the object's y axis, centred at its origin: base of `radius` at
+    /// y = -height/2, apex at y = +height/2.
+    Cone { radius: f32, height: f32 },
+    /// A torus about the object's y axis, centred at its origin: `major_radius` from the axis
+    /// to the tube's centre, `minor_radius` of the tube.
+    Torus { major_radius: f32, minor_radius: f32 },
     /// `count` spheres with centres uniform in the box and radii uniform in the range, each
     /// with its own colour (which tints the material), placed by SplitMix64 from `seed`.
     SphereField { count: u32, seed: u64, center_min: [f32; 3], center_max: [f32; 3], radius_min: f32, radius_max: f32 },

@@ -10,9 +10,11 @@ use spirv_std::glam::{UVec3, UVec4, Vec3, Vec3Swizzles, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::AccelerationStructure;
 use spirv_std::{spirv, Image};
-use twinray_shared::bindings::{HIT_KIND_PLANE, HIT_KIND_SPHERE, NO_HIT};
+use twinray_shared::bindings::{
+    HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS, NO_HIT,
+};
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
-use twinray_shared::{camera, plane, random, shading, sphere};
+use twinray_shared::{boxes, camera, cone, cylinder, plane, random, shading, sphere, torus};
 
 /// M x M primary samples per pixel; shades each and writes the mean colour and the ids of what
 /// the first sample hit.
@@ -70,49 +72,39 @@ pub fn shadow_miss(#[spirv(incoming_ray_payload)] shadow: &mut ShadowPayload) {
     shadow.occluded = 0;
 }
 
-/// Analytic sphere of the AABB `primitive_id`; reports the object-space normal.
-#[spirv(intersection)]
-pub fn sphere_intersection(
-    #[spirv(instance_custom_index)] object: u32,
-    #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(object_ray_origin)] origin: Vec3,
-    #[spirv(object_ray_direction)] direction: Vec3,
-    #[spirv(ray_tmin)] t_min: f32,
-    #[spirv(ray_tmax)] t_max: f32,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
-    #[spirv(hit_attribute)] normal: &mut Vec3,
-) {
-    let s = primitives[(objects[object as usize].primitive_base + primitive_id) as usize].a;
-    let roots = sphere::intersect(origin, direction, s.xyz(), s.w);
-    if let Some(t) = sphere::reported_root(roots, t_min, t_max) {
-        *normal = (origin + direction * t - s.xyz()) / s.w;
-        // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
-        unsafe { spirv_std::arch::report_intersection(t, HIT_KIND_SPHERE) };
-    }
+/// One intersection entry point per procedural shape: the shape of the AABB `primitive_id`,
+/// from the shared routine `$intersect`, reporting the object-space normal as hit attribute.
+macro_rules! procedural_intersection {
+    ($name:ident, $intersect:path, $hit_kind:expr) => {
+        #[spirv(intersection)]
+        #[allow(clippy::too_many_arguments)]
+        pub fn $name(
+            #[spirv(instance_custom_index)] object: u32,
+            #[spirv(primitive_id)] primitive_id: u32,
+            #[spirv(object_ray_origin)] origin: Vec3,
+            #[spirv(object_ray_direction)] direction: Vec3,
+            #[spirv(ray_tmin)] t_min: f32,
+            #[spirv(ray_tmax)] t_max: f32,
+            #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+            #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+            #[spirv(hit_attribute)] normal: &mut Vec3,
+        ) {
+            let p = primitives[(objects[object as usize].primitive_base + primitive_id) as usize];
+            if let Some(hit) = $intersect(origin, direction, &p, t_min, t_max) {
+                *normal = hit.normal;
+                // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
+                unsafe { spirv_std::arch::report_intersection(hit.t, $hit_kind) };
+            }
+        }
+    };
 }
 
-/// Rectangle or disk in the plane y = 0 of object space; reports the normal +y.
-#[spirv(intersection)]
-#[allow(clippy::too_many_arguments)]
-pub fn plane_intersection(
-    #[spirv(instance_custom_index)] object: u32,
-    #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(object_ray_origin)] origin: Vec3,
-    #[spirv(object_ray_direction)] direction: Vec3,
-    #[spirv(ray_tmin)] t_min: f32,
-    #[spirv(ray_tmax)] t_max: f32,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
-    #[spirv(hit_attribute)] normal: &mut Vec3,
-) {
-    let p = primitives[(objects[object as usize].primitive_base + primitive_id) as usize];
-    if let Some(t) = plane::intersect(origin, direction, &p, t_min, t_max) {
-        *normal = Vec3::Y;
-        // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
-        unsafe { spirv_std::arch::report_intersection(t, HIT_KIND_PLANE) };
-    }
-}
+procedural_intersection!(sphere_intersection, sphere::hit, HIT_KIND_SPHERE);
+procedural_intersection!(plane_intersection, plane::intersect, HIT_KIND_PLANE);
+procedural_intersection!(box_intersection, boxes::intersect, HIT_KIND_BOX);
+procedural_intersection!(cylinder_intersection, cylinder::intersect, HIT_KIND_CYLINDER);
+procedural_intersection!(cone_intersection, cone::intersect, HIT_KIND_CONE);
+procedural_intersection!(torus_intersection, torus::intersect, HIT_KIND_TORUS);
 
 /// Every procedural shape: the surface from the reported object-space normal.
 #[spirv(closest_hit)]

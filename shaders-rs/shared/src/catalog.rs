@@ -63,12 +63,16 @@ pub struct ModuleSpec {
 
 /// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A pipeline
 /// uses only those its scene needs.
-pub const MODULES: [ModuleSpec; 6] = [
+pub const MODULES: [ModuleSpec; 10] = [
     ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl_source: "raygen.rgen" },
     ModuleSpec { name: "miss", stage: Stage::Miss, glsl_source: "miss.rmiss" },
     ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl_source: "shadow.rmiss" },
     ModuleSpec { name: "sphere_intersection", stage: Stage::Intersection, glsl_source: "sphere.rint" },
     ModuleSpec { name: "plane_intersection", stage: Stage::Intersection, glsl_source: "plane.rint" },
+    ModuleSpec { name: "box_intersection", stage: Stage::Intersection, glsl_source: "box.rint" },
+    ModuleSpec { name: "cylinder_intersection", stage: Stage::Intersection, glsl_source: "cylinder.rint" },
+    ModuleSpec { name: "cone_intersection", stage: Stage::Intersection, glsl_source: "cone.rint" },
+    ModuleSpec { name: "torus_intersection", stage: Stage::Intersection, glsl_source: "torus.rint" },
     ModuleSpec { name: "procedural_closest_hit", stage: Stage::ClosestHit, glsl_source: "procedural.rchit" },
 ];
 

@@ -6,6 +6,7 @@
 //! the types used here the two rules agree), and that the fields cover the whole struct.
 
 use crate::bindings::*;
+use crate::boxes::GAMMA_3;
 use crate::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
 use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
 use crate::plane::DISK;
@@ -147,6 +148,10 @@ pub fn layout_include() -> Result<String, String> {
         ("LIGHT_RECT", LIGHT_RECT),
         ("HIT_KIND_SPHERE", HIT_KIND_SPHERE),
         ("HIT_KIND_PLANE", HIT_KIND_PLANE),
+        ("HIT_KIND_BOX", HIT_KIND_BOX),
+        ("HIT_KIND_CYLINDER", HIT_KIND_CYLINDER),
+        ("HIT_KIND_CONE", HIT_KIND_CONE),
+        ("HIT_KIND_TORUS", HIT_KIND_TORUS),
         ("NO_HIT", NO_HIT),
     ];
     for (name, value) in uints {
@@ -161,6 +166,8 @@ pub fn layout_include() -> Result<String, String> {
         ("SPHERE_ON_SURFACE", ON_SURFACE),
         ("PLANE_DISK", DISK),
         ("CHECKER_DEPTH", CHECKER_DEPTH),
+        ("BOX_GAMMA_3", GAMMA_3),
+        ("TORUS_ON_SURFACE", crate::torus::ON_SURFACE),
     ];
     for (name, value) in floats {
         writeln!(s, "#define {name} {value:?}").map_err(|e| e.to_string())?;

@@ -2,14 +2,15 @@
 //! |x| <= a.x, |z| <= a.y, or, for a disk (b.x = 1), to x^2 + z^2 <= a.x^2.
 
 use crate::layout::Primitive;
+use crate::surface::SurfaceHit;
 use glam::Vec3;
 
 /// `Primitive::b.x` of a disk.
 pub const DISK: f32 = 1.0;
 
-/// The ray parameter where the ray meets the bounded plane within `[t_min, t_max]`, if any.
-/// A ray parallel to the plane (direction.y = 0) never meets it: no division by zero.
-pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<f32> {
+/// Where the ray meets the bounded plane within `[t_min, t_max]`, if it does. A ray parallel
+/// to the plane (direction.y = 0) never meets it: no division by zero.
+pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
     if direction.y == 0.0 {
         return None;
     }
@@ -22,7 +23,7 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
     let inside =
         if primitive.b.x == DISK { p.x * p.x + p.z * p.z <= a.x * a.x } else { p.x.abs() <= a.x && p.z.abs() <= a.y };
     if inside {
-        Some(t)
+        Some(SurfaceHit { t, normal: Vec3::Y })
     } else {
         None
     }
@@ -40,16 +41,17 @@ mod tests {
     #[test]
     fn hits_inside_and_misses_outside() {
         let down = Vec3::new(0.0, -1.0, 0.0);
-        assert_eq!(intersect(Vec3::new(0.5, 2.0, -0.5), down, &rect(1.0, 1.0), 0.0, 10.0), Some(2.0));
-        assert_eq!(intersect(Vec3::new(1.5, 2.0, 0.0), down, &rect(1.0, 1.0), 0.0, 10.0), None);
+        let t = |o: Vec3, p: &Primitive| intersect(o, down, p, 0.0, 10.0).map(|h| h.t);
+        assert_eq!(t(Vec3::new(0.5, 2.0, -0.5), &rect(1.0, 1.0)), Some(2.0));
+        assert_eq!(t(Vec3::new(1.5, 2.0, 0.0), &rect(1.0, 1.0)), None);
         let disk = Primitive { b: Vec4::new(DISK, 0.0, 0.0, 0.0), ..rect(1.0, 0.0) };
-        assert_eq!(intersect(Vec3::new(0.8, 2.0, 0.8), down, &disk, 0.0, 10.0), None);
-        assert_eq!(intersect(Vec3::new(0.6, 2.0, 0.6), down, &disk, 0.0, 10.0), Some(2.0));
+        assert_eq!(t(Vec3::new(0.8, 2.0, 0.8), &disk), None);
+        assert_eq!(t(Vec3::new(0.6, 2.0, 0.6), &disk), Some(2.0));
     }
 
     #[test]
     fn parallel_and_receding_rays_miss() {
-        assert_eq!(intersect(Vec3::new(0.0, 0.0, -5.0), Vec3::Z, &rect(1.0, 1.0), 0.0, 10.0), None);
-        assert_eq!(intersect(Vec3::new(0.0, 1.0, 0.0), Vec3::Y, &rect(1.0, 1.0), 0.0, 10.0), None);
+        assert!(intersect(Vec3::new(0.0, 0.0, -5.0), Vec3::Z, &rect(1.0, 1.0), 0.0, 10.0).is_none());
+        assert!(intersect(Vec3::new(0.0, 1.0, 0.0), Vec3::Y, &rect(1.0, 1.0), 0.0, 10.0).is_none());
     }
 }

@@ -2,6 +2,8 @@
 //! (Haines, Günther, Akenine-Möller); see NUMERICS.md. Valid for any non-zero direction
 //! length, so scaled instances work.
 
+use crate::layout::Primitive;
+use crate::surface::SurfaceHit;
 use glam::Vec3;
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
@@ -64,6 +66,14 @@ pub fn reported_root(roots: SphereRoots, t_min: f32, t_max: f32) -> Option<f32> 
     } else {
         None
     }
+}
+
+/// The sphere of `primitive` (centre `a.xyz`, radius `a.w`) in the common procedural form.
+pub fn hit(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
+    let s = primitive.a;
+    let center = Vec3::new(s.x, s.y, s.z);
+    let t = reported_root(intersect(origin, direction, center, s.w), t_min, t_max)?;
+    Some(SurfaceHit { t, normal: (origin + direction * t - center) / s.w })
 }
 
 #[cfg(test)]

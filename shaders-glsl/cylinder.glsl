@@ -1,0 +1,54 @@
+// Twin of twinray_shared::cylinder: capped cylinder about y (radius a.x, half height a.y), the
+// side with the Lagrange-identity discriminant, side and caps tested separately and inclusively.
+#ifndef TWINRAY_CYLINDER_GLSL
+#define TWINRAY_CYLINDER_GLSL
+#include "twinray_layout.glsl"
+#include "surface.glsl"
+
+void cylinder_side(inout bool found, inout float best_t, inout vec3 best_n, vec3 o, vec3 d, float r, float half_height,
+                   bool ok, float t, bool other_ok, float other, bool on_surface, float t_min, float t_max) {
+    if (ok && !is_self_root(on_surface, t, other_ok, other)) {
+        vec3 p = o + d * t;
+        if (abs(p.y) <= half_height) {
+            closer(found, best_t, best_n, t, vec3(p.x, 0.0, p.z) / r, t_min, t_max);
+        }
+    }
+}
+
+void cylinder_cap(inout bool found, inout float best_t, inout vec3 best_n, vec3 o, vec3 d, float r, float y,
+                  float t_min, float t_max) {
+    float t = (y - o.y) / d.y;
+    vec3 p = o + d * t;
+    if (p.x * p.x + p.z * p.z <= r * r) {
+        closer(found, best_t, best_n, t, vec3(0.0, y > 0.0 ? 1.0 : -1.0, 0.0), t_min, t_max);
+    }
+}
+
+bool cylinder_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
+    float r = primitive.a.x;
+    float half_height = primitive.a.y;
+    bool found = false;
+    t = 0.0;
+    n = vec3(0.0);
+    float a = d.x * d.x + d.z * d.z;
+    if (a > 0.0) {
+        float half_b = o.x * d.x + o.z * d.z;
+        float c = o.x * o.x + o.z * o.z - r * r;
+        float cross_y = o.x * d.z - o.z * d.x;
+        float discriminant = a * r * r - cross_y * cross_y;
+        if (discriminant >= 0.0) {
+            bool on_surface = abs(c) <= SPHERE_ON_SURFACE * r * r;
+            bool ok0, ok1;
+            float r0, r1;
+            stable_roots(a, half_b, c, discriminant, ok0, r0, ok1, r1);
+            cylinder_side(found, t, n, o, d, r, half_height, ok0, r0, ok1, r1, on_surface, t_min, t_max);
+            cylinder_side(found, t, n, o, d, r, half_height, ok1, r1, ok0, r0, on_surface, t_min, t_max);
+        }
+    }
+    if (d.y != 0.0) {
+        cylinder_cap(found, t, n, o, d, r, half_height, t_min, t_max);
+        cylinder_cap(found, t, n, o, d, r, -half_height, t_min, t_max);
+    }
+    return found;
+}
+#endif

@@ -1,0 +1,99 @@
+//! Capped cone about the object's y axis, centred at its origin: apex at y = `a.y`, base of
+//! radius `a.x` at y = -`a.y`. The quadratic of NUMERICS.md with apex A, axis v = -y and
+//! cos^2 of the half-angle; roots as c / q and q / a with the stable q, since a -> 0 for rays
+//! parallel to a generator. Only the nappe between apex and base counts, plus the base disk.
+
+use crate::layout::Primitive;
+use crate::sphere::ON_SURFACE;
+use crate::surface::{closer, is_self_root, stable_roots, SurfaceHit};
+use glam::Vec3;
+
+pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
+    let (r, half_height) = (primitive.a.x, primitive.a.y);
+    let height = 2.0 * half_height;
+    let cos2 = height * height / (height * height + r * r);
+    let apex = Vec3::new(0.0, half_height, 0.0);
+    let (d, co) = (direction, origin - apex);
+    // v = -y: d.v = -d.y, co.v = -co.y.
+    let (dv, cov) = (-d.y, -co.y);
+    let a = dv * dv - cos2 * d.dot(d);
+    let half_b = dv * cov - d.dot(co) * cos2;
+    let c = cov * cov - co.dot(co) * cos2;
+    let discriminant = half_b * half_b - a * c;
+    let mut best = None;
+    if discriminant >= 0.0 {
+        let on_surface = c.abs() <= ON_SURFACE * co.dot(co);
+        let (r0, r1) = stable_roots(a, half_b, c, discriminant);
+        best = side(best, origin, d, apex, height, cos2, r0, r1, on_surface, t_min, t_max);
+        best = side(best, origin, d, apex, height, cos2, r1, r0, on_surface, t_min, t_max);
+    }
+    if d.y != 0.0 {
+        let t = (-half_height - origin.y) / d.y;
+        let p = origin + d * t;
+        if p.x * p.x + p.z * p.z <= r * r {
+            best = closer(best, SurfaceHit { t, normal: -Vec3::Y }, t_min, t_max);
+        }
+    }
+    best
+}
+
+#[allow(clippy::too_many_arguments)]
+fn side(
+    best: Option<SurfaceHit>,
+    o: Vec3,
+    d: Vec3,
+    apex: Vec3,
+    height: f32,
+    cos2: f32,
+    root: Option<f32>,
+    other: Option<f32>,
+    on_surface: bool,
+    t_min: f32,
+    t_max: f32,
+) -> Option<SurfaceHit> {
+    match root {
+        Some(t) if !is_self_root(on_surface, t, other) => {
+            let cp = o + d * t - apex;
+            let along = -cp.y; // distance below the apex along the axis
+            if along >= 0.0 && along <= height {
+                // Outward normal: cos^2 cp - (cp.v) v, with v = -y.
+                let normal = cp * cos2 - Vec3::new(0.0, cp.y, 0.0);
+                closer(best, SurfaceHit { t, normal }, t_min, t_max)
+            } else {
+                best
+            }
+        }
+        _ => best,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec4;
+
+    /// Apex at y = 1, base radius 1 at y = -1: half-angle atan(1/2).
+    fn cone() -> Primitive {
+        Primitive { a: Vec4::new(1.0, 1.0, 0.0, 0.0), b: Vec4::ZERO, tint: Vec4::ONE }
+    }
+
+    #[test]
+    fn side_base_and_mirror_nappe() {
+        let side = intersect(Vec3::new(-5.0, 0.0, 0.0), Vec3::X, &cone(), 0.0, 100.0).unwrap();
+        assert!((side.t / 4.5 - 1.0).abs() < 1e-6, "{}", side.t); // relative: issue 4 sets precision targets
+        assert!(side.normal.x < 0.0 && side.normal.y > 0.0);
+        let base = intersect(Vec3::new(0.2, -5.0, 0.0), Vec3::Y, &cone(), 0.0, 100.0).unwrap();
+        assert_eq!((base.t, base.normal), (4.0, -Vec3::Y));
+        // Above the apex the quadratic's mirror nappe is not part of the cone.
+        assert!(intersect(Vec3::new(-5.0, 2.0, 0.0), Vec3::X, &cone(), 0.0, 100.0).is_none());
+    }
+
+    /// A ray parallel to a generator has a = 0: one root, found without dividing by zero.
+    #[test]
+    fn ray_parallel_to_a_generator() {
+        let generator = Vec3::new(0.5, -1.0, 0.0).normalize(); // slope r / h of this cone
+        let o = Vec3::new(-0.5, 0.0, 0.0) - generator * 3.0;
+        let hit = intersect(o, generator, &cone(), 0.0, 100.0).expect("hits the base or side");
+        assert!(hit.t.is_finite());
+    }
+}

@@ -1,0 +1,46 @@
+//! What every procedural intersection routine returns, and how candidates are combined.
+
+use glam::Vec3;
+
+/// A hit: the ray parameter and the object-space normal there (any length, pointing out).
+#[derive(Clone, Copy)]
+pub struct SurfaceHit {
+    pub t: f32,
+    pub normal: Vec3,
+}
+
+/// `candidate` if it lies in `[t_min, best]`, where `best` is the nearest hit so far (or `t_max`).
+pub fn closer(best: Option<SurfaceHit>, candidate: SurfaceHit, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
+    let limit = match best {
+        Some(b) => b.t,
+        None => t_max,
+    };
+    if candidate.t >= t_min && candidate.t <= limit {
+        Some(candidate)
+    } else {
+        best
+    }
+}
+
+/// Stable roots of `a t^2 + 2 half_b t + c` given the discriminant `half_b^2 - a c >= 0`:
+/// q = -(half_b + sign(half_b) sqrt(disc)), roots c / q and q / a (NUMERICS.md). A root whose
+/// denominator is zero (a ray parallel to a cone's generator) is returned as `None`.
+pub fn stable_roots(a: f32, half_b: f32, c: f32, discriminant: f32) -> (Option<f32>, Option<f32>) {
+    #[cfg(target_arch = "spirv")]
+    use spirv_std::num_traits::Float;
+    let sign = if half_b >= 0.0 { 1.0 } else { -1.0 };
+    let q = -(half_b + sign * discriminant.sqrt());
+    let r0 = if q != 0.0 { Some(c / q) } else { None };
+    let r1 = if a != 0.0 { Some(q / a) } else { None };
+    (r0, r1)
+}
+
+/// Whether root `t` is the ray's own origin: the ray starts on the surface (`on_surface`) and
+/// `t` is the root nearer to 0 of the pair (`t`, `other`).
+pub fn is_self_root(on_surface: bool, t: f32, other: Option<f32>) -> bool {
+    on_surface
+        && match other {
+            Some(o) => t.abs() < o.abs(),
+            None => true,
+        }
+}
