@@ -13,17 +13,16 @@ layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffe
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec3 normal;
 
+#include "closest_hit.glsl"
+
 void main() {
     ObjectData data = objects[gl_InstanceCustomIndexEXT];
     Material material = materials[data.material];
     vec3 tint = primitives[data.primitive_base + gl_PrimitiveID].tint.xyz;
-    vec3 world = world_normal(mat3(gl_WorldToObjectEXT), normal);
-    vec3 facing = face_forward(world, gl_WorldRayDirectionEXT);
     float t = gl_RayTmaxEXT;
     vec3 color = material_color(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, normal) * tint;
-    payload.position = vec4(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t);
-    payload.shading_normal = vec4(facing, 0.0);
-    payload.geometric_normal = vec4(facing, 0.0);
-    payload.color = vec4(color, 1.0);
-    payload.ids = uvec4(gl_InstanceCustomIndexEXT, gl_PrimitiveID, material.kind, gl_HitKindEXT);
+    vec3 geometric, shading;
+    surface_normals(mat3(gl_WorldToObjectEXT), normal, normal, gl_WorldRayDirectionEXT, geometric, shading);
+    uvec4 ids = uvec4(gl_InstanceCustomIndexEXT, gl_PrimitiveID, material.kind, gl_HitKindEXT);
+    describe(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t, geometric, shading, color, ids);
 }

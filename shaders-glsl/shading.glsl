@@ -12,6 +12,20 @@ vec3 face_forward(vec3 n, vec3 d) {
     return dot(n, d) > 0.0 ? -n : n;
 }
 
+// World geometric normal faced against the ray, shading normal turned to its side.
+void surface_normals(mat3 world_to_object, vec3 geometric, vec3 shading, vec3 direction, out vec3 g, out vec3 s) {
+    g = face_forward(world_normal(world_to_object, geometric), direction);
+    s = world_normal(world_to_object, shading);
+    s = dot(s, g) < 0.0 ? -s : s;
+}
+
+// Geometric normal (from the winding) and interpolated shading normal of a triangle.
+void triangle_normals(vec3 p0, vec3 p1, vec3 p2, vec3 n0, vec3 n1, vec3 n2, float u, float v, out vec3 geometric,
+                      out vec3 shading) {
+    geometric = cross(p1 - p0, p2 - p0);
+    shading = n0 * (1.0 - u - v) + n1 * u + n2 * v;
+}
+
 // The checker is evaluated CHECKER_DEPTH cells below the surface: on a plane through a cell
 // boundary it would otherwise flip with the rounding of each hit point.
 vec3 material_color(Material material, vec3 object_point, vec3 object_normal) {

@@ -11,6 +11,8 @@
 #define BINDING_MATERIALS 5u
 #define BINDING_LIGHTS 6u
 #define BINDING_HIT_IDS 7u
+#define BINDING_VERTICES 8u
+#define BINDING_INDICES 9u
 #define MISS_PRIMARY 0u
 #define MISS_SHADOW 1u
 #define MASK_OCCLUDER 1u
@@ -56,8 +58,14 @@ struct FrameUniform {
 struct ObjectData {
     uint material; // offset 0
     uint primitive_base; // offset 4
-    uint _pad0; // offset 8
-    uint _pad1; // offset 12
+    uint vertex_base; // offset 8
+    uint index_base; // offset 12
+};
+
+// 32 bytes, as twinray_shared::layout::Vertex
+struct Vertex {
+    vec4 position; // offset 0
+    vec4 normal; // offset 16
 };
 
 // 48 bytes, as twinray_shared::layout::Primitive

@@ -2,9 +2,10 @@
 //! trace (warm-up runs, then timed runs between timestamps), read back colour and hit ids.
 
 use crate::error::{Error, Result};
+use crate::scene::BlasDesc;
 use crate::scene::{Scene, SceneData};
 use crate::shader_set::ShaderSet;
-use crate::vk::accel::{build_aabb_blas, build_tlas, AccelStruct, InstanceRecord};
+use crate::vk::accel::{build_aabb_blas, build_tlas, build_triangle_blas, AccelStruct, InstanceRecord};
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::{memory_barrier, OneShot};
 use crate::vk::context::Context;
@@ -176,7 +177,28 @@ fn upload_scene(
     data: &SceneData,
     opts: &RenderOptions,
 ) -> Result<SceneResources> {
-    let blases = data.blases.iter().map(|aabbs| build_aabb_blas(ctx, one_shot, aabbs)).collect::<Result<Vec<_>>>()?;
+    // Meshes are read by the BLAS builds and by the triangle closest-hit stage.
+    let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
+        | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
+        | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
+    let vertices = upload_with(ctx, "vertices", bytemuck::cast_slice(&data.vertices), mesh_usage)?;
+    let indices = upload_with(ctx, "indices", bytemuck::cast_slice(&data.indices), mesh_usage)?;
+    let (vertex_address, index_address) = (vertices.device_address(), indices.device_address());
+    let blases = data
+        .blases
+        .iter()
+        .map(|blas| match blas {
+            BlasDesc::Aabbs(aabbs) => build_aabb_blas(ctx, one_shot, aabbs),
+            BlasDesc::Triangles { vertex_base, vertex_count, index_base, index_count } => build_triangle_blas(
+                ctx,
+                one_shot,
+                vertex_address + u64::from(*vertex_base) * size_of::<twinray_shared::layout::Vertex>() as u64,
+                *vertex_count,
+                index_address + u64::from(*index_base) * 4,
+                *index_count,
+            ),
+        })
+        .collect::<Result<Vec<_>>>()?;
     let instances: Vec<_> = data
         .instances
         .iter()
@@ -197,6 +219,8 @@ fn upload_scene(
         (b::BINDING_PRIMITIVES, storage, upload(ctx, "primitives", bytemuck::cast_slice(&data.primitives))?),
         (b::BINDING_MATERIALS, storage, upload(ctx, "materials", bytemuck::cast_slice(&data.materials))?),
         (b::BINDING_LIGHTS, storage, upload(ctx, "lights", bytemuck::cast_slice(&data.lights))?),
+        (b::BINDING_VERTICES, storage, vertices),
+        (b::BINDING_INDICES, storage, indices),
     ];
     Ok(SceneResources { _blases: blases, tlas, buffers })
 }
@@ -204,7 +228,10 @@ fn upload_scene(
 /// A host-visible buffer usable as a uniform or storage buffer; an empty slice still gets a
 /// (zeroed) element's worth of memory, so every binding has a valid buffer.
 fn upload(ctx: &Arc<Context>, name: &str, bytes: &[u8]) -> Result<Buffer> {
-    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER;
+    upload_with(ctx, name, bytes, vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER)
+}
+
+fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUsageFlags) -> Result<Buffer> {
     if bytes.is_empty() {
         return Buffer::with_data(ctx, name, &[0; 256], usage);
     }

@@ -35,6 +35,7 @@ fn embedded_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
         (Language::Rust, "cone_intersection") => embedded!("rust", "cone_intersection"),
         (Language::Rust, "torus_intersection") => embedded!("rust", "torus_intersection"),
         (Language::Rust, "procedural_closest_hit") => embedded!("rust", "procedural_closest_hit"),
+        (Language::Rust, "triangle_closest_hit") => embedded!("rust", "triangle_closest_hit"),
         (Language::Glsl, "raygen") => embedded!("glsl", "raygen"),
         (Language::Glsl, "miss") => embedded!("glsl", "miss"),
         (Language::Glsl, "shadow_miss") => embedded!("glsl", "shadow_miss"),
@@ -45,6 +46,7 @@ fn embedded_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
         (Language::Glsl, "cone_intersection") => embedded!("glsl", "cone_intersection"),
         (Language::Glsl, "torus_intersection") => embedded!("glsl", "torus_intersection"),
         (Language::Glsl, "procedural_closest_hit") => embedded!("glsl", "procedural_closest_hit"),
+        (Language::Glsl, "triangle_closest_hit") => embedded!("glsl", "triangle_closest_hit"),
         _ => return None,
     })
 }

@@ -3,15 +3,17 @@
 //! specialisation the scene uses.
 
 use super::file::{LightDesc, MaterialDesc, SceneFile, ShapeDesc};
+use super::mesh::MeshData;
 use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
 use twinray_shared::bindings as b;
-use twinray_shared::layout::{FrameUniform, Light, Material, ObjectData, Primitive};
+use twinray_shared::layout::{FrameUniform, Light, Material, ObjectData, Primitive, Vertex};
 use twinray_shared::plane::DISK;
 
 /// The hit groups twinray can build, in the order they take in the shader binding table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum HitGroup {
+    Triangles,
     Sphere,
     Plane,
     Box,
@@ -23,6 +25,7 @@ pub enum HitGroup {
 impl HitGroup {
     pub fn name(self) -> &'static str {
         match self {
+            HitGroup::Triangles => "triangles",
             HitGroup::Sphere => "sphere",
             HitGroup::Plane => "plane",
             HitGroup::Box => "box",
@@ -32,9 +35,10 @@ impl HitGroup {
         }
     }
 
-    /// The intersection module, for procedural groups.
+    /// The intersection module, for procedural groups (triangles use the built-in test).
     pub fn intersection_module(self) -> Option<&'static str> {
         match self {
+            HitGroup::Triangles => None,
             HitGroup::Sphere => Some("sphere_intersection"),
             HitGroup::Plane => Some("plane_intersection"),
             HitGroup::Box => Some("box_intersection"),
@@ -46,6 +50,7 @@ impl HitGroup {
 
     pub fn closest_hit_module(self) -> &'static str {
         match self {
+            HitGroup::Triangles => "triangle_closest_hit",
             HitGroup::Sphere
             | HitGroup::Plane
             | HitGroup::Box
@@ -86,11 +91,21 @@ pub struct InstanceDesc {
     pub hit_group: u32,
 }
 
+/// The geometry of one BLAS.
+#[derive(Clone, Debug, PartialEq)]
+pub enum BlasDesc {
+    /// Procedural primitives: their boxes.
+    Aabbs(Vec<Aabb>),
+    /// A mesh: its range in the scene's vertex and index buffers.
+    Triangles { vertex_base: u32, vertex_count: u32, index_base: u32, index_count: u32 },
+}
+
 /// Everything a render uploads for a scene.
 pub struct SceneData {
     pub plan: PipelinePlan,
-    /// Per BLAS, the boxes of its primitives.
-    pub blases: Vec<Vec<Aabb>>,
+    pub blases: Vec<BlasDesc>,
+    pub vertices: Vec<Vertex>,
+    pub indices: Vec<u32>,
     pub instances: Vec<InstanceDesc>,
     pub objects: Vec<ObjectData>,
     pub primitives: Vec<Primitive>,
@@ -98,12 +113,58 @@ pub struct SceneData {
     pub lights: Vec<Light>,
 }
 
-pub fn build(scene: &SceneFile) -> SceneData {
+/// Where a shape's data lies: its BLAS, and the bases an object of it records.
+#[derive(Clone, Copy)]
+struct ShapeSlot {
+    blas: usize,
+    primitive_base: u32,
+    vertex_base: u32,
+    index_base: u32,
+}
+
+/// Buffers and BLAS descriptions, filled one shape at a time.
+#[derive(Default)]
+struct Geometry {
+    blases: Vec<BlasDesc>,
+    primitives: Vec<Primitive>,
+    vertices: Vec<Vertex>,
+    indices: Vec<u32>,
+}
+
+impl Geometry {
+    fn add(&mut self, shape: &ShapeDesc, mesh: Option<&MeshData>) -> ShapeSlot {
+        let slot = ShapeSlot {
+            blas: self.blases.len(),
+            primitive_base: self.primitives.len() as u32,
+            vertex_base: self.vertices.len() as u32,
+            index_base: self.indices.len() as u32,
+        };
+        match mesh {
+            Some(m) => {
+                self.vertices.extend_from_slice(&m.vertices);
+                self.indices.extend_from_slice(&m.indices);
+                self.blases.push(BlasDesc::Triangles {
+                    vertex_base: slot.vertex_base,
+                    vertex_count: m.vertices.len() as u32,
+                    index_base: slot.index_base,
+                    index_count: m.indices.len() as u32,
+                });
+            }
+            None => {
+                let (prims, boxes) = shape_primitives(shape);
+                self.primitives.extend(prims);
+                self.blases.push(BlasDesc::Aabbs(boxes));
+            }
+        }
+        slot
+    }
+}
+
+pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneData {
     let material_index: BTreeMap<&str, u32> =
         scene.materials.keys().enumerate().map(|(i, n)| (n.as_str(), i as u32)).collect();
-    let mut shape_blas: BTreeMap<&str, (usize, u32)> = BTreeMap::new();
-    let mut blases = Vec::new();
-    let mut primitives = Vec::new();
+    let mut slots: BTreeMap<&str, ShapeSlot> = BTreeMap::new();
+    let mut geometry = Geometry::default();
     let mut groups: Vec<HitGroup> = scene.objects.iter().map(|o| hit_group(&scene.shapes[&o.shape])).collect();
     groups.sort();
     groups.dedup();
@@ -111,18 +172,18 @@ pub fn build(scene: &SceneFile) -> SceneData {
     let mut instances = Vec::new();
     for (i, object) in scene.objects.iter().enumerate() {
         let shape = &scene.shapes[&object.shape];
-        let (blas, primitive_base) = *shape_blas.entry(object.shape.as_str()).or_insert_with(|| {
-            let (prims, boxes) = shape_primitives(shape);
-            let base = primitives.len() as u32;
-            primitives.extend(prims);
-            blases.push(boxes);
-            (blases.len() - 1, base)
-        });
+        let slot =
+            *slots.entry(object.shape.as_str()).or_insert_with(|| geometry.add(shape, meshes.get(&object.shape)));
         let material_name = object.material.as_str();
-        objects.push(ObjectData { material: material_index[material_name], primitive_base, _pad0: 0, _pad1: 0 });
+        objects.push(ObjectData {
+            material: material_index[material_name],
+            primitive_base: slot.primitive_base,
+            vertex_base: slot.vertex_base,
+            index_base: slot.index_base,
+        });
         let emissive = matches!(scene.materials[material_name], MaterialDesc::Emissive { .. });
         instances.push(InstanceDesc {
-            blas,
+            blas: slot.blas,
             object_to_world: object_transform(object.translate, object.rotate, object.scale.axes()),
             object: i as u32,
             mask: if emissive { b::MASK_EMITTER } else { b::MASK_OCCLUDER },
@@ -136,7 +197,8 @@ pub fn build(scene: &SceneFile) -> SceneData {
         samples_per_side: scene.image.samples,
     };
     let materials = scene.materials.values().map(material).collect();
-    SceneData { plan, blases, instances, objects, primitives, materials, lights }
+    let Geometry { blases, primitives, vertices, indices } = geometry;
+    SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights }
 }
 
 /// Camera and frame constants for an image of `width` x `height`.
@@ -164,6 +226,7 @@ fn hit_group(shape: &ShapeDesc) -> HitGroup {
         ShapeDesc::Cylinder { .. } => HitGroup::Cylinder,
         ShapeDesc::Cone { .. } => HitGroup::Cone,
         ShapeDesc::Torus { .. } => HitGroup::Torus,
+        ShapeDesc::Mesh { .. } => HitGroup::Triangles,
     }
 }
 
@@ -211,6 +274,7 @@ fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
             let outer = major_radius + minor_radius;
             single(Vec3::new(major_radius, minor_radius, 0.0), Vec3::new(outer, minor_radius, outer))
         }
+        ShapeDesc::Mesh { .. } => (Vec::new(), Vec::new()),
         ShapeDesc::SphereField { count, seed, center_min, center_max, radius_min, radius_max } => {
             let mut rng = SplitMix64(seed);
             let (lo, hi) = (Vec3::from(center_min), Vec3::from(center_max));

@@ -145,6 +145,10 @@ fn check_shape(shape: &ShapeDesc) -> Checked {
             positive("radius", *radius)?;
             positive("height", *height)
         }
+        ShapeDesc::Mesh { builtin, file, .. } => match (builtin, file) {
+            (Some(_), None) | (None, Some(_)) => Ok(()),
+            _ => Err("a mesh needs exactly one of builtin and file".into()),
+        },
         ShapeDesc::Torus { major_radius, minor_radius } => {
             positive("major_radius", *major_radius)?;
             positive("minor_radius", *minor_radius)?;

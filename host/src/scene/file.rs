@@ -133,6 +133,14 @@ pub enum ShapeDesc {
     /// A torus about the object's y axis, centred at its origin: `major_radius` from the axis
     /// to the tube's centre, `minor_radius` of the tube.
     Torus { major_radius: f32, minor_radius: f32 },
+    /// A triangle mesh: a generated one (`builtin`) or an OBJ file (`file`, relative to the
+    /// scene file's folder), with flat or smooth normals.
+    Mesh {
+        builtin: Option<MeshBuiltin>,
+        file: Option<String>,
+        #[serde(default)]
+        normals: Normals,
+    },
     /// `count` spheres with centres uniform in the box and radii uniform in the range, each
     /// with its own colour (which tints the material), placed by SplitMix64 from `seed`.
     SphereField { count: u32, seed: u64, center_min: [f32; 3], center_max: [f32; 3], radius_min: f32, radius_max: f32 },
@@ -183,4 +191,24 @@ pub struct Parity {
     pub pixel_threshold: u8,
     pub max_pixels_over_threshold: f64,
     pub max_hit_mismatches: f64,
+}
+
+/// Meshes twinray generates, each fitting the unit cube about the origin.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MeshBuiltin {
+    Box,
+    Pyramid,
+    Prism,
+    Icosahedron,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Normals {
+    /// One normal per face.
+    #[default]
+    Flat,
+    /// Area-weighted vertex normals, interpolated across faces.
+    Smooth,
 }

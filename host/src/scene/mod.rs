@@ -4,17 +4,23 @@
 mod build;
 mod check;
 pub mod file;
+pub mod mesh;
 
 use crate::error::{Error, Result};
-pub use build::{object_transform, Aabb, HitGroup, InstanceDesc, PipelinePlan, SceneData};
+pub use build::{object_transform, Aabb, BlasDesc, HitGroup, InstanceDesc, PipelinePlan, SceneData};
 pub use check::{MAX_OBJECTS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE};
-pub use file::{Parity, SceneFile};
-use std::path::Path;
+pub use file::{Parity, SceneFile, ShapeDesc};
+pub use mesh::MeshData;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
 use twinray_shared::layout::FrameUniform;
 
 /// Scenes shipped inside the binary, by name.
 pub const BUILTIN: [(&str, &str); 1] = [("spheres", include_str!("../../../scenes/spheres.toml"))];
 pub const DEFAULT_SCENE: &str = "spheres";
+
+/// Mesh files the built-in scenes use, shipped inside the binary, by the path they name.
+pub const BUILTIN_MESH_FILES: [(&str, &str); 0] = [];
 
 /// A checked scene, ready to render.
 #[derive(Clone, Debug)]
@@ -22,6 +28,8 @@ pub struct Scene {
     pub file: SceneFile,
     /// Where it came from: a path, or `builtin:NAME`.
     pub source: String,
+    /// The triangles of every mesh shape, by shape name.
+    pub meshes: BTreeMap<String, MeshData>,
 }
 
 impl Scene {
@@ -32,10 +40,11 @@ impl Scene {
         if path.exists() {
             let text = std::fs::read_to_string(path)
                 .map_err(|e| Error::Scene { path: arg.into(), message: format!("cannot read: {e}") })?;
-            return Scene::parse(&text, arg);
+            let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
+            return Scene::parse(&text, arg, MeshFiles::Folder(folder));
         }
         if let Some((name, text)) = BUILTIN.iter().find(|(name, _)| *name == arg) {
-            return Scene::parse(text, &format!("builtin:{name}"));
+            return Scene::parse(text, &format!("builtin:{name}"), MeshFiles::Builtin);
         }
         let names: Vec<_> = BUILTIN.iter().map(|(n, _)| *n).collect();
         Err(Error::Scene {
@@ -44,12 +53,24 @@ impl Scene {
         })
     }
 
-    /// Parses and checks scene text; `source` names it in errors.
-    pub fn parse(text: &str, source: &str) -> Result<Scene> {
-        let file: SceneFile = toml::from_str(text)
-            .map_err(|e| Error::Scene { path: source.into(), message: e.to_string().trim_end().replace('\n', " ") })?;
-        check::check(&file).map_err(|message| Error::Scene { path: source.into(), message })?;
-        Ok(Scene { file, source: source.into() })
+    /// Parses and checks scene text and loads its meshes; `source` names it in errors.
+    pub fn parse(text: &str, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
+        let scene_error = |message: String| Error::Scene { path: source.into(), message };
+        let file: SceneFile =
+            toml::from_str(text).map_err(|e| scene_error(e.to_string().trim_end().replace('\n', " ")))?;
+        check::check(&file).map_err(scene_error)?;
+        let mut meshes = BTreeMap::new();
+        for (name, shape) in &file.shapes {
+            if let ShapeDesc::Mesh { builtin, file: mesh_file, normals } = shape {
+                let mesh = match (builtin, mesh_file) {
+                    (Some(kind), _) => Ok(mesh::builtin(*kind, *normals)),
+                    (None, Some(f)) => mesh_files.load(f, *normals),
+                    (None, None) => Err("a mesh needs exactly one of builtin and file".into()),
+                };
+                meshes.insert(name.clone(), mesh.map_err(|e| scene_error(format!("shape {name:?}: {e}")))?);
+            }
+        }
+        Ok(Scene { file, source: source.into(), meshes })
     }
 
     pub fn name(&self) -> &str {
@@ -58,11 +79,31 @@ impl Scene {
 
     /// Buffers, acceleration structure contents and pipeline plan of this scene.
     pub fn build(&self) -> SceneData {
-        build::build(&self.file)
+        build::build(&self.file, &self.meshes)
     }
 
     /// Camera and frame constants for an image of `width` x `height`.
     pub fn frame_uniform(&self, width: u32, height: u32) -> FrameUniform {
         build::frame_uniform(&self.file, width, height)
+    }
+}
+
+/// Where a scene's mesh files are.
+pub enum MeshFiles {
+    /// Relative to this folder (the scene file's).
+    Folder(PathBuf),
+    /// Inside the binary ([`BUILTIN_MESH_FILES`]), for built-in scenes.
+    Builtin,
+}
+
+impl MeshFiles {
+    fn load(&self, name: &str, normals: file::Normals) -> std::result::Result<MeshData, String> {
+        match self {
+            MeshFiles::Folder(folder) => mesh::load_obj(&folder.join(name), normals),
+            MeshFiles::Builtin => match BUILTIN_MESH_FILES.iter().find(|(n, _)| *n == name) {
+                Some((_, text)) => mesh::parse_obj(text, name, normals),
+                None => Err(format!("no built-in mesh file {name:?}")),
+            },
+        }
     }
 }

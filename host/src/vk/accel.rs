@@ -52,6 +52,30 @@ pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[Aabb]) -
     build(ctx, one_shot, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, aabbs.len() as u32, "blas")
 }
 
+/// A BLAS over one mesh: `vertex_count` vertices of `Vertex` (position at offset 0) from
+/// `vertices`, `index_count` u32 indices from `indices` (device addresses), all opaque.
+pub fn build_triangle_blas(
+    ctx: &Arc<Context>,
+    one_shot: &OneShot,
+    vertices: vk::DeviceAddress,
+    vertex_count: u32,
+    indices: vk::DeviceAddress,
+    index_count: u32,
+) -> Result<AccelStruct> {
+    let data = vk::AccelerationStructureGeometryTrianglesDataKHR::default()
+        .vertex_format(vk::Format::R32G32B32_SFLOAT)
+        .vertex_data(vk::DeviceOrHostAddressConstKHR { device_address: vertices })
+        .vertex_stride(size_of::<twinray_shared::layout::Vertex>() as u64)
+        .max_vertex(vertex_count.saturating_sub(1))
+        .index_type(vk::IndexType::UINT32)
+        .index_data(vk::DeviceOrHostAddressConstKHR { device_address: indices });
+    let geometry = vk::AccelerationStructureGeometryKHR::default()
+        .geometry_type(vk::GeometryTypeKHR::TRIANGLES)
+        .geometry(vk::AccelerationStructureGeometryDataKHR { triangles: data })
+        .flags(vk::GeometryFlagsKHR::OPAQUE);
+    build(ctx, one_shot, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, index_count / 3, "mesh blas")
+}
+
 /// A TLAS over `instances`.
 pub fn build_tlas(ctx: &Arc<Context>, one_shot: &OneShot, instances: &[InstanceRecord]) -> Result<AccelStruct> {
     let instance: Vec<u8> = instances.iter().flat_map(instance_bytes).collect();

@@ -24,7 +24,7 @@ pub struct RtPipeline {
 }
 
 /// (binding, type, stages) of every descriptor, from the shared binding numbers.
-pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 8] {
+pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 10] {
     use vk::DescriptorType as D;
     use vk::ShaderStageFlags as S;
     let hit = S::INTERSECTION_KHR | S::CLOSEST_HIT_KHR;
@@ -37,6 +37,8 @@ pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags)
         (b::BINDING_MATERIALS, D::STORAGE_BUFFER, S::CLOSEST_HIT_KHR),
         (b::BINDING_LIGHTS, D::STORAGE_BUFFER, S::RAYGEN_KHR),
         (b::BINDING_HIT_IDS, D::STORAGE_BUFFER, S::RAYGEN_KHR),
+        (b::BINDING_VERTICES, D::STORAGE_BUFFER, S::CLOSEST_HIT_KHR),
+        (b::BINDING_INDICES, D::STORAGE_BUFFER, S::CLOSEST_HIT_KHR),
     ]
 }
 

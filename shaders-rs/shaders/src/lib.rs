@@ -6,14 +6,14 @@
 
 mod trace;
 
-use spirv_std::glam::{UVec3, UVec4, Vec3, Vec3Swizzles, Vec4Swizzles};
+use spirv_std::glam::{UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::AccelerationStructure;
 use spirv_std::{spirv, Image};
 use twinray_shared::bindings::{
     HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS, NO_HIT,
 };
-use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
+use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload, Vertex};
 use twinray_shared::{boxes, camera, cone, cylinder, plane, random, shading, sphere, torus};
 
 /// M x M primary samples per pixel; shades each and writes the mean colour and the ids of what
@@ -128,12 +128,53 @@ pub fn procedural_closest_hit(
     let data = objects[object as usize];
     let material = materials[data.material as usize];
     let tint = primitives[(data.primitive_base + primitive_id) as usize].tint.xyz();
-    let world = shading::world_normal(world_to_object.to_mat3(), *normal);
-    let facing = shading::face_forward(world, direction);
     let color = shading::material_color(&material, object_origin + object_direction * t, *normal) * tint;
-    payload.position = (origin + direction * t).extend(t);
-    payload.shading_normal = facing.extend(0.0);
-    payload.geometric_normal = facing.extend(0.0);
+    let (geometric, shading_normal) = shading::surface_normals(world_to_object.to_mat3(), *normal, *normal, direction);
+    let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
+    describe(payload, origin + direction * t, t, geometric, shading_normal, color, ids);
+}
+
+/// Triangle meshes: normals from the triangle's vertices (interpolated with the barycentrics).
+#[spirv(closest_hit)]
+#[allow(clippy::too_many_arguments)]
+pub fn triangle_closest_hit(
+    #[spirv(instance_custom_index)] object: u32,
+    #[spirv(primitive_id)] primitive_id: u32,
+    #[spirv(hit_kind)] hit_kind: u32,
+    #[spirv(world_ray_origin)] origin: Vec3,
+    #[spirv(world_ray_direction)] direction: Vec3,
+    #[spirv(object_ray_origin)] object_origin: Vec3,
+    #[spirv(object_ray_direction)] object_direction: Vec3,
+    #[spirv(ray_tmax)] t: f32,
+    #[spirv(world_to_object)] world_to_object: Matrix4x3,
+    #[spirv(hit_attribute)] barycentrics: &Vec2,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+) {
+    let data = objects[object as usize];
+    let material = materials[data.material as usize];
+    let first = (data.index_base + 3 * primitive_id) as usize;
+    let v0 = vertices[(data.vertex_base + indices[first]) as usize];
+    let v1 = vertices[(data.vertex_base + indices[first + 1]) as usize];
+    let v2 = vertices[(data.vertex_base + indices[first + 2]) as usize];
+    let p = [v0.position.xyz(), v1.position.xyz(), v2.position.xyz()];
+    let n = [v0.normal.xyz(), v1.normal.xyz(), v2.normal.xyz()];
+    let (object_geometric, object_shading) = shading::triangle_normals(p, n, barycentrics.x, barycentrics.y);
+    let color = shading::material_color(&material, object_origin + object_direction * t, object_geometric);
+    let (geometric, shading_normal) =
+        shading::surface_normals(world_to_object.to_mat3(), object_geometric, object_shading, direction);
+    let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
+    describe(payload, origin + direction * t, t, geometric, shading_normal, color, ids);
+}
+
+/// The payload of a hit at world point `point`, ray parameter `t`.
+fn describe(payload: &mut HitPayload, point: Vec3, t: f32, geometric: Vec3, shading: Vec3, color: Vec3, ids: UVec4) {
+    payload.position = point.extend(t);
+    payload.shading_normal = shading.extend(0.0);
+    payload.geometric_normal = geometric.extend(0.0);
     payload.color = color.extend(1.0);
-    payload.ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
+    payload.ids = ids;
 }

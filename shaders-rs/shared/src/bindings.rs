@@ -22,6 +22,10 @@ pub const BINDING_MATERIALS: u32 = 5;
 pub const BINDING_LIGHTS: u32 = 6;
 /// `[u32]`, two per pixel: object and primitive hit by the first primary ray, or [`NO_HIT`].
 pub const BINDING_HIT_IDS: u32 = 7;
+/// `[Vertex]` of every mesh, from each object's `vertex_base`.
+pub const BINDING_VERTICES: u32 = 8;
+/// `[u32]`, three per triangle, from each object's `index_base`, relative to `vertex_base`.
+pub const BINDING_INDICES: u32 = 9;
 
 /// Miss shader indices in the shader binding table.
 pub const MISS_PRIMARY: u32 = 0;

@@ -63,7 +63,7 @@ pub struct ModuleSpec {
 
 /// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A pipeline
 /// uses only those its scene needs.
-pub const MODULES: [ModuleSpec; 10] = [
+pub const MODULES: [ModuleSpec; 11] = [
     ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl_source: "raygen.rgen" },
     ModuleSpec { name: "miss", stage: Stage::Miss, glsl_source: "miss.rmiss" },
     ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl_source: "shadow.rmiss" },
@@ -74,6 +74,7 @@ pub const MODULES: [ModuleSpec; 10] = [
     ModuleSpec { name: "cone_intersection", stage: Stage::Intersection, glsl_source: "cone.rint" },
     ModuleSpec { name: "torus_intersection", stage: Stage::Intersection, glsl_source: "torus.rint" },
     ModuleSpec { name: "procedural_closest_hit", stage: Stage::ClosestHit, glsl_source: "procedural.rchit" },
+    ModuleSpec { name: "triangle_closest_hit", stage: Stage::ClosestHit, glsl_source: "triangle.rchit" },
 ];
 
 /// The module called `name`.
@@ -101,7 +102,7 @@ impl Language {
 }
 
 /// Every (descriptor set, binding) a module may declare: those of `crate::bindings`.
-pub const KNOWN_BINDINGS: [(u32, u32); 8] = [
+pub const KNOWN_BINDINGS: [(u32, u32); 10] = [
     (b::DESCRIPTOR_SET, b::BINDING_TLAS),
     (b::DESCRIPTOR_SET, b::BINDING_IMAGE),
     (b::DESCRIPTOR_SET, b::BINDING_FRAME),
@@ -110,6 +111,8 @@ pub const KNOWN_BINDINGS: [(u32, u32); 8] = [
     (b::DESCRIPTOR_SET, b::BINDING_MATERIALS),
     (b::DESCRIPTOR_SET, b::BINDING_LIGHTS),
     (b::DESCRIPTOR_SET, b::BINDING_HIT_IDS),
+    (b::DESCRIPTOR_SET, b::BINDING_VERTICES),
+    (b::DESCRIPTOR_SET, b::BINDING_INDICES),
 ];
 
 impl ModuleSpec {

@@ -7,7 +7,7 @@
 
 use crate::bindings::*;
 use crate::boxes::GAMMA_3;
-use crate::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
+use crate::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload, Vertex};
 use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
 use crate::plane::DISK;
 use crate::shading::CHECKER_DEPTH;
@@ -55,7 +55,8 @@ pub fn structs() -> Vec<GlslStruct> {
             _pad0: "uint",
             _pad1: "uint",
         }),
-        glsl_struct!(ObjectData { material: "uint", primitive_base: "uint", _pad0: "uint", _pad1: "uint" }),
+        glsl_struct!(ObjectData { material: "uint", primitive_base: "uint", vertex_base: "uint", index_base: "uint" }),
+        glsl_struct!(Vertex { position: "vec4", normal: "vec4" }),
         glsl_struct!(Primitive { a: "vec4", b: "vec4", tint: "vec4" }),
         glsl_struct!(Material {
             kind: "uint",
@@ -134,6 +135,8 @@ pub fn layout_include() -> Result<String, String> {
         ("BINDING_MATERIALS", BINDING_MATERIALS),
         ("BINDING_LIGHTS", BINDING_LIGHTS),
         ("BINDING_HIT_IDS", BINDING_HIT_IDS),
+        ("BINDING_VERTICES", BINDING_VERTICES),
+        ("BINDING_INDICES", BINDING_INDICES),
         ("MISS_PRIMARY", MISS_PRIMARY),
         ("MISS_SHADOW", MISS_SHADOW),
         ("MASK_OCCLUDER", MASK_OCCLUDER),

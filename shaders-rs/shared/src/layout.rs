@@ -33,10 +33,12 @@ const _: () = assert!(core::mem::size_of::<FrameUniform>() == 160);
 pub struct ObjectData {
     /// Index into the material buffer.
     pub material: u32,
-    /// Index of this object's primitive 0 in the primitive buffer.
+    /// Index of this object's primitive 0 in the primitive buffer (procedural shapes).
     pub primitive_base: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
+    /// Index of this object's vertex 0 in the vertex buffer (meshes).
+    pub vertex_base: u32,
+    /// Index of this object's first index in the index buffer (meshes).
+    pub index_base: u32,
 }
 const _: () = assert!(core::mem::size_of::<ObjectData>() == 16);
 
@@ -52,6 +54,20 @@ pub struct Primitive {
     pub tint: Vec4,
 }
 const _: () = assert!(core::mem::size_of::<Primitive>() == 48);
+
+/// One mesh vertex, in object space. Flat-shaded meshes repeat vertices per face, with the
+/// face normal, so the shaders always interpolate `normal`.
+#[repr(C)]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct Vertex {
+    /// xyz: position; w: 1.
+    pub position: Vec4,
+    /// xyz: unit normal; w: 0.
+    pub normal: Vec4,
+}
+const _: () = assert!(core::mem::size_of::<Vertex>() == 32);
 
 /// A material. Diffuse: `color_a` is the albedo. Emissive: `color_a` is the emitted radiance.
 /// Checker: `color_a` and `color_b` alternate in cubes of side `1 / color_b.w` in object space.

@@ -10,6 +10,16 @@ pub fn world_normal(world_to_object: Mat3, object_normal: Vec3) -> Vec3 {
     (world_to_object.transpose() * object_normal).normalize()
 }
 
+/// World-space geometric and shading normals of a hit seen along `direction`: both from
+/// object-space normals, the geometric one faced against the ray and the shading one turned
+/// to the same side (so rays leave from the side they arrived on).
+pub fn surface_normals(world_to_object: Mat3, geometric: Vec3, shading: Vec3, direction: Vec3) -> (Vec3, Vec3) {
+    let g = face_forward(world_normal(world_to_object, geometric), direction);
+    let s = world_normal(world_to_object, shading);
+    let s = if s.dot(g) < 0.0 { -s } else { s };
+    (g, s)
+}
+
 /// `n` flipped, if needed, to face against the ray direction `d`.
 pub fn face_forward(n: Vec3, d: Vec3) -> Vec3 {
     if n.dot(d) > 0.0 {
@@ -17,6 +27,14 @@ pub fn face_forward(n: Vec3, d: Vec3) -> Vec3 {
     } else {
         n
     }
+}
+
+/// Object-space geometric normal (from the winding) and shading normal (vertex normals
+/// interpolated with barycentrics (u, v) of vertices 1 and 2) of a triangle.
+pub fn triangle_normals(p: [Vec3; 3], n: [Vec3; 3], u: f32, v: f32) -> (Vec3, Vec3) {
+    let geometric = (p[1] - p[0]).cross(p[2] - p[0]);
+    let shading = n[0] * (1.0 - u - v) + n[1] * u + n[2] * v;
+    (geometric, shading)
 }
 
 /// Depth, in checker cells, below the surface at which the checker is evaluated: on a plane
