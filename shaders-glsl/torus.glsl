@@ -1,6 +1,8 @@
 // Twin of twinray_shared::torus: torus about y (ring radius a.x, tube radius a.y). Scaled to
 // R = 1 with a unit direction, origin shifted onto the bounding sphere of radius R + 2r, the
 // quartic solved there (Inigo Quilez's closed form), each root polished by Newton steps on g.
+// The origin moves to the entry point even when it lies behind (see the Rust twin): a ray
+// starting on the torus would otherwise put a root at 0, where the solver divides by k0.
 #ifndef TWINRAY_TORUS_GLSL
 #define TWINRAY_TORUS_GLSL
 #include "twinray_layout.glsl"
@@ -118,7 +120,7 @@ bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_m
     if (!sphere_intersect(o, d, vec3(0.0), 1.0 + 2.0 * r, near, far, bound_surface) || far < 0.0) {
         return false;
     }
-    float shift = near > 0.0 ? near : 0.0;
+    float shift = near;
     vec3 start = o + d * shift;
     vec3 unused;
     bool on_surface = abs(torus_distance(o, r, unused)) <= TORUS_ON_SURFACE * r;

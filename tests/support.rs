@@ -30,6 +30,28 @@ pub fn small_render() -> RenderOptions {
     RenderOptions { width: TEST_SIZE, height: TEST_SIZE, warmup: 0, runs: 1 }
 }
 
+/// Built-in scenes are tested at this size: small enough for lavapipe, large enough that
+/// each shape covers hundreds of pixels.
+pub const SCENE_TEST_SIZE: (u32, u32) = (160, 120);
+
+/// Renders a built-in scene at `SCENE_TEST_SIZE` with one trace.
+pub fn render_scene(ctx: &Arc<Context>, scene: &Scene, set_text: &str) -> RenderOutput {
+    let (width, height) = SCENE_TEST_SIZE;
+    let opts = RenderOptions { width, height, warmup: 0, runs: 1 };
+    match twinray::render(ctx, scene, &set(set_text), &opts) {
+        Ok(out) => out,
+        Err(e) => panic!("rendering {} with {set_text}: {e}", scene.name()),
+    }
+}
+
+/// Every built-in scene, loaded.
+pub fn builtin_scenes() -> Vec<Scene> {
+    twinray::scene::BUILTIN
+        .iter()
+        .map(|(name, _)| Scene::load(Some(name)).unwrap_or_else(|e| panic!("built-in scene {name}: {e}")))
+        .collect()
+}
+
 pub fn default_scene() -> Scene {
     match Scene::load(None) {
         Ok(scene) => scene,

@@ -42,6 +42,12 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// List the built-in scenes, and every kind of shape, material and light a scene file can use.
+    Scenes {
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
     /// Render a scene with one shader set to a PNG.
     Render(RenderArgs),
     /// Render a scene with two shader sets and report how they differ in image and GPU time.
@@ -122,6 +128,7 @@ fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
     let result = match cli.command {
         Command::Info { json } => commands::info(&cli.global, json),
+        Command::Scenes { json } => commands::scenes(json),
         Command::Render(args) => commands::render(&cli.global, args),
         Command::Compare(args) => commands::compare(&cli.global, args),
     };

@@ -1,6 +1,6 @@
 //! Rejects well-formed scene files with impossible values, naming the field or object.
 
-use super::file::{CameraDesc, LightDesc, MaterialDesc, ObjectDesc, Parity, SceneFile, ShapeDesc};
+use super::file::{CameraDesc, GridDesc, LightDesc, MaterialDesc, ObjectDesc, Parity, SceneFile, ShapeDesc};
 use crate::render::check_size;
 use glam::Vec3;
 
@@ -59,8 +59,13 @@ pub fn check(scene: &SceneFile) -> Checked {
     for (name, shape) in &scene.shapes {
         check_shape(shape).map_err(|e| format!("shape {name:?}: {e}"))?;
     }
-    if scene.objects.is_empty() || scene.objects.len() > MAX_OBJECTS {
-        return Err(format!("a scene needs 1..={MAX_OBJECTS} objects (got {})", scene.objects.len()));
+    let mut total = scene.objects.len() as u64;
+    for (i, grid) in scene.grids.iter().enumerate() {
+        check_grid(scene, grid).map_err(|e| format!("grids[{i}] (shape {:?}): {e}", grid.shape))?;
+        total += grid.count.iter().map(|&c| u64::from(c)).product::<u64>();
+    }
+    if total == 0 || total > MAX_OBJECTS as u64 {
+        return Err(format!("a scene needs 1..={MAX_OBJECTS} objects, counting grids (got {total})"));
     }
     for (i, object) in scene.objects.iter().enumerate() {
         check_object(scene, object).map_err(|e| format!("objects[{i}] (shape {:?}): {e}", object.shape))?;
@@ -190,6 +195,30 @@ fn check_object(scene: &SceneFile, object: &ObjectDesc) -> Checked {
     finite("scale", &scale)?;
     if scale.contains(&0.0) {
         return Err(format!("scale must not be zero on any axis (got {scale:?})"));
+    }
+    Ok(())
+}
+
+fn check_grid(scene: &SceneFile, grid: &GridDesc) -> Checked {
+    if grid.count.contains(&0) {
+        return Err(format!("count must be at least 1 on every axis (got {:?})", grid.count));
+    }
+    if grid.materials.is_empty() {
+        return Err("materials must name at least one material".into());
+    }
+    finite("spacing", &grid.spacing)?;
+    finite("origin", &grid.origin)?;
+    finite("rotate_step", &grid.rotate_step)?;
+    // Each material and the shape, checked as one object of the grid would be.
+    for material in &grid.materials {
+        let object = ObjectDesc {
+            shape: grid.shape.clone(),
+            material: material.clone(),
+            translate: grid.origin,
+            rotate: [0.0; 3],
+            scale: grid.scale,
+        };
+        check_object(scene, &object)?;
     }
     Ok(())
 }

@@ -16,11 +16,25 @@ use std::path::{Path, PathBuf};
 use twinray_shared::layout::FrameUniform;
 
 /// Scenes shipped inside the binary, by name.
-pub const BUILTIN: [(&str, &str); 1] = [("spheres", include_str!("../../../scenes/spheres.toml"))];
+pub const BUILTIN: [(&str, &str); 12] = [
+    ("spheres", include_str!("../../../scenes/spheres.toml")),
+    ("sphere", include_str!("../../../scenes/sphere.toml")),
+    ("plane", include_str!("../../../scenes/plane.toml")),
+    ("box", include_str!("../../../scenes/box.toml")),
+    ("cylinder", include_str!("../../../scenes/cylinder.toml")),
+    ("cone", include_str!("../../../scenes/cone.toml")),
+    ("torus", include_str!("../../../scenes/torus.toml")),
+    ("meshes", include_str!("../../../scenes/meshes.toml")),
+    ("materials", include_str!("../../../scenes/materials.toml")),
+    ("showcase", include_str!("../../../scenes/showcase.toml")),
+    ("instances", include_str!("../../../scenes/instances.toml")),
+    ("lights", include_str!("../../../scenes/lights.toml")),
+];
 pub const DEFAULT_SCENE: &str = "spheres";
 
 /// Mesh files the built-in scenes use, shipped inside the binary, by the path they name.
-pub const BUILTIN_MESH_FILES: [(&str, &str); 0] = [];
+pub const BUILTIN_MESH_FILES: [(&str, &str); 1] =
+    [("meshes/vase.obj", include_str!("../../../scenes/meshes/vase.obj"))];
 
 /// A checked scene, ready to render.
 #[derive(Clone, Debug)]
@@ -56,9 +70,11 @@ impl Scene {
     /// Parses and checks scene text and loads its meshes; `source` names it in errors.
     pub fn parse(text: &str, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
         let scene_error = |message: String| Error::Scene { path: source.into(), message };
-        let file: SceneFile =
+        let mut file: SceneFile =
             toml::from_str(text).map_err(|e| scene_error(e.to_string().trim_end().replace('\n', " ")))?;
         check::check(&file).map_err(scene_error)?;
+        let grid_objects: Vec<_> = file.grids.iter().flat_map(|g| g.objects()).collect();
+        file.objects.extend(grid_objects);
         let mut meshes = BTreeMap::new();
         for (name, shape) in &file.shapes {
             if let ShapeDesc::Mesh { builtin, file: mesh_file, normals } = shape {
@@ -105,5 +121,28 @@ impl MeshFiles {
                 None => Err(format!("no built-in mesh file {name:?}")),
             },
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_builtin_scene_loads_with_objects() {
+        for (name, _) in BUILTIN {
+            let scene = Scene::load(Some(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+            assert!(!scene.file.objects.is_empty(), "{name} has no objects");
+        }
+    }
+
+    #[test]
+    fn grids_expand_into_objects() {
+        let scene = Scene::load(Some("instances")).unwrap();
+        assert_eq!(scene.file.objects.len(), 10_000);
+        let data = scene.build();
+        assert_eq!(data.instances.len(), 10_000);
+        assert_eq!(data.blases.len(), 2, "one BLAS per shape, shared by its instances");
+        assert_eq!(data.plan.hit_groups, vec![HitGroup::Triangles, HitGroup::Sphere]);
     }
 }
