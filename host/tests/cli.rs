@@ -56,6 +56,7 @@ fn edited_scene(dir: &Path, from: &str, to: &str, extra: &str) -> String {
 
 #[test]
 fn impossible_values_in_scene_file_are_named() {
+    let mesh = "\n[shapes.pot]\nkind = \"mesh\"\nfile = \"no-such-pot.obj\"\n";
     let rect = "\n[[lights]]\nkind = \"rect\"\ncenter = [0.0, 9.0, 0.0]\nu = [1.0, 0.0, 0.0]\nv = [2.0, 0.0, 0.0]\ncolor = [1.0, 1.0, 1.0]\nintensity = 1.0\n";
     let cases = [
         ("radius_min = 0.5", "radius_min = -1.0", "", "shape \"field\": radius_min must be > 0"),
@@ -75,6 +76,7 @@ fn impossible_values_in_scene_file_are_named() {
         ("fov_y_degrees = 45.0", "fov_y_degrees = 180.0", "", "camera.fov_y_degrees must be in (0, 180)"),
         ("material = \"white\"", "material = \"white\"\nscale = [1.0, 0.0, 1.0]", "", "scale must not be zero"),
         ("name = \"spheres\"", "name = \"spheres\"", rect, "lights[1]: u and v span no area (zero-area light)"),
+        ("name = \"spheres\"", "name = \"spheres\"", mesh, "shape \"pot\": cannot read mesh file"),
     ];
     for (from, to, extra, message) in cases {
         let dir = tempfile::tempdir().unwrap();

@@ -1,0 +1,41 @@
+//! docs/scene-format.md stays true: its complete example loads and renders, and every kind
+//! that `twinray scenes` lists is documented there and used by some built-in scene.
+
+use twinray::scene::{file::KINDS, MeshFiles, Scene, BUILTIN};
+use twinray::RenderOptions;
+use twinray_tests::{repo_root, set, validated_context};
+
+fn format_doc() -> String {
+    std::fs::read_to_string(repo_root().join("docs/scene-format.md")).expect("docs/scene-format.md")
+}
+
+#[test]
+fn the_documented_example_loads_and_renders() {
+    let doc = format_doc();
+    let start = doc.find("```toml\n").expect("a toml example") + "```toml\n".len();
+    let end = start + doc[start..].find("```").expect("the example's end");
+    let scene = Scene::parse(&doc[start..end], "docs/scene-format.md", MeshFiles::Folder(repo_root().join("scenes")))
+        .unwrap_or_else(|e| panic!("the documented example does not load: {e}"));
+    let ctx = validated_context();
+    let opts = RenderOptions { width: 64, height: 36, warmup: 0, runs: 1 };
+    let out = twinray::render(&ctx, &scene, &set("rust"), &opts).expect("the documented example renders");
+    assert!(twinray::compare::hit_count(&out) > 0);
+}
+
+#[test]
+fn every_kind_is_documented_and_used_by_a_builtin_scene() {
+    let doc = format_doc();
+    let scenes: String = BUILTIN.iter().map(|(_, text)| *text).collect();
+    for (section, kinds) in KINDS {
+        for kind in kinds.iter().filter(|k| !k.starts_with('(')) {
+            assert!(
+                doc.contains(&format!("`{kind}`")) || doc.contains(&format!("\"{kind}\"")),
+                "{section} kind {kind} is not documented"
+            );
+            let used =
+                scenes.contains(&format!("kind = \"{kind}\"")) || scenes.contains(&format!("builtin = \"{kind}\""));
+            assert!(used, "{section} kind {kind} is used by no built-in scene");
+        }
+    }
+    assert!(scenes.contains("file = \""), "no built-in scene loads an OBJ file");
+}
