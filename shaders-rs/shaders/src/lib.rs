@@ -36,8 +36,12 @@ pub fn raygen(
     let pixel = launch_id.xy();
     let pixel_index = launch_id.y * launch_size.x + launch_id.x;
     let mut sum = Vec3::ZERO;
-    for sy in 0..samples_per_side {
-        for sx in 0..samples_per_side {
+    let mut first_hit = (NO_HIT, NO_HIT);
+    // Counted `while` loops rather than `for` over ranges: see trace.rs.
+    let mut sy = 0;
+    while sy < samples_per_side {
+        let mut sx = 0;
+        while sx < samples_per_side {
             let sample = sy * samples_per_side + sx;
             let r1 = random::random(frame.seed, pixel_index, sample, 0);
             let r2 = random::random(frame.seed, pixel_index, sample, 1);
@@ -45,12 +49,17 @@ pub fn raygen(
             let ray = camera::primary_ray(frame, pixel, launch_size.xy(), offset);
             trace::primary(tlas, ray, payload);
             if sample == 0 {
-                hit_ids[2 * pixel_index as usize] = payload.ids.x;
-                hit_ids[2 * pixel_index as usize + 1] = payload.ids.y;
+                first_hit = (payload.ids.x, payload.ids.y);
             }
             sum += trace::shade(tlas, frame, lights, shadows != 0, payload, shadow, pixel_index, sample);
+            sx += 1;
         }
+        sy += 1;
     }
+    // Written after the loops: an indexing panic path inside them becomes control flow that
+    // NVIDIA's driver miscompiles (see trace.rs).
+    hit_ids[2 * pixel_index as usize] = first_hit.0;
+    hit_ids[2 * pixel_index as usize + 1] = first_hit.1;
     let color = sum / (samples_per_side * samples_per_side) as f32;
     // SAFETY: launch_id lies inside the image, which the host sizes to the launch.
     unsafe { image.write(pixel, color.extend(1.0)) };

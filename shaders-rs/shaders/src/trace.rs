@@ -49,22 +49,42 @@ pub fn shade(
     let normal = hit.shading_normal.xyz();
     let origin = offset::offset_ray(point, hit.geometric_normal.xyz());
     let mut light_sum = Vec3::ZERO;
-    for l in 0..frame.light_count {
-        let light = lights[l as usize];
+    // Counted `while` loops and nested `if`s, not `for` over ranges and `&&`: rust-gpu lowers
+    // range iterators to struct and Option phis with undefined values, and NVIDIA's driver
+    // computed this loop wrongly from that form (a light went missing) while lavapipe did not.
+    let mut l = 0;
+    while l < frame.light_count {
+        // No indexing panic path in here either: rust-gpu turns it into a branch from an inner
+        // loop to an outer loop's merge, which NVIDIA's driver also miscompiled. `get` is no way
+        // out: rust-gpu cannot build Option<&T>.
+        let index = l as usize;
+        if index >= lights.len() {
+            break;
+        }
+        // SAFETY: index < lights.len(), checked just above.
+        let light = unsafe { *lights.get_unchecked(index) };
         let n = lighting::samples_per_side(&light);
-        for j in 0..n {
-            for i in 0..n {
+        let casts = shadows && light.shadows != 0;
+        let mut j = 0;
+        while j < n {
+            let mut i = 0;
+            while i < n {
                 let dimension = 2 + 2 * (l * 64 + j * n + i);
                 let r1 = random::random(frame.seed, pixel, sample, dimension);
                 let r2 = random::random(frame.seed, pixel, sample, dimension + 1);
                 let s = lighting::sample(&light, point, i, j, r1, r2);
                 let cosine = normal.dot(s.direction);
-                let casts = shadows && light.shadows != 0;
-                if cosine > 0.0 && (!casts || visible(tlas, origin, s.direction, s.distance, shadow)) {
-                    light_sum += s.irradiance * cosine;
+                if cosine > 0.0 {
+                    let lit = if casts { visible(tlas, origin, s.direction, s.distance, shadow) } else { true };
+                    if lit {
+                        light_sum += s.irradiance * cosine;
+                    }
                 }
+                i += 1;
             }
+            j += 1;
         }
+        l += 1;
     }
     hit.color.xyz() * light_sum
 }

@@ -119,6 +119,52 @@ fn polish(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
     s
 }
 
+/// |root + shift| of a valid root, or f32::MAX.
+fn nearest_abs((valid, s): (bool, f32), shift: f32) -> f32 {
+    if valid {
+        (s + shift).abs()
+    } else {
+        f32::MAX
+    }
+}
+
+/// What turning one quartic root into a hit needs.
+struct Candidate {
+    o: Vec3,
+    d: Vec3,
+    start: Vec3,
+    r: f32,
+    shift: f32,
+    to_t: f32,
+    on_surface: bool,
+    nearest_abs: f32,
+    t_min: f32,
+    t_max: f32,
+}
+
+impl Candidate {
+    /// `best`, or the polished `root` if it is a nearer hit in range (and not the ray's own
+    /// origin when it starts on the surface).
+    fn consider(&self, best: Option<SurfaceHit>, (valid, s): (bool, f32)) -> Option<SurfaceHit> {
+        if !valid || (self.on_surface && (s + self.shift).abs() == self.nearest_abs) {
+            return best;
+        }
+        let s = polish(self.start, self.d, self.r, s) + self.shift;
+        let t = s * self.to_t;
+        let limit = match best {
+            Some(b) => b.t,
+            None => self.t_max,
+        };
+        if t >= self.t_min && t <= limit {
+            let p = self.o + self.d * s;
+            let ring = Vec3::new(p.x, 0.0, p.z).normalize();
+            Some(SurfaceHit { t, normal: p - ring })
+        } else {
+            best
+        }
+    }
+}
+
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
     let (big_r, small_r) = (primitive.a.x, primitive.a.y);
     let r = small_r / big_r;
@@ -135,35 +181,16 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
     let start = o + d * shift;
     let on_surface = distance(o, r).0.abs() <= ON_SURFACE * r;
     let roots = quartic_roots(start, d, r);
-    let mut nearest_abs = f32::MAX;
-    // Index loops: rust-gpu cannot compile array iterators (they unsize a pointer).
-    #[allow(clippy::needless_range_loop)]
-    for i in 0..4 {
-        let (valid, s) = roots[i];
-        if valid && (s + shift).abs() < nearest_abs {
-            nearest_abs = (s + shift).abs();
-        }
-    }
-    let mut best: Option<SurfaceHit> = None;
-    #[allow(clippy::needless_range_loop)]
-    for i in 0..4 {
-        let (valid, s) = roots[i];
-        if !valid || (on_surface && (s + shift).abs() == nearest_abs) {
-            continue;
-        }
-        let s = polish(start, d, r, s) + shift;
-        let t = s * to_t;
-        let limit = match best {
-            Some(b) => b.t,
-            None => t_max,
-        };
-        if t >= t_min && t <= limit {
-            let p = o + d * s;
-            let ring = Vec3::new(p.x, 0.0, p.z).normalize();
-            best = Some(SurfaceHit { t, normal: p - ring });
-        }
-    }
-    best
+    // The four roots one by one, not by index: rust-gpu turns an index's bounds-check panic
+    // path inside a loop into control flow NVIDIA's driver miscompiles (see the shaders' trace.rs).
+    let [r0, r1, r2, r3] = roots;
+    let nearest_abs =
+        nearest_abs(r0, shift).min(nearest_abs(r1, shift)).min(nearest_abs(r2, shift).min(nearest_abs(r3, shift)));
+    let candidate = Candidate { o, d, start, r, shift, to_t, on_surface, nearest_abs, t_min, t_max };
+    let best = candidate.consider(None, r0);
+    let best = candidate.consider(best, r1);
+    let best = candidate.consider(best, r2);
+    candidate.consider(best, r3)
 }
 
 #[cfg(test)]
