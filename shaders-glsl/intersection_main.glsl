@@ -2,13 +2,13 @@
 // `procedural_intersection!` macro. Define SHAPE_INTERSECT (a function with the signature
 // bool f(vec3 o, vec3 d, Primitive p, float t_min, float t_max, out float t, out vec3 n)) and
 // SHAPE_HIT_KIND before including this file.
-layout(set = DESCRIPTOR_SET, binding = BINDING_OBJECTS, std430) readonly buffer Objects { ObjectData objects[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { Primitive primitives[]; };
 
 hitAttributeEXT vec3 normal;
 
 void main() {
-    Primitive p = primitives[objects[gl_InstanceCustomIndexEXT].primitive_base + gl_PrimitiveID];
+    // The instance custom index is the object's first primitive.
+    Primitive p = primitives[gl_InstanceCustomIndexEXT + gl_PrimitiveID];
     float t;
     vec3 n;
     if (SHAPE_INTERSECT(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, p, gl_RayTminEXT, gl_RayTmaxEXT, t, n)) {

@@ -16,13 +16,13 @@ hitAttributeEXT vec3 normal;
 #include "closest_hit.glsl"
 
 void main() {
-    ObjectData data = objects[gl_InstanceCustomIndexEXT];
+    ObjectData data = objects[gl_InstanceID];
     Material material = materials[data.material];
-    vec3 tint = primitives[data.primitive_base + gl_PrimitiveID].tint.xyz;
+    vec3 tint = primitives[gl_InstanceCustomIndexEXT + gl_PrimitiveID].tint.xyz;
     float t = gl_RayTmaxEXT;
     vec3 color = material_color(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, normal) * tint;
     vec3 geometric, shading;
     surface_normals(mat3(gl_WorldToObjectEXT), normal, normal, gl_WorldRayDirectionEXT, geometric, shading);
-    uvec4 ids = uvec4(gl_InstanceCustomIndexEXT, gl_PrimitiveID, material.kind, gl_HitKindEXT);
+    uvec4 ids = uvec4(gl_InstanceID, gl_PrimitiveID, material.kind, gl_HitKindEXT);
     describe(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t, geometric, shading, color, ids);
 }

@@ -32,8 +32,12 @@ vec3 shade(bool shadows, uint pixel, uint sample_index) {
         for (uint j = 0u; j < n; j++) {
             for (uint i = 0u; i < n; i++) {
                 uint dimension = 2u + 2u * (l * 64u + j * n + i);
-                float r1 = random(frame.seed, pixel, sample_index, dimension);
-                float r2 = random(frame.seed, pixel, sample_index, dimension + 1u);
+                // Only area lights are sampled at random positions.
+                float r1 = 0.0, r2 = 0.0;
+                if (light.kind == LIGHT_RECT) {
+                    r1 = random(frame.seed, pixel, sample_index, dimension);
+                    r2 = random(frame.seed, pixel, sample_index, dimension + 1u);
+                }
                 LightSample s = light_sample(light, point, i, j, r1, r2);
                 float cosine = dot(normal, s.direction);
                 bool casts = shadows && light.shadows != 0u;

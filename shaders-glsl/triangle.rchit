@@ -16,7 +16,7 @@ hitAttributeEXT vec2 barycentrics;
 #include "closest_hit.glsl"
 
 void main() {
-    ObjectData data = objects[gl_InstanceCustomIndexEXT];
+    ObjectData data = objects[gl_InstanceID];
     Material material = materials[data.material];
     uint first = data.index_base + 3u * gl_PrimitiveID;
     Vertex v0 = vertices[data.vertex_base + indices[first]];
@@ -30,6 +30,6 @@ void main() {
     vec3 geometric, shading;
     surface_normals(mat3(gl_WorldToObjectEXT), object_geometric, object_shading, gl_WorldRayDirectionEXT, geometric,
                     shading);
-    uvec4 ids = uvec4(gl_InstanceCustomIndexEXT, gl_PrimitiveID, material.kind, gl_HitKindEXT);
+    uvec4 ids = uvec4(gl_InstanceID, gl_PrimitiveID, material.kind, gl_HitKindEXT);
     describe(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t, geometric, shading, color, ids);
 }

@@ -57,9 +57,9 @@ struct FrameUniform {
 // 16 bytes, as twinray_shared::layout::ObjectData
 struct ObjectData {
     uint material; // offset 0
-    uint primitive_base; // offset 4
-    uint vertex_base; // offset 8
-    uint index_base; // offset 12
+    uint vertex_base; // offset 4
+    uint index_base; // offset 8
+    uint _pad0; // offset 12
 };
 
 // 32 bytes, as twinray_shared::layout::Vertex

@@ -204,7 +204,7 @@ fn upload_scene(
         .iter()
         .map(|i| InstanceRecord {
             object_to_world: i.object_to_world,
-            custom_index: i.object,
+            custom_index: i.custom_index,
             mask: i.mask,
             sbt_offset: i.hit_group,
             blas_address: blases[i.blas].address,

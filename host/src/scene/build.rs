@@ -84,8 +84,10 @@ pub struct Aabb {
 pub struct InstanceDesc {
     pub blas: usize,
     pub object_to_world: Mat4,
-    /// Index of the object (the instance custom index).
+    /// Index of the object (the instance's index in the TLAS).
     pub object: u32,
+    /// The instance custom index: the object's first primitive (procedural shapes).
+    pub custom_index: u32,
     pub mask: u32,
     /// Index of the hit group in `PipelinePlan::hit_groups` (the SBT record offset).
     pub hit_group: u32,
@@ -177,15 +179,16 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         let material_name = object.material.as_str();
         objects.push(ObjectData {
             material: material_index[material_name],
-            primitive_base: slot.primitive_base,
             vertex_base: slot.vertex_base,
             index_base: slot.index_base,
+            _pad0: 0,
         });
         let emissive = matches!(scene.materials[material_name], MaterialDesc::Emissive { .. });
         instances.push(InstanceDesc {
             blas: slot.blas,
             object_to_world: object_transform(object.translate, object.rotate, object.scale.axes()),
             object: i as u32,
+            custom_index: slot.primitive_base,
             mask: if emissive { b::MASK_EMITTER } else { b::MASK_OCCLUDER },
             hit_group: groups.iter().position(|g| *g == hit_group(shape)).unwrap_or(0) as u32,
         });

@@ -56,8 +56,17 @@ pub fn check(scene: &SceneFile) -> Checked {
     for (i, light) in scene.lights.iter().enumerate() {
         check_light(light).map_err(|e| format!("lights[{i}]: {e}"))?;
     }
+    let mut primitives = 0u64;
     for (name, shape) in &scene.shapes {
         check_shape(shape).map_err(|e| format!("shape {name:?}: {e}"))?;
+        primitives += match shape {
+            ShapeDesc::SphereField { count, .. } => u64::from(*count),
+            _ => 1,
+        };
+    }
+    // An object's first primitive travels in the 24-bit instance custom index.
+    if primitives >= 1 << 24 {
+        return Err(format!("the shapes hold {primitives} procedural primitives; at most {} fit", (1 << 24) - 1));
     }
     let mut total = scene.objects.len() as u64;
     for (i, grid) in scene.grids.iter().enumerate() {

@@ -43,8 +43,12 @@ pub fn raygen(
         let mut sx = 0;
         while sx < samples_per_side {
             let sample = sy * samples_per_side + sx;
-            let r1 = random::random(frame.seed, pixel_index, sample, 0);
-            let r2 = random::random(frame.seed, pixel_index, sample, 1);
+            // Jitter only when there is more than one sample: the spine's pipeline paid nothing.
+            let (r1, r2) = if samples_per_side > 1 {
+                (random::random(frame.seed, pixel_index, sample, 0), random::random(frame.seed, pixel_index, sample, 1))
+            } else {
+                (0.5, 0.5)
+            };
             let offset = camera::sample_offset(sx, sy, samples_per_side, r1, r2);
             let ray = camera::primary_ray(frame, pixel, launch_size.xy(), offset);
             trace::primary(tlas, ray, payload);
@@ -83,22 +87,23 @@ pub fn shadow_miss(#[spirv(incoming_ray_payload)] shadow: &mut ShadowPayload) {
 
 /// One intersection entry point per procedural shape: the shape of the AABB `primitive_id`,
 /// from the shared routine `$intersect`, reporting the object-space normal as hit attribute.
+/// The instance custom index is the object's first primitive, so the stage that runs most
+/// often reads one buffer, as the spine's did.
 macro_rules! procedural_intersection {
     ($name:ident, $intersect:path, $hit_kind:expr) => {
         #[spirv(intersection)]
         #[allow(clippy::too_many_arguments)]
         pub fn $name(
-            #[spirv(instance_custom_index)] object: u32,
+            #[spirv(instance_custom_index)] primitive_base: u32,
             #[spirv(primitive_id)] primitive_id: u32,
             #[spirv(object_ray_origin)] origin: Vec3,
             #[spirv(object_ray_direction)] direction: Vec3,
             #[spirv(ray_tmin)] t_min: f32,
             #[spirv(ray_tmax)] t_max: f32,
-            #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
             #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
             #[spirv(hit_attribute)] normal: &mut Vec3,
         ) {
-            let p = primitives[(objects[object as usize].primitive_base + primitive_id) as usize];
+            let p = primitives[(primitive_base + primitive_id) as usize];
             if let Some(hit) = $intersect(origin, direction, &p, t_min, t_max) {
                 *normal = hit.normal;
                 // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
@@ -119,7 +124,8 @@ procedural_intersection!(torus_intersection, torus::intersect, HIT_KIND_TORUS);
 #[spirv(closest_hit)]
 #[allow(clippy::too_many_arguments)]
 pub fn procedural_closest_hit(
-    #[spirv(instance_custom_index)] object: u32,
+    #[spirv(instance_id)] object: u32,
+    #[spirv(instance_custom_index)] primitive_base: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(hit_kind)] hit_kind: u32,
     #[spirv(world_ray_origin)] origin: Vec3,
@@ -136,7 +142,7 @@ pub fn procedural_closest_hit(
 ) {
     let data = objects[object as usize];
     let material = materials[data.material as usize];
-    let tint = primitives[(data.primitive_base + primitive_id) as usize].tint.xyz();
+    let tint = primitives[(primitive_base + primitive_id) as usize].tint.xyz();
     let color = shading::material_color(&material, object_origin + object_direction * t, *normal) * tint;
     let (geometric, shading_normal) = shading::surface_normals(world_to_object.to_mat3(), *normal, *normal, direction);
     let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
@@ -147,7 +153,7 @@ pub fn procedural_closest_hit(
 #[spirv(closest_hit)]
 #[allow(clippy::too_many_arguments)]
 pub fn triangle_closest_hit(
-    #[spirv(instance_custom_index)] object: u32,
+    #[spirv(instance_id)] object: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(hit_kind)] hit_kind: u32,
     #[spirv(world_ray_origin)] origin: Vec3,

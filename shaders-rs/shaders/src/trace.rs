@@ -4,7 +4,9 @@
 
 use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
-use twinray_shared::bindings::{MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MAX, T_MIN};
+use twinray_shared::bindings::{
+    LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MAX, T_MIN,
+};
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, ShadowPayload};
 use twinray_shared::{lighting, offset, random};
@@ -70,8 +72,15 @@ pub fn shade(
             let mut i = 0;
             while i < n {
                 let dimension = 2 + 2 * (l * 64 + j * n + i);
-                let r1 = random::random(frame.seed, pixel, sample, dimension);
-                let r2 = random::random(frame.seed, pixel, sample, dimension + 1);
+                // Only area lights are sampled at random positions.
+                let (r1, r2) = if light.kind == LIGHT_RECT {
+                    (
+                        random::random(frame.seed, pixel, sample, dimension),
+                        random::random(frame.seed, pixel, sample, dimension + 1),
+                    )
+                } else {
+                    (0.0, 0.0)
+                };
                 let s = lighting::sample(&light, point, i, j, r1, r2);
                 let cosine = normal.dot(s.direction);
                 if cosine > 0.0 {

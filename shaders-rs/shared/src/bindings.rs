@@ -12,7 +12,8 @@ pub const BINDING_TLAS: u32 = 0;
 pub const BINDING_IMAGE: u32 = 1;
 /// [`crate::layout::FrameUniform`], a uniform buffer.
 pub const BINDING_FRAME: u32 = 2;
-/// `[ObjectData]`, indexed by the instance custom index.
+/// `[ObjectData]`, indexed by the instance index (TLAS instances are in object order). The
+/// instance custom index holds the object's `primitive_base`.
 pub const BINDING_OBJECTS: u32 = 3;
 /// `[Primitive]`: parameters of procedural primitives, from each object's `primitive_base`.
 pub const BINDING_PRIMITIVES: u32 = 4;

@@ -55,7 +55,7 @@ pub fn structs() -> Vec<GlslStruct> {
             _pad0: "uint",
             _pad1: "uint",
         }),
-        glsl_struct!(ObjectData { material: "uint", primitive_base: "uint", vertex_base: "uint", index_base: "uint" }),
+        glsl_struct!(ObjectData { material: "uint", vertex_base: "uint", index_base: "uint", _pad0: "uint" }),
         glsl_struct!(Vertex { position: "vec4", normal: "vec4" }),
         glsl_struct!(Primitive { a: "vec4", b: "vec4", tint: "vec4" }),
         glsl_struct!(Material {

@@ -25,7 +25,7 @@ pub struct FrameUniform {
 }
 const _: () = assert!(core::mem::size_of::<FrameUniform>() == 160);
 
-/// Per object (TLAS instance), indexed by the instance custom index.
+/// Per object (TLAS instance), indexed by the instance index.
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
@@ -33,12 +33,11 @@ const _: () = assert!(core::mem::size_of::<FrameUniform>() == 160);
 pub struct ObjectData {
     /// Index into the material buffer.
     pub material: u32,
-    /// Index of this object's primitive 0 in the primitive buffer (procedural shapes).
-    pub primitive_base: u32,
     /// Index of this object's vertex 0 in the vertex buffer (meshes).
     pub vertex_base: u32,
     /// Index of this object's first index in the index buffer (meshes).
     pub index_base: u32,
+    pub _pad0: u32,
 }
 const _: () = assert!(core::mem::size_of::<ObjectData>() == 16);
 
@@ -110,7 +109,9 @@ const _: () = assert!(core::mem::size_of::<Light>() == 80);
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct HitPayload {
-    /// xyz: world-space hit point; w: the ray parameter t.
+    /// xyz: world-space hit point; w: the ray parameter t. (Recomputing it in ray generation
+    /// from the ray measured 0.8% slower for the Rust set on an H200: the ray stays live
+    /// across the trace.)
     pub position: Vec4,
     /// xyz: world-space unit normal for shading, facing the ray's origin.
     pub shading_normal: Vec4,
