@@ -1,0 +1,399 @@
+//! The f64 reference for every shape: an independent evaluation, not the f32 shader math run
+//! again. Quadrics use the cancellation-free forms in f64; the torus is found by sphere
+//! tracing its exact signed distance in f64 and bisecting the sign change, so a quartic-solver
+//! bug cannot hide in both; triangles use Moller-Trumbore in f64.
+//!
+//! Each answer is a hit, a miss, or `Ambiguous`: the ray passes within a few f32 ULPs of
+//! tangency, of a rim or edge, or of t_min, where rounding the f32 input alone could flip
+//! hit and miss. Ambiguous rays are reported apart and never counted as errors.
+
+use glam::DVec3;
+
+/// f32 ULPs of the ray's magnitude that count as "within float noise".
+pub const AMBIGUOUS_ULPS: f64 = 16.0;
+const F32_EPS: f64 = 1.0 / 16_777_216.0;
+
+/// A shape in its own object space, with the meaning of `twinray_shared`'s primitives.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum RefShape {
+    Sphere { center: DVec3, radius: f64 },
+    Rectangle { half_x: f64, half_z: f64 },
+    Disk { radius: f64 },
+    Box { half: DVec3 },
+    Cylinder { radius: f64, half_height: f64 },
+    Cone { radius: f64, half_height: f64 },
+    Torus { major: f64, minor: f64 },
+    Triangle { p: [DVec3; 3] },
+}
+
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RefRay {
+    pub origin: DVec3,
+    pub direction: DVec3,
+    pub t_min: f64,
+    pub t_max: f64,
+}
+
+/// The true answer for one ray.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Verdict {
+    Miss,
+    /// The first hit in [t_min, t_max] and the outward unit normal there.
+    Hit {
+        t: f64,
+        normal: DVec3,
+    },
+    /// Within float noise of a boundary case: either answer is right.
+    Ambiguous,
+}
+
+impl RefRay {
+    /// Distance that counts as float noise for this ray: ULPs of its coordinates' magnitude.
+    fn tolerance(&self, t: f64) -> f64 {
+        let scale =
+            self.origin.abs().max_element().max((self.origin + self.direction * t).abs().max_element()).max(1e-30);
+        AMBIGUOUS_ULPS * F32_EPS * scale
+    }
+
+    fn at(&self, t: f64) -> DVec3 {
+        self.origin + self.direction * t
+    }
+}
+
+/// One candidate root: its parameter, its normal, and whether it sits on a boundary.
+#[derive(Clone, Copy)]
+struct Candidate {
+    t: f64,
+    normal: DVec3,
+    ambiguous: bool,
+}
+
+/// The first candidate in [t_min, t_max], or `Ambiguous` if a candidate within noise of t_min
+/// or t_max, or a boundary candidate, could be the first.
+fn first(ray: &RefRay, mut candidates: Vec<Candidate>) -> Verdict {
+    candidates.sort_by(|a, b| a.t.total_cmp(&b.t));
+    for c in candidates {
+        let tol_t = ray.tolerance(c.t) / ray.direction.length();
+        if c.t < ray.t_min - tol_t {
+            continue;
+        }
+        if c.ambiguous || (c.t - ray.t_min).abs() <= tol_t || (c.t - ray.t_max).abs() <= tol_t {
+            return Verdict::Ambiguous;
+        }
+        if c.t > ray.t_max {
+            return Verdict::Miss;
+        }
+        return Verdict::Hit { t: c.t, normal: c.normal.normalize() };
+    }
+    Verdict::Miss
+}
+
+pub fn intersect(shape: &RefShape, ray: &RefRay) -> Verdict {
+    match *shape {
+        RefShape::Sphere { center, radius } => sphere(ray, center, radius),
+        RefShape::Rectangle { half_x, half_z } => plane(ray, |p| (half_x - p.x.abs()).min(half_z - p.z.abs())),
+        RefShape::Disk { radius } => plane(ray, |p| radius - (p.x * p.x + p.z * p.z).sqrt()),
+        RefShape::Box { half } => aabox(ray, half),
+        RefShape::Cylinder { radius, half_height } => cylinder(ray, radius, half_height),
+        RefShape::Cone { radius, half_height } => cone(ray, radius, half_height),
+        RefShape::Torus { major, minor } => torus(ray, major, minor),
+        RefShape::Triangle { p } => triangle(ray, p),
+    }
+}
+
+/// Roots of a t^2 + 2 half_b t + c (stable form), with `tangent` when the discriminant
+/// is within noise of zero.
+fn quadratic(a: f64, half_b: f64, c: f64, discriminant: f64) -> Vec<f64> {
+    if discriminant < 0.0 || (a == 0.0 && half_b == 0.0) {
+        return Vec::new();
+    }
+    let q = -(half_b + half_b.signum() * discriminant.sqrt());
+    let mut roots = Vec::new();
+    if q != 0.0 {
+        roots.push(c / q);
+    }
+    if a != 0.0 {
+        roots.push(q / a);
+    }
+    roots
+}
+
+fn sphere(ray: &RefRay, center: DVec3, radius: f64) -> Verdict {
+    let (o, d) = (ray.origin - center, ray.direction);
+    let a = d.dot(d);
+    let half_b = o.dot(d);
+    let perp = o - d * (half_b / a);
+    let miss_by = perp.length() - radius;
+    if miss_by.abs() <= ray.tolerance(-half_b / a) {
+        return Verdict::Ambiguous;
+    }
+    let discriminant = a * (radius * radius - perp.dot(perp));
+    let c = o.dot(o) - radius * radius;
+    let roots = quadratic(a, half_b, c, discriminant);
+    let candidates = roots.into_iter().map(|t| Candidate { t, normal: ray.at(t) - center, ambiguous: false }).collect();
+    first(ray, candidates)
+}
+
+/// The plane y = 0 limited by `inside(p) >= 0` (signed distance to the rim).
+fn plane(ray: &RefRay, inside: impl Fn(DVec3) -> f64) -> Verdict {
+    let (o, d) = (ray.origin, ray.direction);
+    if o.y.abs() <= ray.tolerance(0.0) {
+        return Verdict::Ambiguous; // the ray starts in the plane
+    }
+    if d.y == 0.0 {
+        return Verdict::Miss;
+    }
+    let t = -o.y / d.y;
+    let margin = inside(ray.at(t));
+    if margin < -ray.tolerance(t) {
+        return Verdict::Miss;
+    }
+    first(ray, vec![Candidate { t, normal: DVec3::Y, ambiguous: margin.abs() <= ray.tolerance(t) }])
+}
+
+fn aabox(ray: &RefRay, half: DVec3) -> Verdict {
+    let (o, d) = (ray.origin, ray.direction);
+    let mut near = (f64::NEG_INFINITY, DVec3::ZERO);
+    let mut far = (f64::INFINITY, DVec3::ZERO);
+    let mut ambiguous = false;
+    for axis in 0..3 {
+        let unit = DVec3::AXES[axis];
+        let (oi, di, hi) = (o[axis], d[axis], half[axis]);
+        if di == 0.0 {
+            let outside = oi.abs() - hi;
+            ambiguous |= outside.abs() <= ray.tolerance(0.0);
+            if outside > 0.0 {
+                return if ambiguous { Verdict::Ambiguous } else { Verdict::Miss };
+            }
+            continue;
+        }
+        let (a, b) = ((-hi - oi) / di, (hi - oi) / di);
+        let (t0, t1) = if a <= b { (a, b) } else { (b, a) };
+        if t0 > near.0 {
+            near = (t0, unit * -di.signum());
+        }
+        if t1 < far.0 {
+            far = (t1, unit * di.signum());
+        }
+    }
+    let tol = ray.tolerance(far.0.max(near.0).max(0.0)) / d.length();
+    if (near.0 - far.0).abs() <= tol {
+        return Verdict::Ambiguous; // through an edge or corner
+    }
+    if near.0 > far.0 {
+        return Verdict::Miss;
+    }
+    // An entry point near an edge: the second-latest slab entry is within noise of the latest.
+    first(
+        ray,
+        vec![Candidate { t: near.0, normal: near.1, ambiguous }, Candidate { t: far.0, normal: far.1, ambiguous }],
+    )
+}
+
+fn cylinder(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
+    let (o, d) = (ray.origin, ray.direction);
+    let mut candidates = Vec::new();
+    let a = d.x * d.x + d.z * d.z;
+    if a > 0.0 {
+        let half_b = o.x * d.x + o.z * d.z;
+        let cross = o.x * d.z - o.z * d.x;
+        let closest = cross.abs() / a.sqrt(); // distance from the axis at closest approach
+        if (closest - radius).abs() <= ray.tolerance(-half_b / a) {
+            return Verdict::Ambiguous;
+        }
+        let discriminant = a * radius * radius - cross * cross;
+        for t in quadratic(a, half_b, o.x * o.x + o.z * o.z - radius * radius, discriminant) {
+            let p = ray.at(t);
+            let rim = half_height - p.y.abs();
+            if rim >= -ray.tolerance(t) {
+                let ambiguous = rim.abs() <= ray.tolerance(t);
+                candidates.push(Candidate { t, normal: DVec3::new(p.x, 0.0, p.z), ambiguous });
+            }
+        }
+    }
+    if d.y != 0.0 {
+        for y in [half_height, -half_height] {
+            let t = (y - o.y) / d.y;
+            let p = ray.at(t);
+            let rim = radius - (p.x * p.x + p.z * p.z).sqrt();
+            if rim >= -ray.tolerance(t) {
+                let ambiguous = rim.abs() <= ray.tolerance(t);
+                candidates.push(Candidate { t, normal: DVec3::new(0.0, y.signum(), 0.0), ambiguous });
+            }
+        }
+    }
+    first(ray, candidates)
+}
+
+fn cone(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
+    let height = 2.0 * half_height;
+    let cos2 = height * height / (height * height + radius * radius);
+    let apex = DVec3::new(0.0, half_height, 0.0);
+    let (d, co) = (ray.direction, ray.origin - apex);
+    let (dv, cov) = (-d.y, -co.y);
+    let a = dv * dv - cos2 * d.dot(d);
+    let half_b = dv * cov - d.dot(co) * cos2;
+    let c = cov * cov - co.dot(co) * cos2;
+    let discriminant = half_b * half_b - a * c;
+    // Tangency: the discriminant within noise of zero relative to its terms.
+    if discriminant.abs() <= AMBIGUOUS_ULPS * F32_EPS * (half_b * half_b).max((a * c).abs()) {
+        return Verdict::Ambiguous;
+    }
+    let mut candidates = Vec::new();
+    for t in quadratic(a, half_b, c, discriminant) {
+        let cp = ray.at(t) - apex;
+        let along = -cp.y;
+        let tol = ray.tolerance(t);
+        if along >= -tol && along <= height + tol {
+            let ambiguous = along.abs() <= tol || (along - height).abs() <= tol;
+            candidates.push(Candidate { t, normal: cp * cos2 - DVec3::new(0.0, cp.y, 0.0), ambiguous });
+        }
+    }
+    if d.y != 0.0 {
+        let t = (-half_height - ray.origin.y) / d.y;
+        let p = ray.at(t);
+        let rim = radius - (p.x * p.x + p.z * p.z).sqrt();
+        if rim >= -ray.tolerance(t) {
+            candidates.push(Candidate { t, normal: -DVec3::Y, ambiguous: rim.abs() <= ray.tolerance(t) });
+        }
+    }
+    first(ray, candidates)
+}
+
+/// Signed distance to the torus (exact, so sphere tracing never steps past the surface).
+fn torus_distance(p: DVec3, major: f64, minor: f64) -> f64 {
+    let ring = (p.x * p.x + p.z * p.z).sqrt() - major;
+    (ring * ring + p.y * p.y).sqrt() - minor
+}
+
+fn torus(ray: &RefRay, major: f64, minor: f64) -> Verdict {
+    let length = ray.direction.length();
+    let g = |t: f64| torus_distance(ray.at(t), major, minor);
+    let mut t = ray.t_min;
+    let inside = g(t) < 0.0;
+    // Smallest distance at which the path passed the tube and moved away again: a graze.
+    let mut closest_pass = f64::INFINITY;
+    let mut previous = f64::INFINITY;
+    for _ in 0..100_000 {
+        let dist = g(t).abs();
+        let tol = ray.tolerance(t);
+        if dist <= tol * 1e-3 {
+            // Converged onto the surface (an exact distance never steps across it): bracket
+            // the crossing just beyond, doubling the step until the sign changes.
+            let mut hi = t + tol / length;
+            for _ in 0..60 {
+                if (g(hi) < 0.0) != inside {
+                    break;
+                }
+                hi = t + (hi - t) * 2.0;
+            }
+            if (g(hi) < 0.0) == inside {
+                return Verdict::Ambiguous; // touched without crossing: tangent
+            }
+            let root = bisect(&g, t, hi, inside);
+            let p = ray.at(root);
+            let ring = DVec3::new(p.x, 0.0, p.z).normalize() * major;
+            let grazed = closest_pass <= tol;
+            return first(ray, vec![Candidate { t: root, normal: p - ring, ambiguous: grazed }]);
+        }
+        if dist > previous {
+            closest_pass = closest_pass.min(previous);
+        }
+        previous = dist;
+        let p = ray.at(t);
+        let leaving = !inside && p.length() > major + minor && p.dot(ray.direction) > 0.0;
+        if t > ray.t_max || leaving {
+            break;
+        }
+        t += dist.max(tol * 1e-3) / length;
+    }
+    if closest_pass.min(previous) <= ray.tolerance(t.min(ray.t_max)) {
+        Verdict::Ambiguous
+    } else {
+        Verdict::Miss
+    }
+}
+
+/// The sign change of g between `lo` and `hi` (g(lo) on the `inside` side), to f64 precision.
+fn bisect(g: &impl Fn(f64) -> f64, mut lo: f64, mut hi: f64, inside: bool) -> f64 {
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if mid <= lo || mid >= hi {
+            break;
+        }
+        if (g(mid) < 0.0) == inside {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+fn triangle(ray: &RefRay, p: [DVec3; 3]) -> Verdict {
+    let (e1, e2) = (p[1] - p[0], p[2] - p[0]);
+    let normal = e1.cross(e2);
+    let h = ray.direction.cross(e2);
+    let det = e1.dot(h);
+    if det.abs() <= AMBIGUOUS_ULPS * F32_EPS * e1.length() * h.length() {
+        return Verdict::Ambiguous; // within noise of parallel to the plane
+    }
+    let s = ray.origin - p[0];
+    let u = s.dot(h) / det;
+    let q = s.cross(e1);
+    let v = ray.direction.dot(q) / det;
+    let t = e2.dot(q) / det;
+    let edge = u.min(v).min(1.0 - u - v);
+    let tol = ray.tolerance(t) / normal.length().sqrt().max(1e-30);
+    if edge < -tol {
+        return Verdict::Miss;
+    }
+    first(ray, vec![Candidate { t, normal, ambiguous: edge.abs() <= tol }])
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ray(o: [f64; 3], d: [f64; 3]) -> RefRay {
+        RefRay { origin: DVec3::from(o), direction: DVec3::from(d), t_min: 0.0, t_max: 1e30 }
+    }
+
+    fn t_of(v: Verdict) -> f64 {
+        match v {
+            Verdict::Hit { t, .. } => t,
+            other => panic!("expected a hit, got {other:?}"),
+        }
+    }
+
+    #[test]
+    fn known_answers() {
+        let s = RefShape::Sphere { center: DVec3::ZERO, radius: 1.0 };
+        assert_eq!(t_of(intersect(&s, &ray([0.0, 0.0, -5.0], [0.0, 0.0, 1.0]))), 4.0);
+        assert_eq!(intersect(&s, &ray([0.0, 2.0, -5.0], [0.0, 0.0, 1.0])), Verdict::Miss);
+        assert_eq!(intersect(&s, &ray([0.0, 1.0, -5.0], [0.0, 0.0, 1.0])), Verdict::Ambiguous, "tangent");
+        let b = RefShape::Box { half: DVec3::new(1.0, 2.0, 3.0) };
+        assert_eq!(t_of(intersect(&b, &ray([-5.0, 0.5, 0.5], [1.0, 0.0, 0.0]))), 4.0);
+        assert_eq!(intersect(&b, &ray([-5.0, 2.0, 0.0], [1.0, 0.0, 0.0])), Verdict::Ambiguous, "in a face plane");
+        let c = RefShape::Cylinder { radius: 1.0, half_height: 2.0 };
+        assert_eq!(t_of(intersect(&c, &ray([0.5, 5.0, 0.0], [0.0, -1.0, 0.0]))), 3.0);
+        let k = RefShape::Cone { radius: 1.0, half_height: 1.0 };
+        assert!((t_of(intersect(&k, &ray([-5.0, 0.0, 0.0], [1.0, 0.0, 0.0]))) - 4.5).abs() < 1e-12);
+        let r = RefShape::Rectangle { half_x: 1.0, half_z: 1.0 };
+        assert_eq!(t_of(intersect(&r, &ray([0.5, 2.0, 0.5], [0.0, -1.0, 0.0]))), 2.0);
+        let tri = RefShape::Triangle { p: [DVec3::ZERO, DVec3::X, DVec3::Y] };
+        assert_eq!(t_of(intersect(&tri, &ray([0.2, 0.2, -1.0], [0.0, 0.0, 1.0]))), 1.0);
+    }
+
+    #[test]
+    fn torus_by_sphere_tracing_matches_the_closed_form() {
+        let t = RefShape::Torus { major: 1.0, minor: 0.25 };
+        for y in [-0.2f64, 0.0, 0.1, 0.24] {
+            let exact = 5.0 - 1.0 - (0.0625 - y * y).sqrt();
+            let got = t_of(intersect(&t, &ray([-5.0, y, 0.0], [1.0, 0.0, 0.0])));
+            assert!((got - exact).abs() < 1e-12 * exact, "y {y}: {got} vs {exact}");
+        }
+        assert_eq!(intersect(&t, &ray([0.0, 5.0, 0.0], [0.0, -1.0, 0.0])), Verdict::Miss, "through the hole");
+        assert_eq!(intersect(&t, &ray([-5.0, 0.25, 0.0], [1.0, 0.0, 0.0])), Verdict::Ambiguous, "grazing the top");
+    }
+}
