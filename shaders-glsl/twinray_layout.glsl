@@ -13,6 +13,8 @@
 #define BINDING_HIT_IDS 7u
 #define BINDING_VERTICES 8u
 #define BINDING_INDICES 9u
+#define BINDING_PROBE_RAYS 10u
+#define BINDING_PROBE_RESULTS 11u
 #define MISS_PRIMARY 0u
 #define MISS_SHADOW 1u
 #define MASK_OCCLUDER 1u
@@ -109,6 +111,18 @@ struct HitPayload {
 // 4 bytes, as twinray_shared::layout::ShadowPayload
 struct ShadowPayload {
     uint occluded; // offset 0
+};
+
+// 32 bytes, as twinray_shared::layout::ProbeRay
+struct ProbeRay {
+    vec4 origin; // offset 0
+    vec4 direction; // offset 16
+};
+
+// 32 bytes, as twinray_shared::layout::ProbeResult
+struct ProbeResult {
+    vec4 normal_t; // offset 0
+    uvec4 ids; // offset 16
 };
 
 #endif

@@ -4,6 +4,7 @@
 pub mod compare;
 pub mod error;
 pub mod output;
+pub mod probe;
 pub mod reference;
 pub mod render;
 pub mod report;

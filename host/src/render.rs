@@ -84,30 +84,37 @@ pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderO
     Ok(output)
 }
 
-fn render_and_release(
+/// What a trace needs, built for one scene, shader set and ray generation stage. The caller's
+/// extra buffers (hit ids, probe rays and results) must outlive it.
+pub(crate) struct Prepared {
+    pub one_shot: OneShot,
+    pub image: StorageImage,
+    pub pipeline: RtPipeline,
+    pub descriptors: DescriptorSet,
+    pub sbt: ShaderBindingTable,
+    _resources: SceneResources,
+}
+
+/// Uploads the scene and builds the pipeline (with ray generation stage `raygen`), its
+/// descriptors (the scene's buffers plus `extra`) and SBT; frame constants for `frame` pixels,
+/// output image of `image` pixels.
+pub(crate) fn prepare(
     ctx: &Arc<Context>,
     scene: &Scene,
     set: &ShaderSet,
-    opts: &RenderOptions,
-) -> Result<RenderOutput> {
-    check_size(opts.width, opts.height).map_err(Error::Input)?;
-    check_device_limits(ctx, opts)?;
+    raygen: &'static str,
+    (frame, image_size): ((u32, u32), (u32, u32)),
+    extra: &[(u32, &Buffer)],
+) -> Result<Prepared> {
     let one_shot = OneShot::new(ctx)?;
     let data = scene.build();
-    let resources = upload_scene(ctx, &one_shot, scene, &data, opts)?;
-    let image = StorageImage::new(ctx, opts.width, opts.height)?;
-    let pixels = u64::from(opts.width) * u64::from(opts.height);
-    let hit_ids = Buffer::new(
-        ctx,
-        "hit ids",
-        pixels * 8,
-        vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC,
-        MemoryLocation::GpuOnly,
-    )?;
-    let pipeline = RtPipeline::new(ctx, set, &data.plan)?;
+    let resources = upload_scene(ctx, &one_shot, scene, &data, frame)?;
+    let image = StorageImage::new(ctx, image_size.0, image_size.1)?;
+    let pipeline = RtPipeline::new(ctx, set, &data.plan, raygen)?;
+    let storage = vk::DescriptorType::STORAGE_BUFFER;
     let mut buffers: Vec<_> =
         resources.buffers.iter().map(|(binding, ty, buffer)| (*binding, buffer.raw, *ty)).collect();
-    buffers.push((b::BINDING_HIT_IDS, hit_ids.raw, vk::DescriptorType::STORAGE_BUFFER));
+    buffers.extend(extra.iter().map(|(binding, buffer)| (*binding, buffer.raw, storage)));
     let targets = DescriptorTargets {
         tlas: resources.tlas.raw,
         tlas_binding: b::BINDING_TLAS,
@@ -117,24 +124,53 @@ fn render_and_release(
     };
     let descriptors = DescriptorSet::new(ctx, pipeline.set_layout, &pool_sizes(), &targets)?;
     let sbt = ShaderBindingTable::new(ctx, pipeline.raw, pipeline.group_counts)?;
+    Ok(Prepared { one_shot, image, pipeline, descriptors, sbt, _resources: resources })
+}
+
+/// A device-local storage buffer of `size` bytes that can be copied out.
+pub(crate) fn storage_buffer(ctx: &Arc<Context>, name: &str, size: u64) -> Result<Buffer> {
+    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC;
+    Buffer::new(ctx, name, size, usage, MemoryLocation::GpuOnly)
+}
+
+fn render_and_release(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    opts: &RenderOptions,
+) -> Result<RenderOutput> {
+    check_size(opts.width, opts.height).map_err(Error::Input)?;
+    check_device_limits(ctx, opts)?;
+    let pixels = u64::from(opts.width) * u64::from(opts.height);
+    let hit_ids = storage_buffer(ctx, "hit ids", pixels * 8)?;
+    let unused = storage_buffer(ctx, "unused probe buffer", 64)?;
+    let extra = [(b::BINDING_HIT_IDS, &hit_ids), (b::BINDING_PROBE_RAYS, &unused), (b::BINDING_PROBE_RESULTS, &unused)];
+    let size = (opts.width, opts.height);
+    let p = prepare(ctx, scene, set, "raygen", (size, size), &extra)?;
     let timestamps = Timestamps::new(ctx, opts.runs)?;
     let readback_usage = vk::BufferUsageFlags::TRANSFER_DST;
     let image_readback = Buffer::new(ctx, "image readback", pixels * 4, readback_usage, MemoryLocation::GpuToCpu)?;
     let ids_readback = Buffer::new(ctx, "hit id readback", pixels * 8, readback_usage, MemoryLocation::GpuToCpu)?;
-    let trace =
-        Trace { pipeline: &pipeline, descriptors: &descriptors, sbt: &sbt, timestamps: timestamps.as_ref(), opts };
-    one_shot.run(|device, cmd| {
+    let trace = Trace {
+        pipeline: &p.pipeline,
+        descriptors: &p.descriptors,
+        sbt: &p.sbt,
+        timestamps: timestamps.as_ref(),
+        launch: size,
+        warmup: opts.warmup,
+        runs: opts.runs,
+    };
+    let image = &p.image;
+    p.one_shot.run(|device, cmd| {
         let rt = vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR;
-        let unused = (vk::ImageLayout::UNDEFINED, vk::PipelineStageFlags::TOP_OF_PIPE, vk::AccessFlags::empty());
-        let storage = (vk::ImageLayout::GENERAL, rt, vk::AccessFlags::SHADER_WRITE);
         let copy_src =
             (vk::ImageLayout::TRANSFER_SRC_OPTIMAL, vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ);
-        transition(device, cmd, image.raw, unused, storage);
+        transition(device, cmd, image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
         trace.record(ctx, cmd);
-        transition(device, cmd, image.raw, storage, copy_src);
+        transition(device, cmd, image.raw, STORAGE_IMAGE, copy_src);
         let written = (rt, vk::AccessFlags::SHADER_WRITE);
         memory_barrier(device, cmd, written, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));
-        copy_out(device, cmd, &image, &image_readback, &hit_ids, &ids_readback);
+        copy_out(device, cmd, image, &image_readback, &hit_ids, &ids_readback);
         let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
         memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
         Ok(())
@@ -156,6 +192,12 @@ fn render_and_release(
     })
 }
 
+/// The output image's layout before the first trace, and while traces write it.
+pub(crate) const UNUSED_IMAGE: (vk::ImageLayout, vk::PipelineStageFlags, vk::AccessFlags) =
+    (vk::ImageLayout::UNDEFINED, vk::PipelineStageFlags::TOP_OF_PIPE, vk::AccessFlags::empty());
+pub(crate) const STORAGE_IMAGE: (vk::ImageLayout, vk::PipelineStageFlags, vk::AccessFlags) =
+    (vk::ImageLayout::GENERAL, vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+
 fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {
     let info = &ctx.info;
     let invocations = u64::from(opts.width) * u64::from(opts.height);
@@ -175,7 +217,7 @@ fn upload_scene(
     one_shot: &OneShot,
     scene: &Scene,
     data: &SceneData,
-    opts: &RenderOptions,
+    (width, height): (u32, u32),
 ) -> Result<SceneResources> {
     // Meshes are read by the BLAS builds and by the triangle closest-hit stage.
     let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
@@ -211,7 +253,7 @@ fn upload_scene(
         })
         .collect();
     let tlas = build_tlas(ctx, one_shot, &instances)?;
-    let frame = scene.frame_uniform(opts.width, opts.height);
+    let frame = scene.frame_uniform(width, height);
     let storage = vk::DescriptorType::STORAGE_BUFFER;
     let buffers = vec![
         (b::BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER, upload(ctx, "frame", bytemuck::bytes_of(&frame))?),
@@ -239,17 +281,20 @@ fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUs
 }
 
 /// What one trace command needs.
-struct Trace<'a> {
-    pipeline: &'a RtPipeline,
-    descriptors: &'a DescriptorSet,
-    sbt: &'a ShaderBindingTable,
-    timestamps: Option<&'a Timestamps>,
-    opts: &'a RenderOptions,
+pub(crate) struct Trace<'a> {
+    pub pipeline: &'a RtPipeline,
+    pub descriptors: &'a DescriptorSet,
+    pub sbt: &'a ShaderBindingTable,
+    pub timestamps: Option<&'a Timestamps>,
+    /// Launch width and height.
+    pub launch: (u32, u32),
+    pub warmup: u32,
+    pub runs: u32,
 }
 
 impl Trace<'_> {
     /// Warm-up traces, then timed traces, each waiting for the previous one's writes.
-    fn record(&self, ctx: &Context, cmd: vk::CommandBuffer) {
+    pub fn record(&self, ctx: &Context, cmd: vk::CommandBuffer) {
         let device = &ctx.device;
         let bind = vk::PipelineBindPoint::RAY_TRACING_KHR;
         if let Some(t) = self.timestamps {
@@ -267,13 +312,13 @@ impl Trace<'_> {
                 &[],
             );
         }
-        let total = self.opts.warmup + self.opts.runs.max(1);
+        let total = self.warmup + self.runs.max(1);
         for i in 0..total {
             if i > 0 {
                 let rt = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
                 memory_barrier(device, cmd, rt, (rt.0, vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::SHADER_READ));
             }
-            let timed = i.checked_sub(self.opts.warmup).filter(|_| self.timestamps.is_some());
+            let timed = i.checked_sub(self.warmup).filter(|_| self.timestamps.is_some());
             if let (Some(t), Some(k)) = (self.timestamps, timed) {
                 t.begin(cmd, k);
             }
@@ -285,8 +330,8 @@ impl Trace<'_> {
                     &self.sbt.miss,
                     &self.sbt.hit,
                     &Default::default(),
-                    self.opts.width,
-                    self.opts.height,
+                    self.launch.0,
+                    self.launch.1,
                     1,
                 )
             };
@@ -298,7 +343,7 @@ impl Trace<'_> {
 }
 
 /// Layout transition of the output image, with the access and stage masks of both sides.
-fn transition(
+pub(crate) fn transition(
     device: &ash::Device,
     cmd: vk::CommandBuffer,
     image: vk::Image,

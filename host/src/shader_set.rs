@@ -26,6 +26,7 @@ macro_rules! embedded {
 fn embedded_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
     Some(match (language, name) {
         (Language::Rust, "raygen") => embedded!("rust", "raygen"),
+        (Language::Rust, "probe") => embedded!("rust", "probe"),
         (Language::Rust, "miss") => embedded!("rust", "miss"),
         (Language::Rust, "shadow_miss") => embedded!("rust", "shadow_miss"),
         (Language::Rust, "sphere_intersection") => embedded!("rust", "sphere_intersection"),
@@ -37,6 +38,7 @@ fn embedded_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
         (Language::Rust, "procedural_closest_hit") => embedded!("rust", "procedural_closest_hit"),
         (Language::Rust, "triangle_closest_hit") => embedded!("rust", "triangle_closest_hit"),
         (Language::Glsl, "raygen") => embedded!("glsl", "raygen"),
+        (Language::Glsl, "probe") => embedded!("glsl", "probe"),
         (Language::Glsl, "miss") => embedded!("glsl", "miss"),
         (Language::Glsl, "shadow_miss") => embedded!("glsl", "shadow_miss"),
         (Language::Glsl, "sphere_intersection") => embedded!("glsl", "sphere_intersection"),

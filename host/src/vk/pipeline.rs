@@ -24,7 +24,7 @@ pub struct RtPipeline {
 }
 
 /// (binding, type, stages) of every descriptor, from the shared binding numbers.
-pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 10] {
+pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags); 12] {
     use vk::DescriptorType as D;
     use vk::ShaderStageFlags as S;
     let hit = S::INTERSECTION_KHR | S::CLOSEST_HIT_KHR;
@@ -39,6 +39,8 @@ pub fn descriptor_bindings() -> [(u32, vk::DescriptorType, vk::ShaderStageFlags)
         (b::BINDING_HIT_IDS, D::STORAGE_BUFFER, S::RAYGEN_KHR),
         (b::BINDING_VERTICES, D::STORAGE_BUFFER, S::CLOSEST_HIT_KHR),
         (b::BINDING_INDICES, D::STORAGE_BUFFER, S::CLOSEST_HIT_KHR),
+        (b::BINDING_PROBE_RAYS, D::STORAGE_BUFFER, S::RAYGEN_KHR),
+        (b::BINDING_PROBE_RESULTS, D::STORAGE_BUFFER, S::RAYGEN_KHR),
     ]
 }
 
@@ -47,9 +49,10 @@ pub fn pool_sizes() -> Vec<vk::DescriptorPoolSize> {
     descriptor_bindings().iter().map(|&(_, ty, _)| vk::DescriptorPoolSize { ty, descriptor_count: 1 }).collect()
 }
 
-/// Module names of a plan's pipeline, each once, in stage order: raygen, misses, hit modules.
-pub fn plan_modules(plan: &PipelinePlan) -> Vec<&'static str> {
-    let mut names = vec!["raygen", "miss"];
+/// Module names of a plan's pipeline, each once, in stage order: the ray generation module
+/// `raygen` ("raygen" renders, "probe" probes), misses, hit modules.
+pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static str> {
+    let mut names = vec![raygen, "miss"];
     if plan.shadows {
         names.push("shadow_miss");
     }
@@ -68,7 +71,7 @@ pub fn plan_modules(plan: &PipelinePlan) -> Vec<&'static str> {
 }
 
 impl RtPipeline {
-    pub fn new(ctx: &Arc<Context>, set: &ShaderSet, plan: &PipelinePlan) -> Result<Self> {
+    pub fn new(ctx: &Arc<Context>, set: &ShaderSet, plan: &PipelinePlan, raygen: &'static str) -> Result<Self> {
         let bindings: Vec<_> = descriptor_bindings()
             .iter()
             .map(|&(binding, ty, stages)| {
@@ -83,7 +86,7 @@ impl RtPipeline {
         // SAFETY: valid create info; destroyed in Drop.
         let set_layout =
             unsafe { ctx.device.create_descriptor_set_layout(&info, None) }.call("vkCreateDescriptorSetLayout")?;
-        let names = plan_modules(plan);
+        let names = plan_modules(plan, raygen);
         let misses = if plan.shadows { 2 } else { 1 };
         let mut pipeline = RtPipeline {
             ctx: ctx.clone(),
@@ -165,7 +168,8 @@ fn create_pipeline(
             .intersection_shader(vk::SHADER_UNUSED_KHR)
     };
     // SBT order: raygen, miss (MISS_PRIMARY), shadow miss (MISS_SHADOW), then the hit groups.
-    let mut groups = vec![general(index("raygen")), general(index("miss"))];
+    let raygen = modules.iter().position(|m| m.spec.stage == Stage::Raygen).map_or(vk::SHADER_UNUSED_KHR, |i| i as u32);
+    let mut groups = vec![general(raygen), general(index("miss"))];
     if plan.shadows {
         groups.push(general(index("shadow_miss")));
     }

@@ -8,12 +8,15 @@ mod trace;
 
 use spirv_std::glam::{UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
-use spirv_std::ray_tracing::AccelerationStructure;
+use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
 use twinray_shared::bindings::{
-    HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS, NO_HIT,
+    HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS, MISS_PRIMARY,
+    NO_HIT,
 };
-use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload, Vertex};
+use twinray_shared::layout::{
+    FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
+};
 use twinray_shared::{boxes, camera, cone, cylinder, plane, random, shading, sphere, torus};
 
 /// M x M primary samples per pixel; shades each and writes the mean colour and the ids of what
@@ -67,6 +70,37 @@ pub fn raygen(
     let color = sum / (samples_per_side * samples_per_side) as f32;
     // SAFETY: launch_id lies inside the image, which the host sizes to the launch.
     unsafe { image.write(pixel, color.extend(1.0)) };
+}
+
+/// The probe: one ray per launch index from the ray buffer, traced through the same pipeline
+/// as renders (so it measures the very intersection and hit stages images use); writes what
+/// the closest-hit stage described, or NO_HIT.
+#[spirv(ray_generation)]
+pub fn probe(
+    #[spirv(launch_id)] launch_id: UVec3,
+    #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ProbeRay],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ProbeResult],
+    #[spirv(ray_payload)] payload: &mut HitPayload,
+) {
+    let i = launch_id.x as usize;
+    let ray = rays[i];
+    // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
+    unsafe {
+        tlas.trace_ray(
+            RayFlags::OPAQUE,
+            0xff,
+            0,
+            0,
+            MISS_PRIMARY as i32,
+            ray.origin.xyz(),
+            ray.origin.w,
+            ray.direction.xyz(),
+            ray.direction.w,
+            payload,
+        );
+    }
+    results[i] = ProbeResult { normal_t: payload.shading_normal.xyz().extend(payload.position.w), ids: payload.ids };
 }
 
 /// Primary rays that hit nothing see the background.

@@ -28,6 +28,11 @@ pub const BINDING_VERTICES: u32 = 8;
 /// `[u32]`, three per triangle, from each object's `index_base`, relative to `vertex_base`.
 pub const BINDING_INDICES: u32 = 9;
 
+/// `[ProbeRay]` read by the probe stage, one per launch index.
+pub const BINDING_PROBE_RAYS: u32 = 10;
+/// `[ProbeResult]` written by the probe stage.
+pub const BINDING_PROBE_RESULTS: u32 = 11;
+
 /// Miss shader indices in the shader binding table.
 pub const MISS_PRIMARY: u32 = 0;
 pub const MISS_SHADOW: u32 = 1;

@@ -63,8 +63,9 @@ pub struct ModuleSpec {
 
 /// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A pipeline
 /// uses only those its scene needs.
-pub const MODULES: [ModuleSpec; 11] = [
+pub const MODULES: [ModuleSpec; 12] = [
     ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl_source: "raygen.rgen" },
+    ModuleSpec { name: "probe", stage: Stage::Raygen, glsl_source: "probe.rgen" },
     ModuleSpec { name: "miss", stage: Stage::Miss, glsl_source: "miss.rmiss" },
     ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl_source: "shadow.rmiss" },
     ModuleSpec { name: "sphere_intersection", stage: Stage::Intersection, glsl_source: "sphere.rint" },
@@ -102,7 +103,7 @@ impl Language {
 }
 
 /// Every (descriptor set, binding) a module may declare: those of `crate::bindings`.
-pub const KNOWN_BINDINGS: [(u32, u32); 10] = [
+pub const KNOWN_BINDINGS: [(u32, u32); 12] = [
     (b::DESCRIPTOR_SET, b::BINDING_TLAS),
     (b::DESCRIPTOR_SET, b::BINDING_IMAGE),
     (b::DESCRIPTOR_SET, b::BINDING_FRAME),
@@ -113,6 +114,8 @@ pub const KNOWN_BINDINGS: [(u32, u32); 10] = [
     (b::DESCRIPTOR_SET, b::BINDING_HIT_IDS),
     (b::DESCRIPTOR_SET, b::BINDING_VERTICES),
     (b::DESCRIPTOR_SET, b::BINDING_INDICES),
+    (b::DESCRIPTOR_SET, b::BINDING_PROBE_RAYS),
+    (b::DESCRIPTOR_SET, b::BINDING_PROBE_RESULTS),
 ];
 
 impl ModuleSpec {

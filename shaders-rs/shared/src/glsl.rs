@@ -7,7 +7,9 @@
 
 use crate::bindings::*;
 use crate::boxes::GAMMA_3;
-use crate::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload, Vertex};
+use crate::layout::{
+    FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
+};
 use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
 use crate::plane::DISK;
 use crate::shading::CHECKER_DEPTH;
@@ -84,6 +86,8 @@ pub fn structs() -> Vec<GlslStruct> {
             ids: "uvec4",
         }),
         glsl_struct!(ShadowPayload { occluded: "uint" }),
+        glsl_struct!(ProbeRay { origin: "vec4", direction: "vec4" }),
+        glsl_struct!(ProbeResult { normal_t: "vec4", ids: "uvec4" }),
     ]
 }
 
@@ -137,6 +141,8 @@ pub fn layout_include() -> Result<String, String> {
         ("BINDING_HIT_IDS", BINDING_HIT_IDS),
         ("BINDING_VERTICES", BINDING_VERTICES),
         ("BINDING_INDICES", BINDING_INDICES),
+        ("BINDING_PROBE_RAYS", BINDING_PROBE_RAYS),
+        ("BINDING_PROBE_RESULTS", BINDING_PROBE_RESULTS),
         ("MISS_PRIMARY", MISS_PRIMARY),
         ("MISS_SHADOW", MISS_SHADOW),
         ("MASK_OCCLUDER", MASK_OCCLUDER),

@@ -129,3 +129,29 @@ pub struct HitPayload {
 pub struct ShadowPayload {
     pub occluded: u32,
 }
+
+/// One probe ray (`twinray probe`): origin and t_min, direction and t_max.
+#[repr(C)]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct ProbeRay {
+    /// xyz: world-space origin; w: t_min.
+    pub origin: Vec4,
+    /// xyz: world-space direction (any length); w: t_max.
+    pub direction: Vec4,
+}
+const _: () = assert!(core::mem::size_of::<ProbeRay>() == 32);
+
+/// What a probe ray hit, as the closest-hit stage described it.
+#[repr(C)]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct ProbeResult {
+    /// xyz: world-space shading normal facing the ray's origin; w: t.
+    pub normal_t: Vec4,
+    /// x: object, y: primitive, z: material kind, w: hit kind, or `NO_HIT` on a miss.
+    pub ids: UVec4,
+}
+const _: () = assert!(core::mem::size_of::<ProbeResult>() == 32);

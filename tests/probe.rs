@@ -1,0 +1,108 @@
+//! The probe end to end on lavapipe (validation on): rays across the silhouettes of a sphere
+//! and of a torus instance scaled by 2 go through the ordinary pipeline of each shader set,
+//! and every ray the f64 reference decides must agree in hit or miss, t and normal.
+
+use glam::{DVec3, Vec4};
+use twinray::probe::{probe, ProbeRay};
+use twinray::reference::{intersect, RefRay, RefShape, Verdict};
+use twinray::scene::{MeshFiles, Scene};
+use twinray_shared::bindings::NO_HIT;
+use twinray_tests::{set, validated_context};
+
+const SCENE: &str = r#"
+name = "probe-test"
+[image]
+width = 8
+height = 8
+[camera]
+eye = [0.0, 0.0, 10.0]
+target = [0.0, 0.0, 0.0]
+up = [0.0, 1.0, 0.0]
+fov_y_degrees = 45.0
+[materials.m]
+kind = "diffuse"
+color = [1.0, 1.0, 1.0]
+[shapes.ball]
+kind = "sphere"
+radius = 1.0
+[shapes.ring]
+kind = "torus"
+major_radius = 1.0
+minor_radius = 0.25
+[[objects]]
+shape = "ball"
+material = "m"
+[[objects]]
+shape = "ring"
+material = "m"
+translate = [6.0, 0.0, 0.0]
+rotate = [90.0, 0.0, 0.0]
+scale = 2.0
+[parity]
+max_rmse = 0.01
+pixel_threshold = 2
+max_pixels_over_threshold = 0.002
+max_hit_mismatches = 0.002
+"#;
+
+/// Rays from z = -20 towards +z across [x0 - w, x0 + w] x [-w, w].
+fn grid(x0: f32, w: f32, n: u32) -> Vec<ProbeRay> {
+    let mut rays = Vec::new();
+    for j in 0..n {
+        for i in 0..n {
+            let x = x0 - w + 2.0 * w * (i as f32 + 0.5) / n as f32;
+            let y = -w + 2.0 * w * (j as f32 + 0.5) / n as f32;
+            rays.push(ProbeRay { origin: Vec4::new(x, y, -20.0, 0.0), direction: Vec4::new(0.0, 0.0, 1.0, 100.0) });
+        }
+    }
+    rays
+}
+
+#[test]
+fn probe_agrees_with_the_f64_reference_in_both_sets() {
+    let scene = Scene::parse(SCENE, "probe-test", MeshFiles::Folder(".".into())).expect("scene");
+    let ctx = validated_context();
+    let sphere_rays = grid(0.0, 1.2, 40);
+    let torus_rays = grid(6.0, 3.0, 40);
+    let rays: Vec<ProbeRay> = sphere_rays.iter().chain(&torus_rays).copied().collect();
+    // Object 1 is the torus, rotated 90 degrees about x (its axis along z) and scaled by 2.
+    let to_torus = |p: DVec3| DVec3::new((p.x - 6.0) / 2.0, p.z / 2.0, -p.y / 2.0);
+    for set_text in ["rust", "glsl"] {
+        let out = probe(&ctx, &scene, &set(set_text), &rays, 0, 1).expect("probe");
+        let (mut decided, mut hits) = (0, 0);
+        for (k, (ray, result)) in rays.iter().zip(&out.results).enumerate() {
+            let o = ray.origin.truncate().as_dvec3();
+            let d = ray.direction.truncate().as_dvec3();
+            let torus = k >= sphere_rays.len();
+            let (shape, local) = if torus {
+                let origin = to_torus(o);
+                let direction = to_torus(o + d) - origin;
+                (RefShape::Torus { major: 1.0, minor: 0.25 }, RefRay { origin, direction, t_min: 0.0, t_max: 100.0 })
+            } else {
+                (
+                    RefShape::Sphere { center: DVec3::ZERO, radius: 1.0 },
+                    RefRay { origin: o, direction: d, t_min: 0.0, t_max: 100.0 },
+                )
+            };
+            let got_hit = result.ids.w != NO_HIT;
+            match intersect(&shape, &local) {
+                Verdict::Ambiguous => continue,
+                Verdict::Miss => assert!(!got_hit, "{set_text}: false hit on ray {k} {ray:?}"),
+                Verdict::Hit { t, .. } => {
+                    assert!(got_hit, "{set_text}: false miss on ray {k} {ray:?} (true t {t})");
+                    let rel = (f64::from(result.normal_t.w) - t).abs() / t;
+                    assert!(rel < 1e-5, "{set_text}: ray {k}: t {} vs {t} (relative {rel:.2e})", result.normal_t.w);
+                    assert_eq!(result.ids.x, u32::from(torus), "{set_text}: ray {k} hit the wrong object");
+                    let n = result.normal_t.truncate();
+                    assert!(
+                        (n.length() - 1.0).abs() < 1e-4 && n.z < 0.0,
+                        "{set_text}: ray {k}: normal {n} should face the ray"
+                    );
+                    hits += 1;
+                }
+            }
+            decided += 1;
+        }
+        assert!(decided > 3000 && hits > 1000, "{set_text}: only {decided} decided rays, {hits} hits");
+    }
+}
