@@ -106,3 +106,31 @@ fn probe_agrees_with_the_f64_reference_in_both_sets() {
         assert!(decided > 3000 && hits > 1000, "{set_text}: only {decided} decided rays, {hits} hits");
     }
 }
+
+/// Every case that ships in probes/, and the example of docs/probe-format.md (a case file
+/// written by someone else, in the documented format), run in both sets with no false hit,
+/// false miss or wrong object.
+#[test]
+fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
+    let root = twinray_tests::repo_root();
+    let doc = std::fs::read_to_string(root.join("docs/probe-format.md")).expect("docs/probe-format.md");
+    let start = doc.find("```toml\n").expect("an example") + "```toml\n".len();
+    let end = start + doc[start..].find("```").expect("the example's end");
+    let dir = tempfile::tempdir().unwrap();
+    let example = dir.path().join("example.toml");
+    std::fs::write(&example, &doc[start..end]).unwrap();
+    let mut cases: Vec<_> = std::fs::read_dir(root.join("probes")).unwrap().map(|e| e.unwrap().path()).collect();
+    cases.sort();
+    cases.push(example);
+    let ctx = validated_context();
+    for path in cases {
+        let case = twinray::probe_case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        for set_text in ["rust", "glsl"] {
+            let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+            let r = twinray::probe_report::evaluate(&case, &out.results, set_text, "test", None);
+            eprintln!("{}", r.summary());
+            assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{} with {set_text}", path.display());
+            assert!(r.decided > 0, "{}: nothing decided", path.display());
+        }
+    }
+}

@@ -1,7 +1,7 @@
 //! The bodies of `twinray info`, `render` and `compare`: every input is checked before any
 //! GPU work, and files are written only once everything has succeeded.
 
-use crate::{CompareArgs, FrameArgs, GlobalArgs, RenderArgs};
+use crate::{CompareArgs, FrameArgs, GlobalArgs, ProbeArgs, RenderArgs};
 use anyhow::{Context as _, Result};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -156,4 +156,19 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
         println!("  diff.png: {}", twinray::compare::DIFF_LEGEND);
     }
     Ok(if report.pass { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
+    let case = twinray::probe_case::ProbeCase::load(&args.case)?;
+    let ctx = context(global)?;
+    let out = twinray::probe::probe(&ctx, &case.scene, &args.shaders, &case.rays, args.warmup, args.runs)?;
+    let median = twinray::stats::median(&out.gpu_ms);
+    let report =
+        twinray::probe_report::evaluate(&case, &out.results, &args.shaders.to_string(), &ctx.info.name, median);
+    if args.json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        print!("{}", report.summary());
+    }
+    Ok(ExitCode::SUCCESS)
 }

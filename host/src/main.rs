@@ -52,6 +52,8 @@ enum Command {
     Render(RenderArgs),
     /// Render a scene with two shader sets and report how they differ in image and GPU time.
     Compare(CompareArgs),
+    /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
+    Probe(ProbeArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -105,6 +107,24 @@ pub struct CompareArgs {
     frame: FrameArgs,
 }
 
+#[derive(Args)]
+pub struct ProbeArgs {
+    /// Probe case file (TOML; see docs/probe-format.md).
+    case: PathBuf,
+    /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
+    #[arg(long, default_value = "rust")]
+    shaders: ShaderSet,
+    /// Timed passes over all the rays; the median is reported.
+    #[arg(long, default_value_t = 10)]
+    runs: u32,
+    /// Untimed passes before the timed ones.
+    #[arg(long, default_value_t = 2)]
+    warmup: u32,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -131,6 +151,7 @@ fn main() -> ExitCode {
         Command::Scenes { json } => commands::scenes(json),
         Command::Render(args) => commands::render(&cli.global, args),
         Command::Compare(args) => commands::compare(&cli.global, args),
+        Command::Probe(args) => commands::probe(&cli.global, args),
     };
     match result {
         Ok(code) => code,

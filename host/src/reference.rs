@@ -101,6 +101,21 @@ pub fn intersect(shape: &RefShape, ray: &RefRay) -> Verdict {
     }
 }
 
+/// Radius of a sphere about the object's origin that holds the shape.
+pub fn bounding_radius(shape: &RefShape) -> f64 {
+    match *shape {
+        RefShape::Sphere { center, radius } => center.length() + radius,
+        RefShape::Rectangle { half_x, half_z } => half_x.hypot(half_z),
+        RefShape::Disk { radius } => radius,
+        RefShape::Box { half } => half.length(),
+        RefShape::Cylinder { radius, half_height } | RefShape::Cone { radius, half_height } => {
+            radius.hypot(half_height)
+        }
+        RefShape::Torus { major, minor } => major + minor,
+        RefShape::Triangle { p } => p.iter().map(|v| v.length()).fold(0.0, f64::max),
+    }
+}
+
 /// Roots of a t^2 + 2 half_b t + c (stable form), with `tangent` when the discriminant
 /// is within noise of zero.
 fn quadratic(a: f64, half_b: f64, c: f64, discriminant: f64) -> Vec<f64> {

@@ -28,6 +28,7 @@ fn assert_bad_input(args: &[&str], needles: &[&str]) {
 fn missing_scene_file() {
     assert_bad_input(&["render", "no/such/scene.toml", "--out", "x.png"], &["no/such/scene.toml", "no such file"]);
     assert_bad_input(&["compare", "nosuchscene"], &["nosuchscene", "built-ins: spheres"]);
+    assert_bad_input(&["probe", "no/such/case.toml"], &["no/such/case.toml", "cannot read"]);
 }
 
 #[test]
@@ -110,7 +111,15 @@ fn unwritable_output() {
 #[test]
 fn help_documents_every_command() {
     let dir = tempfile::tempdir().unwrap();
-    for args in [&["--help"][..], &["info", "--help"], &["render", "--help"], &["compare", "--help"]] {
+    let commands = [
+        &["--help"][..],
+        &["info", "--help"],
+        &["scenes", "--help"],
+        &["render", "--help"],
+        &["compare", "--help"],
+        &["probe", "--help"],
+    ];
+    for args in commands {
         let out = twinray(args, dir.path());
         assert!(out.status.success(), "{args:?}");
         assert!(String::from_utf8_lossy(&out.stdout).contains("Usage:"), "{args:?}");

@@ -1,0 +1,120 @@
+//! The f64 reference for a whole scene: every object's shape in its own space, reached
+//! through the inverse of its transform in f64; the first hit over all objects. A ray is
+//! ambiguous when any object's answer is, or when two objects' hits are within float noise
+//! of each other (which one is first is then rounding).
+
+use crate::reference::{intersect, RefRay, RefShape, Verdict};
+use crate::scene::{BlasDesc, HitGroup, Scene, SceneData};
+use glam::{DMat4, DVec3, Vec4Swizzles};
+use twinray_shared::plane::DISK;
+
+/// One object: its shapes in object space and the transforms to and from it.
+pub struct RefObject {
+    pub shapes: Vec<RefShape>,
+    pub world_to_object: DMat4,
+    pub object_to_world: DMat4,
+}
+
+/// The first hit over all objects, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SceneVerdict {
+    Miss,
+    /// `normal`: world-space unit normal facing the ray's origin.
+    Hit {
+        object: usize,
+        t: f64,
+        normal: DVec3,
+    },
+    Ambiguous,
+}
+
+pub struct SceneReference {
+    pub objects: Vec<RefObject>,
+}
+
+impl SceneReference {
+    pub fn new(scene: &Scene) -> SceneReference {
+        let data = scene.build();
+        let objects = data
+            .instances
+            .iter()
+            .map(|instance| {
+                let object_to_world = instance.object_to_world.as_dmat4();
+                let group = data.plan.hit_groups[instance.hit_group as usize];
+                RefObject {
+                    shapes: shapes(&data, group, instance.blas, instance.custom_index),
+                    world_to_object: object_to_world.inverse(),
+                    object_to_world,
+                }
+            })
+            .collect();
+        SceneReference { objects }
+    }
+
+    /// The true answer for a world-space ray.
+    pub fn trace(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> SceneVerdict {
+        let mut hits: Vec<(usize, f64, DVec3)> = Vec::new();
+        for (i, object) in self.objects.iter().enumerate() {
+            let ray = RefRay {
+                origin: object.world_to_object.transform_point3(origin),
+                direction: object.world_to_object.transform_vector3(direction),
+                t_min,
+                t_max,
+            };
+            for shape in &object.shapes {
+                match intersect(shape, &ray) {
+                    Verdict::Ambiguous => return SceneVerdict::Ambiguous,
+                    Verdict::Miss => {}
+                    Verdict::Hit { t, normal } => {
+                        // Normals go to world space by the inverse transpose.
+                        let world = object.world_to_object.transpose().transform_vector3(normal).normalize();
+                        let facing = if world.dot(direction) > 0.0 { -world } else { world };
+                        hits.push((i, t, facing));
+                    }
+                }
+            }
+        }
+        hits.sort_by(|a, b| a.1.total_cmp(&b.1));
+        match hits.as_slice() {
+            [] => SceneVerdict::Miss,
+            [(object, t, normal), rest @ ..] => {
+                let scale = origin.abs().max_element().max((origin + direction * *t).abs().max_element());
+                let noise = crate::reference::AMBIGUOUS_ULPS * scale / 16_777_216.0 / direction.length();
+                match rest.first() {
+                    Some((other, t2, _)) if other != object && t2 - t <= noise => SceneVerdict::Ambiguous,
+                    _ => SceneVerdict::Hit { object: *object, t: *t, normal: *normal },
+                }
+            }
+        }
+    }
+}
+
+/// The reference shapes of one instance: its BLAS's primitives, read as its hit group reads them.
+fn shapes(data: &SceneData, group: HitGroup, blas: usize, primitive_base: u32) -> Vec<RefShape> {
+    match &data.blases[blas] {
+        BlasDesc::Triangles { vertex_base, index_base, index_count, .. } => {
+            let vertex = |i: u32| data.vertices[(*vertex_base + i) as usize].position.xyz().as_dvec3();
+            let indices = &data.indices[*index_base as usize..(*index_base + *index_count) as usize];
+            indices
+                .chunks_exact(3)
+                .map(|t| RefShape::Triangle { p: [vertex(t[0]), vertex(t[1]), vertex(t[2])] })
+                .collect()
+        }
+        BlasDesc::Aabbs(boxes) => (0..boxes.len())
+            .filter_map(|k| {
+                let p = data.primitives[primitive_base as usize + k];
+                let a = p.a.as_dvec4();
+                Some(match group {
+                    HitGroup::Sphere => RefShape::Sphere { center: a.truncate(), radius: a.w },
+                    HitGroup::Plane if p.b.x == DISK => RefShape::Disk { radius: a.x },
+                    HitGroup::Plane => RefShape::Rectangle { half_x: a.x, half_z: a.y },
+                    HitGroup::Box => RefShape::Box { half: a.truncate() },
+                    HitGroup::Cylinder => RefShape::Cylinder { radius: a.x, half_height: a.y },
+                    HitGroup::Cone => RefShape::Cone { radius: a.x, half_height: a.y },
+                    HitGroup::Torus => RefShape::Torus { major: a.x, minor: a.y },
+                    HitGroup::Triangles => return None, // triangles never come as boxes
+                })
+            })
+            .collect(),
+    }
+}
