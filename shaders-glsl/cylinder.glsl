@@ -51,4 +51,32 @@ bool cylinder_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float 
     }
     return found;
 }
+
+// Twin of cylinder::naive_intersect: the textbook discriminant k1^2 - k2 k0, no self-root
+// rejection; kept on purpose (it cancels far from the axis).
+bool cylinder_naive_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
+    float r = primitive.a.x;
+    float half_height = primitive.a.y;
+    bool found = false;
+    t = 0.0;
+    n = vec3(0.0);
+    float a = d.x * d.x + d.z * d.z;
+    if (a > 0.0) {
+        float half_b = o.x * d.x + o.z * d.z;
+        float c = o.x * o.x + o.z * o.z - r * r;
+        float discriminant = half_b * half_b - a * c;
+        if (discriminant >= 0.0) {
+            float root = sqrt(discriminant);
+            float r0 = (-half_b - root) / a;
+            float r1 = (-half_b + root) / a;
+            cylinder_side(found, t, n, o, d, r, half_height, true, r0, true, r1, false, t_min, t_max);
+            cylinder_side(found, t, n, o, d, r, half_height, true, r1, true, r0, false, t_min, t_max);
+        }
+    }
+    if (d.y != 0.0) {
+        cylinder_cap(found, t, n, o, d, r, half_height, t_min, t_max);
+        cylinder_cap(found, t, n, o, d, r, -half_height, t_min, t_max);
+    }
+    return found;
+}
 #endif

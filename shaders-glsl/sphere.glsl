@@ -54,4 +54,28 @@ bool sphere_hit(vec3 origin, vec3 direction, Primitive primitive, float t_min, f
     n = (origin + direction * t - s.xyz) / s.w;
     return true;
 }
+
+// Twin of sphere::naive_hit: the textbook form, kept on purpose (it cancels for distant spheres).
+bool sphere_naive_hit(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
+                      out vec3 n) {
+    vec4 s = primitive.a;
+    vec3 oc = origin - s.xyz;
+    float a = dot(direction, direction);
+    float half_b = dot(oc, direction);
+    float c = dot(oc, oc) - s.w * s.w;
+    float discriminant = half_b * half_b - a * c;
+    t = 0.0;
+    n = vec3(0.0);
+    if (discriminant < 0.0) {
+        return false;
+    }
+    float root = sqrt(discriminant);
+    float near = (-half_b - root) / a;
+    t = near >= t_min ? near : (-half_b + root) / a;
+    if (!(t >= t_min && t <= t_max)) {
+        return false;
+    }
+    n = (origin + direction * t - s.xyz) / s.w;
+    return true;
+}
 #endif

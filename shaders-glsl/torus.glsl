@@ -150,4 +150,36 @@ bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_m
     }
     return found;
 }
+
+// Twin of torus::naive_intersect: the quartic from the ray's own origin, no shift onto the
+// bounding sphere, no polish, no self-root rejection; kept on purpose.
+bool torus_naive_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
+                           out vec3 n) {
+    float big_r = primitive.a.x;
+    float r = primitive.a.y / big_r;
+    float len = length(direction);
+    vec3 d = direction / len;
+    vec3 o = origin / big_r;
+    float to_t = big_r / len;
+    t = 0.0;
+    n = vec3(0.0);
+    bool valid[4];
+    float roots[4];
+    torus_quartic_roots(o, d, r, valid, roots);
+    bool found = false;
+    for (int i = 0; i < 4; i++) {
+        if (!valid[i]) {
+            continue;
+        }
+        float ti = roots[i] * to_t;
+        float limit = found ? t : t_max;
+        if (ti >= t_min && ti <= limit) {
+            vec3 p = o + d * roots[i];
+            found = true;
+            t = ti;
+            n = p - normalize(vec3(p.x, 0.0, p.z));
+        }
+    }
+    return found;
+}
 #endif

@@ -134,3 +134,24 @@ fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
         }
     }
 }
+
+/// The textbook variants kept on purpose fail where NUMERICS.md says they do, in both sets,
+/// while the robust forms do not: the sphere 1e4 away gets false hits and a relative t error
+/// above 1e-5 with the naive discriminant.
+#[test]
+fn naive_sphere_fails_where_the_robust_one_holds() {
+    let path = twinray_tests::repo_root().join("probes/far-sphere.toml");
+    let ctx = validated_context();
+    for set_text in ["rust", "glsl"] {
+        let mut case = twinray::probe_case::ProbeCase::load(&path).expect("case");
+        let robust = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+        let robust = twinray::probe_report::evaluate(&case, &robust.results, set_text, "test", None);
+        case.set_formula(twinray::scene::file::Formula::Naive);
+        let naive = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+        let naive = twinray::probe_report::evaluate(&case, &naive.results, set_text, "test", None);
+        assert_eq!(robust.false_hits + robust.false_misses, 0, "{set_text} robust");
+        assert!(robust.relative_t_error.p99 < 1e-6, "{set_text} robust p99 {}", robust.relative_t_error.p99);
+        assert!(naive.false_hits + naive.false_misses > 50, "{set_text} naive: {}", naive.summary());
+        assert!(naive.relative_t_error.p99 > 1e-5, "{set_text} naive p99 {}", naive.relative_t_error.p99);
+    }
+}

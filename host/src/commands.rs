@@ -9,6 +9,7 @@ use twinray::compare::hit_count;
 use twinray::output::{check_png_target, write_png};
 use twinray::render::check_size;
 use twinray::report::compare_sets;
+use twinray::scene::file::Formula;
 use twinray::{Context, ContextOptions, Error, RenderOptions, Scene, Validation};
 
 fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
@@ -159,12 +160,19 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
 }
 
 pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
-    let case = twinray::probe_case::ProbeCase::load(&args.case)?;
+    let mut case = twinray::probe_case::ProbeCase::load(&args.case)?;
+    if let Some(formula) = args.formula.as_deref() {
+        let formula = if formula == "naive" { Formula::Naive } else { Formula::Robust };
+        case.set_formula(formula);
+    }
     let ctx = context(global)?;
     let out = twinray::probe::probe(&ctx, &case.scene, &args.shaders, &case.rays, args.warmup, args.runs)?;
     let median = twinray::stats::median(&out.gpu_ms);
-    let report =
-        twinray::probe_report::evaluate(&case, &out.results, &args.shaders.to_string(), &ctx.info.name, median);
+    let label = match args.formula.as_deref() {
+        Some(formula) => format!("{} ({formula})", args.shaders),
+        None => args.shaders.to_string(),
+    };
+    let report = twinray::probe_report::evaluate(&case, &out.results, &label, &ctx.info.name, median);
     if args.json {
         println!("{}", serde_json::to_string(&report)?);
     } else {

@@ -114,6 +114,10 @@ pub struct ProbeArgs {
     /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
     #[arg(long, default_value = "rust")]
     shaders: ShaderSet,
+    /// Intersection formula for every shape that has both: robust, or naive (the textbook
+    /// forms kept on purpose) [default: as the scene says].
+    #[arg(long, value_parser = ["robust", "naive"])]
+    formula: Option<String>,
     /// Timed passes over all the rays; the median is reported.
     #[arg(long, default_value_t = 10)]
     runs: u32,

@@ -133,6 +133,15 @@ impl ProbeCase {
     }
 }
 
+impl ProbeCase {
+    /// Uses `formula` for every shape that has both (the rays and the reference stay the same).
+    pub fn set_formula(&mut self, formula: crate::scene::file::Formula) {
+        for shape in self.scene.file.shapes.values_mut() {
+            shape.set_formula(formula);
+        }
+    }
+}
+
 fn ray(origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> ProbeRay {
     ProbeRay { origin: origin.extend(t_min), direction: direction.extend(t_max) }
 }

@@ -105,13 +105,15 @@ fn shapes(data: &SceneData, group: HitGroup, blas: usize, primitive_base: u32) -
                 let p = data.primitives[primitive_base as usize + k];
                 let a = p.a.as_dvec4();
                 Some(match group {
-                    HitGroup::Sphere => RefShape::Sphere { center: a.truncate(), radius: a.w },
+                    HitGroup::Sphere | HitGroup::SphereNaive => RefShape::Sphere { center: a.truncate(), radius: a.w },
                     HitGroup::Plane if p.b.x == DISK => RefShape::Disk { radius: a.x },
                     HitGroup::Plane => RefShape::Rectangle { half_x: a.x, half_z: a.y },
                     HitGroup::Box => RefShape::Box { half: a.truncate() },
-                    HitGroup::Cylinder => RefShape::Cylinder { radius: a.x, half_height: a.y },
+                    HitGroup::Cylinder | HitGroup::CylinderNaive => {
+                        RefShape::Cylinder { radius: a.x, half_height: a.y }
+                    }
                     HitGroup::Cone => RefShape::Cone { radius: a.x, half_height: a.y },
-                    HitGroup::Torus => RefShape::Torus { major: a.x, minor: a.y },
+                    HitGroup::Torus | HitGroup::TorusNaive => RefShape::Torus { major: a.x, minor: a.y },
                     HitGroup::Triangles => return None, // triangles never come as boxes
                 })
             })

@@ -2,7 +2,7 @@
 //! one TLAS instance per object, and the pipeline plan — only the hit groups, miss shaders and
 //! specialisation the scene uses.
 
-use super::file::{LightDesc, MaterialDesc, SceneFile, ShapeDesc};
+use super::file::{Formula, LightDesc, MaterialDesc, SceneFile, ShapeDesc};
 use super::mesh::MeshData;
 use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
@@ -20,6 +20,9 @@ pub enum HitGroup {
     Cylinder,
     Cone,
     Torus,
+    SphereNaive,
+    CylinderNaive,
+    TorusNaive,
 }
 
 impl HitGroup {
@@ -32,6 +35,9 @@ impl HitGroup {
             HitGroup::Cylinder => "cylinder",
             HitGroup::Cone => "cone",
             HitGroup::Torus => "torus",
+            HitGroup::SphereNaive => "sphere (naive)",
+            HitGroup::CylinderNaive => "cylinder (naive)",
+            HitGroup::TorusNaive => "torus (naive)",
         }
     }
 
@@ -45,6 +51,9 @@ impl HitGroup {
             HitGroup::Cylinder => Some("cylinder_intersection"),
             HitGroup::Cone => Some("cone_intersection"),
             HitGroup::Torus => Some("torus_intersection"),
+            HitGroup::SphereNaive => Some("sphere_naive_intersection"),
+            HitGroup::CylinderNaive => Some("cylinder_naive_intersection"),
+            HitGroup::TorusNaive => Some("torus_naive_intersection"),
         }
     }
 
@@ -56,7 +65,10 @@ impl HitGroup {
             | HitGroup::Box
             | HitGroup::Cylinder
             | HitGroup::Cone
-            | HitGroup::Torus => "procedural_closest_hit",
+            | HitGroup::Torus
+            | HitGroup::SphereNaive
+            | HitGroup::CylinderNaive
+            | HitGroup::TorusNaive => "procedural_closest_hit",
         }
     }
 }
@@ -223,6 +235,11 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
 
 fn hit_group(shape: &ShapeDesc) -> HitGroup {
     match shape {
+        ShapeDesc::Sphere { formula: Formula::Naive, .. } | ShapeDesc::SphereField { formula: Formula::Naive, .. } => {
+            HitGroup::SphereNaive
+        }
+        ShapeDesc::Cylinder { formula: Formula::Naive, .. } => HitGroup::CylinderNaive,
+        ShapeDesc::Torus { formula: Formula::Naive, .. } => HitGroup::TorusNaive,
         ShapeDesc::Sphere { .. } | ShapeDesc::SphereField { .. } => HitGroup::Sphere,
         ShapeDesc::Rectangle { .. } | ShapeDesc::Disk { .. } => HitGroup::Plane,
         ShapeDesc::Box { .. } => HitGroup::Box,
@@ -263,22 +280,22 @@ fn plane(a: Vec4, disk: f32) -> (Vec<Primitive>, Vec<Aabb>) {
 /// The primitives of a shape and their boxes, in object space.
 fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
     match *shape {
-        ShapeDesc::Sphere { radius } => {
+        ShapeDesc::Sphere { radius, .. } => {
             let (p, b) = sphere(Vec3::ZERO, radius, Vec3::ONE);
             (vec![p], vec![b])
         }
         ShapeDesc::Rectangle { size } => plane(Vec4::new(size[0] / 2.0, size[1] / 2.0, 0.0, 0.0), 0.0),
         ShapeDesc::Disk { radius } => plane(Vec4::new(radius, radius, 0.0, 0.0), DISK),
         ShapeDesc::Box { size } => single(Vec3::from(size) / 2.0, Vec3::from(size) / 2.0),
-        ShapeDesc::Cylinder { radius, height } | ShapeDesc::Cone { radius, height } => {
+        ShapeDesc::Cylinder { radius, height, .. } | ShapeDesc::Cone { radius, height } => {
             single(Vec3::new(radius, height / 2.0, 0.0), Vec3::new(radius, height / 2.0, radius))
         }
-        ShapeDesc::Torus { major_radius, minor_radius } => {
+        ShapeDesc::Torus { major_radius, minor_radius, .. } => {
             let outer = major_radius + minor_radius;
             single(Vec3::new(major_radius, minor_radius, 0.0), Vec3::new(outer, minor_radius, outer))
         }
         ShapeDesc::Mesh { .. } => (Vec::new(), Vec::new()),
-        ShapeDesc::SphereField { count, seed, center_min, center_max, radius_min, radius_max } => {
+        ShapeDesc::SphereField { count, seed, center_min, center_max, radius_min, radius_max, .. } => {
             let mut rng = SplitMix64(seed);
             let (lo, hi) = (Vec3::from(center_min), Vec3::from(center_max));
             (0..count)

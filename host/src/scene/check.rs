@@ -145,7 +145,7 @@ fn check_light(light: &LightDesc) -> Checked {
 
 fn check_shape(shape: &ShapeDesc) -> Checked {
     match shape {
-        ShapeDesc::Sphere { radius } | ShapeDesc::Disk { radius } => positive("radius", *radius),
+        ShapeDesc::Sphere { radius, .. } | ShapeDesc::Disk { radius } => positive("radius", *radius),
         ShapeDesc::Rectangle { size } => {
             positive("size[0]", size[0])?;
             positive("size[1]", size[1])
@@ -155,7 +155,7 @@ fn check_shape(shape: &ShapeDesc) -> Checked {
             positive("size[1]", size[1])?;
             positive("size[2]", size[2])
         }
-        ShapeDesc::Cylinder { radius, height } | ShapeDesc::Cone { radius, height } => {
+        ShapeDesc::Cylinder { radius, height, .. } | ShapeDesc::Cone { radius, height } => {
             positive("radius", *radius)?;
             positive("height", *height)
         }
@@ -163,7 +163,7 @@ fn check_shape(shape: &ShapeDesc) -> Checked {
             (Some(_), None) | (None, Some(_)) => Ok(()),
             _ => Err("a mesh needs exactly one of builtin and file".into()),
         },
-        ShapeDesc::Torus { major_radius, minor_radius } => {
+        ShapeDesc::Torus { major_radius, minor_radius, .. } => {
             positive("major_radius", *major_radius)?;
             positive("minor_radius", *minor_radius)?;
             if minor_radius >= major_radius {

@@ -129,7 +129,11 @@ pub enum LightDesc {
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum ShapeDesc {
     /// A sphere centred at the object's origin.
-    Sphere { radius: f32 },
+    Sphere {
+        radius: f32,
+        #[serde(default)]
+        formula: Formula,
+    },
     /// A rectangle in the object's xz plane, centred at its origin, facing +y: `size` is its
     /// extent along x and z.
     Rectangle { size: [f32; 2] },
@@ -138,13 +142,23 @@ pub enum ShapeDesc {
     /// An axis-aligned box centred at the object's origin; `size` is its extent along x, y, z.
     Box { size: [f32; 3] },
     /// A capped cylinder about the object's y axis, centred at its origin.
-    Cylinder { radius: f32, height: f32 },
+    Cylinder {
+        radius: f32,
+        height: f32,
+        #[serde(default)]
+        formula: Formula,
+    },
     /// A capped cone about the object's y axis, centred at its origin: base of `radius` at
     /// y = -height/2, apex at y = +height/2.
     Cone { radius: f32, height: f32 },
     /// A torus about the object's y axis, centred at its origin: `major_radius` from the axis
     /// to the tube's centre, `minor_radius` of the tube.
-    Torus { major_radius: f32, minor_radius: f32 },
+    Torus {
+        major_radius: f32,
+        minor_radius: f32,
+        #[serde(default)]
+        formula: Formula,
+    },
     /// A triangle mesh: a generated one (`builtin`) or an OBJ file (`file`, relative to the
     /// scene file's folder), with flat or smooth normals.
     Mesh {
@@ -155,7 +169,16 @@ pub enum ShapeDesc {
     },
     /// `count` spheres with centres uniform in the box and radii uniform in the range, each
     /// with its own colour (which tints the material), placed by SplitMix64 from `seed`.
-    SphereField { count: u32, seed: u64, center_min: [f32; 3], center_max: [f32; 3], radius_min: f32, radius_max: f32 },
+    SphereField {
+        count: u32,
+        seed: u64,
+        center_min: [f32; 3],
+        center_max: [f32; 3],
+        radius_min: f32,
+        radius_max: f32,
+        #[serde(default)]
+        formula: Formula,
+    },
 }
 
 #[derive(Clone, Debug, Deserialize)]
@@ -245,6 +268,30 @@ pub struct Parity {
     pub pixel_threshold: u8,
     pub max_pixels_over_threshold: f64,
     pub max_hit_mismatches: f64,
+}
+
+/// Which intersection formula a shape uses: the robust one, or the textbook one it replaced,
+/// kept on purpose so that probes can show what robustness buys and costs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Formula {
+    #[default]
+    Robust,
+    Naive,
+}
+
+impl ShapeDesc {
+    /// Sets the formula of a shape that has a naive variant (sphere, sphere field, cylinder,
+    /// torus); other shapes are left as they are.
+    pub fn set_formula(&mut self, to: Formula) {
+        match self {
+            ShapeDesc::Sphere { formula, .. }
+            | ShapeDesc::SphereField { formula, .. }
+            | ShapeDesc::Cylinder { formula, .. }
+            | ShapeDesc::Torus { formula, .. } => *formula = to,
+            _ => {}
+        }
+    }
 }
 
 /// Meshes twinray generates, each fitting the unit cube about the origin.

@@ -153,6 +153,10 @@ procedural_intersection!(box_intersection, boxes::intersect, HIT_KIND_BOX);
 procedural_intersection!(cylinder_intersection, cylinder::intersect, HIT_KIND_CYLINDER);
 procedural_intersection!(cone_intersection, cone::intersect, HIT_KIND_CONE);
 procedural_intersection!(torus_intersection, torus::intersect, HIT_KIND_TORUS);
+// Textbook variants, kept on purpose to show what the robust forms buy (issue 4).
+procedural_intersection!(sphere_naive_intersection, sphere::naive_hit, HIT_KIND_SPHERE);
+procedural_intersection!(cylinder_naive_intersection, cylinder::naive_intersect, HIT_KIND_CYLINDER);
+procedural_intersection!(torus_naive_intersection, torus::naive_intersect, HIT_KIND_TORUS);
 
 /// Every procedural shape: the surface from the reported object-space normal.
 #[spirv(closest_hit)]

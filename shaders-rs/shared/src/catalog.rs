@@ -63,7 +63,7 @@ pub struct ModuleSpec {
 
 /// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A pipeline
 /// uses only those its scene needs.
-pub const MODULES: [ModuleSpec; 12] = [
+pub const MODULES: [ModuleSpec; 15] = [
     ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl_source: "raygen.rgen" },
     ModuleSpec { name: "probe", stage: Stage::Raygen, glsl_source: "probe.rgen" },
     ModuleSpec { name: "miss", stage: Stage::Miss, glsl_source: "miss.rmiss" },
@@ -74,6 +74,9 @@ pub const MODULES: [ModuleSpec; 12] = [
     ModuleSpec { name: "cylinder_intersection", stage: Stage::Intersection, glsl_source: "cylinder.rint" },
     ModuleSpec { name: "cone_intersection", stage: Stage::Intersection, glsl_source: "cone.rint" },
     ModuleSpec { name: "torus_intersection", stage: Stage::Intersection, glsl_source: "torus.rint" },
+    ModuleSpec { name: "sphere_naive_intersection", stage: Stage::Intersection, glsl_source: "sphere_naive.rint" },
+    ModuleSpec { name: "cylinder_naive_intersection", stage: Stage::Intersection, glsl_source: "cylinder_naive.rint" },
+    ModuleSpec { name: "torus_naive_intersection", stage: Stage::Intersection, glsl_source: "torus_naive.rint" },
     ModuleSpec { name: "procedural_closest_hit", stage: Stage::ClosestHit, glsl_source: "procedural.rchit" },
     ModuleSpec { name: "triangle_closest_hit", stage: Stage::ClosestHit, glsl_source: "triangle.rchit" },
 ];
