@@ -78,9 +78,15 @@ pub enum Generator {
 pub struct ProbeCase {
     pub file: ProbeFile,
     pub scene: Scene,
+    /// The rays traced: `robust_rays` or `naive_rays`, by the formula in use.
     pub rays: Vec<ProbeRay>,
     pub reference: SceneReference,
+    robust_rays: Vec<ProbeRay>,
+    naive_rays: Vec<ProbeRay>,
 }
+
+/// t_min of the textbook shadow ray: a fixed epsilon, from an origin on the surface.
+pub const NAIVE_SHADOW_EPSILON: f32 = 1.0e-3;
 
 /// Defaults that an inline scene may leave out: a probe needs no camera, image or parity.
 const INLINE_DEFAULTS: &str = r#"
@@ -120,25 +126,40 @@ impl ProbeCase {
             }
         };
         let reference = SceneReference::new(&scene);
-        let mut rays: Vec<ProbeRay> =
+        let explicit: Vec<ProbeRay> =
             file.rays.iter().map(|r| ray(r.origin.into(), r.direction.into(), r.t_min, r.t_max)).collect();
+        let (mut robust_rays, mut naive_rays) = (explicit.clone(), explicit);
         for (i, generator) in file.generators.iter().enumerate() {
             let generated = generate(generator, &reference).map_err(|e| case_error(format!("generators[{i}]: {e}")))?;
-            rays.extend(generated);
+            robust_rays.extend(generated.iter().map(|pair| pair.0));
+            naive_rays.extend(generated.iter().map(|pair| pair.1));
         }
-        if rays.is_empty() {
+        if robust_rays.is_empty() {
             return Err(case_error("no rays: give [[rays]] or [[generators]]".into()));
         }
-        Ok(ProbeCase { file, scene, rays, reference })
+        let rays = robust_rays.clone();
+        Ok(ProbeCase { file, scene, rays, reference, robust_rays, naive_rays })
     }
 }
 
 impl ProbeCase {
     /// Uses `formula` for every shape that has both (the rays and the reference stay the same).
+    /// The rays whose true answers the traced rays are judged by: the robust rays. A naive
+    /// shadow ray starts on the surface, so its rounded origin may lie inside the shape; what
+    /// it should report is whether the point it leaves sees past its own surface.
+    pub fn reference_rays(&self) -> &[ProbeRay] {
+        &self.robust_rays
+    }
+
+    /// Surface rays follow too: naive ones start on the surface with a fixed epsilon.
     pub fn set_formula(&mut self, formula: crate::scene::file::Formula) {
         for shape in self.scene.file.shapes.values_mut() {
             shape.set_formula(formula);
         }
+        self.rays = match formula {
+            crate::scene::file::Formula::Robust => self.robust_rays.clone(),
+            crate::scene::file::Formula::Naive => self.naive_rays.clone(),
+        };
     }
 }
 
@@ -158,7 +179,11 @@ fn bounds(reference: &SceneReference, object: usize) -> std::result::Result<(DVe
     Ok((center, radius.max(1e-6)))
 }
 
-fn generate(generator: &Generator, reference: &SceneReference) -> std::result::Result<Vec<ProbeRay>, String> {
+/// The generated rays, each as (robust, naive): they differ only for surface rays.
+fn generate(
+    generator: &Generator,
+    reference: &SceneReference,
+) -> std::result::Result<Vec<(ProbeRay, ProbeRay)>, String> {
     match *generator {
         Generator::Silhouette { object, from, count, band } => {
             let (center, radius) = bounds(reference, object)?;
@@ -174,7 +199,8 @@ fn generate(generator: &Generator, reference: &SceneReference) -> std::result::R
                     let u = -half + 2.0 * half * (f64::from(i) + 0.5) / f64::from(n);
                     let v = -half + 2.0 * half * (f64::from(j) + 0.5) / f64::from(n);
                     let origin = from + right * u + up * v;
-                    ray(origin.as_vec3(), forward.as_vec3(), 0.0, far())
+                    let r = ray(origin.as_vec3(), forward.as_vec3(), 0.0, far());
+                    (r, r)
                 })
                 .collect())
         }
@@ -198,7 +224,9 @@ fn generate(generator: &Generator, reference: &SceneReference) -> std::result::R
                     if dir.dot(n) < 0.0 {
                         dir = -dir;
                     }
-                    rays.push(ray(offset_ray(point.as_vec3(), n), dir, 0.0, far()));
+                    let robust = ray(offset_ray(point.as_vec3(), n), dir, 0.0, far());
+                    let naive = ray(point.as_vec3(), dir, NAIVE_SHADOW_EPSILON, far());
+                    rays.push((robust, naive));
                 }
             }
             Ok(rays)

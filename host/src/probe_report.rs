@@ -80,7 +80,7 @@ pub fn evaluate(
         gpu_ms_per_million_rays: gpu_ms.map(|ms| ms * 1e6 / case.rays.len().max(1) as f64),
     };
     let (mut rel, mut ulps, mut angles) = (Vec::new(), Vec::new(), Vec::new());
-    for (ray, result) in case.rays.iter().zip(results) {
+    for (ray, result) in case.reference_rays().iter().zip(results) {
         let o = ray.origin.truncate().as_dvec3();
         let d = ray.direction.truncate().as_dvec3();
         let verdict = case.reference.trace(o, d, f64::from(ray.origin.w), f64::from(ray.direction.w));
