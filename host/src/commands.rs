@@ -1,7 +1,7 @@
 //! The bodies of `twinray info`, `render` and `compare`: every input is checked before any
 //! GPU work, and files are written only once everything has succeeded.
 
-use crate::{CompareArgs, FrameArgs, GlobalArgs, ProbeArgs, RenderArgs};
+use crate::{CompareArgs, FrameArgs, GlobalArgs, ProbeArgs, RenderArgs, StabilityArgs};
 use anyhow::{Context as _, Result};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -179,4 +179,19 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
         print!("{}", report.summary());
     }
     Ok(ExitCode::SUCCESS)
+}
+
+pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
+    let files = twinray::stability::case_files(&args.dir)?;
+    let sets = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::ShaderSet>, _>>()?;
+    let ctx = context(global)?;
+    let formulas = [Formula::Robust, Formula::Naive];
+    let rows = twinray::stability::run(&ctx, &files, &sets, &formulas, (args.warmup, args.runs))?;
+    if args.json {
+        println!("{}", serde_json::to_string(&rows)?);
+    } else {
+        print!("{}", twinray::stability::table(&rows));
+    }
+    let missed = rows.iter().filter(|r| !r.failures.is_empty()).count();
+    Ok(if missed == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }

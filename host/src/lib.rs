@@ -13,6 +13,7 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod shader_set;
+pub mod stability;
 pub mod stats;
 pub mod vk;
 

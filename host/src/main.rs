@@ -54,6 +54,9 @@ enum Command {
     Compare(CompareArgs),
     /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
     Probe(ProbeArgs),
+    /// The hard-case suite: every probe case of a folder, per set and formula, against the
+    /// reference and the cases' targets.
+    Stability(StabilityArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -129,6 +132,25 @@ pub struct ProbeArgs {
     json: bool,
 }
 
+#[derive(Args)]
+pub struct StabilityArgs {
+    /// Folder of probe cases.
+    #[arg(long, default_value = "probes/stability")]
+    dir: PathBuf,
+    /// Shader sets, comma-separated with ';' between sets, e.g. "rust;glsl".
+    #[arg(long, default_value = "rust;glsl")]
+    sets: String,
+    /// Timed passes per case, set and formula.
+    #[arg(long, default_value_t = 5)]
+    runs: u32,
+    /// Untimed passes before the timed ones.
+    #[arg(long, default_value_t = 1)]
+    warmup: u32,
+    /// Print one JSON array of rows.
+    #[arg(long)]
+    json: bool,
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -156,6 +178,7 @@ fn main() -> ExitCode {
         Command::Render(args) => commands::render(&cli.global, args),
         Command::Compare(args) => commands::compare(&cli.global, args),
         Command::Probe(args) => commands::probe(&cli.global, args),
+        Command::Stability(args) => commands::stability(&cli.global, args),
     };
     match result {
         Ok(code) => code,

@@ -22,6 +22,16 @@ pub struct ProbeFile {
     pub rays: Vec<RayDesc>,
     #[serde(default)]
     pub generators: Vec<Generator>,
+    /// What the robust formulas must achieve on this case (the hard-case suite checks it).
+    pub targets: Option<Targets>,
+}
+
+/// Targets of a case for the robust formulas: no false hit, false miss or wrong object among
+/// decided rays, and a bound on the p99 relative t error.
+#[derive(Clone, Copy, Debug, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Targets {
+    pub max_relative_t_p99: f64,
 }
 
 /// A scene by built-in name or path (relative to the case file), or written inline.

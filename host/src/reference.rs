@@ -209,7 +209,12 @@ fn cylinder(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
     let (o, d) = (ray.origin, ray.direction);
     let mut candidates = Vec::new();
     let a = d.x * d.x + d.z * d.z;
-    if a > 0.0 {
+    let from_axis = (o.x * o.x + o.z * o.z).sqrt();
+    // A ray parallel to the axis meets no side, unless it runs along it within noise.
+    if a <= 1e-24 * d.dot(d) && (from_axis - radius).abs() <= ray.tolerance(0.0) {
+        return Verdict::Ambiguous;
+    }
+    if a > 1e-24 * d.dot(d) {
         let half_b = o.x * d.x + o.z * d.z;
         let cross = o.x * d.z - o.z * d.x;
         let closest = cross.abs() / a.sqrt(); // distance from the axis at closest approach
@@ -250,9 +255,12 @@ fn cone(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
     let half_b = dv * cov - d.dot(co) * cos2;
     let c = cov * cov - co.dot(co) * cos2;
     let discriminant = half_b * half_b - a * c;
-    // Tangency: the discriminant within noise of zero relative to its terms.
-    if discriminant.abs() <= AMBIGUOUS_ULPS * F32_EPS * (half_b * half_b).max((a * c).abs()) {
-        return Verdict::Ambiguous;
+    // Tangency: the two intersection points (real or complex) within noise of each other.
+    if a != 0.0 {
+        let separation = 2.0 * discriminant.abs().sqrt() / a.abs() * d.length();
+        if separation <= ray.tolerance(-half_b / a) {
+            return Verdict::Ambiguous;
+        }
     }
     let mut candidates = Vec::new();
     for t in quadratic(a, half_b, c, discriminant) {

@@ -1,0 +1,116 @@
+//! The hard-case suite (`twinray stability`): every probe case of a folder, for each shader
+//! set and formula, judged against the f64 reference; the robust formulas against each case's
+//! targets.
+
+use crate::error::{Error, Result};
+use crate::probe::probe;
+use crate::probe_case::ProbeCase;
+use crate::probe_report::{evaluate, ProbeReport};
+use crate::scene::file::Formula;
+use crate::shader_set::ShaderSet;
+use crate::vk::context::Context;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// One row of the suite: a case run with one set and formula.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct StabilityRow {
+    pub formula: &'static str,
+    #[serde(flatten)]
+    pub report: ProbeReport,
+    /// Broken targets (robust rows only); empty when the row meets them.
+    pub failures: Vec<String>,
+}
+
+/// The case files of `dir`, sorted by name.
+pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let entries = std::fs::read_dir(dir).map_err(|source| Error::Io { what: "listing", path: dir.into(), source })?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(Error::Input(format!("{}: no probe cases (*.toml)", dir.display())));
+    }
+    Ok(files)
+}
+
+/// Runs every case with every set and formula: `runs` timed passes after `warmup`.
+pub fn run(
+    ctx: &Arc<Context>,
+    files: &[PathBuf],
+    sets: &[ShaderSet],
+    formulas: &[Formula],
+    (warmup, runs): (u32, u32),
+) -> Result<Vec<StabilityRow>> {
+    let mut rows = Vec::new();
+    for file in files {
+        let mut case = ProbeCase::load(file)?;
+        for &formula in formulas {
+            case.set_formula(formula);
+            for set in sets {
+                let out = probe(ctx, &case.scene, set, &case.rays, warmup, runs)?;
+                let report =
+                    evaluate(&case, &out.results, &set.to_string(), &ctx.info.name, crate::stats::median(&out.gpu_ms));
+                let failures = if formula == Formula::Robust { failures(&case, &report) } else { Vec::new() };
+                let formula = if formula == Formula::Robust { "robust" } else { "naive" };
+                rows.push(StabilityRow { formula, report, failures });
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// What a robust report breaks of its case's targets.
+pub fn failures(case: &ProbeCase, r: &ProbeReport) -> Vec<String> {
+    let mut failures = Vec::new();
+    if r.false_hits + r.false_misses + r.wrong_object > 0 {
+        failures.push(format!(
+            "{} false hits, {} false misses, {} wrong object",
+            r.false_hits, r.false_misses, r.wrong_object
+        ));
+    }
+    if let Some(t) = case.file.targets {
+        if r.relative_t_error.p99 > t.max_relative_t_p99 {
+            failures.push(format!("relative t p99 {:.2e} > {:.0e}", r.relative_t_error.p99, t.max_relative_t_p99));
+        }
+    }
+    if r.decided == 0 {
+        failures.push("no ray decided".into());
+    }
+    failures
+}
+
+/// The table `twinray stability` prints.
+pub fn table(rows: &[StabilityRow]) -> String {
+    let mut s = format!(
+        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>8} {:>9} {:>9}  targets\n",
+        "case", "set", "formula", "rays", "decided", "f.hit", "f.miss", "t p99", "ulp p99", "n p99", "ms/Mray"
+    );
+    for row in rows {
+        let r = &row.report;
+        let verdict = if row.formula != "robust" {
+            "-".to_string()
+        } else if row.failures.is_empty() {
+            "met".to_string()
+        } else {
+            format!("MISSED: {}", row.failures.join("; "))
+        };
+        s += &format!(
+            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
+            r.case,
+            r.set,
+            row.formula,
+            r.rays,
+            r.decided,
+            r.false_hits,
+            r.false_misses + r.wrong_object,
+            r.relative_t_error.p99,
+            r.ulp_error_p99,
+            r.normal_angle_error_p99,
+            r.gpu_ms_per_million_rays.map_or("n/a".into(), |m| format!("{m:.2}")),
+        );
+    }
+    s
+}

@@ -1,0 +1,45 @@
+//! The hard-case suite (probes/stability/, also `twinray stability`) on lavapipe, validation
+//! on: the robust formulas of both sets meet every case's targets (no false hit, false miss
+//! or wrong object outside the ambiguous band; p99 relative t error within the case's bound,
+//! 1e-6 for quadrics and planes, 1e-5 for tori), and the naive formulas fail where
+//! NUMERICS.md says they do.
+
+use twinray::scene::file::Formula;
+use twinray::stability::{case_files, run};
+use twinray_tests::{repo_root, set, validated_context};
+
+/// Cases whose robust results miss their targets, with the reason; issue 4 stays open on them.
+/// cone-generator-parallel: rays exactly parallel to a generator (to six decimals) that pass
+/// 0.005 below the apex: the f64 reference finds a side hit there, the f32 routine rejects
+/// that root and reports the base (p99 relative t error 0.45, hit/miss still right). Either
+/// the input is ill-conditioned (a is noise-level) and the reference should call these rays
+/// ambiguous, or the f32 root near the apex needs another form: not settled yet.
+const KNOWN_MISSES: [&str; 1] = ["cone-generator-parallel"];
+
+#[test]
+fn robust_formulas_meet_every_target_and_naive_ones_fail_where_expected() {
+    let files = case_files(&repo_root().join("probes/stability")).expect("cases");
+    assert!(files.len() >= 24, "the suite needs at least 24 cases, has {}", files.len());
+    let ctx = validated_context();
+    let sets = [set("rust"), set("glsl")];
+    let rows = run(&ctx, &files, &sets, &[Formula::Robust, Formula::Naive], (0, 1)).expect("suite");
+    let mut missed = Vec::new();
+    for row in rows.iter().filter(|r| r.formula == "robust") {
+        let known = KNOWN_MISSES.contains(&row.report.case.as_str());
+        if row.failures.is_empty() == known {
+            missed.push(format!("{} {}: {:?} (known miss: {known})", row.report.case, row.report.set, row.failures));
+        }
+    }
+    assert!(missed.is_empty(), "{missed:#?}");
+    // The naive forms fail where NUMERICS.md measured them failing.
+    let naive_wrong = |case: &str| {
+        rows.iter()
+            .filter(|r| r.formula == "naive" && r.report.case == case)
+            .map(|r| r.report.false_hits + r.report.false_misses)
+            .min()
+            .unwrap_or(0)
+    };
+    for case in ["sphere-far-1e5", "torus-far-400", "torus-far-4000", "sphere-surface-far"] {
+        assert!(naive_wrong(case) > 10, "naive formulas should fail on {case}");
+    }
+}
