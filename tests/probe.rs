@@ -119,8 +119,7 @@ fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
     let dir = tempfile::tempdir().unwrap();
     let example = dir.path().join("example.toml");
     std::fs::write(&example, &doc[start..end]).unwrap();
-    let mut cases: Vec<_> = std::fs::read_dir(root.join("probes")).unwrap().map(|e| e.unwrap().path()).collect();
-    cases.sort();
+    let mut cases = twinray::stability::case_files(&root.join("probes")).expect("probe cases");
     cases.push(example);
     let ctx = validated_context();
     for path in cases {
