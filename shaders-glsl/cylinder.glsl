@@ -24,7 +24,8 @@ void cylinder_cap(inout bool found, inout float best_t, inout vec3 best_n, vec3 
     }
 }
 
-bool cylinder_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
+// Side and caps; robust picks the side's discriminant and roots (the caps are the same).
+bool cylinder_solve(vec3 o, vec3 d, Primitive primitive, float t_min, float t_max, bool robust, out float t, out vec3 n) {
     float r = primitive.a.x;
     float half_height = primitive.a.y;
     bool found = false;
@@ -35,12 +36,18 @@ bool cylinder_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float 
         float half_b = o.x * d.x + o.z * d.z;
         float c = o.x * o.x + o.z * o.z - r * r;
         float cross_y = o.x * d.z - o.z * d.x;
-        float discriminant = a * r * r - cross_y * cross_y;
+        float discriminant = robust ? a * r * r - cross_y * cross_y : half_b * half_b - a * c;
         if (discriminant >= 0.0) {
-            bool on_surface = abs(c) <= SPHERE_ON_SURFACE * r * r;
-            bool ok0, ok1;
+            bool on_surface = robust && abs(c) <= SPHERE_ON_SURFACE * r * r;
+            bool ok0 = true, ok1 = true;
             float r0, r1;
-            stable_roots(a, half_b, c, discriminant, ok0, r0, ok1, r1);
+            if (robust) {
+                stable_roots(a, half_b, c, discriminant, ok0, r0, ok1, r1);
+            } else {
+                float root = sqrt(discriminant);
+                r0 = (-half_b - root) / a;
+                r1 = (-half_b + root) / a;
+            }
             cylinder_side(found, t, n, o, d, r, half_height, ok0, r0, ok1, r1, on_surface, t_min, t_max);
             cylinder_side(found, t, n, o, d, r, half_height, ok1, r1, ok0, r0, on_surface, t_min, t_max);
         }
@@ -52,31 +59,13 @@ bool cylinder_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float 
     return found;
 }
 
+bool cylinder_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
+    return cylinder_solve(o, d, primitive, t_min, t_max, true, t, n);
+}
+
 // Twin of cylinder::naive_intersect: the textbook discriminant k1^2 - k2 k0, no self-root
 // rejection; kept on purpose (it cancels far from the axis).
 bool cylinder_naive_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
-    float r = primitive.a.x;
-    float half_height = primitive.a.y;
-    bool found = false;
-    t = 0.0;
-    n = vec3(0.0);
-    float a = d.x * d.x + d.z * d.z;
-    if (a > 0.0) {
-        float half_b = o.x * d.x + o.z * d.z;
-        float c = o.x * o.x + o.z * o.z - r * r;
-        float discriminant = half_b * half_b - a * c;
-        if (discriminant >= 0.0) {
-            float root = sqrt(discriminant);
-            float r0 = (-half_b - root) / a;
-            float r1 = (-half_b + root) / a;
-            cylinder_side(found, t, n, o, d, r, half_height, true, r0, true, r1, false, t_min, t_max);
-            cylinder_side(found, t, n, o, d, r, half_height, true, r1, true, r0, false, t_min, t_max);
-        }
-    }
-    if (d.y != 0.0) {
-        cylinder_cap(found, t, n, o, d, r, half_height, t_min, t_max);
-        cylinder_cap(found, t, n, o, d, r, -half_height, t_min, t_max);
-    }
-    return found;
+    return cylinder_solve(o, d, primitive, t_min, t_max, false, t, n);
 }
 #endif

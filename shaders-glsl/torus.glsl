@@ -105,25 +105,13 @@ float torus_polish(vec3 o, vec3 d, float r, float s) {
     return s;
 }
 
-bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
-                     out vec3 n) {
-    float big_r = primitive.a.x;
-    float r = primitive.a.y / big_r;
-    float len = length(direction);
-    vec3 d = direction / len;
-    vec3 o = origin / big_r;
-    float to_t = big_r / len;
+// Twin of the Rust Candidate: the nearest root of the quartic solved from `start` (`shift`
+// along the ray from o), polished or not, in [t_min, t_max]; when the ray starts on the surface
+// the root nearest t = 0 is its own origin and is skipped.
+bool torus_best(vec3 o, vec3 d, vec3 start, float r, float shift, float to_t, bool on_surface, bool polish, float t_min,
+                float t_max, out float t, out vec3 n) {
     t = 0.0;
     n = vec3(0.0);
-    float near, far;
-    bool bound_surface;
-    if (!sphere_intersect(o, d, vec3(0.0), 1.0 + 2.0 * r, near, far, bound_surface) || far < 0.0) {
-        return false;
-    }
-    float shift = near;
-    vec3 start = o + d * shift;
-    vec3 unused;
-    bool on_surface = abs(torus_distance(o, r, unused)) <= TORUS_ON_SURFACE * r;
     bool valid[4];
     float roots[4];
     torus_quartic_roots(start, d, r, valid, roots);
@@ -138,7 +126,7 @@ bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_m
         if (!valid[i] || (on_surface && abs(roots[i] + shift) == nearest_abs)) {
             continue;
         }
-        float s = torus_polish(start, d, r, roots[i]) + shift;
+        float s = (polish ? torus_polish(start, d, r, roots[i]) : roots[i]) + shift;
         float ti = s * to_t;
         float limit = found ? t : t_max;
         if (ti >= t_min && ti <= limit) {
@@ -151,35 +139,33 @@ bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_m
     return found;
 }
 
-// Twin of torus::naive_intersect: the quartic from the ray's own origin, no shift onto the
-// bounding sphere, no polish, no self-root rejection; kept on purpose.
-bool torus_naive_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
-                           out vec3 n) {
+bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
+                     out vec3 n) {
     float big_r = primitive.a.x;
     float r = primitive.a.y / big_r;
     float len = length(direction);
     vec3 d = direction / len;
     vec3 o = origin / big_r;
-    float to_t = big_r / len;
     t = 0.0;
     n = vec3(0.0);
-    bool valid[4];
-    float roots[4];
-    torus_quartic_roots(o, d, r, valid, roots);
-    bool found = false;
-    for (int i = 0; i < 4; i++) {
-        if (!valid[i]) {
-            continue;
-        }
-        float ti = roots[i] * to_t;
-        float limit = found ? t : t_max;
-        if (ti >= t_min && ti <= limit) {
-            vec3 p = o + d * roots[i];
-            found = true;
-            t = ti;
-            n = p - normalize(vec3(p.x, 0.0, p.z));
-        }
+    float near, far;
+    bool bound_surface;
+    if (!sphere_intersect(o, d, vec3(0.0), 1.0 + 2.0 * r, near, far, bound_surface) || far < 0.0) {
+        return false;
     }
-    return found;
+    vec3 unused;
+    bool on_surface = abs(torus_distance(o, r, unused)) <= TORUS_ON_SURFACE * r;
+    return torus_best(o, d, o + d * near, r, near, big_r / len, on_surface, true, t_min, t_max, t, n);
+}
+
+// Twin of torus::naive_intersect: the quartic from the ray's own origin, no shift onto the
+// bounding sphere, no polish, no self-root rejection; kept on purpose.
+bool torus_naive_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
+                           out vec3 n) {
+    float big_r = primitive.a.x;
+    float len = length(direction);
+    vec3 d = direction / len;
+    vec3 o = origin / big_r;
+    return torus_best(o, d, o, primitive.a.y / big_r, 0.0, big_r / len, false, false, t_min, t_max, t, n);
 }
 #endif

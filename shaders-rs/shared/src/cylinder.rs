@@ -9,27 +9,7 @@ use crate::surface::{closer, is_self_root, stable_roots, SurfaceHit};
 use glam::Vec3;
 
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
-    let (r, half_height) = (primitive.a.x, primitive.a.y);
-    let (o, d) = (origin, direction);
-    let mut best = None;
-    let a = d.x * d.x + d.z * d.z;
-    if a > 0.0 {
-        let half_b = o.x * d.x + o.z * d.z;
-        let c = o.x * o.x + o.z * o.z - r * r;
-        let cross = o.x * d.z - o.z * d.x;
-        let discriminant = a * r * r - cross * cross;
-        if discriminant >= 0.0 {
-            let on_surface = c.abs() <= ON_SURFACE * r * r;
-            let (r0, r1) = stable_roots(a, half_b, c, discriminant);
-            best = side(best, o, d, r, half_height, r0, r1, on_surface, t_min, t_max);
-            best = side(best, o, d, r, half_height, r1, r0, on_surface, t_min, t_max);
-        }
-    }
-    if d.y != 0.0 {
-        best = cap(best, o, d, r, half_height, t_min, t_max);
-        best = cap(best, o, d, r, -half_height, t_min, t_max);
-    }
-    best
+    solve(origin, direction, primitive, t_min, t_max, true)
 }
 
 /// The textbook form: side discriminant k1^2 - k2 k0, roots (-k1 -+ sqrt) / k2, no self-root
@@ -42,6 +22,18 @@ pub fn naive_intersect(
     t_min: f32,
     t_max: f32,
 ) -> Option<SurfaceHit> {
+    solve(origin, direction, primitive, t_min, t_max, false)
+}
+
+/// Side and caps; `robust` picks the side's discriminant and roots (the caps are the same).
+fn solve(
+    origin: Vec3,
+    direction: Vec3,
+    primitive: &Primitive,
+    t_min: f32,
+    t_max: f32,
+    robust: bool,
+) -> Option<SurfaceHit> {
     #[cfg(target_arch = "spirv")]
     use spirv_std::num_traits::Float;
     let (r, half_height) = (primitive.a.x, primitive.a.y);
@@ -51,12 +43,18 @@ pub fn naive_intersect(
     if a > 0.0 {
         let half_b = o.x * d.x + o.z * d.z;
         let c = o.x * o.x + o.z * o.z - r * r;
-        let discriminant = half_b * half_b - a * c;
+        let cross = o.x * d.z - o.z * d.x;
+        let discriminant = if robust { a * r * r - cross * cross } else { half_b * half_b - a * c };
         if discriminant >= 0.0 {
-            let root = discriminant.sqrt();
-            let (r0, r1) = (Some((-half_b - root) / a), Some((-half_b + root) / a));
-            best = side(best, o, d, r, half_height, r0, r1, false, t_min, t_max);
-            best = side(best, o, d, r, half_height, r1, r0, false, t_min, t_max);
+            let on_surface = robust && c.abs() <= ON_SURFACE * r * r;
+            let (r0, r1) = if robust {
+                stable_roots(a, half_b, c, discriminant)
+            } else {
+                let root = discriminant.sqrt();
+                (Some((-half_b - root) / a), Some((-half_b + root) / a))
+            };
+            best = side(best, o, d, r, half_height, r0, r1, on_surface, t_min, t_max);
+            best = side(best, o, d, r, half_height, r1, r0, on_surface, t_min, t_max);
         }
     }
     if d.y != 0.0 {
