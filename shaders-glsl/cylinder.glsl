@@ -6,8 +6,8 @@
 #include "surface.glsl"
 
 void cylinder_side(inout bool found, inout float best_t, inout vec3 best_n, vec3 o, vec3 d, float r, float half_height,
-                   bool ok, float t, bool other_ok, float other, bool on_surface, float t_min, float t_max) {
-    if (ok && !is_self_root(on_surface, t, other_ok, other)) {
+                   bool ok, float t, bool other_ok, float other, float reach2, float t_min, float t_max) {
+    if (ok && !is_self_root(reach2, t, other_ok, other)) {
         vec3 p = o + d * t;
         if (abs(p.y) <= half_height) {
             closer(found, best_t, best_n, t, vec3(p.x, 0.0, p.z) / r, t_min, t_max);
@@ -39,6 +39,7 @@ bool cylinder_solve(vec3 o, vec3 d, Primitive primitive, float t_min, float t_ma
         float discriminant = robust ? a * r * r - cross_y * cross_y : half_b * half_b - a * c;
         if (discriminant >= 0.0) {
             bool on_surface = robust && abs(c) <= SPHERE_ON_SURFACE * r * r;
+            float reach2 = self_reach2(on_surface, r * r, dot(d, d));
             bool ok0 = true, ok1 = true;
             float r0, r1;
             if (robust) {
@@ -48,8 +49,8 @@ bool cylinder_solve(vec3 o, vec3 d, Primitive primitive, float t_min, float t_ma
                 r0 = (-half_b - root) / a;
                 r1 = (-half_b + root) / a;
             }
-            cylinder_side(found, t, n, o, d, r, half_height, ok0, r0, ok1, r1, on_surface, t_min, t_max);
-            cylinder_side(found, t, n, o, d, r, half_height, ok1, r1, ok0, r0, on_surface, t_min, t_max);
+            cylinder_side(found, t, n, o, d, r, half_height, ok0, r0, ok1, r1, reach2, t_min, t_max);
+            cylinder_side(found, t, n, o, d, r, half_height, ok1, r1, ok0, r0, reach2, t_min, t_max);
         }
     }
     if (d.y != 0.0) {

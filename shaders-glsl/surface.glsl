@@ -24,8 +24,14 @@ void stable_roots(float a, float half_b, float c, float discriminant, out bool o
     r1 = ok1 ? q / a : 0.0;
 }
 
-// Whether root t is the ray's own origin: it starts on the surface and t is nearer to 0 than other.
-bool is_self_root(bool on_surface, float t, bool other_ok, float other) {
-    return on_surface && (other_ok ? abs(t) < abs(other) : true);
+// Squared reach of a self root (see twinray_shared::surface::SELF_ROOT_REACH): negative, so
+// no root qualifies, when the origin is not on the surface.
+float self_reach2(bool on_surface, float size2, float dd) {
+    return on_surface ? SELF_ROOT_REACH * SELF_ROOT_REACH * size2 / dd : -1.0;
+}
+
+// Whether root t is the ray's own origin: within the reach and nearer to 0 than other.
+bool is_self_root(float reach2, float t, bool other_ok, float other) {
+    return t * t <= reach2 && (other_ok ? abs(t) < abs(other) : true);
 }
 #endif

@@ -44,6 +44,8 @@
 #define CHECKER_DEPTH 0.001
 #define BOX_GAMMA_3 1.7881396e-7
 #define TORUS_ON_SURFACE 0.001
+#define SELF_ROOT_REACH 0.1
+#define CONE_POLISH_LIMIT 0.1
 
 // 160 bytes, as twinray_shared::layout::FrameUniform
 struct FrameUniform {

@@ -77,11 +77,14 @@ fn probe_agrees_with_the_f64_reference_in_both_sets() {
             let (shape, local) = if torus {
                 let origin = to_torus(o);
                 let direction = to_torus(o + d) - origin;
-                (RefShape::Torus { major: 1.0, minor: 0.25 }, RefRay { origin, direction, t_min: 0.0, t_max: 100.0 })
+                (
+                    RefShape::Torus { major: 1.0, minor: 0.25 },
+                    RefRay { origin, direction, t_min: 0.0, t_max: 100.0, noise_floor: 0.0 },
+                )
             } else {
                 (
                     RefShape::Sphere { center: DVec3::ZERO, radius: 1.0 },
-                    RefRay { origin: o, direction: d, t_min: 0.0, t_max: 100.0 },
+                    RefRay { origin: o, direction: d, t_min: 0.0, t_max: 100.0, noise_floor: 0.0 },
                 )
             };
             let got_hit = result.ids.w != NO_HIT;

@@ -113,7 +113,13 @@ fn unit(theta: f32, phi: f32) -> Vec3 {
 fn check(name: &str, case: &Case, origin: Vec3, direction: Vec3) -> Result<(), String> {
     let reference = intersect(
         &case.reference,
-        &RefRay { origin: origin.as_dvec3(), direction: direction.as_dvec3(), t_min: 0.0, t_max: 1e6 },
+        &RefRay {
+            origin: origin.as_dvec3(),
+            direction: direction.as_dvec3(),
+            t_min: 0.0,
+            t_max: 1e6,
+            noise_floor: 0.0,
+        },
     );
     let got = (case.f32_intersect)(origin, direction, &case.primitive, 0.0, 1e6);
     match (reference, got) {

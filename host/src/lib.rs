@@ -6,6 +6,7 @@ pub mod error;
 pub mod output;
 pub mod probe;
 pub mod probe_case;
+pub mod probe_generate;
 pub mod probe_report;
 pub mod reference;
 pub mod reference_scene;

@@ -3,13 +3,12 @@
 
 use crate::error::{Error, Result};
 use crate::probe::ProbeRay;
-use crate::reference_scene::{SceneReference, SceneVerdict};
+use crate::probe_generate::{generate, Generator};
+use crate::reference_scene::SceneReference;
 use crate::scene::{MeshFiles, Scene};
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 use serde::Deserialize;
 use std::path::Path;
-use twinray_shared::offset::offset_ray;
-use twinray_shared::random::random;
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -53,35 +52,8 @@ pub struct RayDesc {
     pub t_max: f32,
 }
 
-fn far() -> f32 {
+pub(crate) fn far() -> f32 {
     1.0e30
-}
-
-fn band() -> f32 {
-    1.2
-}
-
-#[derive(Clone, Debug, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum Generator {
-    /// `count` x `count` parallel rays from `from` towards the object's centre, across a
-    /// square `band` times its bounding radius wide: through its silhouette.
-    Silhouette {
-        object: usize,
-        from: [f32; 3],
-        count: u32,
-        #[serde(default = "band")]
-        band: f32,
-    },
-    /// `count` secondary rays from points on the object's surface (found by the reference),
-    /// offset as shadow rays are (Ray Tracing Gems ch. 6), in random directions of the outer
-    /// hemisphere, with t_min 0.
-    Surface {
-        object: usize,
-        count: u32,
-        #[serde(default)]
-        seed: u32,
-    },
 }
 
 /// A loaded case: its scene, rays and the reference for them.
@@ -173,81 +145,6 @@ impl ProbeCase {
     }
 }
 
-fn ray(origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> ProbeRay {
+pub(crate) fn ray(origin: Vec3, direction: Vec3, t_min: f32, t_max: f32) -> ProbeRay {
     ProbeRay { origin: origin.extend(t_min), direction: direction.extend(t_max) }
-}
-
-/// Centre and bounding radius of an object, in world space.
-fn bounds(reference: &SceneReference, object: usize) -> std::result::Result<(DVec3, f64), String> {
-    let o = reference
-        .objects
-        .get(object)
-        .ok_or_else(|| format!("no object {object} (the scene has {})", reference.objects.len()))?;
-    let center = o.object_to_world.transform_point3(DVec3::ZERO);
-    let scale = o.object_to_world.transform_vector3(DVec3::ONE).length();
-    let radius = o.shapes.iter().map(crate::reference::bounding_radius).fold(0.0, f64::max) * scale;
-    Ok((center, radius.max(1e-6)))
-}
-
-/// The generated rays, each as (robust, naive): they differ only for surface rays.
-fn generate(
-    generator: &Generator,
-    reference: &SceneReference,
-) -> std::result::Result<Vec<(ProbeRay, ProbeRay)>, String> {
-    match *generator {
-        Generator::Silhouette { object, from, count, band } => {
-            let (center, radius) = bounds(reference, object)?;
-            let from = Vec3::from(from).as_dvec3();
-            let forward = (center - from).normalize();
-            let right = forward.any_orthonormal_vector();
-            let up = forward.cross(right);
-            let half = radius * f64::from(band);
-            let n = count.max(1);
-            Ok((0..n * n)
-                .map(|k| {
-                    let (i, j) = (k % n, k / n);
-                    let u = -half + 2.0 * half * (f64::from(i) + 0.5) / f64::from(n);
-                    let v = -half + 2.0 * half * (f64::from(j) + 0.5) / f64::from(n);
-                    let origin = from + right * u + up * v;
-                    let r = ray(origin.as_vec3(), forward.as_vec3(), 0.0, far());
-                    (r, r)
-                })
-                .collect())
-        }
-        Generator::Surface { object, count, seed } => {
-            let (center, radius) = bounds(reference, object)?;
-            let mut rays = Vec::new();
-            let mut k = 0;
-            while rays.len() < count as usize && k < count * 20 {
-                let index = k;
-                let r = |d: u32| f64::from(random(seed, index, 0, d));
-                k += 1;
-                let toward = unit(r(0), r(1));
-                let start = center + toward * radius * 4.0;
-                if let SceneVerdict::Hit { object: hit, t, normal } = reference.trace(start, -toward, 0.0, f64::MAX) {
-                    if hit != object {
-                        continue;
-                    }
-                    let point = start - toward * t;
-                    let n = normal.as_vec3();
-                    let mut dir = unit(r(2), r(3)).as_vec3();
-                    if dir.dot(n) < 0.0 {
-                        dir = -dir;
-                    }
-                    let robust = ray(offset_ray(point.as_vec3(), n), dir, 0.0, far());
-                    let naive = ray(point.as_vec3(), dir, NAIVE_SHADOW_EPSILON, far());
-                    rays.push((robust, naive));
-                }
-            }
-            Ok(rays)
-        }
-    }
-}
-
-/// A unit vector from two numbers in [0, 1), uniform on the sphere.
-fn unit(a: f64, b: f64) -> DVec3 {
-    let z = 2.0 * a - 1.0;
-    let phi = std::f64::consts::TAU * b;
-    let r = (1.0 - z * z).max(0.0).sqrt();
-    DVec3::new(r * phi.cos(), r * phi.sin(), z)
 }

@@ -32,6 +32,10 @@ pub struct RefRay {
     pub direction: DVec3,
     pub t_min: f64,
     pub t_max: f64,
+    /// Smallest coordinate magnitude that counts for float noise (0 for a ray given in the
+    /// shape's own space). A ray reaching the shape through an instance transform is rounded
+    /// at the magnitude of its world-space coordinates, however small the object-space ones.
+    pub noise_floor: f64,
 }
 
 /// The true answer for one ray.
@@ -50,9 +54,16 @@ pub enum Verdict {
 impl RefRay {
     /// Distance that counts as float noise for this ray: ULPs of its coordinates' magnitude.
     fn tolerance(&self, t: f64) -> f64 {
-        let scale =
-            self.origin.abs().max_element().max((self.origin + self.direction * t).abs().max_element()).max(1e-30);
-        AMBIGUOUS_ULPS * F32_EPS * scale
+        let scale = self.origin.abs().max_element().max(self.at(t).abs().max_element()).max(self.noise_floor);
+        AMBIGUOUS_ULPS * F32_EPS * scale.max(1e-30)
+    }
+
+    /// How far from a rim or edge a hit at `t` on a surface with `normal` is within noise:
+    /// moving the ray sideways by the tolerance moves the hit along the surface by the
+    /// tolerance over the cosine between ray and normal, so grazing hits have wide bands.
+    fn edge_band(&self, t: f64, normal: DVec3) -> f64 {
+        let cosine = self.direction.normalize().dot(normal.normalize()).abs();
+        self.tolerance(t) / cosine.max(1e-12)
     }
 
     fn at(&self, t: f64) -> DVec3 {
@@ -160,30 +171,54 @@ fn plane(ray: &RefRay, inside: impl Fn(DVec3) -> f64) -> Verdict {
     }
     let t = -o.y / d.y;
     let margin = inside(ray.at(t));
-    if margin < -ray.tolerance(t) {
+    let band = ray.edge_band(t, DVec3::Y);
+    if margin < -band {
         return Verdict::Miss;
     }
-    first(ray, vec![Candidate { t, normal: DVec3::Y, ambiguous: margin.abs() <= ray.tolerance(t) }])
+    first(ray, vec![Candidate { t, normal: DVec3::Y, ambiguous: margin.abs() <= band }])
 }
 
 fn aabox(ray: &RefRay, half: DVec3) -> Verdict {
+    // Moving the ray sideways by the tolerance is moving every face by it: if the box grown by
+    // the tolerance and the box shrunk by it disagree, the ray passes within noise of an edge,
+    // a corner, or a face's plane (nearly along the face).
+    let reaches = |half: DVec3| slabs(ray, half).filter(|(_, far)| far.0 >= ray.t_min);
+    let Some((near, _)) = reaches(half + ray.tolerance(0.0)) else {
+        return Verdict::Miss;
+    };
+    let tol = ray.tolerance(0.0).max(ray.tolerance(near.0.max(0.0)));
+    let grown = reaches(half + tol).is_some();
+    let shrunk = half.min_element() > tol && reaches(half - tol).is_some();
+    match slabs(ray, half) {
+        Some((near, far)) if grown == shrunk => first(
+            ray,
+            vec![
+                Candidate { t: near.0, normal: near.1, ambiguous: false },
+                Candidate { t: far.0, normal: far.1, ambiguous: false },
+            ],
+        ),
+        None if !grown => Verdict::Miss,
+        _ => Verdict::Ambiguous,
+    }
+}
+
+/// The latest slab entry and earliest exit of the box `half` (t and the normal there), or
+/// `None` when the slabs do not overlap.
+fn slabs(ray: &RefRay, half: DVec3) -> Option<((f64, DVec3), (f64, DVec3))> {
     let (o, d) = (ray.origin, ray.direction);
     let mut near = (f64::NEG_INFINITY, DVec3::ZERO);
     let mut far = (f64::INFINITY, DVec3::ZERO);
-    let mut ambiguous = false;
     for axis in 0..3 {
-        let unit = DVec3::AXES[axis];
         let (oi, di, hi) = (o[axis], d[axis], half[axis]);
         if di == 0.0 {
-            let outside = oi.abs() - hi;
-            ambiguous |= outside.abs() <= ray.tolerance(0.0);
-            if outside > 0.0 {
-                return if ambiguous { Verdict::Ambiguous } else { Verdict::Miss };
+            if oi.abs() > hi {
+                return None;
             }
             continue;
         }
         let (a, b) = ((-hi - oi) / di, (hi - oi) / di);
         let (t0, t1) = if a <= b { (a, b) } else { (b, a) };
+        let unit = DVec3::AXES[axis];
         if t0 > near.0 {
             near = (t0, unit * -di.signum());
         }
@@ -191,18 +226,7 @@ fn aabox(ray: &RefRay, half: DVec3) -> Verdict {
             far = (t1, unit * di.signum());
         }
     }
-    let tol = ray.tolerance(far.0.max(near.0).max(0.0)) / d.length();
-    if (near.0 - far.0).abs() <= tol {
-        return Verdict::Ambiguous; // through an edge or corner
-    }
-    if near.0 > far.0 {
-        return Verdict::Miss;
-    }
-    // An entry point near an edge: the second-latest slab entry is within noise of the latest.
-    first(
-        ray,
-        vec![Candidate { t: near.0, normal: near.1, ambiguous }, Candidate { t: far.0, normal: far.1, ambiguous }],
-    )
+    (near.0 <= far.0).then_some((near, far))
 }
 
 fn cylinder(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
@@ -218,16 +242,21 @@ fn cylinder(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
         let half_b = o.x * d.x + o.z * d.z;
         let cross = o.x * d.z - o.z * d.x;
         let closest = cross.abs() / a.sqrt(); // distance from the axis at closest approach
-        if (closest - radius).abs() <= ray.tolerance(-half_b / a) {
+                                              // A tangency counts only on the finite side: a ray nearly along the axis (as rotated
+                                              // instances make them) grazes the infinite cylinder far beyond the caps.
+        let t_closest = -half_b / a;
+        let on_side = ray.at(t_closest).y.abs() <= half_height + ray.tolerance(t_closest);
+        if on_side && (closest - radius).abs() <= ray.tolerance(t_closest) {
             return Verdict::Ambiguous;
         }
         let discriminant = a * radius * radius - cross * cross;
         for t in quadratic(a, half_b, o.x * o.x + o.z * o.z - radius * radius, discriminant) {
             let p = ray.at(t);
             let rim = half_height - p.y.abs();
-            if rim >= -ray.tolerance(t) {
-                let ambiguous = rim.abs() <= ray.tolerance(t);
-                candidates.push(Candidate { t, normal: DVec3::new(p.x, 0.0, p.z), ambiguous });
+            let normal = DVec3::new(p.x, 0.0, p.z);
+            let band = ray.edge_band(t, normal);
+            if rim >= -band {
+                candidates.push(Candidate { t, normal, ambiguous: rim.abs() <= band });
             }
         }
     }
@@ -236,9 +265,13 @@ fn cylinder(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
             let t = (y - o.y) / d.y;
             let p = ray.at(t);
             let rim = radius - (p.x * p.x + p.z * p.z).sqrt();
-            if rim >= -ray.tolerance(t) {
-                let ambiguous = rim.abs() <= ray.tolerance(t);
-                candidates.push(Candidate { t, normal: DVec3::new(0.0, y.signum(), 0.0), ambiguous });
+            let band = ray.edge_band(t, DVec3::Y);
+            if rim >= -band {
+                candidates.push(Candidate {
+                    t,
+                    normal: DVec3::new(0.0, y.signum(), 0.0),
+                    ambiguous: rim.abs() <= band,
+                });
             }
         }
     }
@@ -256,9 +289,17 @@ fn cone(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
     let c = cov * cov - co.dot(co) * cos2;
     let discriminant = half_b * half_b - a * c;
     // Tangency: the two intersection points (real or complex) within noise of each other.
+    // Tangency: where the implicit function F = (cp.v)^2 - cos^2 |cp|^2 along the ray peaks,
+    // F = -disc / a, the ray's distance from the surface is |F| / |grad F|. Only a tangency on
+    // the finite nappe, between apex and base, counts.
     if a != 0.0 {
-        let separation = 2.0 * discriminant.abs().sqrt() / a.abs() * d.length();
-        if separation <= ray.tolerance(-half_b / a) {
+        let t_peak = -half_b / a;
+        let cp = ray.at(t_peak) - apex;
+        let gradient = (DVec3::new(0.0, cp.y, 0.0) - cp * cos2) * 2.0;
+        let depth = (discriminant / a).abs() / gradient.length().max(1e-300);
+        let along = -cp.y;
+        let tol = ray.tolerance(t_peak);
+        if depth <= tol && along >= -tol && along <= height + tol {
             return Verdict::Ambiguous;
         }
     }
@@ -266,18 +307,21 @@ fn cone(ray: &RefRay, radius: f64, half_height: f64) -> Verdict {
     for t in quadratic(a, half_b, c, discriminant) {
         let cp = ray.at(t) - apex;
         let along = -cp.y;
-        let tol = ray.tolerance(t);
-        if along >= -tol && along <= height + tol {
-            let ambiguous = along.abs() <= tol || (along - height).abs() <= tol;
-            candidates.push(Candidate { t, normal: cp * cos2 - DVec3::new(0.0, cp.y, 0.0), ambiguous });
+        let normal = cp * cos2 - DVec3::new(0.0, cp.y, 0.0);
+        // The band is along the surface; `along` is its share on the axis (times cos).
+        let band = ray.edge_band(t, normal);
+        if along >= -band && along <= height + band {
+            let ambiguous = along.abs() <= band || (along - height).abs() <= band;
+            candidates.push(Candidate { t, normal, ambiguous });
         }
     }
     if d.y != 0.0 {
         let t = (-half_height - ray.origin.y) / d.y;
         let p = ray.at(t);
         let rim = radius - (p.x * p.x + p.z * p.z).sqrt();
-        if rim >= -ray.tolerance(t) {
-            candidates.push(Candidate { t, normal: -DVec3::Y, ambiguous: rim.abs() <= ray.tolerance(t) });
+        let band = ray.edge_band(t, DVec3::Y);
+        if rim >= -band {
+            candidates.push(Candidate { t, normal: -DVec3::Y, ambiguous: rim.abs() <= band });
         }
     }
     first(ray, candidates)
@@ -316,7 +360,7 @@ fn torus(ray: &RefRay, major: f64, minor: f64) -> Verdict {
             let root = bisect(&g, t, hi, inside);
             let p = ray.at(root);
             let ring = DVec3::new(p.x, 0.0, p.z).normalize() * major;
-            let grazed = closest_pass <= tol;
+            let grazed = closest_pass <= tol || (!inside && shallow(&g, root, tol, length));
             return first(ray, vec![Candidate { t: root, normal: p - ring, ambiguous: grazed }]);
         }
         if dist > previous {
@@ -335,6 +379,25 @@ fn torus(ray: &RefRay, major: f64, minor: f64) -> Verdict {
     } else {
         Verdict::Miss
     }
+}
+
+/// Whether a ray entering at `entry` stays within `tol` of the surface until it leaves: a
+/// graze through the tube, which a sideways move by the tolerance could turn into a miss.
+/// Sphere tracing inside (steps of |g|, at least a thousandth of the tolerance) samples the
+/// depth until it exceeds `tol` or the ray leaves.
+fn shallow(g: &impl Fn(f64) -> f64, entry: f64, tol: f64, length: f64) -> bool {
+    let mut t = entry + tol / length;
+    for _ in 0..100_000 {
+        let depth = -g(t);
+        if depth > tol {
+            return false;
+        }
+        if depth < 0.0 {
+            return true;
+        }
+        t += depth.max(tol * 1e-3) / length;
+    }
+    true
 }
 
 /// The sign change of g between `lo` and `hi` (g(lo) on the `inside` side), to f64 precision.
@@ -358,16 +421,19 @@ fn triangle(ray: &RefRay, p: [DVec3; 3]) -> Verdict {
     let normal = e1.cross(e2);
     let h = ray.direction.cross(e2);
     let det = e1.dot(h);
-    if det.abs() <= AMBIGUOUS_ULPS * F32_EPS * e1.length() * h.length() {
-        return Verdict::Ambiguous; // within noise of parallel to the plane
-    }
     let s = ray.origin - p[0];
+    if det.abs() <= AMBIGUOUS_ULPS * F32_EPS * e1.length() * h.length() {
+        // Within noise of parallel to the plane: in it within noise, or beside it and missing.
+        let off_plane = s.dot(normal).abs() / normal.length();
+        return if off_plane <= ray.tolerance(0.0) { Verdict::Ambiguous } else { Verdict::Miss };
+    }
     let u = s.dot(h) / det;
     let q = s.cross(e1);
     let v = ray.direction.dot(q) / det;
     let t = e2.dot(q) / det;
     let edge = u.min(v).min(1.0 - u - v);
-    let tol = ray.tolerance(t) / normal.length().sqrt().max(1e-30);
+    // Barycentric units: distance over the triangle's size, sqrt(2 area).
+    let tol = ray.edge_band(t, normal) / normal.length().sqrt().max(1e-30);
     if edge < -tol {
         return Verdict::Miss;
     }
@@ -379,7 +445,7 @@ mod tests {
     use super::*;
 
     fn ray(o: [f64; 3], d: [f64; 3]) -> RefRay {
-        RefRay { origin: DVec3::from(o), direction: DVec3::from(d), t_min: 0.0, t_max: 1e30 }
+        RefRay { origin: DVec3::from(o), direction: DVec3::from(d), t_min: 0.0, t_max: 1e30, noise_floor: 0.0 }
     }
 
     fn t_of(v: Verdict) -> f64 {

@@ -28,6 +28,18 @@ pub enum SceneVerdict {
     Ambiguous,
 }
 
+impl RefObject {
+    /// Object-space magnitude at which the f32 world-to-object transform of a ray from
+    /// `origin` rounds: the largest world coordinate involved (origin or translation) times
+    /// the transform's largest stretch.
+    fn noise_floor(&self, origin: DVec3) -> f64 {
+        let m = &self.world_to_object;
+        let stretch = m.x_axis.truncate().length().max(m.y_axis.truncate().length()).max(m.z_axis.truncate().length());
+        let world = origin.abs().max_element().max(self.object_to_world.w_axis.truncate().abs().max_element());
+        stretch * world
+    }
+}
+
 pub struct SceneReference {
     pub objects: Vec<RefObject>,
 }
@@ -60,6 +72,7 @@ impl SceneReference {
                 direction: object.world_to_object.transform_vector3(direction),
                 t_min,
                 t_max,
+                noise_floor: object.noise_floor(origin),
             };
             for shape in &object.shapes {
                 match intersect(shape, &ray) {

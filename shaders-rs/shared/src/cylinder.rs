@@ -5,7 +5,7 @@
 
 use crate::layout::Primitive;
 use crate::sphere::ON_SURFACE;
-use crate::surface::{closer, is_self_root, stable_roots, SurfaceHit};
+use crate::surface::{closer, is_self_root, self_reach2, stable_roots, SurfaceHit};
 use glam::Vec3;
 
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
@@ -47,14 +47,15 @@ fn solve(
         let discriminant = if robust { a * r * r - cross * cross } else { half_b * half_b - a * c };
         if discriminant >= 0.0 {
             let on_surface = robust && c.abs() <= ON_SURFACE * r * r;
+            let reach2 = self_reach2(on_surface, r * r, d.dot(d));
             let (r0, r1) = if robust {
                 stable_roots(a, half_b, c, discriminant)
             } else {
                 let root = discriminant.sqrt();
                 (Some((-half_b - root) / a), Some((-half_b + root) / a))
             };
-            best = side(best, o, d, r, half_height, r0, r1, on_surface, t_min, t_max);
-            best = side(best, o, d, r, half_height, r1, r0, on_surface, t_min, t_max);
+            best = side(best, o, d, r, half_height, r0, r1, reach2, t_min, t_max);
+            best = side(best, o, d, r, half_height, r1, r0, reach2, t_min, t_max);
         }
     }
     if d.y != 0.0 {
@@ -73,12 +74,12 @@ fn side(
     half_height: f32,
     root: Option<f32>,
     other: Option<f32>,
-    on_surface: bool,
+    reach2: f32,
     t_min: f32,
     t_max: f32,
 ) -> Option<SurfaceHit> {
     match root {
-        Some(t) if !is_self_root(on_surface, t, other) => {
+        Some(t) if !is_self_root(reach2, t, other) => {
             let p = o + d * t;
             if p.y.abs() <= half_height {
                 closer(best, SurfaceHit { t, normal: Vec3::new(p.x, 0.0, p.z) / r }, t_min, t_max)
@@ -147,5 +148,17 @@ mod tests {
             let out = (n + Vec3::new(0.0, 0.3, 0.0)).normalize();
             assert!(intersect(p, out, &cylinder(), 0.0, 100.0).is_none(), "self-hit at {k}");
         }
+    }
+
+    /// An origin just inside the side (within `ON_SURFACE`) with a ray nearly along the axis:
+    /// its nearer root, 0.4 away, is a real exit, not the origin's own root.
+    #[test]
+    fn near_surface_origin_keeps_a_distant_near_root() {
+        let o = Vec3::new(1.0 - 4e-4, 0.0, 0.0);
+        let d = Vec3::new(1e-3f32.sin(), 1e-3f32.cos(), 0.0);
+        let hit = intersect(o, d, &cylinder(), 0.0, 100.0).expect("leaves through the side");
+        let t = 4e-4 / 1e-3f32.sin();
+        assert!((hit.t / t - 1.0).abs() < 1e-5, "{} against {t}", hit.t);
+        assert!(hit.normal.x > 0.99);
     }
 }

@@ -177,6 +177,8 @@ pub fn layout_include() -> Result<String, String> {
         ("CHECKER_DEPTH", CHECKER_DEPTH),
         ("BOX_GAMMA_3", GAMMA_3),
         ("TORUS_ON_SURFACE", crate::torus::ON_SURFACE),
+        ("SELF_ROOT_REACH", crate::surface::SELF_ROOT_REACH),
+        ("CONE_POLISH_LIMIT", crate::cone::POLISH_LIMIT),
     ];
     for (name, value) in floats {
         writeln!(s, "#define {name} {value:?}").map_err(|e| e.to_string())?;

@@ -35,10 +35,29 @@ pub fn stable_roots(a: f32, half_b: f32, c: f32, discriminant: f32) -> (Option<f
     (r0, r1)
 }
 
-/// Whether root `t` is the ray's own origin: the ray starts on the surface (`on_surface`) and
-/// `t` is the root nearer to 0 of the pair (`t`, `other`).
-pub fn is_self_root(on_surface: bool, t: f32, other: Option<f32>) -> bool {
-    on_surface
+/// How far along the ray, relative to the shape's size at the origin, a root may lie and still
+/// be the origin's own. An origin within `ON_SURFACE` of the surface meets it again at
+/// distance / sin(angle), so this keeps the rejection for rays leaving at more than 0.3 degrees
+/// from the farthest such origin (and 0.02 degrees from a Ray Tracing Gems offset, 3e-5 of the
+/// position), while a root as far away as a tenth of the shape is a real hit: a ray nearly
+/// along a cylinder's side or a cone's generator, from close to it, lost such hits before.
+pub const SELF_ROOT_REACH: f32 = 0.1;
+
+/// The squared reach of a self root for `is_self_root`: `SELF_ROOT_REACH` times `size` (the
+/// shape's scale at the origin, squared), in ray parameter units for a direction with
+/// squared length `dd`; negative, so no root qualifies, when the origin is not on the surface.
+pub fn self_reach2(on_surface: bool, size2: f32, dd: f32) -> f32 {
+    if on_surface {
+        SELF_ROOT_REACH * SELF_ROOT_REACH * size2 / dd
+    } else {
+        -1.0
+    }
+}
+
+/// Whether root `t` is the ray's own origin: it lies within the reach of `self_reach2` and is
+/// the root nearer to 0 of the pair (`t`, `other`).
+pub fn is_self_root(reach2: f32, t: f32, other: Option<f32>) -> bool {
+    t * t <= reach2
         && match other {
             Some(o) => t.abs() < o.abs(),
             None => true,
