@@ -186,7 +186,8 @@ pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
     let sets = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::ShaderSet>, _>>()?;
     let ctx = context(global)?;
     let formulas = [Formula::Robust, Formula::Naive];
-    let rows = twinray::stability::run(&ctx, &files, &sets, &formulas, (args.warmup, args.runs))?;
+    let timing = twinray::stability::Timing { warmup: args.warmup, runs: args.runs, rays: args.timing_rays };
+    let rows = twinray::stability::run(&ctx, &files, &sets, &formulas, timing)?;
     if args.json {
         println!("{}", serde_json::to_string(&rows)?);
     } else {

@@ -146,6 +146,9 @@ pub struct StabilityArgs {
     /// Untimed passes before the timed ones.
     #[arg(long, default_value_t = 1)]
     warmup: u32,
+    /// Time each case over its rays repeated up to at least this many (0: the case's rays).
+    #[arg(long, default_value_t = 262_144)]
+    timing_rays: usize,
     /// Print one JSON array of rows.
     #[arg(long)]
     json: bool,

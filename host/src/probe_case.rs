@@ -133,6 +133,13 @@ impl ProbeCase {
         &self.robust_rays
     }
 
+    /// Whether the naive formula changes anything here: a shape with a naive variant, or
+    /// surface rays (whose naive form is the fixed-epsilon shadow ray).
+    pub fn has_naive(&self) -> bool {
+        self.scene.file.shapes.values().any(|s| s.has_naive())
+            || self.file.generators.iter().any(|g| matches!(g, Generator::Surface { .. }))
+    }
+
     /// Surface rays follow too: naive ones start on the surface with a fixed epsilon.
     pub fn set_formula(&mut self, formula: crate::scene::file::Formula) {
         for shape in self.scene.file.shapes.values_mut() {

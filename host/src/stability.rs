@@ -36,23 +36,36 @@ pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
     Ok(files)
 }
 
-/// Runs every case with every set and formula: `runs` timed passes after `warmup`.
+/// How GPU time is taken: `runs` timed passes after `warmup`, each over the case's rays
+/// repeated up to at least `rays` rays (a case's few thousand rays alone take too little
+/// time to measure), or over the case's rays alone when `rays` is 0.
+#[derive(Clone, Copy, Debug)]
+pub struct Timing {
+    pub warmup: u32,
+    pub runs: u32,
+    pub rays: usize,
+}
+
+/// Runs every case with every set and formula: accuracy from one pass over the case's rays,
+/// GPU time as `timing` says.
 pub fn run(
     ctx: &Arc<Context>,
     files: &[PathBuf],
     sets: &[ShaderSet],
     formulas: &[Formula],
-    (warmup, runs): (u32, u32),
+    timing: Timing,
 ) -> Result<Vec<StabilityRow>> {
     let mut rows = Vec::new();
     for file in files {
         let mut case = ProbeCase::load(file)?;
-        for &formula in formulas {
+        // A case whose shapes have no naive variant and no surface rays runs robust only.
+        let has_naive = case.has_naive();
+        for &formula in formulas.iter().filter(|&&f| f == Formula::Robust || has_naive) {
             case.set_formula(formula);
             for set in sets {
-                let out = probe(ctx, &case.scene, set, &case.rays, warmup, runs)?;
-                let report =
-                    evaluate(&case, &out.results, &set.to_string(), &ctx.info.name, crate::stats::median(&out.gpu_ms));
+                let out = probe(ctx, &case.scene, set, &case.rays, 0, 1)?;
+                let gpu_ms = case_gpu_ms(ctx, &case, set, timing)?;
+                let report = evaluate(&case, &out.results, &set.to_string(), &ctx.info.name, gpu_ms);
                 let failures = if formula == Formula::Robust { failures(&case, &report) } else { Vec::new() };
                 let formula = if formula == Formula::Robust { "robust" } else { "naive" };
                 rows.push(StabilityRow { formula, report, failures });
@@ -60,6 +73,14 @@ pub fn run(
         }
     }
     Ok(rows)
+}
+
+/// Median GPU time of one pass over the case's rays, measured as `timing` says.
+fn case_gpu_ms(ctx: &Arc<Context>, case: &ProbeCase, set: &ShaderSet, timing: Timing) -> Result<Option<f64>> {
+    let copies = timing.rays.div_ceil(case.rays.len()).max(1);
+    let rays: Vec<_> = case.rays.iter().copied().cycle().take(case.rays.len() * copies).collect();
+    let out = probe(ctx, &case.scene, set, &rays, timing.warmup, timing.runs)?;
+    Ok(crate::stats::median(&out.gpu_ms).map(|ms| ms / copies as f64))
 }
 
 /// What a robust report breaks of its case's targets.
@@ -82,8 +103,33 @@ pub fn failures(case: &ProbeCase, r: &ProbeReport) -> Vec<String> {
     failures
 }
 
-/// The table `twinray stability` prints.
+/// The table `twinray stability` prints, then what robustness costs.
 pub fn table(rows: &[StabilityRow]) -> String {
+    let mut s = results(rows);
+    s += &costs(rows);
+    s
+}
+
+/// GPU time per million rays of the robust formulas over the naive ones, per case and set,
+/// both from the same run.
+fn costs(rows: &[StabilityRow]) -> String {
+    let mut s = format!(
+        "\n{:<26} {:<5} {:>14} {:>14} {:>12}\n",
+        "cost", "set", "robust ms/Mray", "naive ms/Mray", "robust/naive"
+    );
+    for robust in rows.iter().filter(|r| r.formula == "robust") {
+        let (case, set) = (&robust.report.case, &robust.report.set);
+        let naive = rows.iter().find(|r| r.formula == "naive" && &r.report.case == case && &r.report.set == set);
+        let times =
+            naive.and_then(|n| Some((robust.report.gpu_ms_per_million_rays?, n.report.gpu_ms_per_million_rays?)));
+        if let Some((r, n)) = times {
+            s += &format!("{case:<26} {set:<5} {r:>14.2} {n:>14.2} {:>12.3}\n", r / n);
+        }
+    }
+    s
+}
+
+fn results(rows: &[StabilityRow]) -> String {
     let mut s = format!(
         "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>8} {:>9} {:>9}  targets\n",
         "case", "set", "formula", "rays", "decided", "f.hit", "f.miss", "t p99", "ulp p99", "n p99", "ms/Mray"

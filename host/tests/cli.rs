@@ -169,3 +169,41 @@ fn compare_prints_json_with_the_documented_keys() {
         assert!(dir.path().join("cmp").join(name).is_file(), "{name} not written");
     }
 }
+
+/// `twinray stability` on a folder of two cases: the table and the cost table, JSON rows
+/// (robust only for a shape without a naive variant), exit code 1 when a target is missed,
+/// and exit code 2 for a folder without cases.
+#[test]
+fn stability_prints_rows_costs_and_json_and_fails_on_a_missed_target() {
+    let dir = tempfile::tempdir().unwrap();
+    let cases = repo().join("probes/stability");
+    for name in ["sphere-far-1e3.toml", "cone-apex.toml"] {
+        std::fs::copy(cases.join(name), dir.path().join(name)).unwrap();
+    }
+    let folder = dir.path().to_string_lossy().into_owned();
+    let args = ["stability", "--dir", &folder, "--runs", "1", "--warmup", "0", "--timing-rays", "0", "--validate"];
+    let out = twinray(&args, dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("sphere-far-1e3") && stdout.contains("robust/naive"), "{stdout}");
+    let out = twinray(&[&args[..], &["--json"]].concat(), dir.path());
+    let rows: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON rows");
+    let rows = rows.as_array().unwrap();
+    let count = |case: &str| rows.iter().filter(|r| r["case"] == case).count();
+    assert_eq!((count("sphere-far-1e3"), count("cone-apex")), (4, 2), "rust and glsl; naive only for the sphere");
+    for key in ["formula", "rays", "decided", "false_hits", "false_misses", "relative_t_error", "failures"] {
+        assert!(rows[0].get(key).is_some(), "no {key} in {}", rows[0]);
+    }
+    // An unreachable target: the same run now fails.
+    let strict = std::fs::read_to_string(dir.path().join("cone-apex.toml")).unwrap().replace("1e-06", "1e-12");
+    std::fs::write(dir.path().join("cone-apex.toml"), strict).unwrap();
+    let out = twinray(&args, dir.path());
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8_lossy(&out.stdout).contains("MISSED: relative t p99"));
+    let empty = tempfile::tempdir().unwrap();
+    assert_bad_input(&["stability", "--dir", &empty.path().to_string_lossy()], &["no probe cases"]);
+}
+
+fn repo() -> std::path::PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+}

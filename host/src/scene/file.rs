@@ -281,6 +281,17 @@ pub enum Formula {
 }
 
 impl ShapeDesc {
+    /// Whether the shape has a naive variant (sphere, sphere field, cylinder, torus).
+    pub fn has_naive(&self) -> bool {
+        matches!(
+            self,
+            ShapeDesc::Sphere { .. }
+                | ShapeDesc::SphereField { .. }
+                | ShapeDesc::Cylinder { .. }
+                | ShapeDesc::Torus { .. }
+        )
+    }
+
     /// Sets the formula of a shape that has a naive variant (sphere, sphere field, cylinder,
     /// torus); other shapes are left as they are.
     pub fn set_formula(&mut self, to: Formula) {
