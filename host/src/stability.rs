@@ -16,6 +16,9 @@ use std::sync::Arc;
 #[derive(Clone, Debug, serde::Serialize)]
 pub struct StabilityRow {
     pub formula: &'static str,
+    /// What the formula changes in this case: its hit groups (robust names), or "shadow rays
+    /// from" them for surface rays.
+    pub variant: String,
     #[serde(flatten)]
     pub report: ProbeReport,
     /// Broken targets (robust rows only); empty when the row meets them.
@@ -60,6 +63,7 @@ pub fn run(
         let mut case = ProbeCase::load(file)?;
         // A case whose shapes have no naive variant and no surface rays runs robust only.
         let has_naive = case.has_naive();
+        let variant = variant(&case);
         for &formula in formulas.iter().filter(|&&f| f == Formula::Robust || has_naive) {
             case.set_formula(formula);
             for set in sets {
@@ -68,11 +72,23 @@ pub fn run(
                 let report = evaluate(&case, &out.results, &set.to_string(), &ctx.info.name, gpu_ms);
                 let failures = if formula == Formula::Robust { failures(&case, &report) } else { Vec::new() };
                 let formula = if formula == Formula::Robust { "robust" } else { "naive" };
-                rows.push(StabilityRow { formula, report, failures });
+                rows.push(StabilityRow { formula, variant: variant.clone(), report, failures });
             }
         }
     }
     Ok(rows)
+}
+
+/// See `StabilityRow::variant`.
+fn variant(case: &ProbeCase) -> String {
+    let groups = case.scene.build().plan.hit_groups;
+    let shapes = groups.iter().map(|g| g.name()).collect::<Vec<_>>().join("+");
+    let surface = case.file.generators.iter().any(|g| matches!(g, crate::probe_generate::Generator::Surface { .. }));
+    if surface {
+        format!("shadow rays from {shapes}")
+    } else {
+        shapes
+    }
 }
 
 /// Median GPU time of one pass over the case's rays, measured as `timing` says.
@@ -111,20 +127,31 @@ pub fn table(rows: &[StabilityRow]) -> String {
 }
 
 /// GPU time per million rays of the robust formulas over the naive ones, per case and set,
-/// both from the same run.
+/// both from the same run; then per variant and set, the geometric mean over its cases.
 fn costs(rows: &[StabilityRow]) -> String {
     let mut s = format!(
         "\n{:<26} {:<5} {:>14} {:>14} {:>12}\n",
         "cost", "set", "robust ms/Mray", "naive ms/Mray", "robust/naive"
     );
+    let mut ratios: Vec<(&str, &str, f64)> = Vec::new();
     for robust in rows.iter().filter(|r| r.formula == "robust") {
         let (case, set) = (&robust.report.case, &robust.report.set);
         let naive = rows.iter().find(|r| r.formula == "naive" && &r.report.case == case && &r.report.set == set);
         let times =
             naive.and_then(|n| Some((robust.report.gpu_ms_per_million_rays?, n.report.gpu_ms_per_million_rays?)));
         if let Some((r, n)) = times {
-            s += &format!("{case:<26} {set:<5} {r:>14.2} {n:>14.2} {:>12.3}\n", r / n);
+            s += &format!("{case:<26} {set:<5} {r:>14.4} {n:>14.4} {:>12.3}\n", r / n);
+            ratios.push((&robust.variant, set, r / n));
         }
+    }
+    s += &format!("\n{:<32} {:<5} {:>5} {:>12}\n", "cost per variant", "set", "cases", "robust/naive");
+    let mut keys: Vec<(&str, &str)> = ratios.iter().map(|&(v, set, _)| (v, set)).collect();
+    keys.sort();
+    keys.dedup();
+    for (variant, set) in keys {
+        let logs: Vec<f64> = ratios.iter().filter(|r| (r.0, r.1) == (variant, set)).map(|r| r.2.ln()).collect();
+        let mean = (logs.iter().sum::<f64>() / logs.len() as f64).exp();
+        s += &format!("{variant:<32} {set:<5} {:>5} {mean:>12.3}\n", logs.len());
     }
     s
 }
