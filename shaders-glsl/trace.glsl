@@ -17,8 +17,9 @@ bool visible(vec3 origin, vec3 direction, float distance) {
     return shadow_payload.occluded == 0u;
 }
 
-// shadows: whether any light casts shadows (a specialisation constant).
-vec3 shade(bool shadows, uint pixel, uint sample_index) {
+// shadows: whether any light casts shadows (a specialisation constant). Adds the shadow rays
+// it traces to shadow_rays.
+vec3 shade(bool shadows, uint pixel, uint sample_index, inout uint shadow_rays) {
     if (payload.ids.w == NO_HIT || payload.ids.z == MATERIAL_EMISSIVE) {
         return payload.color.xyz;
     }
@@ -41,8 +42,15 @@ vec3 shade(bool shadows, uint pixel, uint sample_index) {
                 LightSample s = light_sample(light, point, i, j, r1, r2);
                 float cosine = dot(normal, s.direction);
                 bool casts = shadows && light.shadows != 0u;
-                if (cosine > 0.0 && (!casts || visible(origin, s.direction, s.distance))) {
-                    light_sum += s.irradiance * cosine;
+                if (cosine > 0.0) {
+                    bool lit = true;
+                    if (casts) {
+                        shadow_rays++;
+                        lit = visible(origin, s.direction, s.distance);
+                    }
+                    if (lit) {
+                        light_sum += s.irradiance * cosine;
+                    }
                 }
             }
         }

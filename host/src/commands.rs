@@ -58,6 +58,9 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             "not available on this queue".into()
         };
         println!("timestamps  {timing}");
+        if let Some(threads) = i.cpu_threads {
+            println!("threads     {threads} (a CPU device: LP_NUM_THREADS, else the CPU count)");
+        }
     }
     Ok(ExitCode::SUCCESS)
 }
@@ -127,12 +130,19 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             "height": out.height,
             "out": args.out,
             "gpu_ms": median,
+            "gpu_ms_spread": out.spread(),
             "gpu_ms_runs": out.gpu_ms,
+            "rays": out.rays,
+            "mrays_per_s": out.mrays_per_s(),
+            "cpu_threads": ctx.info.cpu_threads,
             "hit_pixels": hit_count(&out),
         });
         println!("{value}");
     } else {
-        let ms = median.map_or("n/a".into(), |m| format!("{m:.3} ms (median of {})", out.gpu_ms.len()));
+        let ms = out.spread().map_or("n/a".into(), |s| {
+            let rate = out.mrays_per_s().map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
+            format!("{:.3} ms (median of {}, IQR {:.3}){rate}", s.median, s.samples, s.iqr())
+        });
         println!("{} {}x{} with {} on {}: GPU {ms}", scene.name(), out.width, out.height, args.shaders, ctx.info.name);
         println!("wrote {}", args.out.display());
     }

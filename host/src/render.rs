@@ -60,12 +60,38 @@ pub struct RenderOutput {
     pub hit_ids: Vec<u64>,
     /// GPU milliseconds of each timed trace; empty when the device cannot time.
     pub gpu_ms: Vec<f64>,
+    /// Rays one trace traced.
+    pub rays: RayCounts,
+}
+
+/// Rays traced by one trace of an image, by kind: primary rays are pixels times samples,
+/// shadow rays are counted by ray generation as it traces them.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct RayCounts {
+    pub primary: u64,
+    pub shadow: u64,
+}
+
+impl RayCounts {
+    pub fn total(&self) -> u64 {
+        self.primary + self.shadow
+    }
 }
 
 impl RenderOutput {
     /// Median GPU time of the timed traces.
     pub fn median_ms(&self) -> Option<f64> {
         crate::stats::median(&self.gpu_ms)
+    }
+
+    /// Median and interquartile range of the timed traces.
+    pub fn spread(&self) -> Option<crate::stats::Spread> {
+        crate::stats::Spread::of(&self.gpu_ms)
+    }
+
+    /// Millions of rays per second at the median GPU time.
+    pub fn mrays_per_s(&self) -> Option<f64> {
+        self.median_ms().filter(|&ms| ms > 0.0).map(|ms| self.rays.total() as f64 / (ms * 1e3))
     }
 }
 
@@ -142,7 +168,8 @@ fn render_and_release(
     check_size(opts.width, opts.height).map_err(Error::Input)?;
     check_device_limits(ctx, opts)?;
     let pixels = u64::from(opts.width) * u64::from(opts.height);
-    let hit_ids = storage_buffer(ctx, "hit ids", pixels * 8)?;
+    let ids_bytes = pixels * u64::from(b::HIT_IDS_PER_PIXEL) * 4;
+    let hit_ids = storage_buffer(ctx, "hit ids", ids_bytes)?;
     let unused = storage_buffer(ctx, "unused probe buffer", 64)?;
     let extra = [(b::BINDING_HIT_IDS, &hit_ids), (b::BINDING_PROBE_RAYS, &unused), (b::BINDING_PROBE_RESULTS, &unused)];
     let size = (opts.width, opts.height);
@@ -150,7 +177,7 @@ fn render_and_release(
     let timestamps = Timestamps::new(ctx, opts.runs)?;
     let readback_usage = vk::BufferUsageFlags::TRANSFER_DST;
     let image_readback = Buffer::new(ctx, "image readback", pixels * 4, readback_usage, MemoryLocation::GpuToCpu)?;
-    let ids_readback = Buffer::new(ctx, "hit id readback", pixels * 8, readback_usage, MemoryLocation::GpuToCpu)?;
+    let ids_readback = Buffer::new(ctx, "hit id readback", ids_bytes, readback_usage, MemoryLocation::GpuToCpu)?;
     let trace = Trace {
         pipeline: &p.pipeline,
         descriptors: &p.descriptors,
@@ -177,19 +204,25 @@ fn render_and_release(
     })?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
     let pixel_bytes = pixels as usize * 4;
+    let (hit_ids, shadow) = read_ids(&ids_readback.mapped()?[..ids_bytes as usize]);
+    let samples = u64::from(scene.file.image.samples).pow(2);
     Ok(RenderOutput {
         width: opts.width,
         height: opts.height,
         rgba: image_readback.mapped()?[..pixel_bytes].to_vec(),
-        hit_ids: ids_readback.mapped()?[..2 * pixel_bytes]
-            .chunks_exact(8)
-            .map(|p| {
-                u64::from(u32::from_le_bytes([p[0], p[1], p[2], p[3]])) << 32
-                    | u64::from(u32::from_le_bytes([p[4], p[5], p[6], p[7]]))
-            })
-            .collect(),
+        hit_ids,
         gpu_ms,
+        rays: RayCounts { primary: pixels * samples, shadow },
     })
+}
+
+/// Per pixel the first hit (object << 32 | primitive), and the sum of the pixels' shadow rays.
+fn read_ids(bytes: &[u8]) -> (Vec<u64>, u64) {
+    let word = |p: &[u8], i: usize| u32::from_le_bytes([p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]]);
+    let per_pixel = 4 * b::HIT_IDS_PER_PIXEL as usize;
+    let ids = bytes.chunks_exact(per_pixel).map(|p| u64::from(word(p, 0)) << 32 | u64::from(word(p, 1))).collect();
+    let shadow = bytes.chunks_exact(per_pixel).map(|p| u64::from(word(p, 2))).sum();
+    (ids, shadow)
 }
 
 /// The output image's layout before the first trace, and while traces write it.

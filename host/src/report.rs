@@ -4,9 +4,10 @@
 use crate::compare::{diff, diff_image, verdict, ImageDiff};
 use crate::error::{Error, Result};
 use crate::output::write_png;
-use crate::render::{render, RenderOptions, RenderOutput};
+use crate::render::{render, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shader_set::ShaderSet;
+use crate::stats::Spread;
 use crate::vk::context::Context;
 use serde::Serialize;
 use std::path::Path;
@@ -29,6 +30,17 @@ pub struct CompareReport {
     pub gpu_ms_b: Option<f64>,
     /// gpu_ms_a / gpu_ms_b.
     pub ratio: Option<f64>,
+    /// Median and interquartile range of each set's timed traces.
+    pub spread_a: Option<Spread>,
+    pub spread_b: Option<Spread>,
+    /// Rays each set traced in one trace (shadow rays may differ where the sets' hits do).
+    pub rays_a: RayCounts,
+    pub rays_b: RayCounts,
+    /// Millions of rays per second at the median time.
+    pub mrays_per_s_a: Option<f64>,
+    pub mrays_per_s_b: Option<f64>,
+    /// Threads of a CPU device (lavapipe); null on GPUs.
+    pub cpu_threads: Option<u32>,
     /// Timed traces per set (after `warmup` untimed ones).
     pub runs: u32,
     pub warmup: u32,
@@ -69,6 +81,13 @@ pub fn compare_sets(
         gpu_ms_a,
         gpu_ms_b,
         ratio: gpu_ms_a.zip(gpu_ms_b).filter(|(_, b)| *b > 0.0).map(|(a, b)| a / b),
+        spread_a: a.spread(),
+        spread_b: b.spread(),
+        rays_a: a.rays,
+        rays_b: b.rays,
+        mrays_per_s_a: a.mrays_per_s(),
+        mrays_per_s_b: b.mrays_per_s(),
+        cpu_threads: ctx.info.cpu_threads,
         runs: opts.runs,
         warmup: opts.warmup,
         pass: failures.is_empty(),
@@ -91,21 +110,27 @@ impl Comparison {
 impl CompareReport {
     /// The human-readable summary `compare` prints.
     pub fn summary(&self) -> String {
-        let ms = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.3} ms"));
+        let timing = |spread: Option<Spread>, rate: Option<f64>, rays: RayCounts| {
+            let ms = spread.map_or("n/a".to_string(), |s| format!("{:.3} ms (IQR {:.3})", s.median, s.iqr()));
+            let rate = rate.map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
+            format!("GPU {ms}{rate}; {} primary + {} shadow rays", rays.primary, rays.shadow)
+        };
         let pixels = (u64::from(self.width) * u64::from(self.height)).max(1) as f64;
         let pct = |n: u64| 100.0 * n as f64 / pixels;
         let d = &self.diff.color;
+        let threads = self.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
         let mut s = format!(
-            "scene {} {}x{} on {}\n  a = {:<28} GPU {} (median of {})\n  b = {:<28} GPU {}\n  ratio a/b {}\n",
+            "scene {} {}x{} on {}{threads}, median of {} traces after {} untimed\n  a = {:<28} {}\n  b = {:<28} {}\n  ratio a/b {}\n",
             self.scene,
             self.width,
             self.height,
             self.device,
-            self.set_a,
-            ms(self.gpu_ms_a),
             self.runs,
+            self.warmup,
+            self.set_a,
+            timing(self.spread_a, self.mrays_per_s_a, self.rays_a),
             self.set_b,
-            ms(self.gpu_ms_b),
+            timing(self.spread_b, self.mrays_per_s_b, self.rays_b),
             self.ratio.map_or("n/a".into(), |r| format!("{r:.3}")),
         );
         s += &format!(

@@ -136,6 +136,10 @@ fn render_writes_png_and_json() {
     assert_eq!((json["width"].as_u64(), json["height"].as_u64()), (Some(64), Some(48)));
     assert_eq!(json["set"], "glsl,intersection=rust");
     assert_eq!(json["gpu_ms_runs"].as_array().map(Vec::len), Some(2));
+    assert_eq!(json["gpu_ms_spread"]["samples"], 2);
+    assert_eq!(json["rays"]["primary"], 64 * 48, "one sample per pixel in the default scene");
+    assert!(json["mrays_per_s"].as_f64().is_some_and(|r| r > 0.0));
+    assert!(json["cpu_threads"].as_u64().is_some_and(|t| t >= 1), "lavapipe's threads");
     let png = image::open(dir.path().join("r.png")).expect("a readable PNG");
     assert_eq!((png.width(), png.height()), (64, 48));
 }
@@ -159,6 +163,13 @@ fn compare_prints_json_with_the_documented_keys() {
         "gpu_ms_a",
         "gpu_ms_b",
         "ratio",
+        "spread_a",
+        "spread_b",
+        "rays_a",
+        "rays_b",
+        "mrays_per_s_a",
+        "mrays_per_s_b",
+        "cpu_threads",
         "pass",
     ];
     for key in keys {

@@ -29,6 +29,9 @@ pub struct DeviceInfo {
     pub timestamp_period_ns: f32,
     /// Valid bits of timestamps on the queue used; 0 means no GPU timing.
     pub timestamp_valid_bits: u32,
+    /// Threads of a CPU device (lavapipe): LP_NUM_THREADS if set, else the CPU count, which
+    /// is what lavapipe uses; `None` for GPUs.
+    pub cpu_threads: Option<u32>,
 }
 
 /// Options for [`Context::new`].
@@ -235,6 +238,7 @@ fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_fam
     DeviceInfo {
         name,
         device_type: format!("{:?}", props.device_type),
+        cpu_threads: (props.device_type == vk::PhysicalDeviceType::CPU).then(cpu_threads),
         api_version: format!(
             "{}.{}.{}",
             vk::api_version_major(props.api_version),
@@ -253,4 +257,10 @@ fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_fam
         timestamp_period_ns: props.limits.timestamp_period,
         timestamp_valid_bits: families.get(queue_family as usize).map_or(0, |f| f.timestamp_valid_bits),
     }
+}
+
+/// Rasterizer threads lavapipe runs with: LP_NUM_THREADS, or the CPUs available.
+fn cpu_threads() -> u32 {
+    let from_env = std::env::var("LP_NUM_THREADS").ok().and_then(|v| v.trim().parse().ok());
+    from_env.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get() as u32))
 }

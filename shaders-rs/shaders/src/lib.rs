@@ -11,8 +11,8 @@ use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
 use twinray_shared::bindings::{
-    HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS, MISS_PRIMARY,
-    NO_HIT,
+    HIT_IDS_PER_PIXEL, HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS,
+    MISS_PRIMARY, NO_HIT,
 };
 use twinray_shared::layout::{
     FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
@@ -40,6 +40,7 @@ pub fn raygen(
     let pixel_index = launch_id.y * launch_size.x + launch_id.x;
     let mut sum = Vec3::ZERO;
     let mut first_hit = (NO_HIT, NO_HIT);
+    let mut shadow_rays = 0;
     // Counted `while` loops rather than `for` over ranges: see trace.rs.
     let mut sy = 0;
     while sy < samples_per_side {
@@ -58,15 +59,18 @@ pub fn raygen(
             if sample == 0 {
                 first_hit = (payload.ids.x, payload.ids.y);
             }
-            sum += trace::shade(tlas, frame, lights, shadows != 0, payload, shadow, pixel_index, sample);
+            sum +=
+                trace::shade(tlas, frame, lights, shadows != 0, payload, shadow, pixel_index, sample, &mut shadow_rays);
             sx += 1;
         }
         sy += 1;
     }
     // Written after the loops: an indexing panic path inside them becomes control flow that
     // NVIDIA's driver miscompiles (see trace.rs).
-    hit_ids[2 * pixel_index as usize] = first_hit.0;
-    hit_ids[2 * pixel_index as usize + 1] = first_hit.1;
+    let base = (HIT_IDS_PER_PIXEL * pixel_index) as usize;
+    hit_ids[base] = first_hit.0;
+    hit_ids[base + 1] = first_hit.1;
+    hit_ids[base + 2] = shadow_rays;
     let color = sum / (samples_per_side * samples_per_side) as f32;
     // SAFETY: launch_id lies inside the image, which the host sizes to the launch.
     unsafe { image.write(pixel, color.extend(1.0)) };

@@ -32,7 +32,7 @@ pub fn primary(tlas: &AccelerationStructure, ray: Ray, payload: &mut HitPayload)
 
 /// Colour seen along a primary ray: the background, an emitter's radiance, or the albedo times
 /// the light arriving from every light (with shadows where lights cast them, and `shadows`, a
-/// specialisation constant, is on).
+/// specialisation constant, is on). Adds the shadow rays it traces to `shadow_rays`.
 #[allow(clippy::too_many_arguments)]
 pub fn shade(
     tlas: &AccelerationStructure,
@@ -43,6 +43,7 @@ pub fn shade(
     shadow: &mut ShadowPayload,
     pixel: u32,
     sample: u32,
+    shadow_rays: &mut u32,
 ) -> Vec3 {
     if hit.ids.w == NO_HIT || hit.ids.z == MATERIAL_EMISSIVE {
         return hit.color.xyz();
@@ -84,7 +85,12 @@ pub fn shade(
                 let s = lighting::sample(&light, point, i, j, r1, r2);
                 let cosine = normal.dot(s.direction);
                 if cosine > 0.0 {
-                    let lit = if casts { visible(tlas, origin, s.direction, s.distance, shadow) } else { true };
+                    let lit = if casts {
+                        *shadow_rays += 1;
+                        visible(tlas, origin, s.direction, s.distance, shadow)
+                    } else {
+                        true
+                    };
                     if lit {
                         light_sum += s.irradiance * cosine;
                     }

@@ -21,8 +21,11 @@ pub const BINDING_PRIMITIVES: u32 = 4;
 pub const BINDING_MATERIALS: u32 = 5;
 /// `[Light]`, `FrameUniform::light_count` of them.
 pub const BINDING_LIGHTS: u32 = 6;
-/// `[u32]`, two per pixel: object and primitive hit by the first primary ray, or [`NO_HIT`].
+/// `[u32]`, [`HIT_IDS_PER_PIXEL`] per pixel: object and primitive hit by the first primary ray
+/// (or [`NO_HIT`]), and how many shadow rays the pixel traced (so that rays/s count the rays
+/// actually traced).
 pub const BINDING_HIT_IDS: u32 = 7;
+pub const HIT_IDS_PER_PIXEL: u32 = 3;
 /// `[Vertex]` of every mesh, from each object's `vertex_base`.
 pub const BINDING_VERTICES: u32 = 8;
 /// `[u32]`, three per triangle, from each object's `index_base`, relative to `vertex_base`.

@@ -139,6 +139,7 @@ pub fn layout_include() -> Result<String, String> {
         ("BINDING_MATERIALS", BINDING_MATERIALS),
         ("BINDING_LIGHTS", BINDING_LIGHTS),
         ("BINDING_HIT_IDS", BINDING_HIT_IDS),
+        ("HIT_IDS_PER_PIXEL", crate::bindings::HIT_IDS_PER_PIXEL),
         ("BINDING_VERTICES", BINDING_VERTICES),
         ("BINDING_INDICES", BINDING_INDICES),
         ("BINDING_PROBE_RAYS", BINDING_PROBE_RAYS),
