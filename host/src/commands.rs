@@ -1,7 +1,7 @@
 //! The bodies of `twinray info`, `render` and `compare`: every input is checked before any
 //! GPU work, and files are written only once everything has succeeded.
 
-use crate::{CompareArgs, FrameArgs, GlobalArgs, ProbeArgs, RenderArgs, StabilityArgs};
+use crate::{CompareArgs, FrameArgs, GlobalArgs, ProbeArgs, ReferenceArgs, RenderArgs, StabilityArgs};
 use anyhow::{Context as _, Result};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -205,4 +205,46 @@ pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
     }
     let missed = rows.iter().filter(|r| !r.failures.is_empty()).count();
     Ok(if missed == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
+    let scene = Scene::load(args.scene.as_deref())?;
+    let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
+    check_size(size.0, size.1).map_err(Error::Input)?;
+    twinray::reference_image::frames(args.spp)?;
+    if let Some(out) = &args.out {
+        check_png_target(out)?;
+    }
+    let cache = args.cache.unwrap_or_else(twinray::reference_image::default_cache);
+    let ctx = context(global)?;
+    let start = std::time::Instant::now();
+    let r = twinray::reference_image::reference(&ctx, &scene, &args.shaders, size, args.spp, &cache)?;
+    if let Some(out) = &args.out {
+        write_png(out, r.width, r.height, &twinray::render::to_rgba8(&r.linear))?;
+    }
+    if args.json {
+        let value = serde_json::json!({
+            "scene": scene.name(),
+            "set": args.shaders.to_string(),
+            "width": r.width,
+            "height": r.height,
+            "spp": r.spp,
+            "path": r.path,
+            "cached": r.cached,
+            "seconds": start.elapsed().as_secs_f64(),
+        });
+        println!("{value}");
+    } else {
+        let how = if r.cached { "read from the cache" } else { "rendered" };
+        println!(
+            "{} {}x{} at {} spp with {}: {how}, {}",
+            scene.name(),
+            r.width,
+            r.height,
+            r.spp,
+            args.shaders,
+            r.path.display()
+        );
+    }
+    Ok(ExitCode::SUCCESS)
 }

@@ -9,6 +9,7 @@ pub mod probe_case;
 pub mod probe_generate;
 pub mod probe_report;
 pub mod reference;
+pub mod reference_image;
 pub mod reference_scene;
 pub mod render;
 pub mod report;

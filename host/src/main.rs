@@ -57,6 +57,8 @@ enum Command {
     /// The hard-case suite: every probe case of a folder, per set and formula, against the
     /// reference and the cases' targets.
     Stability(StabilityArgs),
+    /// Render (or read from the cache) a scene's converged reference image.
+    Reference(ReferenceArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -154,6 +156,33 @@ pub struct StabilityArgs {
     json: bool,
 }
 
+#[derive(Args)]
+pub struct ReferenceArgs {
+    /// Scene file, or the name of a built-in scene [default: spheres].
+    scene: Option<String>,
+    /// Samples per pixel: a square up to 256, or a multiple of 256.
+    #[arg(long, default_value_t = 1024)]
+    spp: u32,
+    /// Shader set that renders it.
+    #[arg(long, default_value = "glsl")]
+    shaders: ShaderSet,
+    /// Image width in pixels [default: the scene's].
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height in pixels [default: the scene's].
+    #[arg(long)]
+    height: Option<u32>,
+    /// Cache folder [default: $XDG_CACHE_HOME/twinray/references or ~/.cache/twinray/references].
+    #[arg(long)]
+    cache: Option<PathBuf>,
+    /// Also write the reference as an 8-bit PNG.
+    #[arg(long)]
+    out: Option<PathBuf>,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -182,6 +211,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => commands::compare(&cli.global, args),
         Command::Probe(args) => commands::probe(&cli.global, args),
         Command::Stability(args) => commands::stability(&cli.global, args),
+        Command::Reference(args) => commands::reference(&cli.global, args),
     };
     match result {
         Ok(code) => code,

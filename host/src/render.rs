@@ -53,8 +53,10 @@ pub struct RenderOptions {
 pub struct RenderOutput {
     pub width: u32,
     pub height: u32,
-    /// Row-major RGBA8, top row first.
+    /// Row-major RGBA8, top row first: `linear` clamped to [0, 1] and rounded to 8 bits.
     pub rgba: Vec<u8>,
+    /// Row-major RGB mean radiance per pixel, in f32, as ray generation wrote it.
+    pub linear: Vec<[f32; 3]>,
     /// Per pixel, what the first primary ray hit: object index << 32 | primitive index, or
     /// [`NO_HIT_ID`].
     pub hit_ids: Vec<u64>,
@@ -176,7 +178,8 @@ fn render_and_release(
     let p = prepare(ctx, scene, set, "raygen", (size, size), &extra)?;
     let timestamps = Timestamps::new(ctx, opts.runs)?;
     let readback_usage = vk::BufferUsageFlags::TRANSFER_DST;
-    let image_readback = Buffer::new(ctx, "image readback", pixels * 4, readback_usage, MemoryLocation::GpuToCpu)?;
+    let image_bytes = pixels * crate::vk::image::PIXEL_BYTES;
+    let image_readback = Buffer::new(ctx, "image readback", image_bytes, readback_usage, MemoryLocation::GpuToCpu)?;
     let ids_readback = Buffer::new(ctx, "hit id readback", ids_bytes, readback_usage, MemoryLocation::GpuToCpu)?;
     let trace = Trace {
         pipeline: &p.pipeline,
@@ -203,17 +206,30 @@ fn render_and_release(
         Ok(())
     })?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
-    let pixel_bytes = pixels as usize * 4;
     let (hit_ids, shadow) = read_ids(&ids_readback.mapped()?[..ids_bytes as usize]);
+    let linear = read_linear(&image_readback.mapped()?[..image_bytes as usize]);
     let samples = u64::from(scene.file.image.samples).pow(2);
     Ok(RenderOutput {
         width: opts.width,
         height: opts.height,
-        rgba: image_readback.mapped()?[..pixel_bytes].to_vec(),
+        rgba: to_rgba8(&linear),
+        linear,
         hit_ids,
         gpu_ms,
         rays: RayCounts { primary: pixels * samples, shadow },
     })
+}
+
+/// RGB of each rgba32f pixel.
+fn read_linear(bytes: &[u8]) -> Vec<[f32; 3]> {
+    let floats: &[f32] = bytemuck::cast_slice(bytes);
+    floats.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect()
+}
+
+/// 8-bit RGBA of linear RGB: clamped to [0, 1], rounded to nearest (NaN becomes 0), alpha 255.
+pub fn to_rgba8(linear: &[[f32; 3]]) -> Vec<u8> {
+    let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    linear.iter().flat_map(|p| [byte(p[0]), byte(p[1]), byte(p[2]), 255]).collect()
 }
 
 /// Per pixel the first hit (object << 32 | primitive), and the sum of the pixels' shadow rays.
@@ -413,7 +429,7 @@ fn copy_out(
         })
         .image_extent(image.extent.into())];
     let ids_region = [vk::BufferCopy::default().size(ids.size)];
-    // SAFETY: cmd is recording; sizes match (4 bytes per pixel on both sides).
+    // SAFETY: cmd is recording; sizes match (PIXEL_BYTES per pixel on both sides).
     unsafe {
         device.cmd_copy_image_to_buffer(cmd, image.raw, vk::ImageLayout::TRANSFER_SRC_OPTIMAL, image_dst.raw, &region);
         device.cmd_copy_buffer(cmd, ids.raw, ids_dst.raw, &ids_region);

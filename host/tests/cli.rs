@@ -118,6 +118,8 @@ fn help_documents_every_command() {
         &["render", "--help"],
         &["compare", "--help"],
         &["probe", "--help"],
+        &["stability", "--help"],
+        &["reference", "--help"],
     ];
     for args in commands {
         let out = twinray(args, dir.path());
@@ -217,4 +219,32 @@ fn stability_prints_rows_costs_and_json_and_fails_on_a_missed_target() {
 
 fn repo() -> std::path::PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
+}
+
+/// `twinray reference`: renders, then reads the same key from the cache; a sample count that
+/// is neither a square up to 256 nor a multiple of 256 is bad input.
+#[test]
+fn reference_renders_then_reads_the_cache() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "--validate",
+        "reference",
+        "lights",
+        "--spp",
+        "4",
+        "--width",
+        "16",
+        "--height",
+        "16",
+        "--cache",
+        "c",
+        "--json",
+    ];
+    let json = |out: Output| -> serde_json::Value { serde_json::from_slice(&out.stdout).expect("reference --json") };
+    let first = json(twinray(&args, dir.path()));
+    assert_eq!((first["cached"].as_bool(), first["spp"].as_u64()), (Some(false), Some(4)));
+    let second = json(twinray(&[&args[..], &["--out", "r.png"]].concat(), dir.path()));
+    assert_eq!((second["cached"].as_bool(), &second["path"]), (Some(true), &first["path"]));
+    assert!(dir.path().join("r.png").exists());
+    assert_bad_input(&["reference", "lights", "--spp", "3"], &["square up to 256", "got 3"]);
 }

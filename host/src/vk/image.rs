@@ -1,4 +1,5 @@
-//! The storage image the ray generation stage writes (rgba8), with its memory and view.
+//! The storage image the ray generation stage writes (rgba32f: the mean radiance of each pixel,
+//! in f32, so that references and error measures are not quantised), with its memory and view.
 
 use super::context::Context;
 use crate::error::{Error, Result, VkContext};
@@ -7,7 +8,9 @@ use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
-pub const FORMAT: vk::Format = vk::Format::R8G8B8A8_UNORM;
+pub const FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
+/// Bytes per pixel of [`FORMAT`].
+pub const PIXEL_BYTES: u64 = 16;
 
 pub struct StorageImage {
     ctx: Arc<Context>,
@@ -18,12 +21,12 @@ pub struct StorageImage {
 }
 
 impl StorageImage {
-    /// A device-local rgba8 image usable as a storage image and a copy source.
+    /// A device-local rgba32f image usable as a storage image and a copy source.
     pub fn new(ctx: &Arc<Context>, width: u32, height: u32) -> Result<Self> {
         // SAFETY: plain query on a live physical device.
         let format_props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, FORMAT) };
         if !format_props.optimal_tiling_features.contains(vk::FormatFeatureFlags::STORAGE_IMAGE) {
-            return Err(Error::Unsupported("the device cannot use R8G8B8A8_UNORM as a storage image".into()));
+            return Err(Error::Unsupported("the device cannot use R32G32B32A32_SFLOAT as a storage image".into()));
         }
         let extent = vk::Extent2D { width, height };
         let info = vk::ImageCreateInfo::default()

@@ -27,7 +27,7 @@ pub fn raygen(
     #[spirv(launch_id)] launch_id: UVec3,
     #[spirv(launch_size)] launch_size: UVec3,
     #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
-    #[spirv(descriptor_set = 0, binding = 1)] image: &Image!(2D, format = rgba8, sampled = false),
+    #[spirv(descriptor_set = 0, binding = 1)] image: &Image!(2D, format = rgba32f, sampled = false),
     #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &[Light],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] hit_ids: &mut [u32],

@@ -8,7 +8,7 @@
 pub const DESCRIPTOR_SET: u32 = 0;
 /// Top-level acceleration structure.
 pub const BINDING_TLAS: u32 = 0;
-/// Output colour, a storage image of format rgba8.
+/// Output colour, a storage image of format rgba32f: each pixel's mean radiance.
 pub const BINDING_IMAGE: u32 = 1;
 /// [`crate::layout::FrameUniform`], a uniform buffer.
 pub const BINDING_FRAME: u32 = 2;
