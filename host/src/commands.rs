@@ -1,7 +1,7 @@
 //! The bodies of `twinray info`, `render` and `compare`: every input is checked before any
 //! GPU work, and files are written only once everything has succeeded.
 
-use crate::{CompareArgs, FrameArgs, GlobalArgs, ProbeArgs, ReferenceArgs, RenderArgs, StabilityArgs};
+use crate::{BenchArgs, CompareArgs, FrameArgs, GlobalArgs, ProbeArgs, ReferenceArgs, RenderArgs, StabilityArgs};
 use anyhow::{Context as _, Result};
 use std::process::ExitCode;
 use std::sync::Arc;
@@ -246,5 +246,64 @@ pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
             r.path.display()
         );
     }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
+    use twinray::bench;
+    let names = if args.scenes.is_empty() {
+        twinray::scene::BUILTIN.iter().map(|(name, _)| name.to_string()).collect()
+    } else {
+        args.scenes.clone()
+    };
+    let scenes = names.iter().map(|n| Scene::load(Some(n))).collect::<Result<Vec<_>, _>>()?;
+    let spp = args
+        .spp
+        .split(',')
+        .map(|v| v.trim().parse::<u32>().map_err(|_| Error::Input(format!("--spp: {v:?} is not a number"))))
+        .collect::<Result<Vec<_>, _>>()?;
+    for &n in &spp {
+        bench::side_of(n)?;
+    }
+    twinray::reference_image::frames(args.reference_spp)?;
+    if args.runs < 10 {
+        return Err(Error::Input(format!("--runs must be at least 10 (got {})", args.runs)).into());
+    }
+    if let (Some(w), Some(h)) = (args.width, args.height) {
+        check_size(w, h).map_err(Error::Input)?;
+    }
+    let config = bench::BenchConfig {
+        scenes,
+        sets: twinray::shader_set::parse_sets(&args.sets)?,
+        spp,
+        size: args.width.zip(args.height),
+        warmup: args.warmup,
+        runs: args.runs,
+        reference_spp: args.reference_spp,
+        reference_set: args.reference_set,
+        cache: args.cache.unwrap_or_else(twinray::reference_image::default_cache),
+        out: args.out.clone(),
+    };
+    let ctx = context(global)?;
+    let steps = config.scenes.len() * (1 + config.spp.len() * config.sets.len());
+    let bar = indicatif::ProgressBar::new(steps as u64);
+    bar.set_style(
+        indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed_precise} {msg}")
+            .map_err(|e| Error::Input(e.to_string()))?,
+    );
+    let report = bench::run(&ctx, &config, &|step: &str| {
+        bar.set_message(step.to_string());
+        bar.inc(1);
+    })?;
+    bar.finish_and_clear();
+    let ratios = bench::tables::ratios(&report);
+    bench::tables::write(&report, &args.out)?;
+    bench::plots::write(&report, &ratios, &args.out.join("plots"))?;
+    let command: Vec<String> = std::env::args().collect();
+    bench::html::write(&report, &ratios, &command.join(" "), &args.out)?;
+    for (scene, spp, ratio) in &ratios {
+        println!("{scene:<12} {spp:>4} spp  rust/glsl {ratio:.3}");
+    }
+    println!("wrote {}/index.html, results.json, results.csv, plots/ and images/", args.out.display());
     Ok(ExitCode::SUCCESS)
 }

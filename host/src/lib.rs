@@ -1,6 +1,7 @@
 //! twinray: render ray tracing scenes with Rust (rust-gpu) or GLSL shader sets, or any
 //! per-stage mix, through one ash host, and compare the two image for image and in GPU time.
 
+pub mod bench;
 pub mod compare;
 pub mod error;
 pub mod output;

@@ -59,6 +59,9 @@ enum Command {
     Stability(StabilityArgs),
     /// Render (or read from the cache) a scene's converged reference image.
     Reference(ReferenceArgs),
+    /// Speed against error: per scene, set and samples per pixel, GPU time, rays per second and
+    /// error against a converged reference; writes tables, plots and index.html.
+    Bench(BenchArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -183,6 +186,43 @@ pub struct ReferenceArgs {
     json: bool,
 }
 
+#[derive(Args)]
+pub struct BenchArgs {
+    /// Scene files or built-in names [default: every built-in scene].
+    scenes: Vec<String>,
+    /// Shader sets, comma-separated; a STAGE=LANGUAGE item changes the set before it, so
+    /// "rust,glsl,rust,intersection=glsl" is three sets.
+    #[arg(long, default_value = "rust,glsl")]
+    sets: String,
+    /// Samples per pixel to measure, comma-separated squares up to 256.
+    #[arg(long, default_value = "1,4,16,64")]
+    spp: String,
+    /// Output folder (created if missing).
+    #[arg(long, default_value = "bench/out")]
+    out: PathBuf,
+    /// Image width for every scene [default: each scene's].
+    #[arg(long, requires = "height")]
+    width: Option<u32>,
+    /// Image height for every scene [default: each scene's].
+    #[arg(long, requires = "width")]
+    height: Option<u32>,
+    /// Timed traces per measurement (at least 10).
+    #[arg(long, default_value_t = 10)]
+    runs: u32,
+    /// Untimed traces before them.
+    #[arg(long, default_value_t = 2)]
+    warmup: u32,
+    /// Samples per pixel of the references.
+    #[arg(long, default_value_t = 1024)]
+    reference_spp: u32,
+    /// Shader set that renders the references.
+    #[arg(long, default_value = "glsl")]
+    reference_set: ShaderSet,
+    /// Reference cache folder [default: as for `twinray reference`].
+    #[arg(long)]
+    cache: Option<PathBuf>,
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -212,6 +252,7 @@ fn main() -> ExitCode {
         Command::Probe(args) => commands::probe(&cli.global, args),
         Command::Stability(args) => commands::stability(&cli.global, args),
         Command::Reference(args) => commands::reference(&cli.global, args),
+        Command::Bench(args) => commands::bench(&cli.global, args),
     };
     match result {
         Ok(code) => code,

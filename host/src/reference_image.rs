@@ -4,6 +4,7 @@
 //! render it, so that a changed scene or shader is rendered again.
 
 use crate::error::{Error, Result};
+use crate::output::file_safe;
 use crate::render::{render, RenderOptions};
 use crate::scene::Scene;
 use crate::shader_set::{ShaderSet, MODULES};
@@ -97,10 +98,6 @@ fn key(scene: &Scene, set: &ShaderSet, (width, height): (u32, u32), spp: u32) ->
         }
     }
     hash
-}
-
-fn file_safe(name: &str) -> String {
-    name.chars().map(|c| if c.is_ascii_alphanumeric() || c == '-' || c == '_' { c } else { '_' }).collect()
 }
 
 /// The pixels of a cache file whose header matches; `None` if absent, short or different.

@@ -104,6 +104,22 @@ impl FromStr for ShaderSet {
     }
 }
 
+/// Several sets, comma-separated, where a `STAGE=LANGUAGE` item changes the set before it:
+/// "rust,glsl,rust,intersection=glsl" is rust, glsl and a mix.
+pub fn parse_sets(text: &str) -> Result<Vec<ShaderSet>> {
+    let mut groups: Vec<String> = Vec::new();
+    for item in text.split(',').map(str::trim) {
+        match groups.last_mut() {
+            Some(group) if item.contains('=') => {
+                group.push(',');
+                group.push_str(item);
+            }
+            _ => groups.push(item.to_string()),
+        }
+    }
+    groups.iter().map(|g| g.parse()).collect()
+}
+
 fn parse_language(word: &str, whole: &str) -> Result<Language> {
     match word.to_ascii_lowercase().as_str() {
         "rust" => Ok(Language::Rust),
@@ -138,6 +154,14 @@ impl fmt::Display for ShaderSet {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn set_lists_attach_stage_overrides_to_the_set_before() {
+        let sets = super::parse_sets("rust, glsl,rust,intersection=glsl,miss=glsl").unwrap();
+        let names: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        assert_eq!(names, ["rust", "glsl", "rust,miss=glsl,intersection=glsl"]); // stage order
+        assert!(super::parse_sets("intersection=glsl").is_err(), "an override needs a set before it");
+    }
 
     #[test]
     fn parses_plain_and_mixed_sets() {

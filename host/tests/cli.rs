@@ -2,27 +2,11 @@
 //! exit code 2, no panic and no file written; good input renders, compares and prints JSON.
 //! Renders run on lavapipe with --validate, so a validation error fails them.
 
+mod common;
+
+use common::{assert_bad_input, repo, twinray};
 use std::path::Path;
-use std::process::{Command, Output};
-
-fn twinray(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_twinray")).args(args).current_dir(dir).output().expect("running twinray")
-}
-
-/// Asserts exit code 2, one line on stderr containing each of `needles`, and an empty `dir`.
-fn assert_bad_input(args: &[&str], needles: &[&str]) {
-    let dir = tempfile::tempdir().unwrap();
-    let out = twinray(args, dir.path());
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{args:?} panicked: {stderr}");
-    assert_eq!(stderr.trim().lines().count(), 1, "{args:?}: not one line: {stderr}");
-    for n in needles {
-        assert!(stderr.contains(n), "{args:?}: {stderr:?} does not mention {n:?}");
-    }
-    let left: Vec<_> = std::fs::read_dir(dir.path()).unwrap().collect();
-    assert!(left.is_empty(), "{args:?} left files behind: {left:?}");
-}
+use std::process::Output;
 
 #[test]
 fn missing_scene_file() {
@@ -215,10 +199,6 @@ fn stability_prints_rows_costs_and_json_and_fails_on_a_missed_target() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("MISSED: relative t p99"));
     let empty = tempfile::tempdir().unwrap();
     assert_bad_input(&["stability", "--dir", &empty.path().to_string_lossy()], &["no probe cases"]);
-}
-
-fn repo() -> std::path::PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
 
 /// `twinray reference`: renders, then reads the same key from the cache; a sample count that

@@ -25,7 +25,8 @@ pub enum Scope {
 
 pub fn run(scope: Scope) -> Result<()> {
     ensure_mesa()?;
-    let mut packages = vec!["libvulkan1"];
+    // g++: the host's FLIP dependency (nv-flip) compiles C++.
+    let mut packages = vec!["libvulkan1", "g++"];
     if scope == Scope::Full {
         packages.extend(["glslang-tools", "spirv-tools", "vulkan-validationlayers"]);
     }

@@ -1,0 +1,124 @@
+//! index.html: the bench at a glance, readable from the folder without a server: how it was
+//! run, the plots, the Rust/GLSL ratios, the convergence slopes, every measurement, and per
+//! scene the reference beside each set's images and FLIP error maps.
+
+use super::plots::{error_by_spp, log_slope};
+use super::{BenchReport, BenchRow};
+use crate::error::{Error, Result};
+use std::fmt::Write;
+use std::path::Path;
+
+fn escape(text: &str) -> String {
+    text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+}
+
+pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str, dir: &Path) -> Result<()> {
+    let html = page(report, ratios, command);
+    let path = dir.join("index.html");
+    std::fs::write(&path, html).map_err(|source| Error::Io { what: "writing", path, source })
+}
+
+fn page(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str) -> String {
+    let mut s = String::from(
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>twinray bench</title><style>\n\
+         body{font-family:sans-serif;margin:2em;max-width:1400px}table{border-collapse:collapse;margin:1em 0}\n\
+         td,th{border:1px solid #ccc;padding:3px 8px;text-align:right}th{background:#eee}td.l{text-align:left}\n\
+         img{image-rendering:pixelated;max-width:100%}figure{display:inline-block;margin:4px;text-align:center}\n\
+         figcaption{font-size:small}.plots img{width:32%}</style></head><body>\n<h1>twinray bench</h1>\n",
+    );
+    let threads = report.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
+    let _ = write!(
+        s,
+        "<p>Device: <b>{}</b>{threads}. GPU time: median and interquartile range of {} timed traces after {} \
+         untimed ones (timestamp queries). Reference: {} samples per pixel rendered by {}. Errors are on display \
+         values (radiance clamped to [0, 1]).</p>\n<p>Command: <code>{}</code></p>\n",
+        escape(&report.device),
+        report.runs,
+        report.warmup,
+        report.reference_spp,
+        escape(&report.reference_set),
+        escape(command),
+    );
+    s += "<h2>Plots</h2>\n<div class=\"plots\"><img src=\"plots/error-spp.svg\" alt=\"error against samples per pixel\">\
+          <img src=\"plots/error-time.svg\" alt=\"error against GPU time\"><img src=\"plots/ratio.svg\" alt=\"Rust/GLSL time\"></div>\n";
+    s += &ratio_table(ratios);
+    s += &slope_table(report);
+    s += &rows_table(&report.rows);
+    for (scene, reference) in &report.references {
+        s += &gallery(report, scene, reference);
+    }
+    s += "</body></html>\n";
+    s
+}
+
+fn ratio_table(ratios: &[(String, u32, f64)]) -> String {
+    let mut s =
+        String::from("<h2>Rust / GLSL GPU time</h2>\n<table><tr><th>scene</th><th>spp</th><th>ratio</th></tr>\n");
+    for (scene, spp, r) in ratios {
+        let flag = if *r > 1.05 { " style=\"color:#b00\"" } else { "" };
+        let _ = writeln!(s, "<tr><td class=\"l\">{}</td><td>{spp}</td><td{flag}>{r:.3}</td></tr>", escape(scene));
+    }
+    s + "</table>\n"
+}
+
+fn slope_table(report: &BenchReport) -> String {
+    let mut s = String::from(
+        "<h2>Convergence</h2>\n<p>Least-squares slope of log RMSE against log samples per pixel (N<sup>-0.5</sup>: \
+         independent samples; N<sup>-0.75</sup>: stratified samples near edges).</p>\n<table><tr><th>scene and set</th><th>slope</th></tr>\n",
+    );
+    for series in error_by_spp(report) {
+        let slope = log_slope(&series.points).map_or("n/a".into(), |v| format!("{v:.3}"));
+        let _ = writeln!(s, "<tr><td class=\"l\">{}</td><td>{slope}</td></tr>", escape(&series.label));
+    }
+    s + "</table>\n"
+}
+
+fn rows_table(rows: &[BenchRow]) -> String {
+    let mut s = String::from(
+        "<h2>Measurements</h2>\n<table><tr><th>scene</th><th>set</th><th>spp</th><th>GPU ms</th><th>IQR</th>\
+         <th>Mrays/s</th><th>primary</th><th>shadow</th><th>RMSE</th><th>PSNR dB</th><th>mean FLIP</th><th>hit mismatches</th></tr>\n",
+    );
+    for r in rows {
+        let (ms, iqr) =
+            r.gpu_ms.map_or(("n/a".into(), String::new()), |t| (format!("{:.4}", t.median), format!("{:.4}", t.iqr())));
+        let _ = writeln!(
+            s,
+            "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{ms}</td><td>{iqr}</td><td>{}</td><td>{}</td><td>{}</td>\
+             <td>{:.5}</td><td>{}</td><td>{:.4}</td><td>{}</td></tr>",
+            escape(&r.scene),
+            escape(&r.set),
+            r.spp,
+            r.mrays_per_s.map_or("n/a".into(), |v| format!("{v:.1}")),
+            r.rays.primary,
+            r.rays.shadow,
+            r.rmse,
+            if r.psnr.is_finite() { format!("{:.2}", r.psnr) } else { "inf".into() },
+            r.flip,
+            r.hit_mismatches.map_or("-".into(), |m| m.to_string()),
+        );
+    }
+    s + "</table>\n"
+}
+
+fn gallery(report: &BenchReport, scene: &str, reference: &str) -> String {
+    let mut s = format!(
+        "<h2>{0}</h2>\n<figure><img src=\"{1}\" alt=\"reference\"><figcaption>reference, {2} spp</figcaption></figure><br>\n",
+        escape(scene),
+        escape(reference),
+        report.reference_spp
+    );
+    for r in report.rows.iter().filter(|r| r.scene == scene) {
+        let _ = writeln!(
+            s,
+            "<figure><img src=\"{0}\" alt=\"image\"><img src=\"{1}\" alt=\"FLIP error map\">\
+             <figcaption>{2}, {3} spp: RMSE {4:.4}, FLIP {5:.4}</figcaption></figure>",
+            escape(&r.image),
+            escape(&r.error_map),
+            escape(&r.set),
+            r.spp,
+            r.rmse,
+            r.flip
+        );
+    }
+    s
+}

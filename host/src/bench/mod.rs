@@ -1,0 +1,162 @@
+//! `twinray bench`: for each scene, shader set and sample count, GPU time (median and
+//! interquartile range), rays per second, and error against a converged reference (RMSE,
+//! PSNR, mean FLIP), with hit mismatches against the first set; then tables, plots and an
+//! HTML page in one folder.
+
+pub mod html;
+pub mod metrics;
+pub mod plots;
+pub mod tables;
+
+use crate::error::{Error, Result};
+use crate::output::file_safe;
+use crate::reference_image::{reference, ReferenceImage};
+use crate::render::{render, to_rgba8, RayCounts, RenderOptions, RenderOutput};
+use crate::scene::Scene;
+use crate::shader_set::ShaderSet;
+use crate::stats::Spread;
+use crate::vk::context::Context;
+use serde::Serialize;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// What to measure.
+#[derive(Clone, Debug)]
+pub struct BenchConfig {
+    pub scenes: Vec<Scene>,
+    pub sets: Vec<ShaderSet>,
+    /// Samples per pixel, each a square up to 256.
+    pub spp: Vec<u32>,
+    /// Image size override; each scene's own when `None`.
+    pub size: Option<(u32, u32)>,
+    pub warmup: u32,
+    pub runs: u32,
+    pub reference_spp: u32,
+    pub reference_set: ShaderSet,
+    pub cache: PathBuf,
+    pub out: PathBuf,
+}
+
+/// One measurement: a scene rendered by one set at one sample count.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchRow {
+    pub scene: String,
+    pub set: String,
+    pub spp: u32,
+    pub width: u32,
+    pub height: u32,
+    pub gpu_ms: Option<Spread>,
+    pub rays: RayCounts,
+    pub mrays_per_s: Option<f64>,
+    pub rmse: f64,
+    pub psnr: f64,
+    pub flip: f64,
+    /// Pixels whose first primary ray hit another primitive than the first set's did (null
+    /// for the first set).
+    pub hit_mismatches: Option<u64>,
+    /// The rendered image and its error map, relative to the output folder.
+    pub image: String,
+    pub error_map: String,
+}
+
+/// Everything a bench produced.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchReport {
+    pub device: String,
+    pub cpu_threads: Option<u32>,
+    pub runs: u32,
+    pub warmup: u32,
+    pub reference_spp: u32,
+    pub reference_set: String,
+    /// Per scene, the reference image relative to the output folder.
+    pub references: Vec<(String, String)>,
+    pub rows: Vec<BenchRow>,
+}
+
+/// Samples per side of a bench sample count: a square up to 16 x 16.
+pub fn side_of(spp: u32) -> Result<u32> {
+    (1..=16u32)
+        .find(|m| m * m == spp)
+        .ok_or_else(|| Error::Input(format!("--spp values must be squares up to 256 (1, 4, 9, .., 256), got {spp}")))
+}
+
+/// Runs the bench, writing images into `config.out/images`; `progress` is told after each step.
+pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) -> Result<BenchReport> {
+    let images = config.out.join("images");
+    std::fs::create_dir_all(&images).map_err(|source| Error::Io { what: "creating", path: images.clone(), source })?;
+    let mut report = BenchReport {
+        device: ctx.info.name.clone(),
+        cpu_threads: ctx.info.cpu_threads,
+        runs: config.runs,
+        warmup: config.warmup,
+        reference_spp: config.reference_spp,
+        reference_set: config.reference_set.to_string(),
+        references: Vec::new(),
+        rows: Vec::new(),
+    };
+    for scene in &config.scenes {
+        let size = config.size.unwrap_or((scene.file.image.width, scene.file.image.height));
+        progress(&format!("{}: reference at {} spp", scene.name(), config.reference_spp));
+        let truth = reference(ctx, scene, &config.reference_set, size, config.reference_spp, &config.cache)?;
+        let reference_png = format!("images/{}-reference.png", file_safe(scene.name()));
+        crate::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
+        report.references.push((scene.name().to_string(), reference_png));
+        for &spp in &config.spp {
+            let mut first: Option<RenderOutput> = None;
+            for set in &config.sets {
+                progress(&format!("{}: {set} at {spp} spp", scene.name()));
+                let out = measure(ctx, scene, set, size, spp, config)?;
+                let row = row(scene, set, spp, &out, &truth, first.as_ref(), &config.out)?;
+                report.rows.push(row);
+                first.get_or_insert(out);
+            }
+        }
+    }
+    Ok(report)
+}
+
+fn measure(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    (width, height): (u32, u32),
+    spp: u32,
+    config: &BenchConfig,
+) -> Result<RenderOutput> {
+    let mut scene = scene.clone();
+    scene.file.image.samples = side_of(spp)?;
+    render(ctx, &scene, set, &RenderOptions { width, height, warmup: config.warmup, runs: config.runs })
+}
+
+fn row(
+    scene: &Scene,
+    set: &ShaderSet,
+    spp: u32,
+    out: &RenderOutput,
+    truth: &ReferenceImage,
+    first: Option<&RenderOutput>,
+    dir: &Path,
+) -> Result<BenchRow> {
+    let errors = metrics::errors(&out.linear, &truth.linear, (out.width, out.height));
+    let stem = format!("images/{}-{}-{spp}spp", file_safe(scene.name()), file_safe(&set.to_string()));
+    let (image, error_map) = (format!("{stem}.png"), format!("{stem}-flip.png"));
+    crate::output::write_png(&dir.join(&image), out.width, out.height, &out.rgba)?;
+    crate::output::write_png(&dir.join(&error_map), out.width, out.height, &errors.flip_map_rgba)?;
+    let hit_mismatches = first.map(|f| f.hit_ids.iter().zip(&out.hit_ids).filter(|(a, b)| a != b).count() as u64);
+    Ok(BenchRow {
+        scene: scene.name().to_string(),
+        set: set.to_string(),
+        spp,
+        width: out.width,
+        height: out.height,
+        gpu_ms: out.spread(),
+        rays: out.rays,
+        mrays_per_s: out.mrays_per_s(),
+        rmse: errors.rmse,
+        psnr: errors.psnr,
+        flip: errors.flip,
+        hit_mismatches,
+        image,
+        error_map,
+    })
+}

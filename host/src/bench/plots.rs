@@ -1,0 +1,208 @@
+//! The bench's plots, each as PNG and SVG: error against samples per pixel (log-log, with
+//! N^-0.5 and N^-0.75 guide lines), error against GPU time, and the Rust/GLSL time ratio
+//! per scene. PNG text uses an embedded font, so no system font library is needed.
+
+use super::{BenchReport, BenchRow};
+use crate::error::{Error, Result};
+use plotters::coord::Shift;
+use plotters::prelude::*;
+use std::path::Path;
+
+const FONT: &[u8] = include_bytes!("../../assets/fonts/DejaVuSansMono.ttf");
+const SIZE: (u32, u32) = (900, 600);
+
+/// One plotted line: its label and points.
+pub struct Series {
+    pub label: String,
+    pub points: Vec<(f64, f64)>,
+}
+
+/// Error against samples per pixel, one series per scene and set.
+pub fn error_by_spp(report: &BenchReport) -> Vec<Series> {
+    series(report, |r| Some((f64::from(r.spp), r.rmse)))
+}
+
+/// Error against median GPU time, one series per scene and set.
+pub fn error_by_time(report: &BenchReport) -> Vec<Series> {
+    series(report, |r| r.gpu_ms.map(|s| (s.median, r.rmse)))
+}
+
+fn series(report: &BenchReport, point: impl Fn(&BenchRow) -> Option<(f64, f64)>) -> Vec<Series> {
+    let mut out: Vec<Series> = Vec::new();
+    for r in &report.rows {
+        let Some(p) = point(r).filter(|p| p.0 > 0.0 && p.1 > 0.0) else { continue };
+        let label = format!("{} {}", r.scene, r.set);
+        match out.iter_mut().find(|s| s.label == label) {
+            Some(s) => s.points.push(p),
+            None => out.push(Series { label, points: vec![p] }),
+        }
+    }
+    out
+}
+
+/// Least-squares slope of log y against log x: the measured convergence rate.
+pub fn log_slope(points: &[(f64, f64)]) -> Option<f64> {
+    let logs: Vec<(f64, f64)> = points.iter().map(|&(x, y)| (x.ln(), y.ln())).collect();
+    let n = logs.len() as f64;
+    let (mx, my) = (logs.iter().map(|p| p.0).sum::<f64>() / n, logs.iter().map(|p| p.1).sum::<f64>() / n);
+    let sxx: f64 = logs.iter().map(|p| (p.0 - mx).powi(2)).sum();
+    (logs.len() >= 2 && sxx > 0.0).then(|| logs.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum::<f64>() / sxx)
+}
+
+/// Writes error-spp, error-time and ratio plots (PNG and SVG) into `dir`.
+pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], dir: &Path) -> Result<()> {
+    // Registering twice is harmless; it fails only on a bad font, which is a build error.
+    let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.into(), source })?;
+    let by_spp = error_by_spp(report);
+    let by_time = error_by_time(report);
+    let error_plot = |name: &str, x_label: &str, data: &[Series], guides: bool| -> Result<()> {
+        let png = dir.join(format!("{name}.png"));
+        let svg = dir.join(format!("{name}.svg"));
+        draw_error(BitMapBackend::new(&png, SIZE).into_drawing_area(), x_label, data, guides).map_err(plot_error)?;
+        draw_error(SVGBackend::new(&svg, SIZE).into_drawing_area(), x_label, data, guides).map_err(plot_error)
+    };
+    error_plot("error-spp", "samples per pixel", &by_spp, true)?;
+    error_plot("error-time", "GPU ms (median)", &by_time, false)?;
+    let (png, svg) = (dir.join("ratio.png"), dir.join("ratio.svg"));
+    draw_ratios(BitMapBackend::new(&png, SIZE).into_drawing_area(), ratios).map_err(plot_error)?;
+    draw_ratios(SVGBackend::new(&svg, SIZE).into_drawing_area(), ratios).map_err(plot_error)
+}
+
+fn plot_error(e: impl std::fmt::Display) -> Error {
+    Error::Input(format!("drawing a plot: {e}"))
+}
+
+type Drawn = std::result::Result<(), Box<dyn std::error::Error>>;
+
+fn bounds(data: &[Series]) -> ((f64, f64), (f64, f64)) {
+    let all = data.iter().flat_map(|s| s.points.iter());
+    let (mut x, mut y) = ((f64::MAX, f64::MIN), (f64::MAX, f64::MIN));
+    for &(px, py) in all {
+        x = (x.0.min(px), x.1.max(px));
+        y = (y.0.min(py), y.1.max(py));
+    }
+    if x.0 > x.1 {
+        return ((1.0, 10.0), (1e-3, 1.0));
+    }
+    ((x.0 / 1.5, x.1 * 1.5), (y.0 / 2.0, y.1 * 2.0))
+}
+
+fn draw_error<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, x_label: &str, data: &[Series], guides: bool) -> Drawn
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let ((x0, x1), (y0, y1)) = bounds(data);
+    let mut chart = ChartBuilder::on(&root)
+        .margin(20)
+        .x_label_area_size(45)
+        .y_label_area_size(70)
+        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .light_line_style(WHITE)
+        .x_labels(8)
+        .y_labels(8)
+        .x_label_formatter(&|v| tick(*v))
+        .y_label_formatter(&|v| tick(*v))
+        .x_desc(x_label)
+        .y_desc("RMSE against the reference")
+        .draw()?;
+    for (i, s) in data.iter().enumerate() {
+        let colour = Palette99::pick(i).to_rgba();
+        chart
+            .draw_series(LineSeries::new(s.points.clone(), colour.stroke_width(2)).point_size(3))?
+            .label(s.label.clone())
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2)));
+    }
+    if guides {
+        // Guide lines through the first series' first point: N^-0.5 (independent samples)
+        // and N^-0.75 (stratified samples near edges, Mitchell 1996).
+        if let Some(&(gx, gy)) = data.first().and_then(|s| s.points.first()) {
+            for (slope, label) in [(-0.5, "N^-0.5"), (-0.75, "N^-0.75")] {
+                let line = [(x0, gy * (x0 / gx).powf(slope)), (x1, gy * (x1 / gx).powf(slope))];
+                let style = BLACK.mix(0.4).stroke_width(1);
+                chart
+                    .draw_series(LineSeries::new(line, style))?
+                    .label(label)
+                    .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], style));
+            }
+        }
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::LowerLeft)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+/// A log-axis tick: whole numbers plainly, small ones with three significant digits.
+fn tick(v: f64) -> String {
+    if v >= 10.0 {
+        format!("{v:.0}")
+    } else {
+        format!("{v:.3}").trim_end_matches('0').trim_end_matches('.').to_string()
+    }
+}
+
+fn draw_ratios<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, ratios: &[(String, u32, f64)]) -> Drawn
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let scenes: Vec<&str> = ratios.iter().fold(Vec::new(), |mut v, r| {
+        if !v.contains(&r.0.as_str()) {
+            v.push(r.0.as_str());
+        }
+        v
+    });
+    let (lo, hi) = ratios.iter().fold((0.9f64, 1.1f64), |(lo, hi), r| (lo.min(r.2 - 0.02), hi.max(r.2 + 0.02)));
+    let n = scenes.len().max(1) as f64;
+    let mut chart = ChartBuilder::on(&root)
+        .margin(20)
+        .x_label_area_size(60)
+        .y_label_area_size(60)
+        .build_cartesian_2d(-0.5..n - 0.5, lo..hi)?;
+    let names = scenes.clone();
+    chart
+        .configure_mesh()
+        .x_labels(scenes.len().max(1))
+        .x_label_formatter(&|x| names.get(x.round() as usize).map_or(String::new(), |s| s.to_string()))
+        .light_line_style(WHITE)
+        .y_desc("Rust / GLSL GPU time (median); lines at 1.00 and 1.05")
+        .draw()?;
+    for (level, colour) in [(1.0, BLACK.mix(0.5)), (1.05, RED.mix(0.5))] {
+        chart.draw_series(LineSeries::new([(-0.5, level), (n - 0.5, level)], colour.stroke_width(1)))?;
+    }
+    let mut counts: Vec<u32> = ratios.iter().map(|r| r.1).collect();
+    counts.sort_unstable();
+    counts.dedup();
+    for (i, &spp) in counts.iter().enumerate() {
+        let colour = Palette99::pick(i).to_rgba();
+        let points = ratios.iter().filter(|r| r.1 == spp).filter_map(|(scene, _, r)| {
+            let x = scenes.iter().position(|s| s == scene)? as f64;
+            Some(Circle::new((x, *r), 5, colour.filled()))
+        });
+        chart
+            .draw_series(points)?
+            .label(format!("{spp} spp"))
+            .legend(move |(x, y)| Circle::new((x + 8, y), 5, colour.filled()));
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    root.present()?;
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn slopes_of_power_laws() {
+        let points: Vec<(f64, f64)> = [1.0, 4.0, 16.0, 64.0].iter().map(|&n: &f64| (n, 0.3 * n.powf(-0.75))).collect();
+        assert!((super::log_slope(&points).unwrap() + 0.75).abs() < 1e-12);
+        assert_eq!(super::log_slope(&points[..1]), None);
+    }
+}

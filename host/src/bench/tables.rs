@@ -1,0 +1,59 @@
+//! The bench's numbers as files: results.json (the whole report) and results.csv (one line
+//! per scene, set and sample count), and the Rust/GLSL time ratios they imply.
+
+use super::{BenchReport, BenchRow};
+use crate::error::{Error, Result};
+use std::path::Path;
+
+/// Rust over GLSL median GPU time per scene and sample count, where both plain sets ran.
+pub fn ratios(report: &BenchReport) -> Vec<(String, u32, f64)> {
+    let median = |row: &BenchRow| row.gpu_ms.map(|s| s.median);
+    let mut out = Vec::new();
+    for rust in report.rows.iter().filter(|r| r.set == "rust") {
+        let glsl = report.rows.iter().find(|r| r.set == "glsl" && r.scene == rust.scene && r.spp == rust.spp);
+        if let (Some(a), Some(b)) = (median(rust), glsl.and_then(median)) {
+            out.push((rust.scene.clone(), rust.spp, a / b));
+        }
+    }
+    out
+}
+
+pub const CSV_HEADER: &str = "scene,set,spp,width,height,gpu_ms_median,gpu_ms_q1,gpu_ms_q3,runs,primary_rays,shadow_rays,mrays_per_s,rmse,psnr,flip,hit_mismatches";
+
+pub fn csv(report: &BenchReport) -> String {
+    let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
+    let mut s = format!("{CSV_HEADER}\n");
+    for r in &report.rows {
+        let spread = r.gpu_ms;
+        s += &format!(
+            "\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            r.scene,
+            r.set,
+            r.spp,
+            r.width,
+            r.height,
+            opt(spread.map(|s| s.median)),
+            opt(spread.map(|s| s.q1)),
+            opt(spread.map(|s| s.q3)),
+            spread.map_or(0, |s| s.samples),
+            r.rays.primary,
+            r.rays.shadow,
+            opt(r.mrays_per_s),
+            r.rmse,
+            if r.psnr.is_finite() { format!("{}", r.psnr) } else { "inf".into() },
+            r.flip,
+            r.hit_mismatches.map_or(String::new(), |m| m.to_string()),
+        );
+    }
+    s
+}
+
+/// Writes results.json and results.csv into `dir`.
+pub fn write(report: &BenchReport, dir: &Path) -> Result<()> {
+    let json = serde_json::to_string_pretty(report).map_err(|e| Error::Input(format!("results.json: {e}")))?;
+    for (name, text) in [("results.json", json), ("results.csv", csv(report))] {
+        let path = dir.join(name);
+        std::fs::write(&path, text).map_err(|source| Error::Io { what: "writing", path, source })?;
+    }
+    Ok(())
+}

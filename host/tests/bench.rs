@@ -1,0 +1,74 @@
+//! `twinray bench` end to end on lavapipe, small: two scenes, two sample counts, both sets.
+//! Every report file exists and parses, and what results.json names is there.
+
+mod common;
+
+use common::{assert_bad_input, twinray};
+
+#[test]
+fn a_small_bench_writes_every_report_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "--validate",
+        "bench",
+        "lights",
+        "sphere",
+        "--spp",
+        "1,4",
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--runs",
+        "10",
+        "--warmup",
+        "1",
+        "--reference-spp",
+        "64",
+        "--out",
+        "report",
+        "--cache",
+        "cache",
+    ];
+    let out = twinray(&args, dir.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let report = dir.path().join("report");
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(report.join("results.json")).unwrap()).expect("results.json parses");
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 2 * 2 * 2, "scenes x spp x sets");
+    for row in rows {
+        for key in ["image", "error_map"] {
+            let png = report.join(row[key].as_str().unwrap());
+            assert_eq!(image::open(&png).expect("a readable PNG").width(), 48, "{}", png.display());
+        }
+        assert!(row["rmse"].as_f64().unwrap() > 0.0 && row["flip"].as_f64().unwrap() > 0.0, "{row}");
+        assert_eq!(row["gpu_ms"]["samples"], 10);
+        assert!(row["mrays_per_s"].as_f64().unwrap() > 0.0);
+    }
+    // Identical images across sets: the second set's hit mismatches against the first are 0.
+    assert!(rows.iter().filter(|r| r["set"] == "glsl").all(|r| r["hit_mismatches"] == 0));
+    let csv = std::fs::read_to_string(report.join("results.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + rows.len());
+    assert_eq!(csv.lines().next().unwrap(), twinray::bench::tables::CSV_HEADER);
+    for plot in ["error-spp", "error-time", "ratio"] {
+        image::open(report.join("plots").join(format!("{plot}.png"))).expect("a readable plot");
+        let svg = std::fs::read_to_string(report.join("plots").join(format!("{plot}.svg"))).unwrap();
+        assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"), "{plot}.svg");
+    }
+    let html = std::fs::read_to_string(report.join("index.html")).unwrap();
+    for needle in ["plots/error-spp.svg", "images/lights-reference.png", "Convergence", "Rust / GLSL"] {
+        assert!(html.contains(needle), "index.html lacks {needle}");
+    }
+    // The references went to the cache: a second run reads them back.
+    assert_eq!(std::fs::read_dir(dir.path().join("cache")).unwrap().count(), 2);
+}
+
+#[test]
+fn bench_rejects_bad_input_before_rendering() {
+    assert_bad_input(&["bench", "lights", "--spp", "1,3"], &["squares up to 256", "got 3"]);
+    assert_bad_input(&["bench", "lights", "--runs", "5"], &["--runs must be at least 10"]);
+    assert_bad_input(&["bench", "lights", "--sets", "rust,cuda"], &["unknown language \"cuda\""]);
+    assert_bad_input(&["bench", "nosuchscene"], &["nosuchscene"]);
+    assert_bad_input(&["bench", "lights", "--reference-spp", "300"], &["square up to 256"]);
+}
