@@ -17,9 +17,10 @@ bool visible(vec3 origin, vec3 direction, float distance) {
     return shadow_payload.occluded == 0u;
 }
 
-// shadows: whether any light casts shadows (a specialisation constant). Adds the shadow rays
-// it traces to shadow_rays.
-vec3 shade(bool shadows, uint pixel, uint sample_index, inout uint shadow_rays) {
+// shadows: whether any light casts shadows (a specialisation constant); stratified: rect lights'
+// shadow samples one per cell of an N x N grid, else independent. Adds the shadow rays it
+// traces to shadow_rays.
+vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout uint shadow_rays) {
     if (payload.ids.w == NO_HIT || payload.ids.z == MATERIAL_EMISSIVE) {
         return payload.color.xyz;
     }
@@ -39,7 +40,10 @@ vec3 shade(bool shadows, uint pixel, uint sample_index, inout uint shadow_rays) 
                     r1 = random(frame.seed, pixel, sample_index, dimension);
                     r2 = random(frame.seed, pixel, sample_index, dimension + 1u);
                 }
-                LightSample s = light_sample(light, point, i, j, r1, r2);
+                // Independent samples: cell (0, 0) stretched over the whole light.
+                float nf = float(n);
+                LightSample s = stratified ? light_sample(light, point, i, j, r1, r2)
+                                           : light_sample(light, point, 0u, 0u, r1 * nf, r2 * nf);
                 float cosine = dot(normal, s.direction);
                 bool casts = shadows && light.shadows != 0u;
                 if (cosine > 0.0) {

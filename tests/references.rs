@@ -50,3 +50,37 @@ fn renders_converge_to_the_reference_as_samples_grow() {
     let (e1, e4, e16) = (error(1), error(4), error(16));
     assert!(e1 > 1.5 * e4 && e4 > 1.5 * e16, "RMSE at 1, 16, 256 spp: {e1} {e4} {e16}");
 }
+
+#[test]
+fn both_sets_place_random_shadow_samples_alike_and_stratified_ones_converge_faster() {
+    use twinray::bench::plots::log_slope;
+    use twinray::bench::samplers::{study, Study};
+    use twinray::scene::file::ShadowSampler;
+    let ctx = validated_context();
+    let mut scene = twinray::Scene::load(Some("lights")).unwrap();
+    let opts = RenderOptions { width: 32, height: 32, warmup: 0, runs: 1 };
+    let stratified = render(&ctx, &scene, &set("glsl"), &opts).unwrap();
+    scene.file.shadow_sampler = ShadowSampler::Random;
+    let (rust, glsl) =
+        (render(&ctx, &scene, &set("rust"), &opts).unwrap(), render(&ctx, &scene, &set("glsl"), &opts).unwrap());
+    assert!(rmse(&rust.linear, &glsl.linear) < 1e-5, "the sets sample the light alike");
+    assert!(rmse(&glsl.linear, &stratified.linear) > 1e-3, "the sampler changes the image");
+    let dir = tempfile::tempdir().unwrap();
+    let s = Study {
+        set: &set("rust"),
+        size: (32, 32),
+        counts: &[4, 16, 64],
+        reference_spp: 1024,
+        cache: dir.path(),
+        warmup: 0,
+        runs: 1,
+    };
+    let rows = study(&ctx, &twinray::Scene::load(Some("lights")).unwrap(), &s, &|_| {}).unwrap();
+    let slope = |sampler: &str| {
+        let points: Vec<(f64, f64)> =
+            rows.iter().filter(|r| r.sampler == sampler).map(|r| (f64::from(r.shadow_spp), r.rmse)).collect();
+        log_slope(&points).unwrap()
+    };
+    let (st, rn) = (slope("stratified"), slope("random"));
+    assert!(st < rn - 0.1 && (rn + 0.5).abs() < 0.15, "slopes: stratified {st}, random {rn}");
+}

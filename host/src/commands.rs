@@ -257,13 +257,9 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         args.scenes.clone()
     };
     let scenes = names.iter().map(|n| Scene::load(Some(n))).collect::<Result<Vec<_>, _>>()?;
-    let spp = args
-        .spp
-        .split(',')
-        .map(|v| v.trim().parse::<u32>().map_err(|_| Error::Input(format!("--spp: {v:?} is not a number"))))
-        .collect::<Result<Vec<_>, _>>()?;
-    for &n in &spp {
-        bench::side_of(n)?;
+    let (spp, shadow_spp) = (sample_counts("--spp", &args.spp)?, sample_counts("--shadow-spp", &args.shadow_spp)?);
+    if spp.is_empty() {
+        return Err(Error::Input("--spp needs at least one sample count".into()).into());
     }
     twinray::reference_image::frames(args.reference_spp)?;
     if args.runs < 10 {
@@ -283,10 +279,10 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         reference_set: args.reference_set,
         cache: args.cache.unwrap_or_else(twinray::reference_image::default_cache),
         out: args.out.clone(),
+        shadow_spp,
     };
     let ctx = context(global)?;
-    let steps = config.scenes.len() * (1 + config.spp.len() * config.sets.len());
-    let bar = indicatif::ProgressBar::new(steps as u64);
+    let bar = indicatif::ProgressBar::new(bench::steps(&config) as u64);
     bar.set_style(
         indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {elapsed_precise} {msg}")
             .map_err(|e| Error::Input(e.to_string()))?,
@@ -306,4 +302,17 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     }
     println!("wrote {}/index.html, results.json, results.csv, plots/ and images/", args.out.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// A comma-separated list of squares up to 256 ("" or "none": empty).
+fn sample_counts(flag: &str, text: &str) -> Result<Vec<u32>, Error> {
+    if text.trim().is_empty() || text.trim() == "none" {
+        return Ok(Vec::new());
+    }
+    let parse = |v: &str| v.trim().parse::<u32>().map_err(|_| Error::Input(format!("{flag}: {v:?} is not a number")));
+    let counts = text.split(',').map(parse).collect::<Result<Vec<_>, _>>()?;
+    for &n in &counts {
+        twinray::bench::side_of(n).map_err(|e| Error::Input(format!("{flag}: {e}")))?;
+    }
+    Ok(counts)
 }

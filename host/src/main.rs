@@ -221,6 +221,10 @@ pub struct BenchArgs {
     /// Reference cache folder [default: as for `twinray reference`].
     #[arg(long)]
     cache: Option<PathBuf>,
+    /// Shadow samples per rect light for the stratified-against-random study of soft-shadow
+    /// scenes, comma-separated squares up to 256 ("none": no study).
+    #[arg(long, default_value = "1,4,16,64")]
+    shadow_spp: String,
 }
 
 fn main() -> ExitCode {

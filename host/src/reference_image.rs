@@ -43,26 +43,55 @@ pub fn frames(spp: u32) -> Result<(u32, u32)> {
     }
 }
 
+/// What a reference converges.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Converge {
+    /// The pixel: `spp` jittered primary samples over its area.
+    Pixel,
+    /// Rect lights' shadows at each pixel's centre: one primary sample, `spp` shadow samples
+    /// per light (the sampler study's truth, which pixel samples would blur).
+    Shadows,
+}
+
 /// The reference of `scene` at `size` with `spp` samples per pixel rendered by `set`: read
 /// from `cache` when it holds one under the same key, else rendered and written there.
 pub fn reference(
     ctx: &Arc<Context>,
     scene: &Scene,
     set: &ShaderSet,
-    (width, height): (u32, u32),
+    size: (u32, u32),
     spp: u32,
     cache: &Path,
 ) -> Result<ReferenceImage> {
+    converged(ctx, scene, set, size, (spp, Converge::Pixel), cache)
+}
+
+/// As `reference`, for `Converge` `what`.
+pub fn converged(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    (width, height): (u32, u32),
+    (spp, what): (u32, Converge),
+    cache: &Path,
+) -> Result<ReferenceImage> {
     let (frames, side) = frames(spp)?;
-    let key = key(scene, set, (width, height), spp);
-    let path = cache.join(format!("{}-{width}x{height}-{spp}spp-{key:016x}.ref", file_safe(scene.name())));
+    let key = key(scene, set, (width, height), spp, what);
+    let tag = if what == Converge::Shadows { "-shadows" } else { "" };
+    let path = cache.join(format!("{}{tag}-{width}x{height}-{spp}spp-{key:016x}.ref", file_safe(scene.name())));
     if let Some(linear) = read(&path, (width, height, spp)) {
         return Ok(ReferenceImage { width, height, spp, linear, path, cached: true });
     }
     let mut sum = vec![[0.0f64; 3]; (width as usize) * (height as usize)];
     for k in 0..frames {
         let mut frame = scene.clone();
-        frame.file.image.samples = side;
+        match what {
+            Converge::Pixel => frame.file.image.samples = side,
+            Converge::Shadows => {
+                frame.file.image.samples = 1;
+                frame.set_shadow_samples(side);
+            }
+        }
         frame.file.image.seed = frame_seed(scene.file.image.seed, k);
         let out = render(ctx, &frame, set, &RenderOptions { width, height, warmup: 0, runs: 1 })?;
         for (s, p) in sum.iter_mut().zip(&out.linear) {
@@ -76,21 +105,22 @@ pub fn reference(
     Ok(ReferenceImage { width, height, spp, linear, path, cached: false })
 }
 
-/// Seed of frame `k`: the scene's own for the first, then well-separated others.
+/// Seed of frame `k`: never the scene's own, so that renders measured against the reference
+/// (which use the scene's seed) share none of its random numbers.
 fn frame_seed(seed: u32, k: u32) -> u32 {
-    seed ^ k.wrapping_mul(0x9e37_79b9)
+    seed ^ (k + 1).wrapping_mul(0x9e37_79b9)
 }
 
 /// FNV-1a over everything the image depends on: the parsed scene and its meshes, the size,
 /// the sample count and the SPIR-V of every module the set resolves to.
-fn key(scene: &Scene, set: &ShaderSet, (width, height): (u32, u32), spp: u32) -> u64 {
+fn key(scene: &Scene, set: &ShaderSet, (width, height): (u32, u32), spp: u32, what: Converge) -> u64 {
     let mut hash = 0xcbf2_9ce4_8422_2325u64;
     let mut eat = |bytes: &[u8]| {
         for &b in bytes {
             hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
         }
     };
-    eat(format!("{:?}{:?}", scene.file, scene.meshes).as_bytes());
+    eat(format!("{:?}{:?}{what:?}", scene.file, scene.meshes).as_bytes());
     eat(&[width, height, spp].map(u32::to_le_bytes).concat());
     for spec in MODULES.iter() {
         if let Ok(module) = set.resolve(spec) {
@@ -168,9 +198,9 @@ mod tests {
     }
 
     #[test]
-    fn frame_seeds_differ_and_keep_the_scene_seed_first() {
-        assert_eq!(frame_seed(7, 0), 7);
+    fn frame_seeds_differ_from_each_other_and_from_the_scene_seed() {
         let seeds: std::collections::BTreeSet<u32> = (0..64).map(|k| frame_seed(7, k)).collect();
         assert_eq!(seeds.len(), 64);
+        assert!(!seeds.contains(&7));
     }
 }

@@ -25,6 +25,8 @@ fn a_small_bench_writes_every_report_file() {
         "1",
         "--reference-spp",
         "64",
+        "--shadow-spp",
+        "1,4",
         "--out",
         "report",
         "--cache",
@@ -51,17 +53,28 @@ fn a_small_bench_writes_every_report_file() {
     let csv = std::fs::read_to_string(report.join("results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + rows.len());
     assert_eq!(csv.lines().next().unwrap(), twinray::bench::tables::CSV_HEADER);
-    for plot in ["error-spp", "error-time", "ratio"] {
+    // The sampler study of the soft-shadow scene (lights): two samplers at two counts.
+    assert_eq!(json["samplers"].as_array().unwrap().len(), 4);
+    let samplers = std::fs::read_to_string(report.join("samplers.csv")).unwrap();
+    assert_eq!(samplers.lines().next().unwrap(), twinray::bench::tables::SAMPLER_CSV_HEADER);
+    assert_eq!(samplers.lines().count(), 5);
+    for plot in ["error-spp", "error-time", "ratio", "sampler-spp", "sampler-time"] {
         image::open(report.join("plots").join(format!("{plot}.png"))).expect("a readable plot");
         let svg = std::fs::read_to_string(report.join("plots").join(format!("{plot}.svg"))).unwrap();
         assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"), "{plot}.svg");
     }
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
-    for needle in ["plots/error-spp.svg", "images/lights-reference.png", "Convergence", "Rust / GLSL"] {
+    for needle in
+        ["plots/error-spp.svg", "images/lights-reference.png", "Convergence", "Rust / GLSL", "Shadow samplers"]
+    {
         assert!(html.contains(needle), "index.html lacks {needle}");
     }
     // The references went to the cache: a second run reads them back.
-    assert_eq!(std::fs::read_dir(dir.path().join("cache")).unwrap().count(), 2);
+    assert_eq!(
+        std::fs::read_dir(dir.path().join("cache")).unwrap().count(),
+        3,
+        "two pixel references, one shadow reference"
+    );
 }
 
 #[test]

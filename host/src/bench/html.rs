@@ -2,7 +2,7 @@
 //! run, the plots, the Rust/GLSL ratios, the convergence slopes, every measurement, and per
 //! scene the reference beside each set's images and FLIP error maps.
 
-use super::plots::{error_by_spp, log_slope};
+use super::plots::{error_by_spp, log_slope, sampler_by_count, Series};
 use super::{BenchReport, BenchRow};
 use crate::error::{Error, Result};
 use std::fmt::Write;
@@ -42,7 +42,10 @@ fn page(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str) -> S
     s += "<h2>Plots</h2>\n<div class=\"plots\"><img src=\"plots/error-spp.svg\" alt=\"error against samples per pixel\">\
           <img src=\"plots/error-time.svg\" alt=\"error against GPU time\"><img src=\"plots/ratio.svg\" alt=\"Rust/GLSL time\"></div>\n";
     s += &ratio_table(ratios);
-    s += &slope_table(report);
+    s += "<h2>Convergence</h2>\n<p>Least-squares slope of log RMSE against log samples per pixel (N<sup>-0.5</sup>: \
+          independent samples; N<sup>-0.75</sup>: stratified samples near edges).</p>\n";
+    s += &slope_table(&error_by_spp(report));
+    s += &samplers_section(report);
     s += &rows_table(&report.rows);
     for (scene, reference) in &report.references {
         s += &gallery(report, scene, reference);
@@ -61,14 +64,39 @@ fn ratio_table(ratios: &[(String, u32, f64)]) -> String {
     s + "</table>\n"
 }
 
-fn slope_table(report: &BenchReport) -> String {
-    let mut s = String::from(
-        "<h2>Convergence</h2>\n<p>Least-squares slope of log RMSE against log samples per pixel (N<sup>-0.5</sup>: \
-         independent samples; N<sup>-0.75</sup>: stratified samples near edges).</p>\n<table><tr><th>scene and set</th><th>slope</th></tr>\n",
-    );
-    for series in error_by_spp(report) {
+fn slope_table(all: &[Series]) -> String {
+    let mut s = String::from("<table><tr><th>series</th><th>slope</th></tr>\n");
+    for series in all {
         let slope = log_slope(&series.points).map_or("n/a".into(), |v| format!("{v:.3}"));
         let _ = writeln!(s, "<tr><td class=\"l\">{}</td><td>{slope}</td></tr>", escape(&series.label));
+    }
+    s + "</table>\n"
+}
+
+fn samplers_section(report: &BenchReport) -> String {
+    if report.samplers.is_empty() {
+        return String::new();
+    }
+    let mut s = String::from(
+        "<h2>Shadow samplers</h2>\n<p>Soft-shadow scenes, one primary sample at each pixel's centre, N x N shadow \
+         samples per rect light: stratified jittered against independent random, against a reference that converges \
+         the shadows at pixel centres. Equal counts are equal rays; the time plot compares them at equal time.</p>\n\
+         <div class=\"plots\"><img src=\"plots/sampler-spp.svg\" alt=\"error against shadow samples\">\
+         <img src=\"plots/sampler-time.svg\" alt=\"error against time\"></div>\n",
+    );
+    s += &slope_table(&sampler_by_count(report));
+    s += "<table><tr><th>scene</th><th>sampler</th><th>shadow samples</th><th>GPU ms</th><th>RMSE</th><th>mean FLIP</th></tr>\n";
+    for r in &report.samplers {
+        let ms = r.gpu_ms.map_or("n/a".into(), |t| format!("{:.4}", t.median));
+        let _ = writeln!(
+            s,
+            "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{ms}</td><td>{:.5}</td><td>{:.4}</td></tr>",
+            escape(&r.scene),
+            r.sampler,
+            r.shadow_spp,
+            r.rmse,
+            r.flip
+        );
     }
     s + "</table>\n"
 }

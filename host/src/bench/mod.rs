@@ -6,6 +6,7 @@
 pub mod html;
 pub mod metrics;
 pub mod plots;
+pub mod samplers;
 pub mod tables;
 
 use crate::error::{Error, Result};
@@ -35,6 +36,8 @@ pub struct BenchConfig {
     pub reference_set: ShaderSet,
     pub cache: PathBuf,
     pub out: PathBuf,
+    /// Shadow samples per light for the sampler study of soft-shadow scenes (none: no study).
+    pub shadow_spp: Vec<u32>,
 }
 
 /// One measurement: a scene rendered by one set at one sample count.
@@ -71,13 +74,15 @@ pub struct BenchReport {
     /// Per scene, the reference image relative to the output folder.
     pub references: Vec<(String, String)>,
     pub rows: Vec<BenchRow>,
+    /// The shadow-sampler study, with the first set.
+    pub samplers: Vec<samplers::SamplerRow>,
 }
 
 /// Samples per side of a bench sample count: a square up to 16 x 16.
 pub fn side_of(spp: u32) -> Result<u32> {
     (1..=16u32)
         .find(|m| m * m == spp)
-        .ok_or_else(|| Error::Input(format!("--spp values must be squares up to 256 (1, 4, 9, .., 256), got {spp}")))
+        .ok_or_else(|| Error::Input(format!("sample counts must be squares up to 256 (1, 4, 9, .., 256), got {spp}")))
 }
 
 /// Runs the bench, writing images into `config.out/images`; `progress` is told after each step.
@@ -93,6 +98,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         reference_set: config.reference_set.to_string(),
         references: Vec::new(),
         rows: Vec::new(),
+        samplers: Vec::new(),
     };
     for scene in &config.scenes {
         let size = config.size.unwrap_or((scene.file.image.width, scene.file.image.height));
@@ -111,8 +117,27 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
                 first.get_or_insert(out);
             }
         }
+        if scene.has_soft_shadows() && !config.shadow_spp.is_empty() {
+            let study = samplers::Study {
+                set: &config.sets[0],
+                size,
+                counts: &config.shadow_spp,
+                reference_spp: config.reference_spp,
+                cache: &config.cache,
+                warmup: config.warmup,
+                runs: config.runs,
+            };
+            report.samplers.extend(samplers::study(ctx, scene, &study, progress)?);
+        }
     }
     Ok(report)
+}
+
+/// Progress steps `run` reports for `config`.
+pub fn steps(config: &BenchConfig) -> usize {
+    let soft = config.scenes.iter().filter(|s| s.has_soft_shadows()).count();
+    let study = if config.shadow_spp.is_empty() { 0 } else { soft * (1 + 2 * config.shadow_spp.len()) };
+    config.scenes.len() * (1 + config.spp.len() * config.sets.len()) + study
 }
 
 fn measure(

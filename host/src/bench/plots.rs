@@ -2,6 +2,7 @@
 //! N^-0.5 and N^-0.75 guide lines), error against GPU time, and the Rust/GLSL time ratio
 //! per scene. PNG text uses an embedded font, so no system font library is needed.
 
+use super::samplers::SamplerRow;
 use super::{BenchReport, BenchRow};
 use crate::error::{Error, Result};
 use plotters::coord::Shift;
@@ -19,19 +20,37 @@ pub struct Series {
 
 /// Error against samples per pixel, one series per scene and set.
 pub fn error_by_spp(report: &BenchReport) -> Vec<Series> {
-    series(report, |r| Some((f64::from(r.spp), r.rmse)))
+    series(&report.rows, set_label, |r| Some((f64::from(r.spp), r.rmse)))
 }
 
 /// Error against median GPU time, one series per scene and set.
 pub fn error_by_time(report: &BenchReport) -> Vec<Series> {
-    series(report, |r| r.gpu_ms.map(|s| (s.median, r.rmse)))
+    series(&report.rows, set_label, |r| r.gpu_ms.map(|s| (s.median, r.rmse)))
 }
 
-fn series(report: &BenchReport, point: impl Fn(&BenchRow) -> Option<(f64, f64)>) -> Vec<Series> {
+/// Error against shadow samples per light, one series per scene and sampler.
+pub fn sampler_by_count(report: &BenchReport) -> Vec<Series> {
+    series(&report.samplers, sampler_label, |r| Some((f64::from(r.shadow_spp), r.rmse)))
+}
+
+/// Error against median GPU time, one series per scene and sampler: the comparison at equal time.
+pub fn sampler_by_time(report: &BenchReport) -> Vec<Series> {
+    series(&report.samplers, sampler_label, |r| r.gpu_ms.map(|s| (s.median, r.rmse)))
+}
+
+fn set_label(r: &BenchRow) -> String {
+    format!("{} {}", r.scene, r.set)
+}
+
+fn sampler_label(r: &SamplerRow) -> String {
+    format!("{} {}", r.scene, r.sampler)
+}
+
+fn series<T>(items: &[T], label: impl Fn(&T) -> String, point: impl Fn(&T) -> Option<(f64, f64)>) -> Vec<Series> {
     let mut out: Vec<Series> = Vec::new();
-    for r in &report.rows {
+    for r in items {
         let Some(p) = point(r).filter(|p| p.0 > 0.0 && p.1 > 0.0) else { continue };
-        let label = format!("{} {}", r.scene, r.set);
+        let label = label(r);
         match out.iter_mut().find(|s| s.label == label) {
             Some(s) => s.points.push(p),
             None => out.push(Series { label, points: vec![p] }),
@@ -64,6 +83,10 @@ pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], dir: &Path) ->
     };
     error_plot("error-spp", "samples per pixel", &by_spp, true)?;
     error_plot("error-time", "GPU ms (median)", &by_time, false)?;
+    if !report.samplers.is_empty() {
+        error_plot("sampler-spp", "shadow samples per light", &sampler_by_count(report), true)?;
+        error_plot("sampler-time", "GPU ms (median)", &sampler_by_time(report), false)?;
+    }
     let (png, svg) = (dir.join("ratio.png"), dir.join("ratio.svg"));
     draw_ratios(BitMapBackend::new(&png, SIZE).into_drawing_area(), ratios).map_err(plot_error)?;
     draw_ratios(SVGBackend::new(&svg, SIZE).into_drawing_area(), ratios).map_err(plot_error)

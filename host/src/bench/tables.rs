@@ -48,10 +48,33 @@ pub fn csv(report: &BenchReport) -> String {
     s
 }
 
-/// Writes results.json and results.csv into `dir`.
+pub const SAMPLER_CSV_HEADER: &str = "scene,sampler,shadow_spp,gpu_ms_median,gpu_ms_q1,gpu_ms_q3,shadow_rays,rmse,flip";
+
+pub fn sampler_csv(report: &BenchReport) -> String {
+    let mut s = format!("{SAMPLER_CSV_HEADER}\n");
+    for r in &report.samplers {
+        let t = |f: fn(&crate::stats::Spread) -> f64| r.gpu_ms.as_ref().map_or(String::new(), |s| format!("{}", f(s)));
+        s += &format!(
+            "\"{}\",{},{},{},{},{},{},{},{}\n",
+            r.scene,
+            r.sampler,
+            r.shadow_spp,
+            t(|s| s.median),
+            t(|s| s.q1),
+            t(|s| s.q3),
+            r.rays.shadow,
+            r.rmse,
+            r.flip
+        );
+    }
+    s
+}
+
+/// Writes results.json, results.csv and samplers.csv into `dir`.
 pub fn write(report: &BenchReport, dir: &Path) -> Result<()> {
     let json = serde_json::to_string_pretty(report).map_err(|e| Error::Input(format!("results.json: {e}")))?;
-    for (name, text) in [("results.json", json), ("results.csv", csv(report))] {
+    let files = [("results.json", json), ("results.csv", csv(report)), ("samplers.csv", sampler_csv(report))];
+    for (name, text) in files {
         let path = dir.join(name);
         std::fs::write(&path, text).map_err(|source| Error::Io { what: "writing", path, source })?;
     }

@@ -2,7 +2,7 @@
 //! one TLAS instance per object, and the pipeline plan — only the hit groups, miss shaders and
 //! specialisation the scene uses.
 
-use super::file::{Formula, LightDesc, MaterialDesc, SceneFile, ShapeDesc};
+use super::file::{Formula, LightDesc, MaterialDesc, SceneFile, ShadowSampler, ShapeDesc};
 use super::mesh::MeshData;
 use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
@@ -82,6 +82,8 @@ pub struct PipelinePlan {
     pub shadows: bool,
     /// M for M x M primary samples per pixel.
     pub samples_per_side: u32,
+    /// `SHADOW_SAMPLER_STRATIFIED` or `SHADOW_SAMPLER_RANDOM`.
+    pub shadow_sampler: u32,
 }
 
 /// Axis-aligned box of one procedural primitive, in object space.
@@ -210,6 +212,10 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         hit_groups: groups,
         shadows: lights.iter().any(|l| l.shadows != 0),
         samples_per_side: scene.image.samples,
+        shadow_sampler: match scene.shadow_sampler {
+            ShadowSampler::Stratified => b::SHADOW_SAMPLER_STRATIFIED,
+            ShadowSampler::Random => b::SHADOW_SAMPLER_RANDOM,
+        },
     };
     let materials = scene.materials.values().map(material).collect();
     let Geometry { blases, primitives, vertices, indices } = geometry;

@@ -26,6 +26,9 @@ pub struct SceneFile {
     /// Shadow samples per side of rect lights that do not set their own.
     #[serde(default = "default_shadow_samples")]
     pub shadow_samples: u32,
+    /// How rect lights' N x N shadow samples are placed.
+    #[serde(default)]
+    pub shadow_sampler: ShadowSampler,
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default)]
@@ -268,6 +271,26 @@ pub struct Parity {
     pub pixel_threshold: u8,
     pub max_pixels_over_threshold: f64,
     pub max_hit_mismatches: f64,
+}
+
+/// Placement of a rect light's N x N shadow samples.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShadowSampler {
+    /// One jittered sample in each cell of an N x N grid over the light.
+    #[default]
+    Stratified,
+    /// N x N independent samples, each anywhere on the light.
+    Random,
+}
+
+impl ShadowSampler {
+    pub fn name(self) -> &'static str {
+        match self {
+            ShadowSampler::Stratified => "stratified",
+            ShadowSampler::Random => "random",
+        }
+    }
 }
 
 /// Which intersection formula a shape uses: the robust one, or the textbook one it replaced,

@@ -89,6 +89,21 @@ impl Scene {
         Ok(Scene { file, source: source.into(), meshes })
     }
 
+    /// Gives every rect light `n` x `n` shadow samples.
+    pub fn set_shadow_samples(&mut self, n: u32) {
+        self.file.shadow_samples = n;
+        for light in &mut self.file.lights {
+            if let file::LightDesc::Rect { samples, .. } = light {
+                *samples = Some(n);
+            }
+        }
+    }
+
+    /// Whether a rect light casts shadows: soft shadows, whose sampler matters.
+    pub fn has_soft_shadows(&self) -> bool {
+        self.file.lights.iter().any(|l| matches!(l, file::LightDesc::Rect { shadows: true, .. }))
+    }
+
     pub fn name(&self) -> &str {
         &self.file.name
     }

@@ -133,8 +133,8 @@ fn create_pipeline(
     modules: &[StageModule],
     plan: &PipelinePlan,
 ) -> Result<vk::Pipeline> {
-    let spec_data = [u32::from(plan.shadows), plan.samples_per_side];
-    let spec_entries = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE]
+    let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler];
+    let spec_entries = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER]
         .iter()
         .enumerate()
         .map(|(i, &id)| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i as u32, size: 4 })

@@ -12,7 +12,7 @@ use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
 use twinray_shared::bindings::{
     HIT_IDS_PER_PIXEL, HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS,
-    MISS_PRIMARY, NO_HIT,
+    MISS_PRIMARY, NO_HIT, SHADOW_SAMPLER_STRATIFIED,
 };
 use twinray_shared::layout::{
     FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
@@ -33,6 +33,7 @@ pub fn raygen(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] hit_ids: &mut [u32],
     #[spirv(spec_constant(id = 0, default = 0))] shadows: u32,
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
+    #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
     #[spirv(ray_payload)] payload: &mut HitPayload,
     #[spirv(ray_payload)] shadow: &mut ShadowPayload,
 ) {
@@ -59,8 +60,18 @@ pub fn raygen(
             if sample == 0 {
                 first_hit = (payload.ids.x, payload.ids.y);
             }
-            sum +=
-                trace::shade(tlas, frame, lights, shadows != 0, payload, shadow, pixel_index, sample, &mut shadow_rays);
+            sum += trace::shade(
+                tlas,
+                frame,
+                lights,
+                shadows != 0,
+                shadow_sampler == SHADOW_SAMPLER_STRATIFIED,
+                payload,
+                shadow,
+                pixel_index,
+                sample,
+                &mut shadow_rays,
+            );
             sx += 1;
         }
         sy += 1;

@@ -32,13 +32,15 @@ pub fn primary(tlas: &AccelerationStructure, ray: Ray, payload: &mut HitPayload)
 
 /// Colour seen along a primary ray: the background, an emitter's radiance, or the albedo times
 /// the light arriving from every light (with shadows where lights cast them, and `shadows`, a
-/// specialisation constant, is on). Adds the shadow rays it traces to `shadow_rays`.
+/// specialisation constant, is on). Rect lights' shadow samples are `stratified` (one per
+/// cell of an N x N grid) or independent. Adds the shadow rays it traces to `shadow_rays`.
 #[allow(clippy::too_many_arguments)]
 pub fn shade(
     tlas: &AccelerationStructure,
     frame: &FrameUniform,
     lights: &[Light],
     shadows: bool,
+    stratified: bool,
     hit: &HitPayload,
     shadow: &mut ShadowPayload,
     pixel: u32,
@@ -82,7 +84,10 @@ pub fn shade(
                 } else {
                     (0.0, 0.0)
                 };
-                let s = lighting::sample(&light, point, i, j, r1, r2);
+                // Independent samples: cell (0, 0) stretched over the whole light.
+                let nf = n as f32;
+                let (si, sj, r1, r2) = if stratified { (i, j, r1, r2) } else { (0, 0, r1 * nf, r2 * nf) };
+                let s = lighting::sample(&light, point, si, sj, r1, r2);
                 let cosine = normal.dot(s.direction);
                 if cosine > 0.0 {
                     let lit = if casts {

@@ -48,6 +48,12 @@ pub const MASK_EMITTER: u32 = 0x02;
 /// samples per pixel.
 pub const SPEC_SHADOWS: u32 = 0;
 pub const SPEC_SAMPLES_PER_SIDE: u32 = 1;
+/// Specialisation constant: how rect lights' N x N shadow samples are placed.
+pub const SPEC_SHADOW_SAMPLER: u32 = 2;
+/// One jittered sample in each cell of an N x N grid over the light (the default).
+pub const SHADOW_SAMPLER_STRATIFIED: u32 = 0;
+/// N x N independent samples, each anywhere on the light.
+pub const SHADOW_SAMPLER_RANDOM: u32 = 1;
 
 /// Material kinds (`Material::kind`).
 pub const MATERIAL_DIFFUSE: u32 = 0;
