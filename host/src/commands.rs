@@ -268,9 +268,14 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     if let (Some(w), Some(h)) = (args.width, args.height) {
         check_size(w, h).map_err(Error::Input)?;
     }
+    let sets = twinray::shader_set::parse_sets(&args.sets)?;
+    if args.probes.as_os_str() != "none" && !args.probes.is_dir() {
+        let message = format!("--probes {}: no such folder (give --probes DIR, or none)", args.probes.display());
+        return Err(Error::Input(message).into());
+    }
     let config = bench::BenchConfig {
         scenes,
-        sets: twinray::shader_set::parse_sets(&args.sets)?,
+        sets,
         spp,
         size: args.width.zip(args.height),
         warmup: args.warmup,
@@ -280,6 +285,8 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         cache: args.cache.unwrap_or_else(twinray::reference_image::default_cache),
         out: args.out.clone(),
         shadow_spp,
+        probes: Some(args.probes.clone()).filter(|p| p.as_os_str() != "none"),
+        timing_rays: args.timing_rays,
     };
     let ctx = context(global)?;
     let bar = indicatif::ProgressBar::new(bench::steps(&config) as u64);

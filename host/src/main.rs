@@ -225,6 +225,12 @@ pub struct BenchArgs {
     /// scenes, comma-separated squares up to 256 ("none": no study).
     #[arg(long, default_value = "1,4,16,64")]
     shadow_spp: String,
+    /// Probe cases for the robust-against-naive intersection study ("none": no study).
+    #[arg(long, default_value = "probes/stability")]
+    probes: PathBuf,
+    /// Time each probe case over its rays repeated up to at least this many.
+    #[arg(long, default_value_t = 1_048_576)]
+    timing_rays: usize,
 }
 
 fn main() -> ExitCode {

@@ -27,11 +27,19 @@ fn a_small_bench_writes_every_report_file() {
         "64",
         "--shadow-spp",
         "1,4",
+        "--probes",
+        "cases",
+        "--timing-rays",
+        "0",
         "--out",
         "report",
         "--cache",
         "cache",
     ];
+    std::fs::create_dir(dir.path().join("cases")).unwrap();
+    for case in ["sphere-far-1e5.toml", "cone-apex.toml"] {
+        std::fs::copy(common::repo().join("probes/stability").join(case), dir.path().join("cases").join(case)).unwrap();
+    }
     let out = twinray(&args, dir.path());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let report = dir.path().join("report");
@@ -58,7 +66,12 @@ fn a_small_bench_writes_every_report_file() {
     let samplers = std::fs::read_to_string(report.join("samplers.csv")).unwrap();
     assert_eq!(samplers.lines().next().unwrap(), twinray::bench::tables::SAMPLER_CSV_HEADER);
     assert_eq!(samplers.lines().count(), 5);
-    for plot in ["error-spp", "error-time", "ratio", "sampler-spp", "sampler-time"] {
+    // The intersection variants: the sphere case in both formulas; the cone has no naive one.
+    let variants = std::fs::read_to_string(report.join("variants.csv")).unwrap();
+    assert_eq!(variants.lines().next().unwrap(), twinray::bench::tables::VARIANT_CSV_HEADER);
+    assert_eq!(variants.lines().filter(|l| l.starts_with("\"sphere-far-1e5\"")).count(), 2, "{variants}");
+    assert!(!variants.contains("cone-apex"));
+    for plot in ["error-spp", "error-time", "ratio", "sampler-spp", "sampler-time", "variants"] {
         image::open(report.join("plots").join(format!("{plot}.png"))).expect("a readable plot");
         let svg = std::fs::read_to_string(report.join("plots").join(format!("{plot}.svg"))).unwrap();
         assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"), "{plot}.svg");
@@ -84,4 +97,5 @@ fn bench_rejects_bad_input_before_rendering() {
     assert_bad_input(&["bench", "lights", "--sets", "rust,cuda"], &["unknown language \"cuda\""]);
     assert_bad_input(&["bench", "nosuchscene"], &["nosuchscene"]);
     assert_bad_input(&["bench", "lights", "--reference-spp", "300"], &["square up to 256"]);
+    assert_bad_input(&["bench", "lights", "--probes", "no/such/dir"], &["--probes no/such/dir: no such folder"]);
 }

@@ -38,6 +38,10 @@ pub struct BenchConfig {
     pub out: PathBuf,
     /// Shadow samples per light for the sampler study of soft-shadow scenes (none: no study).
     pub shadow_spp: Vec<u32>,
+    /// Probe cases whose robust and naive intersection variants are timed against their
+    /// accuracy (none: no such study), each timed over at least `timing_rays` rays.
+    pub probes: Option<PathBuf>,
+    pub timing_rays: usize,
 }
 
 /// One measurement: a scene rendered by one set at one sample count.
@@ -76,6 +80,8 @@ pub struct BenchReport {
     pub rows: Vec<BenchRow>,
     /// The shadow-sampler study, with the first set.
     pub samplers: Vec<samplers::SamplerRow>,
+    /// The probe cases with robust and naive intersection variants, with the first set.
+    pub variants: Vec<crate::stability::StabilityRow>,
 }
 
 /// Samples per side of a bench sample count: a square up to 16 x 16.
@@ -99,6 +105,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         references: Vec::new(),
         rows: Vec::new(),
         samplers: Vec::new(),
+        variants: Vec::new(),
     };
     for scene in &config.scenes {
         let size = config.size.unwrap_or((scene.file.image.width, scene.file.image.height));
@@ -130,6 +137,18 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
             report.samplers.extend(samplers::study(ctx, scene, &study, progress)?);
         }
     }
+    if let Some(dir) = &config.probes {
+        progress("probe cases: robust and naive intersection variants");
+        let files = crate::stability::case_files(dir)?;
+        let formulas = [crate::scene::file::Formula::Robust, crate::scene::file::Formula::Naive];
+        let timing = crate::stability::Timing { warmup: config.warmup, runs: config.runs, rays: config.timing_rays };
+        let rows = crate::stability::run(ctx, &files, &config.sets[..1], &formulas, timing)?;
+        // Only cases where the naive formula differs make a comparison.
+        let paired = |r: &&crate::stability::StabilityRow| {
+            rows.iter().any(|o| o.formula == "naive" && o.report.case == r.report.case)
+        };
+        report.variants = rows.iter().filter(paired).cloned().collect();
+    }
     Ok(report)
 }
 
@@ -137,7 +156,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
 pub fn steps(config: &BenchConfig) -> usize {
     let soft = config.scenes.iter().filter(|s| s.has_soft_shadows()).count();
     let study = if config.shadow_spp.is_empty() { 0 } else { soft * (1 + 2 * config.shadow_spp.len()) };
-    config.scenes.len() * (1 + config.spp.len() * config.sets.len()) + study
+    config.scenes.len() * (1 + config.spp.len() * config.sets.len()) + study + usize::from(config.probes.is_some())
 }
 
 fn measure(

@@ -59,6 +59,28 @@ fn series<T>(items: &[T], label: impl Fn(&T) -> String, point: impl Fn(&T) -> Op
     out
 }
 
+/// Smallest p99 error plotted: a case whose hits all match the reference exactly sits here.
+pub const ERROR_FLOOR: f64 = 1e-9;
+
+/// GPU time per million rays against p99 relative t error of each probe case, robust and
+/// naive, as two series.
+pub fn variant_points(report: &BenchReport) -> Vec<Series> {
+    ["robust", "naive"]
+        .iter()
+        .map(|&formula| Series {
+            label: formula.to_string(),
+            points: report
+                .variants
+                .iter()
+                .filter(|r| r.formula == formula)
+                .filter_map(|r| {
+                    Some((r.report.gpu_ms_per_million_rays?, r.report.relative_t_error.p99.max(ERROR_FLOOR)))
+                })
+                .collect(),
+        })
+        .collect()
+}
+
 /// Least-squares slope of log y against log x: the measured convergence rate.
 pub fn log_slope(points: &[(f64, f64)]) -> Option<f64> {
     let logs: Vec<(f64, f64)> = points.iter().map(|&(x, y)| (x.ln(), y.ln())).collect();
@@ -83,6 +105,12 @@ pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], dir: &Path) ->
     };
     error_plot("error-spp", "samples per pixel", &by_spp, true)?;
     error_plot("error-time", "GPU ms (median)", &by_time, false)?;
+    if !report.variants.is_empty() {
+        let points = variant_points(report);
+        let (png, svg) = (dir.join("variants.png"), dir.join("variants.svg"));
+        draw_scatter(BitMapBackend::new(&png, SIZE).into_drawing_area(), &points).map_err(plot_error)?;
+        draw_scatter(SVGBackend::new(&svg, SIZE).into_drawing_area(), &points).map_err(plot_error)?;
+    }
     if !report.samplers.is_empty() {
         error_plot("sampler-spp", "shadow samples per light", &sampler_by_count(report), true)?;
         error_plot("sampler-time", "GPU ms (median)", &sampler_by_time(report), false)?;
@@ -111,17 +139,20 @@ fn bounds(data: &[Series]) -> ((f64, f64), (f64, f64)) {
     ((x.0 / 1.5, x.1 * 1.5), (y.0 / 2.0, y.1 * 2.0))
 }
 
+/// The margins and label areas every plot uses.
+fn framed<'a, 'b, DB: DrawingBackend>(root: &'a DrawingArea<DB, Shift>) -> ChartBuilder<'a, 'b, DB> {
+    let mut builder = ChartBuilder::on(root);
+    builder.margin(20).x_label_area_size(45).y_label_area_size(70);
+    builder
+}
+
 fn draw_error<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, x_label: &str, data: &[Series], guides: bool) -> Drawn
 where
     DB::ErrorType: 'static,
 {
     root.fill(&WHITE)?;
     let ((x0, x1), (y0, y1)) = bounds(data);
-    let mut chart = ChartBuilder::on(&root)
-        .margin(20)
-        .x_label_area_size(45)
-        .y_label_area_size(70)
-        .build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
+    let mut chart = framed(&root).build_cartesian_2d((x0..x1).log_scale(), (y0..y1).log_scale())?;
     chart
         .configure_mesh()
         .light_line_style(WHITE)
@@ -159,6 +190,32 @@ where
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .draw()?;
+    root.present()?;
+    Ok(())
+}
+
+fn draw_scatter<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, data: &[Series]) -> Drawn
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let ((x0, x1), (y0, y1)) = bounds(data);
+    let mut chart = framed(&root).build_cartesian_2d(x0..x1, (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .light_line_style(WHITE)
+        .y_label_formatter(&|v| format!("{v:.0e}"))
+        .x_desc("GPU ms per million rays (probe cases)")
+        .y_desc("p99 relative t error")
+        .draw()?;
+    for (i, s) in data.iter().enumerate() {
+        let colour = Palette99::pick(i).to_rgba();
+        chart
+            .draw_series(s.points.iter().map(|&p| Circle::new(p, 4, colour.filled())))?
+            .label(s.label.clone())
+            .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
     root.present()?;
     Ok(())
 }

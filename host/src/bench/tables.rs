@@ -70,10 +70,31 @@ pub fn sampler_csv(report: &BenchReport) -> String {
     s
 }
 
-/// Writes results.json, results.csv and samplers.csv into `dir`.
+pub const VARIANT_CSV_HEADER: &str =
+    "case,variant,formula,rays,decided,false_hits,false_misses,relative_t_p99,gpu_ms_per_million_rays";
+
+pub fn variant_csv(report: &BenchReport) -> String {
+    let mut s = format!("{VARIANT_CSV_HEADER}\n");
+    for row in &report.variants {
+        let r = &row.report;
+        let ms = r.gpu_ms_per_million_rays.map_or(String::new(), |v| format!("{v}"));
+        s += &format!(
+            "\"{}\",\"{}\",{},{},{},{},{},{},{ms}\n",
+            r.case, row.variant, row.formula, r.rays, r.decided, r.false_hits, r.false_misses, r.relative_t_error.p99
+        );
+    }
+    s
+}
+
+/// Writes results.json, results.csv, samplers.csv and variants.csv into `dir`.
 pub fn write(report: &BenchReport, dir: &Path) -> Result<()> {
     let json = serde_json::to_string_pretty(report).map_err(|e| Error::Input(format!("results.json: {e}")))?;
-    let files = [("results.json", json), ("results.csv", csv(report)), ("samplers.csv", sampler_csv(report))];
+    let files = [
+        ("results.json", json),
+        ("results.csv", csv(report)),
+        ("samplers.csv", sampler_csv(report)),
+        ("variants.csv", variant_csv(report)),
+    ];
     for (name, text) in files {
         let path = dir.join(name);
         std::fs::write(&path, text).map_err(|source| Error::Io { what: "writing", path, source })?;
