@@ -132,6 +132,7 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             "gpu_ms": median,
             "gpu_ms_spread": out.spread(),
             "gpu_ms_runs": out.gpu_ms,
+            "warmup_traces": out.warmup_traces,
             "rays": out.rays,
             "mrays_per_s": out.mrays_per_s(),
             "cpu_threads": ctx.info.cpu_threads,

@@ -158,7 +158,16 @@ mod tests {
 
     fn output(rgba: Vec<u8>, hit_ids: Vec<u64>, width: u32) -> RenderOutput {
         let height = hit_ids.len() as u32 / width;
-        RenderOutput { width, height, rgba, linear: vec![], hit_ids, gpu_ms: vec![], rays: Default::default() }
+        RenderOutput {
+            width,
+            height,
+            rgba,
+            linear: vec![],
+            hit_ids,
+            gpu_ms: vec![],
+            rays: Default::default(),
+            warmup_traces: 0,
+        }
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! intersection and hit stages are the very ones that render images.
 
 use crate::error::{Error, Result};
-use crate::render::{prepare, storage_buffer, transition, Trace, STORAGE_IMAGE, UNUSED_IMAGE};
+use crate::render::{prepare, storage_buffer, transition, STORAGE_IMAGE, UNUSED_IMAGE};
 use crate::scene::Scene;
 use crate::shader_set::ShaderSet;
 use crate::vk::buffer::Buffer;
@@ -67,15 +67,7 @@ fn probe_and_release(
     let timestamps = Timestamps::new(ctx, runs)?;
     let readback =
         Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
-    let trace = Trace {
-        pipeline: &p.pipeline,
-        descriptors: &p.descriptors,
-        sbt: &p.sbt,
-        timestamps: timestamps.as_ref(),
-        launch: (count, 1),
-        warmup,
-        runs,
-    };
+    let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
     p.one_shot.run(|device, cmd| {
         transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
         trace.record(ctx, cmd);

@@ -64,6 +64,8 @@ pub struct RenderOutput {
     pub gpu_ms: Vec<f64>,
     /// Rays one trace traced.
     pub rays: RayCounts,
+    /// Untimed traces before the timed ones: the asked-for count, raised to fill `MIN_WARM_MS`.
+    pub warmup_traces: u32,
 }
 
 /// Rays traced by one trace of an image, by kind: primary rays are pixels times samples,
@@ -121,6 +123,49 @@ pub(crate) struct Prepared {
     pub descriptors: DescriptorSet,
     pub sbt: ShaderBindingTable,
     _resources: SceneResources,
+}
+
+/// GPU time warm-up traces take at least, when any are asked for: GPU clocks leave their
+/// idle state over tens of milliseconds. Measured on the H200 with 3 warm-up traces of a few
+/// ms: the same configuration timed 1x in one run and 2-3x in the next, with a tight IQR
+/// each time (the clock was stable within a run, but in another state).
+pub const MIN_WARM_MS: f64 = 200.0;
+const MAX_WARM_TRACES: u32 = 10_000;
+
+impl Prepared {
+    /// The trace of this pipeline over `launch`: `runs` timed traces after warm-up traces that
+    /// are at least `warmup` and, when `warmup` > 0 and the device can time, at least
+    /// `MIN_WARM_MS` of GPU time in the same submission (two traces run first to count them).
+    pub fn trace<'a>(
+        &'a self,
+        ctx: &Arc<Context>,
+        timestamps: Option<&'a Timestamps>,
+        launch: (u32, u32),
+        (warmup, runs): (u32, u32),
+    ) -> Result<Trace<'a>> {
+        let trace = Trace {
+            pipeline: &self.pipeline,
+            descriptors: &self.descriptors,
+            sbt: &self.sbt,
+            timestamps,
+            launch,
+            warmup,
+            runs,
+        };
+        let Some(one) = (if warmup > 0 && timestamps.is_some() { Timestamps::new(ctx, 1)? } else { None }) else {
+            return Ok(trace);
+        };
+        // The second trace is the one timed: the first may include lazy compilation (lavapipe).
+        let first = Trace { timestamps: Some(&one), warmup: 1, runs: 1, ..trace };
+        self.one_shot.run(|device, cmd| {
+            transition(device, cmd, self.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
+            first.record(ctx, cmd);
+            Ok(())
+        })?;
+        let ms = one.read_ms()?.first().copied().unwrap_or(MIN_WARM_MS);
+        let needed = (MIN_WARM_MS / ms.max(1e-6)).ceil().min(f64::from(MAX_WARM_TRACES)) as u32;
+        Ok(Trace { warmup: warmup.max(needed), ..trace })
+    }
 }
 
 /// Uploads the scene and builds the pipeline (with ray generation stage `raygen`), its
@@ -181,15 +226,7 @@ fn render_and_release(
     let image_bytes = pixels * crate::vk::image::PIXEL_BYTES;
     let image_readback = Buffer::new(ctx, "image readback", image_bytes, readback_usage, MemoryLocation::GpuToCpu)?;
     let ids_readback = Buffer::new(ctx, "hit id readback", ids_bytes, readback_usage, MemoryLocation::GpuToCpu)?;
-    let trace = Trace {
-        pipeline: &p.pipeline,
-        descriptors: &p.descriptors,
-        sbt: &p.sbt,
-        timestamps: timestamps.as_ref(),
-        launch: size,
-        warmup: opts.warmup,
-        runs: opts.runs,
-    };
+    let trace = p.trace(ctx, timestamps.as_ref(), size, (opts.warmup, opts.runs))?;
     let image = &p.image;
     p.one_shot.run(|device, cmd| {
         let rt = vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR;
@@ -205,7 +242,8 @@ fn render_and_release(
         memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
         Ok(())
     })?;
-    let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
+    let warmup_traces = trace.warmup;
+    let gpu_ms = timestamps.as_ref().map(|t| t.read_ms()).transpose()?.unwrap_or_default();
     let (hit_ids, shadow) = read_ids(&ids_readback.mapped()?[..ids_bytes as usize]);
     let linear = read_linear(&image_readback.mapped()?[..image_bytes as usize]);
     let samples = u64::from(scene.file.image.samples).pow(2);
@@ -217,6 +255,7 @@ fn render_and_release(
         hit_ids,
         gpu_ms,
         rays: RayCounts { primary: pixels * samples, shadow },
+        warmup_traces,
     })
 }
 
@@ -330,6 +369,7 @@ fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUs
 }
 
 /// What one trace command needs.
+#[derive(Clone, Copy)]
 pub(crate) struct Trace<'a> {
     pub pipeline: &'a RtPipeline,
     pub descriptors: &'a DescriptorSet,

@@ -41,6 +41,10 @@ pub struct CompareReport {
     pub mrays_per_s_b: Option<f64>,
     /// Threads of a CPU device (lavapipe); null on GPUs.
     pub cpu_threads: Option<u32>,
+    /// Untimed traces each set ran before its timed ones (at least `warmup`, and at least
+    /// `MIN_WARM_MS` of GPU time when `warmup` > 0).
+    pub warmup_traces_a: u32,
+    pub warmup_traces_b: u32,
     /// Timed traces per set (after `warmup` untimed ones).
     pub runs: u32,
     pub warmup: u32,
@@ -88,6 +92,8 @@ pub fn compare_sets(
         mrays_per_s_a: a.mrays_per_s(),
         mrays_per_s_b: b.mrays_per_s(),
         cpu_threads: ctx.info.cpu_threads,
+        warmup_traces_a: a.warmup_traces,
+        warmup_traces_b: b.warmup_traces,
         runs: opts.runs,
         warmup: opts.warmup,
         pass: failures.is_empty(),
@@ -120,13 +126,14 @@ impl CompareReport {
         let d = &self.diff.color;
         let threads = self.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
         let mut s = format!(
-            "scene {} {}x{} on {}{threads}, median of {} traces after {} untimed\n  a = {:<28} {}\n  b = {:<28} {}\n  ratio a/b {}\n",
+            "scene {} {}x{} on {}{threads}, median of {} traces after {}/{} untimed\n  a = {:<28} {}\n  b = {:<28} {}\n  ratio a/b {}\n",
             self.scene,
             self.width,
             self.height,
             self.device,
             self.runs,
-            self.warmup,
+            self.warmup_traces_a,
+            self.warmup_traces_b,
             self.set_a,
             timing(self.spread_a, self.mrays_per_s_a, self.rays_a),
             self.set_b,

@@ -1,5 +1,6 @@
 //! `cargo xtask <task>`: set-up, shader builds, golden images, the demo and CI.
 
+mod bundle;
 mod process;
 mod setup;
 mod shaders;
@@ -38,6 +39,13 @@ enum Task {
     Demo,
     /// What CI runs: setup, fmt check, clippy (warnings denied), shaders --check, all tests.
     Ci,
+    /// One folder (and .tar.gz) that runs the whole bench on an NVIDIA machine without
+    /// network: the release build, the Vulkan loader and GL dispatch libraries, run.sh.
+    Bundle {
+        /// Where to put it.
+        #[arg(long, default_value = "target/twinray-bench")]
+        out: std::path::PathBuf,
+    },
 }
 
 fn main() -> Result<()> {
@@ -47,6 +55,7 @@ fn main() -> Result<()> {
         Task::Golden => golden(),
         Task::Demo => demo(),
         Task::Ci => ci(),
+        Task::Bundle { out } => bundle::run_bundle(&repo_root().join(out)),
     }
 }
 
