@@ -15,7 +15,7 @@ bin="$here/bin/twinray"
 mkdir -p "$report"
 
 bench="$bin bench --runs 10 --warmup 3 --spp 1,4,16,64 --reference-spp 1024 --shadow-spp 1,4,16,64,256 \
---probes $here/probes/stability --timing-rays 4194304 --cache $here/cache --out $report $*"
+--probes $here/probes/stability --timing-rays 4194304 --images last --cache $here/cache --out $report $*"
 stability="$bin stability --dir $here/probes/stability --runs 10 --warmup 2 --timing-rays 4194304"
 
 "$bin" info > "$report/device.txt"

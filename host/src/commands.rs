@@ -288,6 +288,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         shadow_spp,
         probes: Some(args.probes.clone()).filter(|p| p.as_os_str() != "none"),
         timing_rays: args.timing_rays,
+        images: args.images,
     };
     let ctx = context(global)?;
     let bar = indicatif::ProgressBar::new(bench::steps(&config) as u64);

@@ -231,6 +231,9 @@ pub struct BenchArgs {
     /// Time each probe case over its rays repeated up to at least this many.
     #[arg(long, default_value_t = 1_048_576)]
     timing_rays: usize,
+    /// Which renders to keep as PNG files with their FLIP maps (references are always kept).
+    #[arg(long, value_enum, default_value = "all")]
+    images: twinray::bench::Images,
 }
 
 fn main() -> ExitCode {

@@ -171,12 +171,13 @@ fn gallery(report: &BenchReport, scene: &str, reference: &str) -> String {
         report.reference_spp
     );
     for r in report.rows.iter().filter(|r| r.scene == scene) {
+        let (Some(image), Some(error_map)) = (&r.image, &r.error_map) else { continue };
         let _ = writeln!(
             s,
             "<figure><img src=\"{0}\" alt=\"image\"><img src=\"{1}\" alt=\"FLIP error map\">\
              <figcaption>{2}, {3} spp: RMSE {4:.4}, FLIP {5:.4}</figcaption></figure>",
-            escape(&r.image),
-            escape(&r.error_map),
+            escape(image),
+            escape(error_map),
             escape(&r.set),
             r.spp,
             r.rmse,

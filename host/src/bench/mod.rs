@@ -42,6 +42,19 @@ pub struct BenchConfig {
     /// accuracy (none: no such study), each timed over at least `timing_rays` rays.
     pub probes: Option<PathBuf>,
     pub timing_rays: usize,
+    /// Which renders are written as images (with their FLIP maps); references always are.
+    pub images: Images,
+}
+
+/// Which renders `twinray bench` keeps as PNG files.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Images {
+    /// Every scene, set and sample count.
+    All,
+    /// Only the largest sample count (a committed report stays small).
+    Last,
+    /// None.
+    None,
 }
 
 /// One measurement: a scene rendered by one set at one sample count.
@@ -61,9 +74,10 @@ pub struct BenchRow {
     /// Pixels whose first primary ray hit another primitive than the first set's did (null
     /// for the first set).
     pub hit_mismatches: Option<u64>,
-    /// The rendered image and its error map, relative to the output folder.
-    pub image: String,
-    pub error_map: String,
+    /// The rendered image and its error map, relative to the output folder (none when
+    /// `images` left them out).
+    pub image: Option<String>,
+    pub error_map: Option<String>,
 }
 
 /// Everything a bench produced.
@@ -119,7 +133,12 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
             for set in &config.sets {
                 progress(&format!("{}: {set} at {spp} spp", scene.name()));
                 let out = measure(ctx, scene, set, size, spp, config)?;
-                let row = row(scene, set, spp, &out, &truth, first.as_ref(), &config.out)?;
+                let keep = match config.images {
+                    Images::All => true,
+                    Images::Last => config.spp.iter().max() == Some(&spp),
+                    Images::None => false,
+                };
+                let row = row(scene, set, spp, &out, &truth, first.as_ref(), keep.then_some(config.out.as_path()))?;
                 report.rows.push(row);
                 first.get_or_insert(out);
             }
@@ -179,13 +198,17 @@ fn row(
     out: &RenderOutput,
     truth: &ReferenceImage,
     first: Option<&RenderOutput>,
-    dir: &Path,
+    images: Option<&Path>,
 ) -> Result<BenchRow> {
     let errors = metrics::errors(&out.linear, &truth.linear, (out.width, out.height));
     let stem = format!("images/{}-{}-{spp}spp", file_safe(scene.name()), file_safe(&set.to_string()));
-    let (image, error_map) = (format!("{stem}.png"), format!("{stem}-flip.png"));
-    crate::output::write_png(&dir.join(&image), out.width, out.height, &out.rgba)?;
-    crate::output::write_png(&dir.join(&error_map), out.width, out.height, &errors.flip_map_rgba)?;
+    let (mut image, mut error_map) = (None, None);
+    if let Some(dir) = images {
+        let (png, flip) = (format!("{stem}.png"), format!("{stem}-flip.png"));
+        crate::output::write_png(&dir.join(&png), out.width, out.height, &out.rgba)?;
+        crate::output::write_png(&dir.join(&flip), out.width, out.height, &errors.flip_map_rgba)?;
+        (image, error_map) = (Some(png), Some(flip));
+    }
     let hit_mismatches = first.map(|f| f.hit_ids.iter().zip(&out.hit_ids).filter(|(a, b)| a != b).count() as u64);
     Ok(BenchRow {
         scene: scene.name().to_string(),
