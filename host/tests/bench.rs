@@ -73,6 +73,12 @@ fn a_small_bench_writes_every_report_file() {
     let samplers = std::fs::read_to_string(report.join("samplers.csv")).unwrap();
     assert_eq!(samplers.lines().next().unwrap(), twinray::bench::tables::SAMPLER_CSV_HEADER);
     assert_eq!(samplers.lines().count(), 5);
+    // SPIR-V sizes of every module of both sets.
+    let spirv = json["spirv"].as_array().unwrap();
+    assert_eq!(spirv.len(), 15);
+    assert!(spirv
+        .iter()
+        .all(|m| m["rust_instructions"].as_u64().unwrap() > 0 && m["glsl_bytes"].as_u64().unwrap() > 0));
     // The intersection variants: the sphere case in both formulas; the cone has no naive one.
     let variants = std::fs::read_to_string(report.join("variants.csv")).unwrap();
     assert_eq!(variants.lines().next().unwrap(), twinray::bench::tables::VARIANT_CSV_HEADER);

@@ -47,6 +47,7 @@ fn page(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str) -> S
     s += &slope_table(&error_by_spp(report));
     s += &samplers_section(report);
     s += &variants_section(report);
+    s += &spirv_table(report);
     s += &rows_table(&report.rows);
     for (scene, reference) in &report.references {
         s += &gallery(report, scene, reference);
@@ -131,6 +132,21 @@ fn variants_section(report: &BenchReport) -> String {
             robust.report.relative_t_error.p99,
             naive.report.relative_t_error.p99,
             naive.report.false_hits + naive.report.false_misses + naive.report.wrong_object,
+        );
+    }
+    s + "</table>\n"
+}
+
+fn spirv_table(report: &BenchReport) -> String {
+    let mut s = String::from(
+        "<h2>SPIR-V per stage</h2>\n<table><tr><th>module</th><th>Rust bytes</th><th>GLSL bytes</th>\
+         <th>Rust instructions</th><th>GLSL instructions</th></tr>\n",
+    );
+    for m in &report.spirv {
+        let _ = writeln!(
+            s,
+            "<tr><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{}</td><td>{}</td></tr>",
+            m.module, m.rust_bytes, m.glsl_bytes, m.rust_instructions, m.glsl_instructions
         );
     }
     s + "</table>\n"

@@ -96,6 +96,41 @@ pub struct BenchReport {
     pub samplers: Vec<samplers::SamplerRow>,
     /// The probe cases with robust and naive intersection variants, with the first set.
     pub variants: Vec<crate::stability::StabilityRow>,
+    /// Size of every module of both sets, as the binary embeds them.
+    pub spirv: Vec<ModuleSize>,
+}
+
+/// A module's SPIR-V in each language: bytes and instructions.
+#[derive(Clone, Debug, Serialize)]
+pub struct ModuleSize {
+    pub module: &'static str,
+    pub rust_bytes: usize,
+    pub glsl_bytes: usize,
+    pub rust_instructions: usize,
+    pub glsl_instructions: usize,
+}
+
+/// The sizes of every module of both sets.
+pub fn spirv_sizes() -> Result<Vec<ModuleSize>> {
+    use crate::shader_set::{Language, MODULES};
+    let size = |language, spec| -> Result<(usize, usize)> {
+        let module = ShaderSet::uniform(language).resolve(spec)?;
+        let info = twinray_shared::spirv_info::parse(module.spirv).map_err(Error::Input)?;
+        Ok((module.spirv.len(), info.instruction_count))
+    };
+    MODULES
+        .iter()
+        .map(|spec| {
+            let (rust, glsl) = (size(Language::Rust, spec)?, size(Language::Glsl, spec)?);
+            Ok(ModuleSize {
+                module: spec.name,
+                rust_bytes: rust.0,
+                glsl_bytes: glsl.0,
+                rust_instructions: rust.1,
+                glsl_instructions: glsl.1,
+            })
+        })
+        .collect()
 }
 
 /// Samples per side of a bench sample count: a square up to 16 x 16.
@@ -120,6 +155,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         rows: Vec::new(),
         samplers: Vec::new(),
         variants: Vec::new(),
+        spirv: spirv_sizes()?,
     };
     for scene in &config.scenes {
         let size = config.size.unwrap_or((scene.file.image.width, scene.file.image.height));
