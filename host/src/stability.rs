@@ -49,8 +49,8 @@ pub struct Timing {
     pub rays: usize,
 }
 
-/// Runs every case with every set and formula: accuracy from one pass over the case's rays,
-/// GPU time as `timing` says.
+/// Runs every case with every set and formula, in one probe each: accuracy from the first
+/// copy of the case's rays, GPU time as `timing` says.
 pub fn run(
     ctx: &Arc<Context>,
     files: &[PathBuf],
@@ -67,9 +67,8 @@ pub fn run(
         for &formula in formulas.iter().filter(|&&f| f == Formula::Robust || has_naive) {
             case.set_formula(formula);
             for set in sets {
-                let out = probe(ctx, &case.scene, set, &case.rays, 0, 1)?;
-                let gpu_ms = case_gpu_ms(ctx, &case, set, timing)?;
-                let report = evaluate(&case, &out.results, &set.to_string(), &ctx.info.name, gpu_ms);
+                let (results, gpu_ms) = measure(ctx, &case, set, timing)?;
+                let report = evaluate(&case, &results, &set.to_string(), &ctx.info.name, gpu_ms);
                 let failures = if formula == Formula::Robust { failures(&case, &report) } else { Vec::new() };
                 let formula = if formula == Formula::Robust { "robust" } else { "naive" };
                 rows.push(StabilityRow { formula, variant: variant.clone(), report, failures });
@@ -91,12 +90,20 @@ fn variant(case: &ProbeCase) -> String {
     }
 }
 
-/// Median GPU time of one pass over the case's rays, measured as `timing` says.
-fn case_gpu_ms(ctx: &Arc<Context>, case: &ProbeCase, set: &ShaderSet, timing: Timing) -> Result<Option<f64>> {
-    let copies = timing.rays.div_ceil(case.rays.len()).max(1);
-    let rays: Vec<_> = case.rays.iter().copied().cycle().take(case.rays.len() * copies).collect();
-    let out = probe(ctx, &case.scene, set, &rays, timing.warmup, timing.runs)?;
-    Ok(crate::stats::median(&out.gpu_ms).map(|ms| ms / copies as f64))
+/// One probe of the case's rays repeated as `timing` says: the first copy's results (they are
+/// the case's own rays), and the median GPU time of one pass over the case's rays.
+fn measure(
+    ctx: &Arc<Context>,
+    case: &ProbeCase,
+    set: &ShaderSet,
+    timing: Timing,
+) -> Result<(Vec<crate::probe::ProbeResult>, Option<f64>)> {
+    let n = case.rays.len();
+    let copies = timing.rays.div_ceil(n).max(1);
+    let rays: Vec<_> = case.rays.iter().copied().cycle().take(n * copies).collect();
+    let mut out = probe(ctx, &case.scene, set, &rays, timing.warmup, timing.runs)?;
+    out.results.truncate(n);
+    Ok((out.results, crate::stats::median(&out.gpu_ms).map(|ms| ms / copies as f64)))
 }
 
 /// What a robust report breaks of its case's targets.
