@@ -167,6 +167,7 @@ mod tests {
             gpu_ms: vec![],
             rays: Default::default(),
             warmup_traces: 0,
+            raygen_stack_bytes: 0,
         }
     }
 

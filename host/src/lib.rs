@@ -18,10 +18,11 @@ pub mod scene;
 pub mod shader_set;
 pub mod stability;
 pub mod stats;
+mod tracing;
 pub mod vk;
 
 pub use error::{Error, Result};
-pub use render::{render, RenderOptions, RenderOutput};
+pub use render::{render, render_sets, RenderOptions, RenderOutput};
 pub use scene::Scene;
 pub use shader_set::{Language, ShaderSet, Stage};
 pub use vk::context::{Context, ContextOptions};

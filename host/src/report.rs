@@ -4,7 +4,7 @@
 use crate::compare::{diff, diff_image, verdict, ImageDiff};
 use crate::error::{Error, Result};
 use crate::output::write_png;
-use crate::render::{render, RayCounts, RenderOptions, RenderOutput};
+use crate::render::{render_sets, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shader_set::ShaderSet;
 use crate::stats::Spread;
@@ -45,7 +45,10 @@ pub struct CompareReport {
     /// `MIN_WARM_MS` of GPU time when `warmup` > 0).
     pub warmup_traces_a: u32,
     pub warmup_traces_b: u32,
-    /// Timed traces per set (after `warmup` untimed ones).
+    /// Stack bytes each set's ray generation stage needs, as the driver reports it.
+    pub raygen_stack_bytes_a: u64,
+    pub raygen_stack_bytes_b: u64,
+    /// Timed traces per set in each of the two build orders (after `warmup` untimed ones).
     pub runs: u32,
     pub warmup: u32,
     pub pass: bool,
@@ -67,8 +70,9 @@ pub fn compare_sets(
     set_b: &ShaderSet,
     opts: &RenderOptions,
 ) -> Result<Comparison> {
-    let a = render(ctx, scene, set_a, opts)?;
-    let b = render(ctx, scene, set_b, opts)?;
+    let [a, b]: [RenderOutput; 2] = render_sets(ctx, scene, &[*set_a, *set_b], opts)?
+        .try_into()
+        .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
     let parity = scene.file.parity;
     let diff = diff(&a, &b, parity.pixel_threshold);
     let failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
@@ -94,6 +98,8 @@ pub fn compare_sets(
         cpu_threads: ctx.info.cpu_threads,
         warmup_traces_a: a.warmup_traces,
         warmup_traces_b: b.warmup_traces,
+        raygen_stack_bytes_a: a.raygen_stack_bytes,
+        raygen_stack_bytes_b: b.raygen_stack_bytes,
         runs: opts.runs,
         warmup: opts.warmup,
         pass: failures.is_empty(),
@@ -126,12 +132,12 @@ impl CompareReport {
         let d = &self.diff.color;
         let threads = self.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
         let mut s = format!(
-            "scene {} {}x{} on {}{threads}, median of {} traces after {}/{} untimed\n  a = {:<28} {}\n  b = {:<28} {}\n  ratio a/b {}\n",
+            "scene {} {}x{} on {}{threads}, median of {} traces after {}/{} untimed\n  a = {:<28} {}\n  b = {:<28} {}\n  ratio a/b {}, raygen stack {} / {} bytes\n",
             self.scene,
             self.width,
             self.height,
             self.device,
-            self.runs,
+            self.spread_a.map_or(self.runs, |s| s.samples as u32),
             self.warmup_traces_a,
             self.warmup_traces_b,
             self.set_a,
@@ -139,6 +145,8 @@ impl CompareReport {
             self.set_b,
             timing(self.spread_b, self.mrays_per_s_b, self.rays_b),
             self.ratio.map_or("n/a".into(), |r| format!("{r:.3}")),
+            self.raygen_stack_bytes_a,
+            self.raygen_stack_bytes_b,
         );
         s += &format!(
             "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette\n",

@@ -15,7 +15,7 @@ const LAYOUT_INCLUDE: &str = "shaders-glsl/twinray_layout.glsl";
 
 pub fn run(check: bool) -> Result<()> {
     let root = repo_root();
-    for tool in ["glslangValidator", "spirv-val"] {
+    for tool in ["glslangValidator", "spirv-val", "spirv-opt"] {
         if !have(tool) {
             bail!("{tool} not found: run `cargo xtask setup` (Debian packages glslang-tools, spirv-tools)");
         }
@@ -138,7 +138,21 @@ fn build_rust(root: &Path, out: &Path) -> Result<()> {
             .arg(cache.join("shader-target"))
             .env("LD_LIBRARY_PATH", deps),
     )
-    .context("building the Rust shaders")
+    .context("building the Rust shaders")?;
+    strip_debug_info(out)
+}
+
+/// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
+/// is off, so that the committed modules depend only on the code.
+fn strip_debug_info(dir: &Path) -> Result<()> {
+    for spec in MODULES {
+        let path = dir.join(format!("{}.spv", spec.name));
+        let stripped = dir.join(format!("{}.stripped", spec.name));
+        process::run(Command::new("spirv-opt").arg("--strip-debug").arg(&path).arg("-o").arg(&stripped))
+            .with_context(|| format!("stripping {}", path.display()))?;
+        std::fs::rename(&stripped, &path)?;
+    }
+    Ok(())
 }
 
 fn build_glsl(root: &Path, out: &Path) -> Result<()> {

@@ -155,7 +155,7 @@ fn spirv_table(report: &BenchReport) -> String {
 fn rows_table(rows: &[BenchRow]) -> String {
     let mut s = String::from(
         "<h2>Measurements</h2>\n<table><tr><th>scene</th><th>set</th><th>spp</th><th>GPU ms</th><th>IQR</th>\
-         <th>Mrays/s</th><th>primary</th><th>shadow</th><th>RMSE</th><th>PSNR dB</th><th>mean FLIP</th><th>hit mismatches</th></tr>\n",
+         <th>Mrays/s</th><th>primary</th><th>shadow</th><th>RMSE</th><th>PSNR dB</th><th>mean FLIP</th><th>hit mismatches</th><th>raygen stack B</th></tr>\n",
     );
     for r in rows {
         let (ms, iqr) =
@@ -163,7 +163,7 @@ fn rows_table(rows: &[BenchRow]) -> String {
         let _ = writeln!(
             s,
             "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{ms}</td><td>{iqr}</td><td>{}</td><td>{}</td><td>{}</td>\
-             <td>{:.5}</td><td>{}</td><td>{:.4}</td><td>{}</td></tr>",
+             <td>{:.5}</td><td>{}</td><td>{:.4}</td><td>{}</td><td>{}</td></tr>",
             escape(&r.scene),
             escape(&r.set),
             r.spp,
@@ -174,6 +174,7 @@ fn rows_table(rows: &[BenchRow]) -> String {
             if r.psnr.is_finite() { format!("{:.2}", r.psnr) } else { "inf".into() },
             r.flip,
             r.hit_mismatches.map_or("-".into(), |m| m.to_string()),
+            r.raygen_stack_bytes,
         );
     }
     s + "</table>\n"

@@ -12,7 +12,7 @@ pub mod tables;
 use crate::error::{Error, Result};
 use crate::output::file_safe;
 use crate::reference_image::{reference, ReferenceImage};
-use crate::render::{render, to_rgba8, RayCounts, RenderOptions, RenderOutput};
+use crate::render::{render_sets, to_rgba8, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shader_set::ShaderSet;
 use crate::stats::Spread;
@@ -74,6 +74,8 @@ pub struct BenchRow {
     /// Pixels whose first primary ray hit another primitive than the first set's did (null
     /// for the first set).
     pub hit_mismatches: Option<u64>,
+    /// Stack bytes the set's ray generation stage needs, as the driver reports it.
+    pub raygen_stack_bytes: u64,
     /// The rendered image and its error map, relative to the output folder (none when
     /// `images` left them out).
     pub image: Option<String>,
@@ -165,18 +167,17 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         crate::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
         report.references.push((scene.name().to_string(), reference_png));
         for &spp in &config.spp {
-            let mut first: Option<RenderOutput> = None;
-            for set in &config.sets {
-                progress(&format!("{}: {set} at {spp} spp", scene.name()));
-                let out = measure(ctx, scene, set, size, spp, config)?;
-                let keep = match config.images {
-                    Images::All => true,
-                    Images::Last => config.spp.iter().max() == Some(&spp),
-                    Images::None => false,
-                };
-                let row = row(scene, set, spp, &out, &truth, first.as_ref(), keep.then_some(config.out.as_path()))?;
+            progress(&format!("{}: {} sets at {spp} spp", scene.name(), config.sets.len()));
+            let outputs = measure(ctx, scene, size, spp, config)?;
+            let keep = match config.images {
+                Images::All => true,
+                Images::Last => config.spp.iter().max() == Some(&spp),
+                Images::None => false,
+            };
+            for (set, out) in config.sets.iter().zip(&outputs) {
+                let first = outputs.first().filter(|f| !std::ptr::eq(*f, out));
+                let row = row(scene, set, spp, out, &truth, first, keep.then_some(config.out.as_path()))?;
                 report.rows.push(row);
-                first.get_or_insert(out);
             }
         }
         if scene.has_soft_shadows() && !config.shadow_spp.is_empty() {
@@ -211,20 +212,20 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
 pub fn steps(config: &BenchConfig) -> usize {
     let soft = config.scenes.iter().filter(|s| s.has_soft_shadows()).count();
     let study = if config.shadow_spp.is_empty() { 0 } else { soft * (1 + 2 * config.shadow_spp.len()) };
-    config.scenes.len() * (1 + config.spp.len() * config.sets.len()) + study + usize::from(config.probes.is_some())
+    config.scenes.len() * (1 + config.spp.len()) + study + usize::from(config.probes.is_some())
 }
 
+/// Every set's render of `scene` at `spp`, timed interleaved.
 fn measure(
     ctx: &Arc<Context>,
     scene: &Scene,
-    set: &ShaderSet,
     (width, height): (u32, u32),
     spp: u32,
     config: &BenchConfig,
-) -> Result<RenderOutput> {
+) -> Result<Vec<RenderOutput>> {
     let mut scene = scene.clone();
     scene.file.image.samples = side_of(spp)?;
-    render(ctx, &scene, set, &RenderOptions { width, height, warmup: config.warmup, runs: config.runs })
+    render_sets(ctx, &scene, &config.sets, &RenderOptions { width, height, warmup: config.warmup, runs: config.runs })
 }
 
 fn row(
@@ -259,6 +260,7 @@ fn row(
         psnr: errors.psnr,
         flip: errors.flip,
         hit_mismatches,
+        raygen_stack_bytes: out.raygen_stack_bytes,
         image,
         error_map,
     })

@@ -18,7 +18,7 @@ pub fn ratios(report: &BenchReport) -> Vec<(String, u32, f64)> {
     out
 }
 
-pub const CSV_HEADER: &str = "scene,set,spp,width,height,gpu_ms_median,gpu_ms_q1,gpu_ms_q3,runs,primary_rays,shadow_rays,mrays_per_s,rmse,psnr,flip,hit_mismatches";
+pub const CSV_HEADER: &str = "scene,set,spp,width,height,gpu_ms_median,gpu_ms_q1,gpu_ms_q3,runs,primary_rays,shadow_rays,mrays_per_s,rmse,psnr,flip,hit_mismatches,raygen_stack_bytes";
 
 pub fn csv(report: &BenchReport) -> String {
     let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
@@ -26,7 +26,7 @@ pub fn csv(report: &BenchReport) -> String {
     for r in &report.rows {
         let spread = r.gpu_ms;
         s += &format!(
-            "\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
+            "\"{}\",\"{}\",{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n",
             r.scene,
             r.set,
             r.spp,
@@ -43,6 +43,7 @@ pub fn csv(report: &BenchReport) -> String {
             if r.psnr.is_finite() { format!("{}", r.psnr) } else { "inf".into() },
             r.flip,
             r.hit_mismatches.map_or(String::new(), |m| m.to_string()),
+            r.raygen_stack_bytes,
         );
     }
     s

@@ -213,6 +213,15 @@ pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
     }
 }
 
+impl RtPipeline {
+    /// Bytes of stack the ray generation stage needs: the state it keeps across each trace
+    /// call (the driver's figure; lavapipe reports a constant).
+    pub fn raygen_stack_bytes(&self) -> u64 {
+        // SAFETY: group 0 is the raygen group, a general group, of this live pipeline.
+        unsafe { self.ctx.rt.get_ray_tracing_shader_group_stack_size(self.raw, 0, vk::ShaderGroupShaderKHR::GENERAL) }
+    }
+}
+
 impl Drop for RtPipeline {
     fn drop(&mut self) {
         // SAFETY: no command buffer using these is pending; null handles are ignored.

@@ -31,6 +31,12 @@ fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf) -> Result
         .capability(Capability::RayTracingKHR)
         .extension("SPV_KHR_ray_tracing")
         .multimodule(true)
+        // No spirv-opt performance passes: the driver optimises, as it does the GLSL set, which
+        // glslang hands over unoptimised. On the H200 the passes cost the Rust ray generation
+        // stack (224 bytes kept across each trace call against 192 without them) and time
+        // (showcase at 16 spp: Rust/GLSL 1.135 with them, 1.086 without). `cargo xtask shaders`
+        // strips the debug info they would have stripped.
+        .extra_arg("--no-spirv-opt")
         // No OpName/OpLine: the committed modules then depend only on the code, not on paths.
         .spirv_metadata(SpirvMetadata::None)
         .deny_warnings(true)
