@@ -19,6 +19,7 @@ pub mod shader_set;
 pub mod stability;
 pub mod stats;
 mod tracing;
+mod upload;
 pub mod vk;
 
 pub use error::{Error, Result};
