@@ -31,25 +31,25 @@
 #define LIGHT_DIRECTIONAL 0u
 #define LIGHT_POINT 1u
 #define LIGHT_RECT 2u
+#define NO_HIT 4294967295u
 #define HIT_KIND_SPHERE 1u
 #define HIT_KIND_PLANE 2u
 #define HIT_KIND_BOX 3u
 #define HIT_KIND_CYLINDER 4u
 #define HIT_KIND_CONE 5u
 #define HIT_KIND_TORUS 6u
-#define NO_HIT 4294967295u
 #define T_MIN 0.1
 #define T_MAX 1000.0
 #define OFFSET_ORIGIN 0.03125
 #define OFFSET_FLOAT_SCALE 1.5258789e-5
 #define OFFSET_INT_SCALE 256.0
+#define CHECKER_DEPTH 0.001
+#define SELF_ROOT_REACH 0.1
 #define SPHERE_ON_SURFACE 0.001
 #define PLANE_DISK 1.0
-#define CHECKER_DEPTH 0.001
 #define BOX_GAMMA_3 1.7881396e-7
-#define TORUS_ON_SURFACE 0.001
-#define SELF_ROOT_REACH 0.1
 #define CONE_POLISH_LIMIT 0.1
+#define TORUS_ON_SURFACE 0.001
 
 // 160 bytes, as twinray_shared::layout::FrameUniform
 struct FrameUniform {

@@ -1,7 +1,7 @@
 //! docs/scene-format.md stays true: its complete example loads and renders, and every kind
 //! that `twinray scenes` lists is documented there and used by some built-in scene.
 
-use twinray::scene::{file::KINDS, MeshFiles, Scene, BUILTIN};
+use twinray::scene::{file::kinds, MeshFiles, Scene, BUILTIN};
 use twinray::RenderOptions;
 use twinray_tests::{repo_root, set, validated_context};
 
@@ -26,7 +26,7 @@ fn the_documented_example_loads_and_renders() {
 fn every_kind_is_documented_and_used_by_a_builtin_scene() {
     let doc = format_doc();
     let scenes: String = BUILTIN.iter().map(|(_, text)| *text).collect();
-    for (section, kinds) in KINDS {
+    for (section, kinds) in kinds() {
         for kind in kinds.iter().filter(|k| !k.starts_with('(')) {
             assert!(
                 doc.contains(&format!("`{kind}`")) || doc.contains(&format!("\"{kind}\"")),
@@ -38,4 +38,11 @@ fn every_kind_is_documented_and_used_by_a_builtin_scene() {
         }
     }
     assert!(scenes.contains("file = \""), "no built-in scene loads an OBJ file");
+}
+
+#[test]
+fn the_shape_table_is_the_one_the_registry_generates() {
+    let doc = format_doc();
+    let generated = twinray_shared::shapes::with_docs_table(&doc).expect("the shape table's markers");
+    assert!(generated == doc, "docs/scene-format.md's shape table is stale: run `cargo xtask shaders`");
 }

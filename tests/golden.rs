@@ -6,7 +6,7 @@
 //! build rounding a few pixels differently; a changed shader fails it.
 
 use twinray::compare::{color_diff, color_verdict};
-use twinray::output::write_png;
+use twinray::util::output::write_png;
 use twinray_tests::{builtin_scenes, render_scene, repo_root, validated_context, SCENE_TEST_SIZE};
 
 fn check_goldens(set: &str) {

@@ -13,9 +13,32 @@ fn committed_glsl_layout_include_is_generated_from_twinray_shared() {
 
 #[test]
 fn glsl_sources_include_the_generated_layout() {
+    use twinray_shared::catalog::GlslSource;
     let dir = repo_root().join("shaders-glsl");
     for spec in twinray_shared::catalog::MODULES {
-        let text = std::fs::read_to_string(dir.join(spec.glsl_source)).expect("GLSL source exists");
-        assert!(text.contains("#include \"twinray_layout.glsl\""), "{} does not include the layout", spec.glsl_source);
+        let (file, text) = match spec.glsl {
+            GlslSource::File(file) => (file.to_string(), std::fs::read_to_string(dir.join(file))),
+            // A shape's stage is generated around its file, which must include the layout itself.
+            GlslSource::Shape { shape, .. } => {
+                let file = format!("shapes/{shape}.glsl");
+                let text = std::fs::read_to_string(dir.join(&file));
+                (file, text)
+            }
+        };
+        let text = text.unwrap_or_else(|e| panic!("{file}: {e}"));
+        assert!(text.contains("#include \"twinray_layout.glsl\""), "{file} does not include the layout");
     }
+}
+
+#[test]
+fn every_registered_shape_has_its_glsl_twin_and_nothing_else_is_in_shapes() {
+    let dir = repo_root().join("shaders-glsl/shapes");
+    let mut files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap_or_else(|e| panic!("{}: {e}", dir.display()))
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    files.sort();
+    let mut want: Vec<String> = twinray_shared::shapes::SHAPES.iter().map(|s| format!("{}.glsl", s.name)).collect();
+    want.sort();
+    assert_eq!(files, want, "shaders-glsl/shapes/ holds one twin per registered shape");
 }

@@ -2,8 +2,8 @@
 //! host asks for, only bindings from twinray_shared::bindings, the same bindings in both
 //! languages, and each binding visible to the module's stage in the host's descriptor layout.
 
-use twinray::shader_set::{Language, Stage, MODULES};
-use twinray::vk::pipeline::{descriptor_bindings, stage_flag};
+use twinray::render::pipeline::{descriptor_bindings, stage_flag};
+use twinray::shaders::{Language, Stage, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 use twinray_tests::repo_root;
 

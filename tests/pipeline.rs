@@ -1,18 +1,18 @@
 //! The host builds only what a scene needs: the pipeline of the spheres-only scene has the
 //! sphere hit group and no shadow miss shader; a scene whose light casts shadows adds it.
 
-use twinray::scene::HitGroup;
-use twinray::vk::pipeline::RtPipeline;
+use twinray::render::pipeline::ScenePipeline;
 use twinray_tests::{default_scene, set, validated_context};
 
 #[test]
 fn spheres_only_scene_builds_one_hit_group_and_no_shadow_miss() {
     let scene = default_scene();
     let plan = scene.build().plan;
-    assert_eq!(plan.hit_groups, vec![HitGroup::Sphere]);
+    let groups: Vec<_> = plan.hit_groups.iter().map(|g| g.name()).collect();
+    assert_eq!(groups, ["sphere"]);
     assert!(!plan.shadows, "the sphere scene's light casts no shadows");
     let ctx = validated_context();
-    let pipeline = RtPipeline::new(&ctx, &set("rust"), &plan, "raygen").expect("pipeline");
+    let pipeline = ScenePipeline::new(&ctx, &set("rust"), &plan, "raygen").expect("pipeline");
     assert_eq!(pipeline.modules, ["raygen", "miss", "sphere_intersection", "procedural_closest_hit"]);
     assert_eq!(pipeline.group_counts, [1, 1, 1]);
     drop(pipeline);
@@ -30,7 +30,7 @@ fn a_shadow_casting_light_adds_the_shadow_miss_shader() {
     let plan = scene.build().plan;
     assert!(plan.shadows);
     let ctx = validated_context();
-    let pipeline = RtPipeline::new(&ctx, &set("glsl"), &plan, "raygen").expect("pipeline");
+    let pipeline = ScenePipeline::new(&ctx, &set("glsl"), &plan, "raygen").expect("pipeline");
     assert!(pipeline.modules.contains(&"shadow_miss"));
     assert_eq!(pipeline.group_counts, [1, 2, 1]);
 }

@@ -4,7 +4,7 @@
 
 use glam::{DVec3, Vec4};
 use twinray::probe::{probe, ProbeRay};
-use twinray::reference::{intersect, RefRay, RefShape, Verdict};
+use twinray::reference::shapes::{intersect, RefRay, RefShape, Verdict};
 use twinray::scene::{MeshFiles, Scene};
 use twinray_shared::bindings::NO_HIT;
 use twinray_tests::{set, validated_context};
@@ -122,14 +122,14 @@ fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
     let dir = tempfile::tempdir().unwrap();
     let example = dir.path().join("example.toml");
     std::fs::write(&example, &doc[start..end]).unwrap();
-    let mut cases = twinray::stability::case_files(&root.join("probes")).expect("probe cases");
+    let mut cases = twinray::probe::stability::case_files(&root.join("probes")).expect("probe cases");
     cases.push(example);
     let ctx = validated_context();
     for path in cases {
-        let case = twinray::probe_case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let case = twinray::probe::case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         for set_text in ["rust", "glsl"] {
             let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-            let r = twinray::probe_report::evaluate(&case, &out.results, set_text, "test", None);
+            let r = twinray::probe::report::evaluate(&case, &out.results, set_text, "test", None);
             eprintln!("{}", r.summary());
             assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{} with {set_text}", path.display());
             assert!(r.decided > 0, "{}: nothing decided", path.display());
@@ -145,12 +145,12 @@ fn naive_sphere_fails_where_the_robust_one_holds() {
     let path = twinray_tests::repo_root().join("probes/far-sphere.toml");
     let ctx = validated_context();
     for set_text in ["rust", "glsl"] {
-        let mut case = twinray::probe_case::ProbeCase::load(&path).expect("case");
+        let mut case = twinray::probe::case::ProbeCase::load(&path).expect("case");
         let robust = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-        let robust = twinray::probe_report::evaluate(&case, &robust.results, set_text, "test", None);
-        case.set_formula(twinray::scene::file::Formula::Naive);
+        let robust = twinray::probe::report::evaluate(&case, &robust.results, set_text, "test", None);
+        case.set_formula(twinray::scene::shape::Formula::Naive);
         let naive = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-        let naive = twinray::probe_report::evaluate(&case, &naive.results, set_text, "test", None);
+        let naive = twinray::probe::report::evaluate(&case, &naive.results, set_text, "test", None);
         assert_eq!(robust.false_hits + robust.false_misses, 0, "{set_text} robust");
         assert!(robust.relative_t_error.p99 < 1e-6, "{set_text} robust p99 {}", robust.relative_t_error.p99);
         assert!(naive.false_hits + naive.false_misses > 50, "{set_text} naive: {}", naive.summary());

@@ -6,10 +6,10 @@
 
 use glam::{DVec3, Vec3, Vec4};
 use proptest::prelude::*;
-use twinray::reference::{intersect, RefRay, RefShape, Verdict};
+use twinray::reference::shapes::{intersect, RefRay, RefShape, Verdict};
 use twinray_shared::layout::Primitive;
+use twinray_shared::shapes::{boxes, cone, cylinder, plane, sphere, torus};
 use twinray_shared::surface::SurfaceHit;
-use twinray_shared::{boxes, cone, cylinder, plane, sphere, torus};
 
 /// A shape under test: its f32 routine, primitive and reference twin, and its size.
 struct Case {
@@ -32,7 +32,7 @@ fn cases() -> Vec<(&'static str, Case)> {
         (
             "sphere",
             Case {
-                f32_intersect: sphere::hit,
+                f32_intersect: sphere::intersect,
                 primitive: primitive(Vec4::new(0.0, 0.0, 0.0, 1.0), Vec4::ZERO),
                 reference: RefShape::Sphere { center: DVec3::ZERO, radius: 1.0 },
                 half: Vec3::ONE,
@@ -53,10 +53,7 @@ fn cases() -> Vec<(&'static str, Case)> {
             "disk",
             Case {
                 f32_intersect: plane::intersect,
-                primitive: primitive(
-                    Vec4::new(1.0, 1.0, 0.0, 0.0),
-                    Vec4::new(twinray_shared::plane::DISK, 0.0, 0.0, 0.0),
-                ),
+                primitive: primitive(Vec4::new(1.0, 1.0, 0.0, 0.0), Vec4::new(plane::DISK, 0.0, 0.0, 0.0)),
                 reference: RefShape::Disk { radius: 1.0 },
                 half: Vec3::new(1.0, 0.01, 1.0),
                 max_rel_t: 4e-6,

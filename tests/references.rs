@@ -1,7 +1,7 @@
 //! Converged references: cached under a key of scene, size, samples and shaders (a changed
 //! scene or set renders again), and what renders with more samples converge to.
 
-use twinray::reference_image::reference;
+use twinray::reference::image::reference;
 use twinray::{render, RenderOptions};
 use twinray_tests::{set, validated_context};
 

@@ -4,8 +4,8 @@
 //! 1e-6 for quadrics and planes, 1e-5 for tori), and the naive formulas fail where
 //! NUMERICS.md says they do.
 
-use twinray::scene::file::Formula;
-use twinray::stability::{case_files, run, Timing};
+use twinray::probe::stability::{case_files, run, Timing};
+use twinray::scene::shape::Formula;
 use twinray_tests::{repo_root, set, validated_context};
 
 #[test]

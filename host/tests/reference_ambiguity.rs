@@ -3,7 +3,7 @@
 //! the world-space magnitude a ray had before an instance transform.
 
 use glam::DVec3;
-use twinray::reference::{intersect, RefRay, RefShape, Verdict};
+use twinray::reference::shapes::{intersect, RefRay, RefShape, Verdict};
 
 fn ray(o: [f64; 3], d: [f64; 3]) -> RefRay {
     RefRay { origin: DVec3::from(o), direction: DVec3::from(d), t_min: 0.0, t_max: 1e30, noise_floor: 0.0 }

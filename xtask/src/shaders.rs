@@ -12,6 +12,7 @@ use twinray_shared::catalog::{Language, ModuleSpec, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 
 const LAYOUT_INCLUDE: &str = "shaders-glsl/twinray_layout.glsl";
+const SCENE_FORMAT: &str = "docs/scene-format.md";
 
 pub fn run(check: bool) -> Result<()> {
     let root = repo_root();
@@ -20,7 +21,7 @@ pub fn run(check: bool) -> Result<()> {
             bail!("{tool} not found: run `cargo xtask setup` (Debian packages glslang-tools, spirv-tools)");
         }
     }
-    sync_layout_include(&root, check)?;
+    sync_generated(&root, check)?;
     let scratch = root.join("target/xtask-shaders");
     for language in Language::ALL {
         let dir = scratch.join(language.name());
@@ -32,15 +33,15 @@ pub fn run(check: bool) -> Result<()> {
     build_rust(&root, &scratch.join("rust"))?;
     build_glsl(&root, &scratch.join("glsl"))?;
     let mut stale = Vec::new();
-    println!("{:<22} {:>12} {:>12} {:>12} {:>12}", "module", "rust bytes", "glsl bytes", "rust instrs", "glsl instrs");
+    println!("{:<28} {:>12} {:>12} {:>12} {:>12}", "module", "rust bytes", "glsl bytes", "rust instrs", "glsl instrs");
     for spec in MODULES {
-        let [rust, glsl] = Language::ALL.map(|language| check_module(&scratch, &spec, language));
+        let [rust, glsl] = Language::ALL.map(|language| check_module(&scratch, spec, language));
         let ((rust, rust_bytes), (glsl, glsl_bytes)) = (rust?, glsl?);
         if rust.bindings != glsl.bindings {
             bail!("{}: Rust binds {:?} but GLSL binds {:?}", spec.name, rust.bindings, glsl.bindings);
         }
         println!(
-            "{:<22} {rust_bytes:>12} {glsl_bytes:>12} {:>12} {:>12}",
+            "{:<28} {rust_bytes:>12} {glsl_bytes:>12} {:>12} {:>12}",
             spec.name, rust.instruction_count, glsl.instruction_count
         );
         for language in Language::ALL {
@@ -84,19 +85,27 @@ fn unlisted_modules(root: &Path) -> Result<Vec<String>> {
     Ok(extra)
 }
 
-/// Writes (or checks) the GLSL mirror of the shared layout.
-fn sync_layout_include(root: &Path, check: bool) -> Result<()> {
-    let text = twinray_shared::glsl::layout_include().map_err(anyhow::Error::msg)?;
-    let path = root.join(LAYOUT_INCLUDE);
+/// Writes (or checks) what is generated from twinray-shared: the GLSL mirror of the layout and
+/// the shape table of the scene format's docs.
+fn sync_generated(root: &Path, check: bool) -> Result<()> {
+    let include = twinray_shared::glsl::layout_include().map_err(anyhow::Error::msg)?;
+    sync_file(root, LAYOUT_INCLUDE, &include, check)?;
+    let doc = std::fs::read_to_string(root.join(SCENE_FORMAT)).with_context(|| format!("reading {SCENE_FORMAT}"))?;
+    let doc = twinray_shared::shapes::with_docs_table(&doc).map_err(|e| anyhow::anyhow!("{SCENE_FORMAT}: {e}"))?;
+    sync_file(root, SCENE_FORMAT, &doc, check)
+}
+
+fn sync_file(root: &Path, relative: &str, text: &str, check: bool) -> Result<()> {
+    let path = root.join(relative);
     let current = std::fs::read_to_string(&path).unwrap_or_default();
     if current == text {
         return Ok(());
     }
     if check {
-        bail!("{LAYOUT_INCLUDE} differs from twinray-shared's layout: run `cargo xtask shaders` and commit");
+        bail!("{relative} differs from what twinray-shared generates: run `cargo xtask shaders` and commit");
     }
     std::fs::write(&path, text)?;
-    println!("shaders: regenerated {LAYOUT_INCLUDE}");
+    println!("shaders: regenerated {relative}");
     Ok(())
 }
 
@@ -155,13 +164,27 @@ fn strip_debug_info(dir: &Path) -> Result<()> {
     Ok(())
 }
 
+/// Compiles every GLSL module; a shape's intersection stage is the few lines of
+/// `ModuleSpec::glsl_wrapper`, written beside the output, with `shaders-glsl/` on the include
+/// path.
 fn build_glsl(root: &Path, out: &Path) -> Result<()> {
+    let include = root.join("shaders-glsl");
+    let wrappers = out.join("wrappers");
+    std::fs::create_dir_all(&wrappers)?;
     for spec in MODULES {
-        let source = root.join("shaders-glsl").join(spec.glsl_source);
+        let source = match spec.glsl_wrapper() {
+            Some(text) => {
+                let path = wrappers.join(spec.glsl_file());
+                std::fs::write(&path, text)?;
+                path
+            }
+            None => include.join(spec.glsl_file()),
+        };
         process::run(
             Command::new("glslangValidator")
                 .args(["-V", "--target-env", "spirv1.4", "-o"])
                 .arg(out.join(format!("{}.spv", spec.name)))
+                .arg(format!("-I{}", include.display()))
                 .arg(&source),
         )
         .with_context(|| format!("compiling {}", source.display()))?;

@@ -9,13 +9,15 @@ pub mod plots;
 pub mod samplers;
 pub mod tables;
 
+pub use samplers::side_of;
+
 use crate::error::{Error, Result};
-use crate::output::file_safe;
-use crate::reference_image::{reference, ReferenceImage};
+use crate::reference::image::{reference, ReferenceImage};
 use crate::render::{render_sets, to_rgba8, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
-use crate::shader_set::ShaderSet;
-use crate::stats::Spread;
+use crate::shaders::ShaderSet;
+use crate::util::output::file_safe;
+use crate::util::stats::Spread;
 use crate::vk::context::Context;
 use serde::Serialize;
 use std::path::{Path, PathBuf};
@@ -97,7 +99,7 @@ pub struct BenchReport {
     /// The shadow-sampler study, with the first set.
     pub samplers: Vec<samplers::SamplerRow>,
     /// The probe cases with robust and naive intersection variants, with the first set.
-    pub variants: Vec<crate::stability::StabilityRow>,
+    pub variants: Vec<crate::probe::stability::StabilityRow>,
     /// Size of every module of both sets, as the binary embeds them.
     pub spirv: Vec<ModuleSize>,
 }
@@ -114,10 +116,10 @@ pub struct ModuleSize {
 
 /// The sizes of every module of both sets.
 pub fn spirv_sizes() -> Result<Vec<ModuleSize>> {
-    use crate::shader_set::{Language, MODULES};
+    use crate::shaders::{Language, MODULES};
     let size = |language, spec| -> Result<(usize, usize)> {
         let module = ShaderSet::uniform(language).resolve(spec)?;
-        let info = twinray_shared::spirv_info::parse(module.spirv).map_err(Error::Input)?;
+        let info = twinray_shared::spirv_info::parse(&module.spirv).map_err(Error::Input)?;
         Ok((module.spirv.len(), info.instruction_count))
     };
     MODULES
@@ -133,13 +135,6 @@ pub fn spirv_sizes() -> Result<Vec<ModuleSize>> {
             })
         })
         .collect()
-}
-
-/// Samples per side of a bench sample count: a square up to 16 x 16.
-pub fn side_of(spp: u32) -> Result<u32> {
-    (1..=16u32)
-        .find(|m| m * m == spp)
-        .ok_or_else(|| Error::Input(format!("sample counts must be squares up to 256 (1, 4, 9, .., 256), got {spp}")))
 }
 
 /// Runs the bench, writing images into `config.out/images`; `progress` is told after each step.
@@ -164,7 +159,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         progress(&format!("{}: reference at {} spp", scene.name(), config.reference_spp));
         let truth = reference(ctx, scene, &config.reference_set, size, config.reference_spp, &config.cache)?;
         let reference_png = format!("images/{}-reference.png", file_safe(scene.name()));
-        crate::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
+        crate::util::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
         report.references.push((scene.name().to_string(), reference_png));
         for &spp in &config.spp {
             progress(&format!("{}: {} sets at {spp} spp", scene.name(), config.sets.len()));
@@ -195,12 +190,13 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
     }
     if let Some(dir) = &config.probes {
         progress("probe cases: robust and naive intersection variants");
-        let files = crate::stability::case_files(dir)?;
-        let formulas = [crate::scene::file::Formula::Robust, crate::scene::file::Formula::Naive];
-        let timing = crate::stability::Timing { warmup: config.warmup, runs: config.runs, rays: config.timing_rays };
-        let rows = crate::stability::run(ctx, &files, &config.sets[..1], &formulas, timing)?;
+        let files = crate::probe::stability::case_files(dir)?;
+        let formulas = [crate::scene::shape::Formula::Robust, crate::scene::shape::Formula::Naive];
+        let timing =
+            crate::probe::stability::Timing { warmup: config.warmup, runs: config.runs, rays: config.timing_rays };
+        let rows = crate::probe::stability::run(ctx, &files, &config.sets[..1], &formulas, timing)?;
         // Only cases where the naive formula differs make a comparison.
-        let paired = |r: &&crate::stability::StabilityRow| {
+        let paired = |r: &&crate::probe::stability::StabilityRow| {
             rows.iter().any(|o| o.formula == "naive" && o.report.case == r.report.case)
         };
         report.variants = rows.iter().filter(paired).cloned().collect();
@@ -242,8 +238,8 @@ fn row(
     let (mut image, mut error_map) = (None, None);
     if let Some(dir) = images {
         let (png, flip) = (format!("{stem}.png"), format!("{stem}-flip.png"));
-        crate::output::write_png(&dir.join(&png), out.width, out.height, &out.rgba)?;
-        crate::output::write_png(&dir.join(&flip), out.width, out.height, &errors.flip_map_rgba)?;
+        crate::util::output::write_png(&dir.join(&png), out.width, out.height, &out.rgba)?;
+        crate::util::output::write_png(&dir.join(&flip), out.width, out.height, &errors.flip_map_rgba)?;
         (image, error_map) = (Some(png), Some(flip));
     }
     let hit_mismatches = first.map(|f| f.hit_ids.iter().zip(&out.hit_ids).filter(|(a, b)| a != b).count() as u64);

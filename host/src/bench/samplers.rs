@@ -4,13 +4,13 @@
 //! equal time. Errors are against a reference that converges the shadows at pixel centres.
 
 use super::metrics;
-use crate::error::Result;
-use crate::reference_image::{converged, Converge};
+use crate::error::{Error, Result};
+use crate::reference::image::{converged, Converge};
 use crate::render::{render, RayCounts, RenderOptions};
 use crate::scene::file::ShadowSampler;
 use crate::scene::Scene;
-use crate::shader_set::ShaderSet;
-use crate::stats::Spread;
+use crate::shaders::ShaderSet;
+use crate::util::stats::Spread;
 use crate::vk::context::Context;
 use serde::Serialize;
 use std::path::Path;
@@ -51,7 +51,7 @@ pub fn study(ctx: &Arc<Context>, scene: &Scene, s: &Study, progress: &dyn Fn(&st
             let mut variant = scene.clone();
             variant.file.image.samples = 1;
             variant.file.shadow_sampler = sampler;
-            variant.set_shadow_samples(super::side_of(count)?);
+            variant.set_shadow_samples(side_of(count)?);
             let opts = RenderOptions { width: s.size.0, height: s.size.1, warmup: s.warmup, runs: s.runs };
             let out = render(ctx, &variant, s.set, &opts)?;
             let errors = metrics::errors(&out.linear, &truth.linear, s.size);
@@ -67,4 +67,11 @@ pub fn study(ctx: &Arc<Context>, scene: &Scene, s: &Study, progress: &dyn Fn(&st
         }
     }
     Ok(rows)
+}
+
+/// Samples per side of a bench sample count: a square up to 16 x 16.
+pub fn side_of(spp: u32) -> Result<u32> {
+    (1..=16u32)
+        .find(|m| m * m == spp)
+        .ok_or_else(|| Error::Input(format!("sample counts must be squares up to 256 (1, 4, 9, .., 256), got {spp}")))
 }

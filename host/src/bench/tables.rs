@@ -54,7 +54,9 @@ pub const SAMPLER_CSV_HEADER: &str = "scene,sampler,shadow_spp,gpu_ms_median,gpu
 pub fn sampler_csv(report: &BenchReport) -> String {
     let mut s = format!("{SAMPLER_CSV_HEADER}\n");
     for r in &report.samplers {
-        let t = |f: fn(&crate::stats::Spread) -> f64| r.gpu_ms.as_ref().map_or(String::new(), |s| format!("{}", f(s)));
+        let t = |f: fn(&crate::util::stats::Spread) -> f64| {
+            r.gpu_ms.as_ref().map_or(String::new(), |s| format!("{}", f(s)))
+        };
         s += &format!(
             "\"{}\",{},{},{},{},{},{},{},{}\n",
             r.scene,

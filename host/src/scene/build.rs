@@ -2,96 +2,16 @@
 //! one TLAS instance per object, and the pipeline plan — only the hit groups, miss shaders and
 //! specialisation the scene uses.
 
-use super::file::{Formula, LightDesc, MaterialDesc, SceneFile, ShadowSampler, ShapeDesc};
+use super::file::{LightDesc, MaterialDesc, SceneFile, ShadowSampler};
 use super::mesh::MeshData;
+use super::plan::{HitGroup, PipelinePlan};
+use super::shape::{Formula, ShapeDesc};
 use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
 use twinray_shared::bindings as b;
 use twinray_shared::layout::{FrameUniform, Light, Material, ObjectData, Primitive, Vertex};
-use twinray_shared::plane::DISK;
-
-/// The hit groups twinray can build, in the order they take in the shader binding table.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum HitGroup {
-    Triangles,
-    Sphere,
-    Plane,
-    Box,
-    Cylinder,
-    Cone,
-    Torus,
-    SphereNaive,
-    CylinderNaive,
-    TorusNaive,
-}
-
-impl HitGroup {
-    pub fn name(self) -> &'static str {
-        match self {
-            HitGroup::Triangles => "triangles",
-            HitGroup::Sphere => "sphere",
-            HitGroup::Plane => "plane",
-            HitGroup::Box => "box",
-            HitGroup::Cylinder => "cylinder",
-            HitGroup::Cone => "cone",
-            HitGroup::Torus => "torus",
-            HitGroup::SphereNaive => "sphere (naive)",
-            HitGroup::CylinderNaive => "cylinder (naive)",
-            HitGroup::TorusNaive => "torus (naive)",
-        }
-    }
-
-    /// The intersection module, for procedural groups (triangles use the built-in test).
-    pub fn intersection_module(self) -> Option<&'static str> {
-        match self {
-            HitGroup::Triangles => None,
-            HitGroup::Sphere => Some("sphere_intersection"),
-            HitGroup::Plane => Some("plane_intersection"),
-            HitGroup::Box => Some("box_intersection"),
-            HitGroup::Cylinder => Some("cylinder_intersection"),
-            HitGroup::Cone => Some("cone_intersection"),
-            HitGroup::Torus => Some("torus_intersection"),
-            HitGroup::SphereNaive => Some("sphere_naive_intersection"),
-            HitGroup::CylinderNaive => Some("cylinder_naive_intersection"),
-            HitGroup::TorusNaive => Some("torus_naive_intersection"),
-        }
-    }
-
-    pub fn closest_hit_module(self) -> &'static str {
-        match self {
-            HitGroup::Triangles => "triangle_closest_hit",
-            HitGroup::Sphere
-            | HitGroup::Plane
-            | HitGroup::Box
-            | HitGroup::Cylinder
-            | HitGroup::Cone
-            | HitGroup::Torus
-            | HitGroup::SphereNaive
-            | HitGroup::CylinderNaive
-            | HitGroup::TorusNaive => "procedural_closest_hit",
-        }
-    }
-}
-
-/// What the ray tracing pipeline of a scene contains.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct PipelinePlan {
-    /// Distinct hit groups, in SBT order; an instance's SBT offset is its group's index here.
-    pub hit_groups: Vec<HitGroup>,
-    /// Whether any light casts shadows: the shadow miss shader and shadow rays.
-    pub shadows: bool,
-    /// M for M x M primary samples per pixel.
-    pub samples_per_side: u32,
-    /// `SHADOW_SAMPLER_STRATIFIED` or `SHADOW_SAMPLER_RANDOM`.
-    pub shadow_sampler: u32,
-}
-
-/// Axis-aligned box of one procedural primitive, in object space.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Aabb {
-    pub min: Vec3,
-    pub max: Vec3,
-}
+pub use twinray_shared::shapes::spec::Aabb;
+use twinray_shared::shapes::SHAPES;
 
 /// One TLAS instance: an object placing a shape's BLAS in the world.
 #[derive(Clone, Copy, Debug)]
@@ -241,18 +161,11 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
 
 fn hit_group(shape: &ShapeDesc) -> HitGroup {
     match shape {
-        ShapeDesc::Sphere { formula: Formula::Naive, .. } | ShapeDesc::SphereField { formula: Formula::Naive, .. } => {
-            HitGroup::SphereNaive
-        }
-        ShapeDesc::Cylinder { formula: Formula::Naive, .. } => HitGroup::CylinderNaive,
-        ShapeDesc::Torus { formula: Formula::Naive, .. } => HitGroup::TorusNaive,
-        ShapeDesc::Sphere { .. } | ShapeDesc::SphereField { .. } => HitGroup::Sphere,
-        ShapeDesc::Rectangle { .. } | ShapeDesc::Disk { .. } => HitGroup::Plane,
-        ShapeDesc::Box { .. } => HitGroup::Box,
-        ShapeDesc::Cylinder { .. } => HitGroup::Cylinder,
-        ShapeDesc::Cone { .. } => HitGroup::Cone,
-        ShapeDesc::Torus { .. } => HitGroup::Torus,
-        ShapeDesc::Mesh { .. } => HitGroup::Triangles,
+        ShapeDesc::Procedural(p) => HitGroup::Procedural {
+            naive: p.formula == Formula::Naive && p.shape.naive_module.is_some(),
+            shape: SHAPES.iter().position(|s| s.name == p.shape.name).unwrap_or(0),
+        },
+        ShapeDesc::Mesh(_) => HitGroup::Triangles,
     }
 }
 
@@ -263,56 +176,11 @@ pub fn object_transform(translate: [f32; 3], rotate_degrees: [f32; 3], scale: [f
     Mat4::from_scale_rotation_translation(scale.into(), rotation, translate.into())
 }
 
-fn sphere(center: Vec3, radius: f32, tint: Vec3) -> (Primitive, Aabb) {
-    let primitive = Primitive { a: center.extend(radius), b: Vec4::ZERO, tint: tint.extend(1.0) };
-    (primitive, Aabb { min: center - Vec3::splat(radius), max: center + Vec3::splat(radius) })
-}
-
-/// One primitive with parameters `a` and a box of half extents `half` about the origin.
-fn single(a: Vec3, half: Vec3) -> (Vec<Primitive>, Vec<Aabb>) {
-    let primitive = Primitive { a: a.extend(0.0), b: Vec4::ZERO, tint: Vec4::ONE };
-    (vec![primitive], vec![Aabb { min: -half, max: half }])
-}
-
-/// A rectangle (half extents in `a.xy`) or disk (`a.x` radius, `disk` = DISK) in y = 0. Its box
-/// gets a thickness of a thousandth of its size: zero-thickness boxes are legal in Vulkan but
-/// leave grazing rays to each implementation's slab test.
-fn plane(a: Vec4, disk: f32) -> (Vec<Primitive>, Vec<Aabb>) {
-    let half = Vec3::new(a.x, a.x.max(a.y) * 1e-3, a.y);
-    let primitive = Primitive { a, b: Vec4::new(disk, 0.0, 0.0, 0.0), tint: Vec4::ONE };
-    (vec![primitive], vec![Aabb { min: -half, max: half }])
-}
-
-/// The primitives of a shape and their boxes, in object space.
+/// The primitives of a shape and their boxes, in object space (a mesh has none).
 fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
-    match *shape {
-        ShapeDesc::Sphere { radius, .. } => {
-            let (p, b) = sphere(Vec3::ZERO, radius, Vec3::ONE);
-            (vec![p], vec![b])
-        }
-        ShapeDesc::Rectangle { size } => plane(Vec4::new(size[0] / 2.0, size[1] / 2.0, 0.0, 0.0), 0.0),
-        ShapeDesc::Disk { radius } => plane(Vec4::new(radius, radius, 0.0, 0.0), DISK),
-        ShapeDesc::Box { size } => single(Vec3::from(size) / 2.0, Vec3::from(size) / 2.0),
-        ShapeDesc::Cylinder { radius, height, .. } | ShapeDesc::Cone { radius, height } => {
-            single(Vec3::new(radius, height / 2.0, 0.0), Vec3::new(radius, height / 2.0, radius))
-        }
-        ShapeDesc::Torus { major_radius, minor_radius, .. } => {
-            let outer = major_radius + minor_radius;
-            single(Vec3::new(major_radius, minor_radius, 0.0), Vec3::new(outer, minor_radius, outer))
-        }
-        ShapeDesc::Mesh { .. } => (Vec::new(), Vec::new()),
-        ShapeDesc::SphereField { count, seed, center_min, center_max, radius_min, radius_max, .. } => {
-            let mut rng = SplitMix64(seed);
-            let (lo, hi) = (Vec3::from(center_min), Vec3::from(center_max));
-            (0..count)
-                .map(|_| {
-                    let center = lo + (hi - lo) * Vec3::new(rng.unit(), rng.unit(), rng.unit());
-                    let radius = radius_min + (radius_max - radius_min) * rng.unit();
-                    let tint = Vec3::new(rng.unit(), rng.unit(), rng.unit()) * 0.8 + Vec3::splat(0.2);
-                    sphere(center, radius, tint)
-                })
-                .unzip()
-        }
+    match shape {
+        ShapeDesc::Procedural(p) => (p.kind.primitives)(&p.values).into_iter().unzip(),
+        ShapeDesc::Mesh(_) => (Vec::new(), Vec::new()),
     }
 }
 
@@ -364,23 +232,5 @@ fn light(l: &LightDesc, default_samples: u32) -> Light {
         radiance: (Vec3::from(color) * intensity).extend(1.0),
         u: u.extend(0.0),
         v: v.extend(0.0),
-    }
-}
-
-/// SplitMix64 (Steele, Lea, Flood 2014): small, fast, and fully specified.
-struct SplitMix64(u64);
-
-impl SplitMix64 {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in [0, 1) with 24 random bits: exact in f32.
-    fn unit(&mut self) -> f32 {
-        (self.next() >> 40) as f32 / (1u64 << 24) as f32
     }
 }

@@ -1,14 +1,31 @@
 //! Rejects well-formed scene files with impossible values, naming the field or object.
 
-use super::file::{CameraDesc, GridDesc, LightDesc, MaterialDesc, ObjectDesc, Parity, SceneFile, ShapeDesc};
-use crate::render::check_size;
+use super::file::{CameraDesc, GridDesc, LightDesc, MaterialDesc, ObjectDesc, Parity, SceneFile};
+use super::shape::ShapeDesc;
 use glam::Vec3;
 
 /// Largest number of primitives one shape may have, and of objects in a scene.
-pub const MAX_PRIMITIVES: u32 = 1 << 20;
+pub use twinray_shared::shapes::spec::MAX_PRIMITIVES;
 pub const MAX_OBJECTS: usize = 1 << 20;
 /// Largest M (M x M primary samples) and N (N x N shadow samples per rect light).
 pub const MAX_SAMPLES_PER_SIDE: u32 = 16;
+
+/// Largest image side, and largest pixel count, twinray accepts before asking the device.
+pub const MAX_SIDE: u32 = 16384;
+pub const MAX_PIXELS: u64 = 8192 * 8192;
+
+/// Checks an image size against twinray's own limits.
+pub fn check_size(width: u32, height: u32) -> std::result::Result<(), String> {
+    if width == 0 || height == 0 {
+        return Err(format!("image size {width}x{height}: width and height must be at least 1"));
+    }
+    if width > MAX_SIDE || height > MAX_SIDE || u64::from(width) * u64::from(height) > MAX_PIXELS {
+        return Err(format!(
+            "image size {width}x{height} is too large (at most {MAX_SIDE} per side and {MAX_PIXELS} pixels)"
+        ));
+    }
+    Ok(())
+}
 
 type Checked = Result<(), String>;
 
@@ -59,10 +76,7 @@ pub fn check(scene: &SceneFile) -> Checked {
     let mut primitives = 0u64;
     for (name, shape) in &scene.shapes {
         check_shape(shape).map_err(|e| format!("shape {name:?}: {e}"))?;
-        primitives += match shape {
-            ShapeDesc::SphereField { count, .. } => u64::from(*count),
-            _ => 1,
-        };
+        primitives += shape.primitive_count();
     }
     // An object's first primitive travels in the 24-bit instance custom index.
     if primitives >= 1 << 24 {
@@ -143,51 +157,21 @@ fn check_light(light: &LightDesc) -> Checked {
     }
 }
 
+/// Each key against its rule, then the kind's relations between keys.
 fn check_shape(shape: &ShapeDesc) -> Checked {
     match shape {
-        ShapeDesc::Sphere { radius, .. } | ShapeDesc::Disk { radius } => positive("radius", *radius),
-        ShapeDesc::Rectangle { size } => {
-            positive("size[0]", size[0])?;
-            positive("size[1]", size[1])
+        ShapeDesc::Procedural(p) => {
+            for param in p.kind.params {
+                if let Some(value) = p.values.value(param.name) {
+                    param.check(value)?;
+                }
+            }
+            (p.kind.check)(&p.values)
         }
-        ShapeDesc::Box { size } => {
-            positive("size[0]", size[0])?;
-            positive("size[1]", size[1])?;
-            positive("size[2]", size[2])
-        }
-        ShapeDesc::Cylinder { radius, height, .. } | ShapeDesc::Cone { radius, height } => {
-            positive("radius", *radius)?;
-            positive("height", *height)
-        }
-        ShapeDesc::Mesh { builtin, file, .. } => match (builtin, file) {
+        ShapeDesc::Mesh(m) => match (&m.builtin, &m.file) {
             (Some(_), None) | (None, Some(_)) => Ok(()),
             _ => Err("a mesh needs exactly one of builtin and file".into()),
         },
-        ShapeDesc::Torus { major_radius, minor_radius, .. } => {
-            positive("major_radius", *major_radius)?;
-            positive("minor_radius", *minor_radius)?;
-            if minor_radius >= major_radius {
-                return Err(format!(
-                    "minor_radius must be < major_radius (got {minor_radius} >= {major_radius}): a spindle torus is not supported"
-                ));
-            }
-            Ok(())
-        }
-        ShapeDesc::SphereField { count, center_min, center_max, radius_min, radius_max, .. } => {
-            if *count == 0 || *count > MAX_PRIMITIVES {
-                return Err(format!("count must be in 1..={MAX_PRIMITIVES} (got {count})"));
-            }
-            finite("center_min", center_min)?;
-            finite("center_max", center_max)?;
-            if (0..3).any(|i| center_min[i] > center_max[i]) {
-                return Err("center_min must not exceed center_max".into());
-            }
-            positive("radius_min", *radius_min)?;
-            if !(radius_max >= radius_min && radius_max.is_finite()) {
-                return Err(format!("radius_max must be >= radius_min (got {radius_max})"));
-            }
-            Ok(())
-        }
     }
 }
 

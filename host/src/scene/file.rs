@@ -1,16 +1,20 @@
 //! The scene file format (TOML), as serde reads it. `docs/scene-format.md` documents every
 //! field; `check.rs` rejects impossible values; `build.rs` turns a scene into GPU data.
 
+use super::shape::ShapeDesc;
 use serde::Deserialize;
 use std::collections::BTreeMap;
 
-/// Every `kind` a scene file can name, by section; a test checks each parses and is documented.
-pub const KINDS: [(&str, &[&str]); 4] = [
-    ("shapes", &["sphere", "sphere_field", "rectangle", "disk", "box", "cylinder", "cone", "torus", "mesh"]),
-    ("meshes", &["box", "pyramid", "prism", "icosahedron", "(file = OBJ)"]),
-    ("materials", &["diffuse", "emissive", "checker"]),
-    ("lights", &["directional", "point", "rect"]),
-];
+/// Every `kind` a scene file can name, by section (shapes from the registry); a test checks each
+/// parses and is documented.
+pub fn kinds() -> [(&'static str, Vec<&'static str>); 4] {
+    [
+        ("shapes", super::shape::kind_names()),
+        ("meshes", vec!["box", "pyramid", "prism", "icosahedron", "(file = OBJ)"]),
+        ("materials", vec!["diffuse", "emissive", "checker"]),
+        ("lights", vec!["directional", "point", "rect"]),
+    ]
+}
 
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
@@ -129,62 +133,6 @@ pub enum LightDesc {
 }
 
 #[derive(Clone, Debug, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum ShapeDesc {
-    /// A sphere centred at the object's origin.
-    Sphere {
-        radius: f32,
-        #[serde(default)]
-        formula: Formula,
-    },
-    /// A rectangle in the object's xz plane, centred at its origin, facing +y: `size` is its
-    /// extent along x and z.
-    Rectangle { size: [f32; 2] },
-    /// A disk in the object's xz plane, centred at its origin, facing +y.
-    Disk { radius: f32 },
-    /// An axis-aligned box centred at the object's origin; `size` is its extent along x, y, z.
-    Box { size: [f32; 3] },
-    /// A capped cylinder about the object's y axis, centred at its origin.
-    Cylinder {
-        radius: f32,
-        height: f32,
-        #[serde(default)]
-        formula: Formula,
-    },
-    /// A capped cone about the object's y axis, centred at its origin: base of `radius` at
-    /// y = -height/2, apex at y = +height/2.
-    Cone { radius: f32, height: f32 },
-    /// A torus about the object's y axis, centred at its origin: `major_radius` from the axis
-    /// to the tube's centre, `minor_radius` of the tube.
-    Torus {
-        major_radius: f32,
-        minor_radius: f32,
-        #[serde(default)]
-        formula: Formula,
-    },
-    /// A triangle mesh: a generated one (`builtin`) or an OBJ file (`file`, relative to the
-    /// scene file's folder), with flat or smooth normals.
-    Mesh {
-        builtin: Option<MeshBuiltin>,
-        file: Option<String>,
-        #[serde(default)]
-        normals: Normals,
-    },
-    /// `count` spheres with centres uniform in the box and radii uniform in the range, each
-    /// with its own colour (which tints the material), placed by SplitMix64 from `seed`.
-    SphereField {
-        count: u32,
-        seed: u64,
-        center_min: [f32; 3],
-        center_max: [f32; 3],
-        radius_min: f32,
-        radius_max: f32,
-        #[serde(default)]
-        formula: Formula,
-    },
-}
-
-#[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
     pub shape: String,
@@ -291,59 +239,4 @@ impl ShadowSampler {
             ShadowSampler::Random => "random",
         }
     }
-}
-
-/// Which intersection formula a shape uses: the robust one, or the textbook one it replaced,
-/// kept on purpose so that probes can show what robustness buys and costs.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Formula {
-    #[default]
-    Robust,
-    Naive,
-}
-
-impl ShapeDesc {
-    /// Whether the shape has a naive variant (sphere, sphere field, cylinder, torus).
-    pub fn has_naive(&self) -> bool {
-        matches!(
-            self,
-            ShapeDesc::Sphere { .. }
-                | ShapeDesc::SphereField { .. }
-                | ShapeDesc::Cylinder { .. }
-                | ShapeDesc::Torus { .. }
-        )
-    }
-
-    /// Sets the formula of a shape that has a naive variant (sphere, sphere field, cylinder,
-    /// torus); other shapes are left as they are.
-    pub fn set_formula(&mut self, to: Formula) {
-        match self {
-            ShapeDesc::Sphere { formula, .. }
-            | ShapeDesc::SphereField { formula, .. }
-            | ShapeDesc::Cylinder { formula, .. }
-            | ShapeDesc::Torus { formula, .. } => *formula = to,
-            _ => {}
-        }
-    }
-}
-
-/// Meshes twinray generates, each fitting the unit cube about the origin.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum MeshBuiltin {
-    Box,
-    Pyramid,
-    Prism,
-    Icosahedron,
-}
-
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Normals {
-    /// One normal per face.
-    #[default]
-    Flat,
-    /// Area-weighted vertex normals, interpolated across faces.
-    Smooth,
 }

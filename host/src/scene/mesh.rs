@@ -4,7 +4,7 @@
 //! faces around a vertex weighted by the face's angle there (Thurmer and Wuthrich 1998), which
 //! does not depend on how the faces were split into triangles.
 
-use super::file::{MeshBuiltin, Normals};
+use super::shape::{MeshBuiltin, Normals};
 use glam::Vec3;
 use std::path::Path;
 use twinray_shared::layout::Vertex;

@@ -2,39 +2,24 @@
 //! turned into GPU data and a pipeline plan.
 
 mod build;
+mod builtin;
 mod check;
 pub mod file;
 pub mod mesh;
+pub mod plan;
+pub mod shape;
 
 use crate::error::{Error, Result};
-pub use build::{object_transform, Aabb, BlasDesc, HitGroup, InstanceDesc, PipelinePlan, SceneData};
-pub use check::{MAX_OBJECTS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE};
-pub use file::{Parity, SceneFile, ShapeDesc};
+pub use build::{object_transform, Aabb, BlasDesc, InstanceDesc, SceneData};
+pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
+pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE, MAX_SIDE};
+pub use file::{Parity, SceneFile};
 pub use mesh::MeshData;
+pub use plan::{HitGroup, PipelinePlan};
+pub use shape::{Formula, ShapeDesc};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use twinray_shared::layout::FrameUniform;
-
-/// Scenes shipped inside the binary, by name.
-pub const BUILTIN: [(&str, &str); 12] = [
-    ("spheres", include_str!("../../../scenes/spheres.toml")),
-    ("sphere", include_str!("../../../scenes/sphere.toml")),
-    ("plane", include_str!("../../../scenes/plane.toml")),
-    ("box", include_str!("../../../scenes/box.toml")),
-    ("cylinder", include_str!("../../../scenes/cylinder.toml")),
-    ("cone", include_str!("../../../scenes/cone.toml")),
-    ("torus", include_str!("../../../scenes/torus.toml")),
-    ("meshes", include_str!("../../../scenes/meshes.toml")),
-    ("materials", include_str!("../../../scenes/materials.toml")),
-    ("showcase", include_str!("../../../scenes/showcase.toml")),
-    ("instances", include_str!("../../../scenes/instances.toml")),
-    ("lights", include_str!("../../../scenes/lights.toml")),
-];
-pub const DEFAULT_SCENE: &str = "spheres";
-
-/// Mesh files the built-in scenes use, shipped inside the binary, by the path they name.
-pub const BUILTIN_MESH_FILES: [(&str, &str); 1] =
-    [("meshes/vase.obj", include_str!("../../../scenes/meshes/vase.obj"))];
 
 /// A checked scene, ready to render.
 #[derive(Clone, Debug)]
@@ -60,7 +45,9 @@ impl Scene {
         if let Some((name, text)) = BUILTIN.iter().find(|(name, _)| *name == arg) {
             return Scene::parse(text, &format!("builtin:{name}"), MeshFiles::Builtin);
         }
-        let names: Vec<_> = BUILTIN.iter().map(|(n, _)| *n).collect();
+        // The default first, then the rest in order.
+        let others = BUILTIN.iter().map(|(n, _)| *n).filter(|n| *n != DEFAULT_SCENE);
+        let names: Vec<_> = std::iter::once(DEFAULT_SCENE).chain(others).collect();
         Err(Error::Scene {
             path: arg.into(),
             message: format!("no such file, and no built-in scene of that name (built-ins: {})", names.join(", ")),
@@ -77,10 +64,10 @@ impl Scene {
         file.objects.extend(grid_objects);
         let mut meshes = BTreeMap::new();
         for (name, shape) in &file.shapes {
-            if let ShapeDesc::Mesh { builtin, file: mesh_file, normals } = shape {
-                let mesh = match (builtin, mesh_file) {
-                    (Some(kind), _) => Ok(mesh::builtin(*kind, *normals)),
-                    (None, Some(f)) => mesh_files.load(f, *normals),
+            if let ShapeDesc::Mesh(m) = shape {
+                let mesh = match (m.builtin, &m.file) {
+                    (Some(kind), _) => Ok(mesh::builtin(kind, m.normals)),
+                    (None, Some(f)) => mesh_files.load(f, m.normals),
                     (None, None) => Err("a mesh needs exactly one of builtin and file".into()),
                 };
                 meshes.insert(name.clone(), mesh.map_err(|e| scene_error(format!("shape {name:?}: {e}")))?);
@@ -128,7 +115,7 @@ pub enum MeshFiles {
 }
 
 impl MeshFiles {
-    fn load(&self, name: &str, normals: file::Normals) -> std::result::Result<MeshData, String> {
+    fn load(&self, name: &str, normals: shape::Normals) -> std::result::Result<MeshData, String> {
         match self {
             MeshFiles::Folder(folder) => mesh::load_obj(&folder.join(name), normals),
             MeshFiles::Builtin => match BUILTIN_MESH_FILES.iter().find(|(n, _)| *n == name) {
@@ -158,6 +145,7 @@ mod tests {
         let data = scene.build();
         assert_eq!(data.instances.len(), 10_000);
         assert_eq!(data.blases.len(), 2, "one BLAS per shape, shared by its instances");
-        assert_eq!(data.plan.hit_groups, vec![HitGroup::Triangles, HitGroup::Sphere]);
+        let groups: Vec<_> = data.plan.hit_groups.iter().map(|g| g.name()).collect();
+        assert_eq!(groups, ["triangles", "sphere"]);
     }
 }

@@ -4,7 +4,6 @@ use super::buffer::Buffer;
 use super::commands::{memory_barrier, OneShot};
 use super::context::Context;
 use crate::error::{Result, VkContext};
-use crate::scene::Aabb;
 use ash::vk;
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
@@ -37,7 +36,7 @@ pub struct InstanceRecord {
 }
 
 /// A BLAS over axis-aligned boxes, one procedural primitive each, all opaque.
-pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[Aabb]) -> Result<AccelStruct> {
+pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[vk::AabbPositionsKHR]) -> Result<AccelStruct> {
     let bytes: Vec<u8> = aabbs.iter().flat_map(aabb_bytes).collect();
     let usage = vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
         | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
@@ -52,12 +51,13 @@ pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[Aabb]) -
     build(ctx, one_shot, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, aabbs.len() as u32, "blas")
 }
 
-/// A BLAS over one mesh: `vertex_count` vertices of `Vertex` (position at offset 0) from
-/// `vertices`, `index_count` u32 indices from `indices` (device addresses), all opaque.
+/// A BLAS over one mesh: `vertex_count` vertices of `vertex_stride` bytes (an f32 position at
+/// offset 0) from `vertices`, `index_count` u32 indices from `indices` (device addresses), all opaque.
 pub fn build_triangle_blas(
     ctx: &Arc<Context>,
     one_shot: &OneShot,
     vertices: vk::DeviceAddress,
+    vertex_stride: u64,
     vertex_count: u32,
     indices: vk::DeviceAddress,
     index_count: u32,
@@ -65,7 +65,7 @@ pub fn build_triangle_blas(
     let data = vk::AccelerationStructureGeometryTrianglesDataKHR::default()
         .vertex_format(vk::Format::R32G32B32_SFLOAT)
         .vertex_data(vk::DeviceOrHostAddressConstKHR { device_address: vertices })
-        .vertex_stride(size_of::<twinray_shared::layout::Vertex>() as u64)
+        .vertex_stride(vertex_stride)
         .max_vertex(vertex_count.saturating_sub(1))
         .index_type(vk::IndexType::UINT32)
         .index_data(vk::DeviceOrHostAddressConstKHR { device_address: indices });
@@ -165,8 +165,8 @@ fn build(
 }
 
 /// VkAabbPositionsKHR as bytes.
-fn aabb_bytes(b: &Aabb) -> Vec<u8> {
-    [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z].iter().flat_map(|v| v.to_le_bytes()).collect()
+fn aabb_bytes(b: &vk::AabbPositionsKHR) -> Vec<u8> {
+    [b.min_x, b.min_y, b.min_z, b.max_x, b.max_y, b.max_z].iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
 /// VkAccelerationStructureInstanceKHR as bytes: the 3x4 row-major transform, custom index and

@@ -10,14 +10,11 @@ use spirv_std::glam::{UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
-use twinray_shared::bindings::{
-    HIT_IDS_PER_PIXEL, HIT_KIND_BOX, HIT_KIND_CONE, HIT_KIND_CYLINDER, HIT_KIND_PLANE, HIT_KIND_SPHERE, HIT_KIND_TORUS,
-    MISS_PRIMARY, NO_HIT, SHADOW_SAMPLER_STRATIFIED,
-};
+use twinray_shared::bindings::{HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, SHADOW_SAMPLER_STRATIFIED};
 use twinray_shared::layout::{
     FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
 };
-use twinray_shared::{boxes, camera, cone, cylinder, plane, random, shading, sphere, torus};
+use twinray_shared::{camera, random, shading};
 
 /// M x M primary samples per pixel; shades each and writes the mean colour and the ids of what
 /// the first sample hit.
@@ -162,16 +159,18 @@ macro_rules! procedural_intersection {
     };
 }
 
-procedural_intersection!(sphere_intersection, sphere::hit, HIT_KIND_SPHERE);
-procedural_intersection!(plane_intersection, plane::intersect, HIT_KIND_PLANE);
-procedural_intersection!(box_intersection, boxes::intersect, HIT_KIND_BOX);
-procedural_intersection!(cylinder_intersection, cylinder::intersect, HIT_KIND_CYLINDER);
-procedural_intersection!(cone_intersection, cone::intersect, HIT_KIND_CONE);
-procedural_intersection!(torus_intersection, torus::intersect, HIT_KIND_TORUS);
-// Textbook variants, kept on purpose to show what the robust forms buy (issue 4).
-procedural_intersection!(sphere_naive_intersection, sphere::naive_hit, HIT_KIND_SPHERE);
-procedural_intersection!(cylinder_naive_intersection, cylinder::naive_intersect, HIT_KIND_CYLINDER);
-procedural_intersection!(torus_naive_intersection, torus::naive_intersect, HIT_KIND_TORUS);
+/// The intersection entry points of every registered shape (`twinray_shared::shapes`): its
+/// robust routine and, for shapes that keep one, the textbook variant (issue 4).
+macro_rules! intersection_stages {
+    ($($shape:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
+        $(
+            procedural_intersection!($entry, twinray_shared::shapes::$module::intersect, $kind);
+            $(procedural_intersection!($naive, twinray_shared::shapes::$module::naive_intersect, $kind);)?
+        )*
+    };
+}
+
+twinray_shared::procedural_shapes!(intersection_stages);
 
 /// Every procedural shape: the surface from the reported object-space normal.
 #[spirv(closest_hit)]

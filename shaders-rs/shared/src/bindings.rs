@@ -65,14 +65,6 @@ pub const LIGHT_DIRECTIONAL: u32 = 0;
 pub const LIGHT_POINT: u32 = 1;
 pub const LIGHT_RECT: u32 = 2;
 
-/// Hit kinds reported by the intersection shaders: which shape was hit.
-pub const HIT_KIND_SPHERE: u32 = 1;
-pub const HIT_KIND_PLANE: u32 = 2;
-pub const HIT_KIND_BOX: u32 = 3;
-pub const HIT_KIND_CYLINDER: u32 = 4;
-pub const HIT_KIND_CONE: u32 = 5;
-pub const HIT_KIND_TORUS: u32 = 6;
-
 /// Written to the hit-id buffer (and `HitPayload::ids.w`) when a ray hits nothing.
 pub const NO_HIT: u32 = 0xffff_ffff;
 /// Primary ray interval.

@@ -52,34 +52,59 @@ impl Language {
     }
 }
 
+/// Where a module's GLSL twin comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GlslSource {
+    /// A stage file of `shaders-glsl/`.
+    File(&'static str),
+    /// The intersection stage of a registered shape: `shaders-glsl/shapes/SHAPE.glsl` with
+    /// `intersection_main.glsl` around its `SHAPE_intersect` (or `SHAPE_naive_intersect`);
+    /// `cargo xtask shaders` writes the few lines that join them ([`ModuleSpec::glsl_wrapper`]).
+    Shape { shape: &'static str, hit_kind: u32, naive: bool },
+}
+
 /// One compiled module: `spirv/<language>/<name>.spv`, built from the Rust entry point `name`
-/// or from `shaders-glsl/<glsl_source>`.
+/// or from its GLSL source.
 #[derive(Clone, Copy, Debug)]
 pub struct ModuleSpec {
     pub name: &'static str,
     pub stage: Stage,
-    pub glsl_source: &'static str,
+    pub glsl: GlslSource,
 }
 
-/// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A pipeline
-/// uses only those its scene needs.
-pub const MODULES: [ModuleSpec; 15] = [
-    ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl_source: "raygen.rgen" },
-    ModuleSpec { name: "probe", stage: Stage::Raygen, glsl_source: "probe.rgen" },
-    ModuleSpec { name: "miss", stage: Stage::Miss, glsl_source: "miss.rmiss" },
-    ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl_source: "shadow.rmiss" },
-    ModuleSpec { name: "sphere_intersection", stage: Stage::Intersection, glsl_source: "sphere.rint" },
-    ModuleSpec { name: "plane_intersection", stage: Stage::Intersection, glsl_source: "plane.rint" },
-    ModuleSpec { name: "box_intersection", stage: Stage::Intersection, glsl_source: "box.rint" },
-    ModuleSpec { name: "cylinder_intersection", stage: Stage::Intersection, glsl_source: "cylinder.rint" },
-    ModuleSpec { name: "cone_intersection", stage: Stage::Intersection, glsl_source: "cone.rint" },
-    ModuleSpec { name: "torus_intersection", stage: Stage::Intersection, glsl_source: "torus.rint" },
-    ModuleSpec { name: "sphere_naive_intersection", stage: Stage::Intersection, glsl_source: "sphere_naive.rint" },
-    ModuleSpec { name: "cylinder_naive_intersection", stage: Stage::Intersection, glsl_source: "cylinder_naive.rint" },
-    ModuleSpec { name: "torus_naive_intersection", stage: Stage::Intersection, glsl_source: "torus_naive.rint" },
-    ModuleSpec { name: "procedural_closest_hit", stage: Stage::ClosestHit, glsl_source: "procedural.rchit" },
-    ModuleSpec { name: "triangle_closest_hit", stage: Stage::ClosestHit, glsl_source: "triangle.rchit" },
-];
+macro_rules! module_table {
+    ($($shape:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
+        /// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A
+        /// pipeline uses only those its scene needs. The intersection modules come from the
+        /// shape registry ([`crate::procedural_shapes`]).
+        pub const MODULES: &[ModuleSpec] = &[
+            ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl: GlslSource::File("raygen.rgen") },
+            ModuleSpec { name: "probe", stage: Stage::Raygen, glsl: GlslSource::File("probe.rgen") },
+            ModuleSpec { name: "miss", stage: Stage::Miss, glsl: GlslSource::File("miss.rmiss") },
+            ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl: GlslSource::File("shadow.rmiss") },
+            $(
+                ModuleSpec {
+                    name: stringify!($entry),
+                    stage: Stage::Intersection,
+                    glsl: GlslSource::Shape { shape: $shape, hit_kind: $kind, naive: false },
+                },
+                $(ModuleSpec {
+                    name: stringify!($naive),
+                    stage: Stage::Intersection,
+                    glsl: GlslSource::Shape { shape: $shape, hit_kind: $kind, naive: true },
+                },)?
+            )*
+            ModuleSpec {
+                name: "procedural_closest_hit",
+                stage: Stage::ClosestHit,
+                glsl: GlslSource::File("procedural.rchit"),
+            },
+            ModuleSpec { name: "triangle_closest_hit", stage: Stage::ClosestHit, glsl: GlslSource::File("triangle.rchit") },
+        ];
+    };
+}
+
+crate::procedural_shapes!(module_table);
 
 /// The module called `name`.
 pub fn module(name: &str) -> Option<ModuleSpec> {
@@ -99,44 +124,141 @@ impl ModuleSpec {
     pub fn spirv_path(&self, language: Language) -> String {
         format!("spirv/{}/{}.spv", language.name(), self.name)
     }
+
+    /// The GLSL file that glslang compiles for this module, relative to `shaders-glsl/`: the
+    /// stage file, or for a shape the wrapper `cargo xtask shaders` writes.
+    pub fn glsl_file(&self) -> String {
+        match self.glsl {
+            GlslSource::File(file) => file.to_string(),
+            GlslSource::Shape { .. } => format!("{}.rint", self.name),
+        }
+    }
+
+    /// For a shape's intersection module: the GLSL stage that puts `intersection_main.glsl`
+    /// around the shape's function, to be compiled with `shaders-glsl/` on the include path.
+    pub fn glsl_wrapper(&self) -> Option<String> {
+        let GlslSource::Shape { shape, hit_kind, naive } = self.glsl else { return None };
+        let function = if naive { format!("{shape}_naive_intersect") } else { format!("{shape}_intersect") };
+        Some(format!(
+            "#version 460\n\
+             // Generated by `cargo xtask shaders` from the shape registry: the twin of the Rust entry\n\
+             // point twinray_shaders::{name}.\n\
+             #extension GL_EXT_ray_tracing : require\n\
+             #extension GL_GOOGLE_include_directive : require\n\
+             #include \"twinray_layout.glsl\"\n\
+             #include \"shapes/{shape}.glsl\"\n\
+             #define SHAPE_INTERSECT {function}\n\
+             #define SHAPE_HIT_KIND {hit_kind}u\n\
+             #include \"intersection_main.glsl\"\n",
+            name = self.name
+        ))
+    }
 }
 
 impl Language {
     pub const ALL: [Language; 2] = [Language::Rust, Language::Glsl];
 }
 
-/// Every (descriptor set, binding) a module may declare: those of `crate::bindings`.
-pub const KNOWN_BINDINGS: [(u32, u32); 12] = [
-    (b::DESCRIPTOR_SET, b::BINDING_TLAS),
-    (b::DESCRIPTOR_SET, b::BINDING_IMAGE),
-    (b::DESCRIPTOR_SET, b::BINDING_FRAME),
-    (b::DESCRIPTOR_SET, b::BINDING_OBJECTS),
-    (b::DESCRIPTOR_SET, b::BINDING_PRIMITIVES),
-    (b::DESCRIPTOR_SET, b::BINDING_MATERIALS),
-    (b::DESCRIPTOR_SET, b::BINDING_LIGHTS),
-    (b::DESCRIPTOR_SET, b::BINDING_HIT_IDS),
-    (b::DESCRIPTOR_SET, b::BINDING_VERTICES),
-    (b::DESCRIPTOR_SET, b::BINDING_INDICES),
-    (b::DESCRIPTOR_SET, b::BINDING_PROBE_RAYS),
-    (b::DESCRIPTOR_SET, b::BINDING_PROBE_RESULTS),
-];
+/// What a descriptor of the set is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum DescriptorKind {
+    AccelerationStructure,
+    StorageImage,
+    UniformBuffer,
+    StorageBuffer,
+}
+
+/// One binding of the descriptor set: its number, what it holds and the stages that see it.
+#[derive(Clone, Copy, Debug)]
+pub struct BindingSpec {
+    pub binding: u32,
+    pub kind: DescriptorKind,
+    pub stages: &'static [Stage],
+}
+
+const HIT: &[Stage] = &[Stage::Intersection, Stage::ClosestHit];
+
+/// The descriptor set every pipeline shares (set `bindings::DESCRIPTOR_SET`): every binding a
+/// module may declare, and the stages allowed to use it.
+pub const LAYOUT: [BindingSpec; 12] = {
+    use DescriptorKind::*;
+    use Stage::*;
+    [
+        BindingSpec { binding: b::BINDING_TLAS, kind: AccelerationStructure, stages: &[Raygen] },
+        BindingSpec { binding: b::BINDING_IMAGE, kind: StorageImage, stages: &[Raygen] },
+        BindingSpec { binding: b::BINDING_FRAME, kind: UniformBuffer, stages: &[Raygen, Miss] },
+        BindingSpec { binding: b::BINDING_OBJECTS, kind: StorageBuffer, stages: &[ClosestHit] },
+        BindingSpec { binding: b::BINDING_PRIMITIVES, kind: StorageBuffer, stages: HIT },
+        BindingSpec { binding: b::BINDING_MATERIALS, kind: StorageBuffer, stages: &[ClosestHit] },
+        BindingSpec { binding: b::BINDING_LIGHTS, kind: StorageBuffer, stages: &[Raygen] },
+        BindingSpec { binding: b::BINDING_HIT_IDS, kind: StorageBuffer, stages: &[Raygen] },
+        BindingSpec { binding: b::BINDING_VERTICES, kind: StorageBuffer, stages: &[ClosestHit] },
+        BindingSpec { binding: b::BINDING_INDICES, kind: StorageBuffer, stages: &[ClosestHit] },
+        BindingSpec { binding: b::BINDING_PROBE_RAYS, kind: StorageBuffer, stages: &[Raygen] },
+        BindingSpec { binding: b::BINDING_PROBE_RESULTS, kind: StorageBuffer, stages: &[Raygen] },
+    ]
+};
 
 impl ModuleSpec {
-    /// Checks what a compiled module declares: SPIR-V 1.4, this spec's entry point with the
-    /// stage's execution model, and only bindings defined in `crate::bindings`.
+    /// Checks what a compiled module of this spec in `language` declares: SPIR-V 1.4, the
+    /// language's entry point with the stage's execution model, and only bindings of [`LAYOUT`]
+    /// that the stage can see.
     pub fn check_declarations(&self, info: &ModuleInfo, language: Language) -> Result<(), String> {
+        self.check_module(info, self.entry_point(language))
+    }
+
+    /// As [`Self::check_declarations`], for an entry point called `entry`.
+    pub fn check_module(&self, info: &ModuleInfo, entry: &str) -> Result<(), String> {
         if info.version != (1, 4) {
             return Err(format!("SPIR-V {}.{}, expected 1.4", info.version.0, info.version.1));
         }
-        let want = (self.stage.execution_model(), self.entry_point(language).to_string());
+        let want = (self.stage.execution_model(), entry.to_string());
         if !info.entry_points.contains(&want) {
-            return Err(format!("no {} entry point {:?} (found {:?})", self.stage.name(), want.1, info.entry_points));
+            return Err(format!("no {} entry point {entry:?} ({})", self.stage.name(), describe_entries(info)));
         }
-        match info.bindings.iter().find(|b| !KNOWN_BINDINGS.contains(b)) {
-            Some((set, binding)) => {
-                Err(format!("binds set {set} binding {binding}, which twinray_shared::bindings does not define"))
+        for &(set, binding) in &info.bindings {
+            let spec = LAYOUT.iter().find(|l| set == b::DESCRIPTOR_SET && l.binding == binding);
+            match spec {
+                None => {
+                    return Err(format!(
+                        "binds set {set} binding {binding}, which twinray_shared::bindings does not define"
+                    ))
+                }
+                Some(l) if !l.stages.contains(&self.stage) => {
+                    return Err(format!("uses binding {binding}, which the {} stage cannot see", self.stage.name()))
+                }
+                Some(_) => {}
             }
-            None => Ok(()),
+        }
+        Ok(())
+    }
+
+    /// The entry point a module built elsewhere offers for this spec: the only one with the
+    /// stage's execution model, or among several the one named like the module (rust-gpu's
+    /// way) or `main` (glslang's). `None` when there is no such choice; [`Self::check_module`]
+    /// then says what the module has.
+    pub fn find_entry(&self, info: &ModuleInfo) -> Option<String> {
+        let model = self.stage.execution_model();
+        let names: Vec<&str> = info.entry_points.iter().filter(|(m, _)| *m == model).map(|(_, n)| n.as_str()).collect();
+        match names.as_slice() {
+            [one] => Some(one.to_string()),
+            several => several.iter().find(|n| **n == self.name || **n == "main").map(|n| n.to_string()),
         }
     }
+}
+
+/// What entry points a module has, for error messages: `it has a miss entry point "main"`.
+fn describe_entries(info: &ModuleInfo) -> String {
+    if info.entry_points.is_empty() {
+        return "it has none".into();
+    }
+    let list: Vec<String> = info
+        .entry_points
+        .iter()
+        .map(|(model, name)| {
+            let stage = Stage::ALL.iter().find(|s| s.execution_model() == *model).map_or("other", |s| s.name());
+            format!("a {stage} entry point {name:?}")
+        })
+        .collect();
+    format!("it has {}", list.join(", "))
 }

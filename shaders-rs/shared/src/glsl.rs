@@ -6,14 +6,12 @@
 //! the types used here the two rules agree), and that the fields cover the whole struct.
 
 use crate::bindings::*;
-use crate::boxes::GAMMA_3;
 use crate::layout::{
     FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
 };
 use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
-use crate::plane::DISK;
 use crate::shading::CHECKER_DEPTH;
-use crate::sphere::ON_SURFACE;
+use crate::shapes::SHAPES;
 use std::fmt::Write;
 use std::mem::{offset_of, size_of};
 
@@ -159,16 +157,14 @@ pub fn layout_include() -> Result<String, String> {
         ("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL),
         ("LIGHT_POINT", LIGHT_POINT),
         ("LIGHT_RECT", LIGHT_RECT),
-        ("HIT_KIND_SPHERE", HIT_KIND_SPHERE),
-        ("HIT_KIND_PLANE", HIT_KIND_PLANE),
-        ("HIT_KIND_BOX", HIT_KIND_BOX),
-        ("HIT_KIND_CYLINDER", HIT_KIND_CYLINDER),
-        ("HIT_KIND_CONE", HIT_KIND_CONE),
-        ("HIT_KIND_TORUS", HIT_KIND_TORUS),
         ("NO_HIT", NO_HIT),
     ];
     for (name, value) in uints {
         writeln!(s, "#define {name} {value}u").map_err(|e| e.to_string())?;
+    }
+    // Each procedural shape's hit kind, from the registry (crate::shapes).
+    for shape in SHAPES {
+        writeln!(s, "#define HIT_KIND_{} {}u", shape.name.to_uppercase(), shape.hit_kind).map_err(|e| e.to_string())?;
     }
     let floats = [
         ("T_MIN", T_MIN),
@@ -176,15 +172,12 @@ pub fn layout_include() -> Result<String, String> {
         ("OFFSET_ORIGIN", OFFSET_ORIGIN),
         ("OFFSET_FLOAT_SCALE", OFFSET_FLOAT_SCALE),
         ("OFFSET_INT_SCALE", OFFSET_INT_SCALE),
-        ("SPHERE_ON_SURFACE", ON_SURFACE),
-        ("PLANE_DISK", DISK),
         ("CHECKER_DEPTH", CHECKER_DEPTH),
-        ("BOX_GAMMA_3", GAMMA_3),
-        ("TORUS_ON_SURFACE", crate::torus::ON_SURFACE),
         ("SELF_ROOT_REACH", crate::surface::SELF_ROOT_REACH),
-        ("CONE_POLISH_LIMIT", crate::cone::POLISH_LIMIT),
     ];
-    for (name, value) in floats {
+    // Then the constants each shape's GLSL twin reads, from its registration.
+    let shape_constants = SHAPES.iter().flat_map(|shape| shape.spec.glsl_constants.iter().copied());
+    for (name, value) in floats.into_iter().chain(shape_constants) {
         writeln!(s, "#define {name} {value:?}").map_err(|e| e.to_string())?;
     }
     for st in structs() {

@@ -3,19 +3,14 @@
 #![cfg_attr(target_arch = "spirv", no_std)]
 
 pub mod bindings;
-pub mod boxes;
 pub mod camera;
-pub mod cone;
-pub mod cylinder;
 pub mod layout;
 pub mod lighting;
 pub mod offset;
-pub mod plane;
 pub mod random;
 pub mod shading;
-pub mod sphere;
+pub mod shapes;
 pub mod surface;
-pub mod torus;
 
 #[cfg(not(target_arch = "spirv"))]
 pub mod catalog;

@@ -1,0 +1,189 @@
+//! The arguments of every `twinray` command, as clap reads them.
+
+use clap::Args;
+use std::path::PathBuf;
+use twinray::ShaderSet;
+
+#[derive(Args, Clone)]
+pub struct GlobalArgs {
+    /// Enable the Khronos validation layer; its errors fail the command.
+    #[arg(long, global = true)]
+    pub validate: bool,
+    /// Use the first ray tracing device whose name contains this text.
+    #[arg(long, global = true, value_name = "NAME")]
+    pub device: Option<String>,
+    /// More log output (-v info, -vv debug); RUST_LOG overrides.
+    #[arg(short, long, global = true, action = clap::ArgAction::Count)]
+    pub verbose: u8,
+}
+
+#[derive(Args, Clone)]
+pub struct FrameArgs {
+    /// Image width in pixels [default: the scene's].
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels [default: the scene's].
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Timed traces; the median GPU time is reported [default: render 1, compare 10].
+    #[arg(long)]
+    pub runs: Option<u32>,
+    /// Untimed traces before the timed ones [default: render 0, compare 2].
+    #[arg(long)]
+    pub warmup: Option<u32>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args)]
+pub struct RenderArgs {
+    /// Scene file, or the name of a built-in scene [default: spheres].
+    pub scene: Option<String>,
+    /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
+    #[arg(long, default_value = "rust")]
+    pub shaders: ShaderSet,
+    /// Output PNG file.
+    #[arg(long, default_value = "render.png")]
+    pub out: PathBuf,
+    #[command(flatten)]
+    pub frame: FrameArgs,
+}
+
+#[derive(Args)]
+pub struct CompareArgs {
+    /// Scene file, or the name of a built-in scene [default: spheres].
+    pub scene: Option<String>,
+    /// First shader set.
+    #[arg(long, default_value = "rust")]
+    pub a: ShaderSet,
+    /// Second shader set.
+    #[arg(long, default_value = "glsl")]
+    pub b: ShaderSet,
+    /// Directory for a.png, b.png and diff.png (created if missing).
+    #[arg(long, default_value = "compare")]
+    pub out_dir: PathBuf,
+    #[command(flatten)]
+    pub frame: FrameArgs,
+}
+
+#[derive(Args)]
+pub struct ProbeArgs {
+    /// Probe case file (TOML; see docs/probe-format.md).
+    pub case: PathBuf,
+    /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
+    #[arg(long, default_value = "rust")]
+    pub shaders: ShaderSet,
+    /// Intersection formula for every shape that has both: robust, or naive (the textbook
+    /// forms kept on purpose) [default: as the scene says].
+    #[arg(long, value_parser = ["robust", "naive"])]
+    pub formula: Option<String>,
+    /// Timed passes over all the rays; the median is reported.
+    #[arg(long, default_value_t = 10)]
+    pub runs: u32,
+    /// Untimed passes before the timed ones.
+    #[arg(long, default_value_t = 2)]
+    pub warmup: u32,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args)]
+pub struct StabilityArgs {
+    /// Folder of probe cases.
+    #[arg(long, default_value = "probes/stability")]
+    pub dir: PathBuf,
+    /// Shader sets, comma-separated with ';' between sets, e.g. "rust;glsl".
+    #[arg(long, default_value = "rust;glsl")]
+    pub sets: String,
+    /// Timed passes per case, set and formula.
+    #[arg(long, default_value_t = 5)]
+    pub runs: u32,
+    /// Untimed passes before the timed ones.
+    #[arg(long, default_value_t = 1)]
+    pub warmup: u32,
+    /// Time each case over its rays repeated up to at least this many (0: the case's rays).
+    #[arg(long, default_value_t = 262_144)]
+    pub timing_rays: usize,
+    /// Print one JSON array of rows.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args)]
+pub struct ReferenceArgs {
+    /// Scene file, or the name of a built-in scene [default: spheres].
+    pub scene: Option<String>,
+    /// Samples per pixel: a square up to 256, or a multiple of 256.
+    #[arg(long, default_value_t = 1024)]
+    pub spp: u32,
+    /// Shader set that renders it.
+    #[arg(long, default_value = "glsl")]
+    pub shaders: ShaderSet,
+    /// Image width in pixels [default: the scene's].
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels [default: the scene's].
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Cache folder [default: $XDG_CACHE_HOME/twinray/references or ~/.cache/twinray/references].
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
+    /// Also write the reference as an 8-bit PNG.
+    #[arg(long)]
+    pub out: Option<PathBuf>,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+#[derive(Args)]
+pub struct BenchArgs {
+    /// Scene files or built-in names [default: every built-in scene].
+    pub scenes: Vec<String>,
+    /// Shader sets, comma-separated; a STAGE=LANGUAGE item changes the set before it, so
+    /// "rust,glsl,rust,intersection=glsl" is three sets.
+    #[arg(long, default_value = "rust,glsl")]
+    pub sets: String,
+    /// Samples per pixel to measure, comma-separated squares up to 256.
+    #[arg(long, default_value = "1,4,16,64")]
+    pub spp: String,
+    /// Output folder (created if missing).
+    #[arg(long, default_value = "bench/out")]
+    pub out: PathBuf,
+    /// Image width for every scene [default: each scene's].
+    #[arg(long, requires = "height")]
+    pub width: Option<u32>,
+    /// Image height for every scene [default: each scene's].
+    #[arg(long, requires = "width")]
+    pub height: Option<u32>,
+    /// Timed traces per measurement (at least 10).
+    #[arg(long, default_value_t = 10)]
+    pub runs: u32,
+    /// Untimed traces before them.
+    #[arg(long, default_value_t = 2)]
+    pub warmup: u32,
+    /// Samples per pixel of the references.
+    #[arg(long, default_value_t = 1024)]
+    pub reference_spp: u32,
+    /// Shader set that renders the references.
+    #[arg(long, default_value = "glsl")]
+    pub reference_set: ShaderSet,
+    /// Reference cache folder [default: as for `twinray reference`].
+    #[arg(long)]
+    pub cache: Option<PathBuf>,
+    /// Shadow samples per rect light for the stratified-against-random study of soft-shadow
+    /// scenes, comma-separated squares up to 256 ("none": no study).
+    #[arg(long, default_value = "1,4,16,64")]
+    pub shadow_spp: String,
+    /// Probe cases for the robust-against-naive intersection study ("none": no study).
+    #[arg(long, default_value = "probes/stability")]
+    pub probes: PathBuf,
+    /// Time each probe case over its rays repeated up to at least this many.
+    #[arg(long, default_value_t = 1_048_576)]
+    pub timing_rays: usize,
+    /// Which renders to keep as PNG files with their FLIP maps (references are always kept).
+    #[arg(long, value_enum, default_value = "all")]
+    pub images: twinray::bench::Images,
+}

@@ -1,0 +1,98 @@
+//! The `twinray` command: `info`, `render` and `compare`. Bad input exits with code 2 and a
+//! one-line error; a failed comparison exits with 1.
+
+mod args;
+mod bench;
+mod probe;
+mod render;
+mod session;
+mod summary;
+
+use args::{BenchArgs, CompareArgs, GlobalArgs, ProbeArgs, ReferenceArgs, RenderArgs, StabilityArgs};
+use clap::{Parser, Subcommand};
+use std::process::ExitCode;
+
+#[derive(Parser)]
+#[command(
+    name = "twinray",
+    version,
+    about = "Render ray tracing scenes with Rust or GLSL shader sets (or any per-stage mix) and compare them."
+)]
+struct Cli {
+    #[command(flatten)]
+    global: GlobalArgs,
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// Show the Vulkan device twinray would use: driver and ray tracing properties.
+    Info {
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// List the built-in scenes, and every kind of shape, material and light a scene file can use.
+    Scenes {
+        /// Print one JSON object.
+        #[arg(long)]
+        json: bool,
+    },
+    /// Render a scene with one shader set to a PNG.
+    Render(RenderArgs),
+    /// Render a scene with two shader sets and report how they differ in image and GPU time.
+    Compare(CompareArgs),
+    /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
+    Probe(ProbeArgs),
+    /// The hard-case suite: every probe case of a folder, per set and formula, against the
+    /// reference and the cases' targets.
+    Stability(StabilityArgs),
+    /// Render (or read from the cache) a scene's converged reference image.
+    Reference(ReferenceArgs),
+    /// Speed against error: per scene, set and samples per pixel, GPU time, rays per second and
+    /// error against a converged reference; writes tables, plots and index.html.
+    Bench(BenchArgs),
+}
+
+/// Image size and timing options shared by `render` and `compare`.
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) if !e.use_stderr() => {
+            // --help and --version: clap's own output, exit 0.
+            let _ = e.print();
+            return ExitCode::SUCCESS;
+        }
+        Err(e) => {
+            // Usage errors in one line (clap adds usage and tips below the first).
+            let text = e.render().to_string();
+            eprintln!("{} (see --help)", text.lines().next().unwrap_or("error: invalid arguments"));
+            return ExitCode::from(2);
+        }
+    };
+    let level = match cli.global.verbose {
+        0 => "warn",
+        1 => "info",
+        _ => "debug",
+    };
+    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
+    let result = match cli.command {
+        Command::Info { json } => summary::info(&cli.global, json),
+        Command::Scenes { json } => summary::scenes(json),
+        Command::Render(args) => render::render(&cli.global, args),
+        Command::Compare(args) => render::compare(&cli.global, args),
+        Command::Probe(args) => probe::probe(&cli.global, args),
+        Command::Stability(args) => probe::stability(&cli.global, args),
+        Command::Reference(args) => bench::reference(&cli.global, args),
+        Command::Bench(args) => bench::bench(&cli.global, args),
+    };
+    match result {
+        Ok(code) => code,
+        Err(e) => {
+            eprintln!("error: {e:#}");
+            let input = e.downcast_ref::<twinray::Error>().is_some_and(twinray::Error::is_input);
+            ExitCode::from(if input { 2 } else { 1 })
+        }
+    }
+}

@@ -1,0 +1,45 @@
+//! `twinray probe` and `twinray stability`.
+
+use crate::args::{GlobalArgs, ProbeArgs, StabilityArgs};
+use crate::session::context;
+use anyhow::Result;
+use std::process::ExitCode;
+use twinray::scene::shape::Formula;
+
+pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
+    let mut case = twinray::probe::case::ProbeCase::load(&args.case)?;
+    if let Some(formula) = args.formula.as_deref() {
+        let formula = if formula == "naive" { Formula::Naive } else { Formula::Robust };
+        case.set_formula(formula);
+    }
+    let ctx = context(global)?;
+    let out = twinray::probe::probe(&ctx, &case.scene, &args.shaders, &case.rays, args.warmup, args.runs)?;
+    let median = twinray::util::stats::median(&out.gpu_ms);
+    let label = match args.formula.as_deref() {
+        Some(formula) => format!("{} ({formula})", args.shaders),
+        None => args.shaders.to_string(),
+    };
+    let report = twinray::probe::report::evaluate(&case, &out.results, &label, &ctx.info.name, median);
+    if args.json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        print!("{}", report.summary());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
+    let files = twinray::probe::stability::case_files(&args.dir)?;
+    let sets = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::ShaderSet>, _>>()?;
+    let ctx = context(global)?;
+    let formulas = [Formula::Robust, Formula::Naive];
+    let timing = twinray::probe::stability::Timing { warmup: args.warmup, runs: args.runs, rays: args.timing_rays };
+    let rows = twinray::probe::stability::run(&ctx, &files, &sets, &formulas, timing)?;
+    if args.json {
+        println!("{}", serde_json::to_string(&rows)?);
+    } else {
+        print!("{}", twinray::probe::stability::table(&rows));
+    }
+    let missed = rows.iter().filter(|r| !r.failures.is_empty()).count();
+    Ok(if missed == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}

@@ -1,0 +1,67 @@
+//! `twinray render` and `twinray compare`.
+
+use crate::args::{CompareArgs, GlobalArgs, RenderArgs};
+use crate::session::{context, render_options, COMPARE_TRACES, RENDER_TRACES};
+use anyhow::Result;
+use std::process::ExitCode;
+use twinray::compare::hit_count;
+use twinray::compare::report::compare_sets;
+use twinray::util::output::{check_png_target, write_png};
+use twinray::{Error, Scene};
+
+pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
+    let scene = Scene::load(args.scene.as_deref())?;
+    let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
+    check_png_target(&args.out)?;
+    let ctx = context(global)?;
+    let out = twinray::render(&ctx, &scene, &args.shaders, &opts)?;
+    write_png(&args.out, out.width, out.height, &out.rgba)?;
+    let median = out.median_ms();
+    if args.frame.json {
+        let value = serde_json::json!({
+            "scene": scene.name(),
+            "device": ctx.info.name,
+            "set": args.shaders.to_string(),
+            "width": out.width,
+            "height": out.height,
+            "out": args.out,
+            "gpu_ms": median,
+            "gpu_ms_spread": out.spread(),
+            "gpu_ms_runs": out.gpu_ms,
+            "warmup_traces": out.warmup_traces,
+            "rays": out.rays,
+            "mrays_per_s": out.mrays_per_s(),
+            "cpu_threads": ctx.info.cpu_threads,
+            "hit_pixels": hit_count(&out),
+        });
+        println!("{value}");
+    } else {
+        let ms = out.spread().map_or("n/a".into(), |s| {
+            let rate = out.mrays_per_s().map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
+            format!("{:.3} ms (median of {}, IQR {:.3}){rate}", s.median, s.samples, s.iqr())
+        });
+        println!("{} {}x{} with {} on {}: GPU {ms}", scene.name(), out.width, out.height, args.shaders, ctx.info.name);
+        println!("wrote {}", args.out.display());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
+    let scene = Scene::load(args.scene.as_deref())?;
+    let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
+    if args.out_dir.exists() && !args.out_dir.is_dir() {
+        return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
+    }
+    let ctx = context(global)?;
+    let comparison = compare_sets(&ctx, &scene, &args.a, &args.b, &opts)?;
+    comparison.write_images(&args.out_dir)?;
+    let report = &comparison.report;
+    if args.frame.json {
+        println!("{}", serde_json::to_string(report)?);
+    } else {
+        print!("{}", report.summary());
+        println!("  wrote a.png, b.png, diff.png in {}", args.out_dir.display());
+        println!("  diff.png: {}", twinray::compare::DIFF_LEGEND);
+    }
+    Ok(if report.pass { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}

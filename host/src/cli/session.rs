@@ -1,0 +1,30 @@
+//! What every command that renders shares: the Vulkan context from the global options, and
+//! image size and trace counts from the flags.
+
+use crate::args::{FrameArgs, GlobalArgs};
+use anyhow::{Context as _, Result};
+use std::sync::Arc;
+use twinray::scene::check_size;
+use twinray::{Context, ContextOptions, Error, RenderOptions, Scene, Validation};
+
+pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
+    let options = ContextOptions {
+        validation: if global.validate { Validation::Required } else { Validation::Off },
+        device_filter: global.device.clone(),
+    };
+    Context::new(&options).context("setting up Vulkan")
+}
+
+/// (warm-up, timed) traces when not given: `render` wants an image quickly, `compare` a
+/// GPU-time ratio that is a median over several traces.
+pub const RENDER_TRACES: (u32, u32) = (0, 1);
+pub const COMPARE_TRACES: (u32, u32) = (2, 10);
+
+/// Size from the flags, or the scene's, checked against twinray's limits; trace counts from the
+/// flags or `(warmup, runs)`.
+pub fn render_options(scene: &Scene, frame: &FrameArgs, (warmup, runs): (u32, u32)) -> Result<RenderOptions, Error> {
+    let width = frame.width.unwrap_or(scene.file.image.width);
+    let height = frame.height.unwrap_or(scene.file.image.height);
+    check_size(width, height).map_err(Error::Input)?;
+    Ok(RenderOptions { width, height, warmup: frame.warmup.unwrap_or(warmup), runs: frame.runs.unwrap_or(runs) })
+}

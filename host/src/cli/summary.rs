@@ -1,0 +1,86 @@
+//! `twinray info` and `twinray scenes`: the device, and what scenes can contain.
+
+use crate::args::GlobalArgs;
+use crate::session::context;
+use anyhow::Result;
+use std::process::ExitCode;
+use twinray::Scene;
+
+pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
+    let ctx = context(global)?;
+    let i = &ctx.info;
+    if json {
+        println!("{}", serde_json::to_string_pretty(i)?);
+    } else {
+        println!("device      {} ({})", i.name, i.device_type);
+        println!("driver      {} {}", i.driver_name, i.driver_info);
+        println!("vulkan      {}", i.api_version);
+        println!(
+            "sbt         handle size {}, handle alignment {}, base alignment {}",
+            i.shader_group_handle_size, i.shader_group_handle_alignment, i.shader_group_base_alignment
+        );
+        println!("recursion   max depth {}", i.max_ray_recursion_depth);
+        println!(
+            "dispatch    max {} invocations, image side {}",
+            i.max_ray_dispatch_invocation_count, i.max_image_dimension_2d
+        );
+        let timing = if i.timestamp_valid_bits > 0 {
+            format!("{} ns per tick, {} valid bits", i.timestamp_period_ns, i.timestamp_valid_bits)
+        } else {
+            "not available on this queue".into()
+        };
+        println!("timestamps  {timing}");
+        if let Some(threads) = i.cpu_threads {
+            println!("threads     {threads} (a CPU device: LP_NUM_THREADS, else the CPU count)");
+        }
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+pub fn scenes(json: bool) -> Result<ExitCode> {
+    let mut rows = Vec::new();
+    for (name, _) in twinray::scene::BUILTIN {
+        let scene = Scene::load(Some(name))?;
+        let data = scene.build();
+        let groups: Vec<_> = data.plan.hit_groups.iter().map(|g| g.name()).collect();
+        rows.push(serde_json::json!({
+            "name": name,
+            "description": scene.file.description,
+            "width": scene.file.image.width,
+            "height": scene.file.image.height,
+            "samples": scene.file.image.samples,
+            "objects": scene.file.objects.len(),
+            "lights": scene.file.lights.len(),
+            "hit_groups": groups,
+            "shadows": data.plan.shadows,
+        }));
+    }
+    let kinds = twinray::scene::file::kinds();
+    if json {
+        let kinds: serde_json::Map<_, _> =
+            kinds.iter().map(|(what, list)| (what.to_string(), serde_json::json!(list))).collect();
+        println!("{}", serde_json::json!({ "scenes": rows, "kinds": kinds }));
+        return Ok(ExitCode::SUCCESS);
+    }
+    println!("{:<10} {:>9} {:>7} {:>7}  {:<28} description", "scene", "size", "objects", "shadows", "hit groups");
+    for r in &rows {
+        println!(
+            "{:<10} {:>9} {:>7} {:>7}  {:<28} {}",
+            r["name"].as_str().unwrap_or_default(),
+            format!("{}x{}", r["width"], r["height"]),
+            r["objects"],
+            if r["shadows"] == true { "yes" } else { "no" },
+            r["hit_groups"]
+                .as_array()
+                .map(|g| g.iter().filter_map(|v| v.as_str()).collect::<Vec<_>>().join(","))
+                .unwrap_or_default(),
+            r["description"].as_str().unwrap_or_default(),
+        );
+    }
+    println!();
+    for (what, list) in kinds {
+        println!("{what:<10} {}", list.join(", "));
+    }
+    println!("\nEvery field of a scene file: docs/scene-format.md");
+    Ok(ExitCode::SUCCESS)
+}

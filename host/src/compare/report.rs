@@ -1,0 +1,170 @@
+//! `compare`: render one scene with two shader sets, measure how they differ in image and in
+//! GPU time, judge that against the scene's tolerance, and write the images.
+
+use super::diff::{diff, diff_image, verdict, ImageDiff};
+use crate::error::{Error, Result};
+use crate::render::{render_sets, RayCounts, RenderOptions, RenderOutput};
+use crate::scene::Scene;
+use crate::shaders::ShaderSet;
+use crate::util::output::write_png;
+use crate::util::stats::Spread;
+use crate::vk::context::Context;
+use serde::Serialize;
+use std::path::Path;
+use std::sync::Arc;
+
+/// The result of comparing set `a` against set `b`; serialised as `compare --json` prints it.
+#[derive(Clone, Debug, Serialize)]
+pub struct CompareReport {
+    pub scene: String,
+    pub device: String,
+    pub width: u32,
+    pub height: u32,
+    pub set_a: String,
+    pub set_b: String,
+    #[serde(flatten)]
+    pub diff: ImageDiff,
+    pub pixel_threshold: u8,
+    /// Median GPU milliseconds of the timed traces of each set; null when the device cannot time.
+    pub gpu_ms_a: Option<f64>,
+    pub gpu_ms_b: Option<f64>,
+    /// gpu_ms_a / gpu_ms_b.
+    pub ratio: Option<f64>,
+    /// Median and interquartile range of each set's timed traces.
+    pub spread_a: Option<Spread>,
+    pub spread_b: Option<Spread>,
+    /// Rays each set traced in one trace (shadow rays may differ where the sets' hits do).
+    pub rays_a: RayCounts,
+    pub rays_b: RayCounts,
+    /// Millions of rays per second at the median time.
+    pub mrays_per_s_a: Option<f64>,
+    pub mrays_per_s_b: Option<f64>,
+    /// Threads of a CPU device (lavapipe); null on GPUs.
+    pub cpu_threads: Option<u32>,
+    /// Untimed traces each set ran before its timed ones (at least `warmup`, and at least
+    /// `MIN_WARM_MS` of GPU time when `warmup` > 0).
+    pub warmup_traces_a: u32,
+    pub warmup_traces_b: u32,
+    /// Stack bytes each set's ray generation stage needs, as the driver reports it.
+    pub raygen_stack_bytes_a: u64,
+    pub raygen_stack_bytes_b: u64,
+    /// Timed traces per set in each of the two build orders (after `warmup` untimed ones).
+    pub runs: u32,
+    pub warmup: u32,
+    pub pass: bool,
+    /// Why `pass` is false, one line per broken tolerance.
+    pub failures: Vec<String>,
+}
+
+/// Both renders and the report on them.
+pub struct Comparison {
+    pub a: RenderOutput,
+    pub b: RenderOutput,
+    pub report: CompareReport,
+}
+
+pub fn compare_sets(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set_a: &ShaderSet,
+    set_b: &ShaderSet,
+    opts: &RenderOptions,
+) -> Result<Comparison> {
+    let [a, b]: [RenderOutput; 2] = render_sets(ctx, scene, &[set_a.clone(), set_b.clone()], opts)?
+        .try_into()
+        .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
+    let parity = scene.file.parity;
+    let diff = diff(&a, &b, parity.pixel_threshold);
+    let failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
+    let (gpu_ms_a, gpu_ms_b) = (a.median_ms(), b.median_ms());
+    let report = CompareReport {
+        scene: scene.name().to_string(),
+        device: ctx.info.name.clone(),
+        width: opts.width,
+        height: opts.height,
+        set_a: set_a.to_string(),
+        set_b: set_b.to_string(),
+        diff,
+        pixel_threshold: parity.pixel_threshold,
+        gpu_ms_a,
+        gpu_ms_b,
+        ratio: gpu_ms_a.zip(gpu_ms_b).filter(|(_, b)| *b > 0.0).map(|(a, b)| a / b),
+        spread_a: a.spread(),
+        spread_b: b.spread(),
+        rays_a: a.rays,
+        rays_b: b.rays,
+        mrays_per_s_a: a.mrays_per_s(),
+        mrays_per_s_b: b.mrays_per_s(),
+        cpu_threads: ctx.info.cpu_threads,
+        warmup_traces_a: a.warmup_traces,
+        warmup_traces_b: b.warmup_traces,
+        raygen_stack_bytes_a: a.raygen_stack_bytes,
+        raygen_stack_bytes_b: b.raygen_stack_bytes,
+        runs: opts.runs,
+        warmup: opts.warmup,
+        pass: failures.is_empty(),
+        failures,
+    };
+    Ok(Comparison { a, b, report })
+}
+
+impl Comparison {
+    /// Writes `a.png`, `b.png` and `diff.png` into `dir`, creating it if needed.
+    pub fn write_images(&self, dir: &Path) -> Result<()> {
+        std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.into(), source })?;
+        let (w, h) = (self.a.width, self.a.height);
+        write_png(&dir.join("a.png"), w, h, &self.a.rgba)?;
+        write_png(&dir.join("b.png"), w, h, &self.b.rgba)?;
+        write_png(&dir.join("diff.png"), w, h, &diff_image(&self.a, &self.b))
+    }
+}
+
+impl CompareReport {
+    /// The human-readable summary `compare` prints.
+    pub fn summary(&self) -> String {
+        let timing = |spread: Option<Spread>, rate: Option<f64>, rays: RayCounts| {
+            let ms = spread.map_or("n/a".to_string(), |s| format!("{:.3} ms (IQR {:.3})", s.median, s.iqr()));
+            let rate = rate.map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
+            format!("GPU {ms}{rate}; {} primary + {} shadow rays", rays.primary, rays.shadow)
+        };
+        let pixels = (u64::from(self.width) * u64::from(self.height)).max(1) as f64;
+        let pct = |n: u64| 100.0 * n as f64 / pixels;
+        let d = &self.diff.color;
+        let threads = self.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
+        let mut s = format!(
+            "scene {} {}x{} on {}{threads}, median of {} traces after {}/{} untimed\n  a = {:<28} {}\n  b = {:<28} {}\n  ratio a/b {}, raygen stack {} / {} bytes\n",
+            self.scene,
+            self.width,
+            self.height,
+            self.device,
+            self.spread_a.map_or(self.runs, |s| s.samples as u32),
+            self.warmup_traces_a,
+            self.warmup_traces_b,
+            self.set_a,
+            timing(self.spread_a, self.mrays_per_s_a, self.rays_a),
+            self.set_b,
+            timing(self.spread_b, self.mrays_per_s_b, self.rays_b),
+            self.ratio.map_or("n/a".into(), |r| format!("{r:.3}")),
+            self.raygen_stack_bytes_a,
+            self.raygen_stack_bytes_b,
+        );
+        s += &format!(
+            "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette\n",
+            d.rmse,
+            if d.psnr.is_finite() { format!("{:.1} dB", d.psnr) } else { "inf".into() },
+            d.max_abs_diff,
+            self.pixel_threshold,
+            d.pixels_over_threshold,
+            pct(d.pixels_over_threshold),
+            self.diff.hit_mismatches,
+            pct(self.diff.hit_mismatches),
+            self.diff.hit_mismatches_off_silhouette,
+        );
+        if self.pass {
+            s += "  PASS: within the scene's parity tolerance\n";
+        } else {
+            s += &format!("  FAIL: {}\n", self.failures.join("; "));
+        }
+        s
+    }
+}

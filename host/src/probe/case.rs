@@ -1,0 +1,146 @@
+//! Probe case files (TOML, documented in docs/probe-format.md): a scene, by name or path or
+//! inline, and rays given explicitly or by generators. Seeded and reproducible.
+
+use super::generate::{far, generate, ray, Generator};
+use crate::error::{Error, Result};
+use crate::reference::scene::SceneReference;
+use crate::scene::shape::Formula;
+use crate::scene::{MeshFiles, Scene};
+use serde::Deserialize;
+use std::path::Path;
+use twinray_shared::layout::ProbeRay;
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeFile {
+    pub name: String,
+    #[serde(default)]
+    pub description: String,
+    pub scene: SceneRef,
+    #[serde(default)]
+    pub rays: Vec<RayDesc>,
+    #[serde(default)]
+    pub generators: Vec<Generator>,
+    /// What the robust formulas must achieve on this case (the hard-case suite checks it).
+    pub targets: Option<Targets>,
+}
+
+/// Targets of a case for the robust formulas: no false hit, false miss or wrong object among
+/// decided rays, and a bound on the p99 relative t error.
+#[derive(Clone, Copy, Debug, Deserialize, serde::Serialize)]
+#[serde(deny_unknown_fields)]
+pub struct Targets {
+    pub max_relative_t_p99: f64,
+}
+
+/// A scene by built-in name or path (relative to the case file), or written inline.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(untagged)]
+pub enum SceneRef {
+    Named(String),
+    Inline(toml::Table),
+}
+
+#[derive(Clone, Copy, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RayDesc {
+    pub origin: [f32; 3],
+    pub direction: [f32; 3],
+    #[serde(default)]
+    pub t_min: f32,
+    #[serde(default = "far")]
+    pub t_max: f32,
+}
+
+/// A loaded case: its scene, rays and the reference for them.
+pub struct ProbeCase {
+    pub file: ProbeFile,
+    pub scene: Scene,
+    /// The rays traced: `robust_rays` or `naive_rays`, by the formula in use.
+    pub rays: Vec<ProbeRay>,
+    pub reference: SceneReference,
+    robust_rays: Vec<ProbeRay>,
+    naive_rays: Vec<ProbeRay>,
+}
+
+/// Defaults that an inline scene may leave out: a probe needs no camera, image or parity.
+const INLINE_DEFAULTS: &str = r#"
+name = "inline"
+[image]
+width = 1
+height = 1
+[camera]
+eye = [0.0, 0.0, 1.0]
+target = [0.0, 0.0, 0.0]
+up = [0.0, 1.0, 0.0]
+fov_y_degrees = 45.0
+[parity]
+max_rmse = 0.0
+pixel_threshold = 0
+max_pixels_over_threshold = 0.0
+max_hit_mismatches = 0.0
+"#;
+
+impl ProbeCase {
+    pub fn load(path: &Path) -> Result<ProbeCase> {
+        let source = path.display().to_string();
+        let case_error = |message: String| Error::Scene { path: source.clone(), message };
+        let text = std::fs::read_to_string(path).map_err(|e| case_error(format!("cannot read: {e}")))?;
+        let file: ProbeFile =
+            toml::from_str(&text).map_err(|e| case_error(e.to_string().trim_end().replace('\n', " ")))?;
+        let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
+        let scene = match &file.scene {
+            SceneRef::Named(name) => {
+                let relative = folder.join(name);
+                Scene::load(Some(if relative.exists() { relative.to_str().unwrap_or(name) } else { name }))?
+            }
+            SceneRef::Inline(table) => {
+                let mut full: toml::Table = toml::from_str(INLINE_DEFAULTS).map_err(|e| case_error(e.to_string()))?;
+                full.extend(table.clone());
+                Scene::parse(&full.to_string(), &format!("{source} [scene]"), MeshFiles::Folder(folder))?
+            }
+        };
+        let reference = SceneReference::new(&scene).map_err(case_error)?;
+        let explicit: Vec<ProbeRay> =
+            file.rays.iter().map(|r| ray(r.origin.into(), r.direction.into(), r.t_min, r.t_max)).collect();
+        let (mut robust_rays, mut naive_rays) = (explicit.clone(), explicit);
+        for (i, generator) in file.generators.iter().enumerate() {
+            let generated = generate(generator, &reference).map_err(|e| case_error(format!("generators[{i}]: {e}")))?;
+            robust_rays.extend(generated.iter().map(|pair| pair.0));
+            naive_rays.extend(generated.iter().map(|pair| pair.1));
+        }
+        if robust_rays.is_empty() {
+            return Err(case_error("no rays: give [[rays]] or [[generators]]".into()));
+        }
+        let rays = robust_rays.clone();
+        Ok(ProbeCase { file, scene, rays, reference, robust_rays, naive_rays })
+    }
+}
+
+impl ProbeCase {
+    /// Uses `formula` for every shape that has both (the rays and the reference stay the same).
+    /// The rays whose true answers the traced rays are judged by: the robust rays. A naive
+    /// shadow ray starts on the surface, so its rounded origin may lie inside the shape; what
+    /// it should report is whether the point it leaves sees past its own surface.
+    pub fn reference_rays(&self) -> &[ProbeRay] {
+        &self.robust_rays
+    }
+
+    /// Whether the naive formula changes anything here: a shape with a naive variant, or
+    /// surface rays (whose naive form is the fixed-epsilon shadow ray).
+    pub fn has_naive(&self) -> bool {
+        self.scene.file.shapes.values().any(|s| s.has_naive())
+            || self.file.generators.iter().any(|g| matches!(g, Generator::Surface { .. }))
+    }
+
+    /// Surface rays follow too: naive ones start on the surface with a fixed epsilon.
+    pub fn set_formula(&mut self, formula: Formula) {
+        for shape in self.scene.file.shapes.values_mut() {
+            shape.set_formula(formula);
+        }
+        self.rays = match formula {
+            Formula::Robust => self.robust_rays.clone(),
+            Formula::Naive => self.naive_rays.clone(),
+        };
+    }
+}

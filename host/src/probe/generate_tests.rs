@@ -1,0 +1,69 @@
+//! Tests of the ray generators, through probe case files as users write them.
+
+use super::case::ProbeCase;
+use glam::DVec3;
+
+/// A case with one object of `shape` (a TOML table body) and the generator `generator`.
+fn case(shape: &str, transform: &str, generator: &str) -> Result<ProbeCase, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("case.toml");
+    let text = format!(
+        "name = \"t\"\n[scene.materials.m]\nkind = \"diffuse\"\ncolor = [1.0, 1.0, 1.0]\n\
+         [scene.shapes.s]\n{shape}\n[[scene.objects]]\nshape = \"s\"\nmaterial = \"m\"\n{transform}\n\
+         [[generators]]\n{generator}\n"
+    );
+    std::fs::write(&path, text).unwrap();
+    ProbeCase::load(&path).map_err(|e| e.to_string())
+}
+
+/// Each ray's origin and direction in the object's space.
+fn object_rays(case: &ProbeCase) -> Vec<(DVec3, DVec3)> {
+    let to_object = case.reference.objects[0].world_to_object;
+    let rays = case.rays.iter();
+    rays.map(|r| {
+        let (o, d) = (r.origin.truncate().as_dvec3(), r.direction.truncate().as_dvec3());
+        (to_object.transform_point3(o), to_object.transform_vector3(d))
+    })
+    .collect()
+}
+
+#[test]
+fn face_plane_rays_lie_in_and_beside_the_faces_of_a_rotated_box() {
+    let shape = "kind = \"box\"\nsize = [2.0, 4.0, 6.0]";
+    let generator = "kind = \"face_plane\"\nobject = 0\ncount = 300\noffset = 1e-3";
+    let case = case(shape, "translate = [5.0, 0.0, 0.0]\nrotate = [0.0, 30.0, 0.0]", generator).unwrap();
+    let (half, size) = (DVec3::new(1.0, 2.0, 3.0), DVec3::new(1.0, 2.0, 3.0).length());
+    for (k, (o, d)) in object_rays(&case).into_iter().enumerate() {
+        // Parallel to one face: its axis has (nearly) no direction component.
+        let axis = (0..3).min_by(|&a, &b| d[a].abs().total_cmp(&d[b].abs())).unwrap();
+        assert!(d[axis].abs() < 1e-6, "ray {k} is not parallel to a face: {d}");
+        let beside = o[axis].abs() - half[axis];
+        let expected = [0.0, 1.0, 1.0][k % 3] * 1e-3 * size;
+        assert!((beside.abs() - expected).abs() < 1e-5, "ray {k}: {beside} from the face plane");
+    }
+}
+
+#[test]
+fn grazing_rays_arrive_within_the_angle_from_afar() {
+    let generator = "kind = \"grazing\"\nobject = 0\ncount = 200\ndistance = 100.0\nangle = 2.0";
+    let case = case("kind = \"sphere\"\nradius = 1.0", "", generator).unwrap();
+    assert_eq!(case.rays.len(), 200);
+    for (k, (o, d)) in object_rays(&case).into_iter().enumerate() {
+        assert!((o.length() - 100.0).abs() < 2.0, "ray {k} starts {} away", o.length());
+        // Closest approach to the centre: within the radius for aimed rays (arriving at
+        // less than 2 degrees, so within 1 - cos 2deg of tangency), just above for lifted ones.
+        let closest = (o - d * o.dot(d) / d.dot(d)).length();
+        let bounds = if k % 2 == 0 { (1.0 - 7e-4, 1.0) } else { (1.0, 1.0 + 2.2e-3) };
+        assert!(closest > bounds.0 - 1e-5 && closest < bounds.1 + 1e-5, "ray {k} passes {closest} from the centre");
+    }
+}
+
+#[test]
+fn face_plane_needs_flat_faces_and_an_existing_object() {
+    let generator = "kind = \"face_plane\"\nobject = 0\ncount = 3";
+    let err = case("kind = \"sphere\"\nradius = 1.0", "", generator).err().unwrap();
+    assert!(err.contains("generators[0]: object 0 has no flat faces"), "{err}");
+    let generator = "kind = \"grazing\"\nobject = 2\ncount = 3\ndistance = 10.0";
+    let err = case("kind = \"sphere\"\nradius = 1.0", "", generator).err().unwrap();
+    assert!(err.contains("no object 2 (the scene has 1)"), "{err}");
+}

@@ -1,0 +1,12 @@
+//! Probing: rays traced one by one through a scene's ordinary pipeline and judged against the
+//! f64 reference; probe case files, their ray generators, and the hard-case suite.
+
+pub mod case;
+pub mod generate;
+#[cfg(test)]
+mod generate_tests;
+pub mod report;
+pub mod run;
+pub mod stability;
+
+pub use run::{probe, ProbeOutput, ProbeRay, ProbeResult};

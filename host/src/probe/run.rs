@@ -1,0 +1,85 @@
+//! Probing: trace a list of rays through a scene's ordinary pipeline, with the probe ray
+//! generation stage in place of the image one, and read back what each ray hit. The
+//! intersection and hit stages are the very ones that render images.
+
+use crate::error::{Error, Result};
+use crate::render::{prepare, storage_buffer, transition, STORAGE_IMAGE, UNUSED_IMAGE};
+use crate::scene::Scene;
+use crate::shaders::ShaderSet;
+use crate::vk::buffer::Buffer;
+use crate::vk::commands::memory_barrier;
+use crate::vk::context::Context;
+use crate::vk::timing::Timestamps;
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use std::sync::Arc;
+use twinray_shared::bindings as b;
+pub use twinray_shared::layout::{ProbeRay, ProbeResult};
+
+/// What a probe run produced.
+pub struct ProbeOutput {
+    /// One per ray, in order.
+    pub results: Vec<ProbeResult>,
+    /// GPU milliseconds of each timed trace of all the rays.
+    pub gpu_ms: Vec<f64>,
+}
+
+/// Traces `rays` through `scene` with `set`: `warmup` untimed passes, then `runs` timed ones.
+pub fn probe(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    rays: &[ProbeRay],
+    warmup: u32,
+    runs: u32,
+) -> Result<ProbeOutput> {
+    let out = probe_and_release(ctx, scene, set, rays, warmup, runs)?;
+    // Every object of the probe is destroyed by now: catch what the layer said about that too.
+    ctx.check_validation()?;
+    Ok(out)
+}
+
+fn probe_and_release(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    rays: &[ProbeRay],
+    warmup: u32,
+    runs: u32,
+) -> Result<ProbeOutput> {
+    let count = u32::try_from(rays.len()).unwrap_or(u32::MAX);
+    if rays.is_empty() || count > ctx.info.max_ray_dispatch_invocation_count {
+        return Err(Error::Input(format!(
+            "a probe needs 1..={} rays on {} (got {})",
+            ctx.info.max_ray_dispatch_invocation_count,
+            ctx.info.name,
+            rays.len()
+        )));
+    }
+    let bytes = u64::from(count) * size_of::<ProbeResult>() as u64;
+    let ray_buffer =
+        Buffer::with_data(ctx, "probe rays", bytemuck::cast_slice(rays), vk::BufferUsageFlags::STORAGE_BUFFER)?;
+    let results = storage_buffer(ctx, "probe results", bytes)?;
+    let unused = storage_buffer(ctx, "unused hit ids", 64)?;
+    let extra =
+        [(b::BINDING_HIT_IDS, &unused), (b::BINDING_PROBE_RAYS, &ray_buffer), (b::BINDING_PROBE_RESULTS, &results)];
+    let p = prepare(ctx, scene, set, "probe", ((1, 1), (1, 1)), &extra)?;
+    let timestamps = Timestamps::new(ctx, runs)?;
+    let readback =
+        Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
+    let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
+    p.one_shot.run(|device, cmd| {
+        transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
+        trace.record(ctx, cmd);
+        let written = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+        memory_barrier(device, cmd, written, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));
+        let region = [vk::BufferCopy::default().size(bytes)];
+        // SAFETY: cmd is recording; both buffers hold `bytes`.
+        unsafe { device.cmd_copy_buffer(cmd, results.raw, readback.raw, &region) };
+        let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
+        memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
+        Ok(())
+    })?;
+    let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
+    Ok(ProbeOutput { results: bytemuck::pod_collect_to_vec(&readback.mapped()?[..bytes as usize]), gpu_ms })
+}

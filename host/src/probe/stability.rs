@@ -1,0 +1,197 @@
+//! The hard-case suite (`twinray stability`): every probe case of a folder, for each shader
+//! set and formula, judged against the f64 reference; the robust formulas against each case's
+//! targets.
+
+use super::case::ProbeCase;
+use super::generate::Generator;
+use super::report::{evaluate, ProbeReport};
+use super::run::probe;
+use crate::error::{Error, Result};
+use crate::scene::shape::Formula;
+use crate::shaders::ShaderSet;
+use crate::vk::context::Context;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+/// One row of the suite: a case run with one set and formula.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct StabilityRow {
+    pub formula: &'static str,
+    /// What the formula changes in this case: its hit groups (robust names), or "shadow rays
+    /// from" them for surface rays.
+    pub variant: String,
+    #[serde(flatten)]
+    pub report: ProbeReport,
+    /// Broken targets (robust rows only); empty when the row meets them.
+    pub failures: Vec<String>,
+}
+
+/// The case files of `dir`, sorted by name.
+pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let entries = std::fs::read_dir(dir).map_err(|source| Error::Io { what: "listing", path: dir.into(), source })?;
+    let mut files: Vec<PathBuf> = entries
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|e| e == "toml"))
+        .collect();
+    files.sort();
+    if files.is_empty() {
+        return Err(Error::Input(format!("{}: no probe cases (*.toml)", dir.display())));
+    }
+    Ok(files)
+}
+
+/// How GPU time is taken: `runs` timed passes after `warmup`, each over the case's rays
+/// repeated up to at least `rays` rays (a case's few thousand rays alone take too little
+/// time to measure), or over the case's rays alone when `rays` is 0.
+#[derive(Clone, Copy, Debug)]
+pub struct Timing {
+    pub warmup: u32,
+    pub runs: u32,
+    pub rays: usize,
+}
+
+/// Runs every case with every set and formula, in one probe each: accuracy from the first
+/// copy of the case's rays, GPU time as `timing` says.
+pub fn run(
+    ctx: &Arc<Context>,
+    files: &[PathBuf],
+    sets: &[ShaderSet],
+    formulas: &[Formula],
+    timing: Timing,
+) -> Result<Vec<StabilityRow>> {
+    let mut rows = Vec::new();
+    for file in files {
+        let mut case = ProbeCase::load(file)?;
+        // A case whose shapes have no naive variant and no surface rays runs robust only.
+        let has_naive = case.has_naive();
+        let variant = variant(&case);
+        for &formula in formulas.iter().filter(|&&f| f == Formula::Robust || has_naive) {
+            case.set_formula(formula);
+            for set in sets {
+                let (results, gpu_ms) = measure(ctx, &case, set, timing)?;
+                let report = evaluate(&case, &results, &set.to_string(), &ctx.info.name, gpu_ms);
+                let failures = if formula == Formula::Robust { failures(&case, &report) } else { Vec::new() };
+                let formula = if formula == Formula::Robust { "robust" } else { "naive" };
+                rows.push(StabilityRow { formula, variant: variant.clone(), report, failures });
+            }
+        }
+    }
+    Ok(rows)
+}
+
+/// See `StabilityRow::variant`.
+fn variant(case: &ProbeCase) -> String {
+    let groups = case.scene.build().plan.hit_groups;
+    let shapes = groups.iter().map(|g| g.name()).collect::<Vec<_>>().join("+");
+    let surface = case.file.generators.iter().any(|g| matches!(g, Generator::Surface { .. }));
+    if surface {
+        format!("shadow rays from {shapes}")
+    } else {
+        shapes
+    }
+}
+
+/// One probe of the case's rays repeated as `timing` says: the first copy's results (they are
+/// the case's own rays), and the median GPU time of one pass over the case's rays.
+fn measure(
+    ctx: &Arc<Context>,
+    case: &ProbeCase,
+    set: &ShaderSet,
+    timing: Timing,
+) -> Result<(Vec<twinray_shared::layout::ProbeResult>, Option<f64>)> {
+    let n = case.rays.len();
+    let copies = timing.rays.div_ceil(n).max(1);
+    let rays: Vec<_> = case.rays.iter().copied().cycle().take(n * copies).collect();
+    let mut out = probe(ctx, &case.scene, set, &rays, timing.warmup, timing.runs)?;
+    out.results.truncate(n);
+    Ok((out.results, crate::util::stats::median(&out.gpu_ms).map(|ms| ms / copies as f64)))
+}
+
+/// What a robust report breaks of its case's targets.
+pub fn failures(case: &ProbeCase, r: &ProbeReport) -> Vec<String> {
+    let mut failures = Vec::new();
+    if r.false_hits + r.false_misses + r.wrong_object > 0 {
+        failures.push(format!(
+            "{} false hits, {} false misses, {} wrong object",
+            r.false_hits, r.false_misses, r.wrong_object
+        ));
+    }
+    if let Some(t) = case.file.targets {
+        if r.relative_t_error.p99 > t.max_relative_t_p99 {
+            failures.push(format!("relative t p99 {:.2e} > {:.0e}", r.relative_t_error.p99, t.max_relative_t_p99));
+        }
+    }
+    if r.decided == 0 {
+        failures.push("no ray decided".into());
+    }
+    failures
+}
+
+/// The table `twinray stability` prints, then what robustness costs.
+pub fn table(rows: &[StabilityRow]) -> String {
+    let mut s = results(rows);
+    s += &costs(rows);
+    s
+}
+
+/// GPU time per million rays of the robust formulas over the naive ones, per case and set,
+/// both from the same run; then per variant and set, the geometric mean over its cases.
+fn costs(rows: &[StabilityRow]) -> String {
+    let mut s = format!(
+        "\n{:<26} {:<5} {:>14} {:>14} {:>12}\n",
+        "cost", "set", "robust ms/Mray", "naive ms/Mray", "robust/naive"
+    );
+    let mut ratios: Vec<(&str, &str, f64)> = Vec::new();
+    for robust in rows.iter().filter(|r| r.formula == "robust") {
+        let (case, set) = (&robust.report.case, &robust.report.set);
+        let naive = rows.iter().find(|r| r.formula == "naive" && &r.report.case == case && &r.report.set == set);
+        let times =
+            naive.and_then(|n| Some((robust.report.gpu_ms_per_million_rays?, n.report.gpu_ms_per_million_rays?)));
+        if let Some((r, n)) = times {
+            s += &format!("{case:<26} {set:<5} {r:>14.4} {n:>14.4} {:>12.3}\n", r / n);
+            ratios.push((&robust.variant, set, r / n));
+        }
+    }
+    s += &format!("\n{:<32} {:<5} {:>5} {:>12}\n", "cost per variant", "set", "cases", "robust/naive");
+    let mut keys: Vec<(&str, &str)> = ratios.iter().map(|&(v, set, _)| (v, set)).collect();
+    keys.sort();
+    keys.dedup();
+    for (variant, set) in keys {
+        let logs: Vec<f64> = ratios.iter().filter(|r| (r.0, r.1) == (variant, set)).map(|r| r.2.ln()).collect();
+        let mean = (logs.iter().sum::<f64>() / logs.len() as f64).exp();
+        s += &format!("{variant:<32} {set:<5} {:>5} {mean:>12.3}\n", logs.len());
+    }
+    s
+}
+
+fn results(rows: &[StabilityRow]) -> String {
+    let mut s = format!(
+        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>8} {:>9} {:>9}  targets\n",
+        "case", "set", "formula", "rays", "decided", "f.hit", "f.miss", "t p99", "ulp p99", "n p99", "ms/Mray"
+    );
+    for row in rows {
+        let r = &row.report;
+        let verdict = if row.formula != "robust" {
+            "-".to_string()
+        } else if row.failures.is_empty() {
+            "met".to_string()
+        } else {
+            format!("MISSED: {}", row.failures.join("; "))
+        };
+        s += &format!(
+            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
+            r.case,
+            r.set,
+            row.formula,
+            r.rays,
+            r.decided,
+            r.false_hits,
+            r.false_misses + r.wrong_object,
+            r.relative_t_error.p99,
+            r.ulp_error_p99,
+            r.normal_angle_error_p99,
+            r.gpu_ms_per_million_rays.map_or("n/a".into(), |m| format!("{m:.2}")),
+        );
+    }
+    s
+}

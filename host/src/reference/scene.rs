@@ -1,0 +1,128 @@
+//! The f64 reference for a whole scene: every object's shape in its own space, reached
+//! through the inverse of its transform in f64; the first hit over all objects. A ray is
+//! ambiguous when any object's answer is, or when two objects' hits are within float noise
+//! of each other (which one is first is then rounding).
+
+use super::shapes::{from_primitive, intersect, RefRay, RefShape, Verdict};
+use crate::scene::{BlasDesc, HitGroup, Scene, SceneData};
+use glam::{DMat4, DVec3, Vec4Swizzles};
+
+/// One object: its shapes in object space and the transforms to and from it.
+pub struct RefObject {
+    pub shapes: Vec<RefShape>,
+    pub world_to_object: DMat4,
+    pub object_to_world: DMat4,
+}
+
+/// The first hit over all objects, in world space.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SceneVerdict {
+    Miss,
+    /// `normal`: world-space unit normal facing the ray's origin.
+    Hit {
+        object: usize,
+        t: f64,
+        normal: DVec3,
+    },
+    Ambiguous,
+}
+
+impl RefObject {
+    /// Object-space magnitude at which the f32 world-to-object transform of a ray from
+    /// `origin` rounds: the largest world coordinate involved (origin or translation) times
+    /// the transform's largest stretch.
+    fn noise_floor(&self, origin: DVec3) -> f64 {
+        let m = &self.world_to_object;
+        let stretch = m.x_axis.truncate().length().max(m.y_axis.truncate().length()).max(m.z_axis.truncate().length());
+        let world = origin.abs().max_element().max(self.object_to_world.w_axis.truncate().abs().max_element());
+        stretch * world
+    }
+}
+
+pub struct SceneReference {
+    pub objects: Vec<RefObject>,
+}
+
+impl SceneReference {
+    /// The reference of every object of `scene`; an error when a shape has no f64 reference.
+    pub fn new(scene: &Scene) -> Result<SceneReference, String> {
+        let data = scene.build();
+        let objects = data
+            .instances
+            .iter()
+            .map(|instance| {
+                let object_to_world = instance.object_to_world.as_dmat4();
+                let group = data.plan.hit_groups[instance.hit_group as usize];
+                Ok(RefObject {
+                    shapes: shapes(&data, group, instance.blas, instance.custom_index)?,
+                    world_to_object: object_to_world.inverse(),
+                    object_to_world,
+                })
+            })
+            .collect::<Result<_, String>>()?;
+        Ok(SceneReference { objects })
+    }
+
+    /// The true answer for a world-space ray.
+    pub fn trace(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> SceneVerdict {
+        let mut hits: Vec<(usize, f64, DVec3)> = Vec::new();
+        for (i, object) in self.objects.iter().enumerate() {
+            let ray = RefRay {
+                origin: object.world_to_object.transform_point3(origin),
+                direction: object.world_to_object.transform_vector3(direction),
+                t_min,
+                t_max,
+                noise_floor: object.noise_floor(origin),
+            };
+            for shape in &object.shapes {
+                match intersect(shape, &ray) {
+                    Verdict::Ambiguous => return SceneVerdict::Ambiguous,
+                    Verdict::Miss => {}
+                    Verdict::Hit { t, normal } => {
+                        // Normals go to world space by the inverse transpose.
+                        let world = object.world_to_object.transpose().transform_vector3(normal).normalize();
+                        let facing = if world.dot(direction) > 0.0 { -world } else { world };
+                        hits.push((i, t, facing));
+                    }
+                }
+            }
+        }
+        hits.sort_by(|a, b| a.1.total_cmp(&b.1));
+        match hits.as_slice() {
+            [] => SceneVerdict::Miss,
+            [(object, t, normal), rest @ ..] => {
+                let scale = origin.abs().max_element().max((origin + direction * *t).abs().max_element());
+                let noise = super::shapes::AMBIGUOUS_ULPS * scale / 16_777_216.0 / direction.length();
+                match rest.first() {
+                    Some((other, t2, _)) if other != object && t2 - t <= noise => SceneVerdict::Ambiguous,
+                    _ => SceneVerdict::Hit { object: *object, t: *t, normal: *normal },
+                }
+            }
+        }
+    }
+}
+
+/// The reference shapes of one instance: its BLAS's primitives, read as its hit group reads
+/// them; an error names a shape the reference does not know.
+fn shapes(data: &SceneData, group: HitGroup, blas: usize, primitive_base: u32) -> Result<Vec<RefShape>, String> {
+    match &data.blases[blas] {
+        BlasDesc::Triangles { vertex_base, index_base, index_count, .. } => {
+            let vertex = |i: u32| data.vertices[(*vertex_base + i) as usize].position.xyz().as_dvec3();
+            let indices = &data.indices[*index_base as usize..(*index_base + *index_count) as usize];
+            Ok(indices
+                .chunks_exact(3)
+                .map(|t| RefShape::Triangle { p: [vertex(t[0]), vertex(t[1]), vertex(t[2])] })
+                .collect())
+        }
+        BlasDesc::Aabbs(boxes) => {
+            let name = group.shape().map_or("triangles", |s| s.name);
+            (0..boxes.len())
+                .map(|k| {
+                    from_primitive(name, &data.primitives[primitive_base as usize + k]).ok_or_else(|| {
+                        format!("the f64 reference has no {name} shape (add it to reference/shapes.rs to probe it)")
+                    })
+                })
+                .collect()
+        }
+    }
+}

@@ -1,0 +1,17 @@
+//! Rendering a scene with a shader set: upload the scene's acceleration structures and buffers,
+//! build the set's pipeline, descriptors and SBT, trace (warm-up traces, then timed ones between
+//! timestamps), and read back colour and hit ids.
+
+mod barriers;
+pub mod output;
+pub mod pipeline;
+pub(crate) mod prepare;
+mod sets;
+mod tracing;
+mod upload;
+
+pub(crate) use barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
+pub use output::{to_rgba8, RayCounts, RenderOptions, RenderOutput, NO_HIT_ID};
+pub use prepare::MIN_WARM_MS;
+pub(crate) use prepare::{prepare, storage_buffer};
+pub use sets::{render, render_sets};

@@ -1,0 +1,126 @@
+//! The ray tracing pipeline of a scene's plan with a shader set: ray generation, the primary
+//! miss shader, the shadow miss shader only if some light casts shadows, and one hit group per
+//! shape kind the scene uses. Specialisation constants carry the plan's sample count, shadow
+//! switch and shadow sampler into ray generation.
+
+use crate::error::Result;
+use crate::scene::PipelinePlan;
+use crate::shaders::{ShaderSet, Stage, StageModule};
+use crate::vk::context::Context;
+use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
+use ash::vk;
+use std::sync::Arc;
+use twinray_shared::bindings as b;
+use twinray_shared::catalog::{DescriptorKind, LAYOUT};
+
+/// A scene's pipeline and what the SBT and reports need to know of it.
+pub struct ScenePipeline {
+    pub rt: RtPipeline,
+    /// Groups per SBT region (raygen, miss, hit).
+    pub group_counts: [u32; 3],
+    /// Names of the modules in the pipeline, in stage order (for tests and reports).
+    pub modules: Vec<&'static str>,
+}
+
+/// (binding, type, stages) of every descriptor, from the shared layout.
+pub fn descriptor_bindings() -> Vec<(u32, vk::DescriptorType, vk::ShaderStageFlags)> {
+    LAYOUT
+        .iter()
+        .map(|l| {
+            let ty = match l.kind {
+                DescriptorKind::AccelerationStructure => vk::DescriptorType::ACCELERATION_STRUCTURE_KHR,
+                DescriptorKind::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
+                DescriptorKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
+                DescriptorKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
+            };
+            let stages = l.stages.iter().fold(vk::ShaderStageFlags::empty(), |f, s| f | stage_flag(*s));
+            (l.binding, ty, stages)
+        })
+        .collect()
+}
+
+/// The Vulkan stage flag of a twinray stage.
+pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
+    match stage {
+        Stage::Raygen => vk::ShaderStageFlags::RAYGEN_KHR,
+        Stage::Miss => vk::ShaderStageFlags::MISS_KHR,
+        Stage::Intersection => vk::ShaderStageFlags::INTERSECTION_KHR,
+        Stage::ClosestHit => vk::ShaderStageFlags::CLOSEST_HIT_KHR,
+    }
+}
+
+/// Module names of a plan's pipeline, each once, in stage order: the ray generation module
+/// `raygen` ("raygen" renders, "probe" probes), misses, hit modules.
+pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static str> {
+    let mut names = vec![raygen, "miss"];
+    if plan.shadows {
+        names.push("shadow_miss");
+    }
+    for group in &plan.hit_groups {
+        names.extend(group.intersection_module());
+        names.push(group.closest_hit_module());
+    }
+    let mut seen = Vec::new();
+    names.retain(|n| {
+        !seen.contains(n) && {
+            seen.push(*n);
+            true
+        }
+    });
+    names
+}
+
+impl ScenePipeline {
+    pub fn new(ctx: &Arc<Context>, set: &ShaderSet, plan: &PipelinePlan, raygen: &'static str) -> Result<Self> {
+        let names = plan_modules(plan, raygen);
+        let modules = names.iter().map(|name| set.module(name)).collect::<Result<Vec<StageModule>>>()?;
+        let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler];
+        let spec_entries: Vec<_> = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER]
+            .iter()
+            .enumerate()
+            .map(|(i, &id)| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i as u32, size: 4 })
+            .collect();
+        let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(bytemuck::cast_slice(&spec_data));
+        let stages: Vec<_> = modules
+            .iter()
+            .map(|m| StageDesc {
+                name: m.spec.name,
+                stage: stage_flag(m.spec.stage),
+                spirv: &m.spirv[..],
+                entry: &m.entry,
+                specialization: (m.spec.stage == Stage::Raygen).then_some(&spec),
+            })
+            .collect();
+        let groups = groups(plan, &names);
+        let misses = if plan.shadows { 2 } else { 1 };
+        let desc =
+            PipelineDesc { bindings: &descriptor_bindings(), stages: &stages, groups: &groups, max_recursion_depth: 1 };
+        Ok(ScenePipeline {
+            rt: RtPipeline::new(ctx, &desc)?,
+            group_counts: [1, misses, plan.hit_groups.len() as u32],
+            modules: names,
+        })
+    }
+
+    pub fn raygen_stack_bytes(&self) -> u64 {
+        self.rt.raygen_stack_bytes()
+    }
+}
+
+/// SBT order: raygen, miss (`MISS_PRIMARY`), shadow miss (`MISS_SHADOW`), then the hit groups
+/// in the plan's order (an instance's SBT offset is its group's index there).
+fn groups(plan: &PipelinePlan, names: &[&'static str]) -> Vec<GroupDesc> {
+    let index = |name: &str| names.iter().position(|n| *n == name).map_or(vk::SHADER_UNUSED_KHR, |i| i as u32);
+    let mut groups = vec![GroupDesc::General(0), GroupDesc::General(index("miss"))];
+    if plan.shadows {
+        groups.push(GroupDesc::General(index("shadow_miss")));
+    }
+    for group in &plan.hit_groups {
+        let closest_hit = index(group.closest_hit_module());
+        groups.push(match group.intersection_module() {
+            Some(intersection) => GroupDesc::Procedural { intersection: index(intersection), closest_hit },
+            None => GroupDesc::Triangles { closest_hit },
+        });
+    }
+    groups
+}

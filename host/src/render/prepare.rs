@@ -1,0 +1,126 @@
+//! What a trace needs for one scene, shader set and ray generation stage: the uploaded scene,
+//! the pipeline, its descriptors and SBT, and the warm-up that brings GPU clocks up first.
+
+use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
+use super::pipeline::{descriptor_bindings, ScenePipeline};
+use super::tracing::Trace;
+use super::upload::{upload_shared, SceneResources, UploadedScene};
+use crate::error::Result;
+use crate::scene::Scene;
+use crate::shaders::ShaderSet;
+use crate::vk::buffer::Buffer;
+use crate::vk::commands::OneShot;
+use crate::vk::context::Context;
+use crate::vk::descriptors::{DescriptorSet, DescriptorTargets};
+use crate::vk::image::StorageImage;
+use crate::vk::pipeline::pool_sizes;
+use crate::vk::sbt::ShaderBindingTable;
+use crate::vk::timing::Timestamps;
+use ash::vk;
+use gpu_allocator::MemoryLocation;
+use std::rc::Rc;
+use std::sync::Arc;
+use twinray_shared::bindings as b;
+
+/// What a trace needs, built for one scene, shader set and ray generation stage. The caller's
+/// extra buffers (hit ids, probe rays and results) must outlive it.
+pub(crate) struct Prepared {
+    pub one_shot: OneShot,
+    pub image: Rc<StorageImage>,
+    pub pipeline: ScenePipeline,
+    pub descriptors: DescriptorSet,
+    pub sbt: ShaderBindingTable,
+    _resources: Rc<SceneResources>,
+}
+
+/// GPU time warm-up traces take at least, when any are asked for: GPU clocks leave their
+/// idle state over tens of milliseconds. Measured on the H200 with 3 warm-up traces of a few
+/// ms: the same configuration timed 1x in one run and 2-3x in the next, with a tight IQR
+/// each time (the clock was stable within a run, but in another state).
+pub const MIN_WARM_MS: f64 = 200.0;
+const MAX_WARM_TRACES: u32 = 10_000;
+
+impl Prepared {
+    /// The trace of this pipeline over `launch`: `runs` timed traces after warm-up traces that
+    /// are at least `warmup` and, when `warmup` > 0 and the device can time, at least
+    /// `MIN_WARM_MS` of GPU time in the same submission (two traces run first to count them).
+    pub fn trace<'a>(
+        &'a self,
+        ctx: &Arc<Context>,
+        timestamps: Option<&'a Timestamps>,
+        launch: (u32, u32),
+        (warmup, runs): (u32, u32),
+    ) -> Result<Trace<'a>> {
+        let trace = Trace {
+            pipeline: &self.pipeline.rt,
+            descriptors: &self.descriptors,
+            sbt: &self.sbt,
+            timestamps,
+            launch,
+            warmup,
+            runs,
+        };
+        let Some(one) = (if warmup > 0 && timestamps.is_some() { Timestamps::new(ctx, 1)? } else { None }) else {
+            return Ok(trace);
+        };
+        // The second trace is the one timed: the first may include lazy compilation (lavapipe).
+        let first = Trace { timestamps: Some(&one), warmup: 1, runs: 1, ..trace };
+        self.one_shot.run(|device, cmd| {
+            transition(device, cmd, self.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
+            first.record(ctx, cmd);
+            Ok(())
+        })?;
+        let ms = one.read_ms()?.first().copied().unwrap_or(MIN_WARM_MS);
+        let needed = (MIN_WARM_MS / ms.max(1e-6)).ceil().min(f64::from(MAX_WARM_TRACES)) as u32;
+        Ok(Trace { warmup: warmup.max(needed), ..trace })
+    }
+}
+
+/// Uploads the scene and builds the pipeline (with ray generation stage `raygen`), its
+/// descriptors (the scene's buffers plus `extra`) and SBT; frame constants for `frame` pixels,
+/// output image of `image` pixels.
+pub(crate) fn prepare(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    raygen: &'static str,
+    (frame, image_size): ((u32, u32), (u32, u32)),
+    extra: &[(u32, &Buffer)],
+) -> Result<Prepared> {
+    let image = Rc::new(StorageImage::new(ctx, image_size.0, image_size.1)?);
+    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, set, raygen, image, extra)
+}
+
+/// The pipeline of `set` (ray generation stage `raygen`) over an uploaded scene, with its
+/// descriptors (the scene's buffers, the output `image` and `extra`) and SBT.
+pub(crate) fn prepare_on(
+    ctx: &Arc<Context>,
+    scene: &UploadedScene,
+    set: &ShaderSet,
+    raygen: &'static str,
+    image: Rc<StorageImage>,
+    extra: &[(u32, &Buffer)],
+) -> Result<Prepared> {
+    let resources = scene.resources.clone();
+    let pipeline = ScenePipeline::new(ctx, set, &scene.data.plan, raygen)?;
+    let storage = vk::DescriptorType::STORAGE_BUFFER;
+    let mut buffers: Vec<_> =
+        resources.buffers.iter().map(|(binding, ty, buffer)| (*binding, buffer.raw, *ty)).collect();
+    buffers.extend(extra.iter().map(|(binding, buffer)| (*binding, buffer.raw, storage)));
+    let targets = DescriptorTargets {
+        tlas: resources.tlas.raw,
+        tlas_binding: b::BINDING_TLAS,
+        image_view: image.view,
+        image_binding: b::BINDING_IMAGE,
+        buffers,
+    };
+    let descriptors = DescriptorSet::new(ctx, pipeline.rt.set_layout, &pool_sizes(&descriptor_bindings()), &targets)?;
+    let sbt = ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_counts)?;
+    Ok(Prepared { one_shot: OneShot::new(ctx)?, image, pipeline, descriptors, sbt, _resources: resources })
+}
+
+/// A device-local storage buffer of `size` bytes that can be copied out.
+pub(crate) fn storage_buffer(ctx: &Arc<Context>, name: &str, size: u64) -> Result<Buffer> {
+    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC;
+    Buffer::new(ctx, name, size, usage, MemoryLocation::GpuOnly)
+}

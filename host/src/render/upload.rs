@@ -1,0 +1,119 @@
+//! Uploading a scene: its acceleration structures (BLASes and the TLAS) and the buffers its
+//! stages read, shared by every pipeline that traces it.
+
+use crate::error::Result;
+use crate::scene::{BlasDesc, Scene, SceneData};
+use crate::vk::accel::{build_aabb_blas, build_tlas, build_triangle_blas, AccelStruct, InstanceRecord};
+use crate::vk::buffer::Buffer;
+use crate::vk::commands::OneShot;
+use crate::vk::context::Context;
+use ash::vk;
+use std::rc::Rc;
+use std::sync::Arc;
+use twinray_shared::bindings as b;
+
+const VERTEX_BYTES: u64 = size_of::<twinray_shared::layout::Vertex>() as u64;
+
+/// The scene's GPU data; kept alive until the trace has completed.
+pub(crate) struct SceneResources {
+    _blases: Vec<AccelStruct>,
+    pub tlas: AccelStruct,
+    /// (binding, buffer) of every storage and uniform buffer the scene provides.
+    pub buffers: Vec<(u32, vk::DescriptorType, Buffer)>,
+}
+
+/// A scene's data and GPU resources, which any number of pipelines can trace.
+pub(crate) struct UploadedScene {
+    pub data: SceneData,
+    pub resources: Rc<SceneResources>,
+}
+
+/// Builds the scene's acceleration structures and buffers, frame constants for `frame` pixels.
+pub(crate) fn upload_shared(ctx: &Arc<Context>, scene: &Scene, frame: (u32, u32)) -> Result<UploadedScene> {
+    let one_shot = OneShot::new(ctx)?;
+    let data = scene.build();
+    let resources = Rc::new(upload_scene(ctx, &one_shot, scene, &data, frame)?);
+    Ok(UploadedScene { data, resources })
+}
+
+fn upload_scene(
+    ctx: &Arc<Context>,
+    one_shot: &OneShot,
+    scene: &Scene,
+    data: &SceneData,
+    (width, height): (u32, u32),
+) -> Result<SceneResources> {
+    // Meshes are read by the BLAS builds and by the triangle closest-hit stage.
+    let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
+        | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
+        | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
+    let vertices = upload_with(ctx, "vertices", bytemuck::cast_slice(&data.vertices), mesh_usage)?;
+    let indices = upload_with(ctx, "indices", bytemuck::cast_slice(&data.indices), mesh_usage)?;
+    let (vertex_address, index_address) = (vertices.device_address(), indices.device_address());
+    let blases = data
+        .blases
+        .iter()
+        .map(|blas| match blas {
+            BlasDesc::Aabbs(aabbs) => {
+                let boxes: Vec<_> = aabbs
+                    .iter()
+                    .map(|b| vk::AabbPositionsKHR {
+                        min_x: b.min.x,
+                        min_y: b.min.y,
+                        min_z: b.min.z,
+                        max_x: b.max.x,
+                        max_y: b.max.y,
+                        max_z: b.max.z,
+                    })
+                    .collect();
+                build_aabb_blas(ctx, one_shot, &boxes)
+            }
+            BlasDesc::Triangles { vertex_base, vertex_count, index_base, index_count } => build_triangle_blas(
+                ctx,
+                one_shot,
+                vertex_address + u64::from(*vertex_base) * VERTEX_BYTES,
+                VERTEX_BYTES,
+                *vertex_count,
+                index_address + u64::from(*index_base) * 4,
+                *index_count,
+            ),
+        })
+        .collect::<Result<Vec<_>>>()?;
+    let instances: Vec<_> = data
+        .instances
+        .iter()
+        .map(|i| InstanceRecord {
+            object_to_world: i.object_to_world,
+            custom_index: i.custom_index,
+            mask: i.mask,
+            sbt_offset: i.hit_group,
+            blas_address: blases[i.blas].address,
+        })
+        .collect();
+    let tlas = build_tlas(ctx, one_shot, &instances)?;
+    let frame = scene.frame_uniform(width, height);
+    let storage = vk::DescriptorType::STORAGE_BUFFER;
+    let buffers = vec![
+        (b::BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER, upload(ctx, "frame", bytemuck::bytes_of(&frame))?),
+        (b::BINDING_OBJECTS, storage, upload(ctx, "objects", bytemuck::cast_slice(&data.objects))?),
+        (b::BINDING_PRIMITIVES, storage, upload(ctx, "primitives", bytemuck::cast_slice(&data.primitives))?),
+        (b::BINDING_MATERIALS, storage, upload(ctx, "materials", bytemuck::cast_slice(&data.materials))?),
+        (b::BINDING_LIGHTS, storage, upload(ctx, "lights", bytemuck::cast_slice(&data.lights))?),
+        (b::BINDING_VERTICES, storage, vertices),
+        (b::BINDING_INDICES, storage, indices),
+    ];
+    Ok(SceneResources { _blases: blases, tlas, buffers })
+}
+
+/// A host-visible buffer usable as a uniform or storage buffer; an empty slice still gets a
+/// (zeroed) element's worth of memory, so every binding has a valid buffer.
+fn upload(ctx: &Arc<Context>, name: &str, bytes: &[u8]) -> Result<Buffer> {
+    upload_with(ctx, name, bytes, vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER)
+}
+
+fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUsageFlags) -> Result<Buffer> {
+    if bytes.is_empty() {
+        return Buffer::with_data(ctx, name, &[0; 256], usage);
+    }
+    Buffer::with_data(ctx, name, bytes, usage)
+}

@@ -1,0 +1,230 @@
+//! `[shapes.NAME]` of a scene file: a kind from the shape registry (`twinray_shared::shapes`)
+//! with the keys its description lists, or a triangle mesh. The registry is the only list of
+//! kinds and keys; an unknown kind or key is an error with the file's line and column.
+
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer};
+use twinray_shared::shapes::spec::{ParamType, ShapeKind, Value, Values};
+use twinray_shared::shapes::{self, Shape, SHAPES};
+
+/// Which intersection formula a shape uses: the robust one, or the textbook one it replaced,
+/// kept on purpose so that probes can show what robustness buys and costs.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Formula {
+    #[default]
+    Robust,
+    Naive,
+}
+
+/// One shape of a scene file.
+#[derive(Clone, Debug)]
+pub enum ShapeDesc {
+    /// A kind drawn by a registered shape's intersection stage.
+    Procedural(ProceduralDesc),
+    /// A triangle mesh: a generated one (`builtin`) or an OBJ file (`file`, relative to the
+    /// scene file's folder), with flat or smooth normals.
+    Mesh(MeshDesc),
+}
+
+/// A procedural shape: its kind, every key's value (given or default), and the formula.
+#[derive(Clone)]
+pub struct ProceduralDesc {
+    pub shape: &'static Shape,
+    pub kind: &'static ShapeKind,
+    pub values: Values,
+    pub formula: Formula,
+}
+
+/// Written out by value (no addresses), so that the reference cache's key of a scene is the
+/// same in every run.
+impl std::fmt::Debug for ProceduralDesc {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} {:?} {:?}", self.kind.name, self.values.0, self.formula)
+    }
+}
+
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshDesc {
+    pub builtin: Option<MeshBuiltin>,
+    pub file: Option<String>,
+    #[serde(default)]
+    pub normals: Normals,
+}
+
+/// Meshes twinray generates, each fitting the unit cube about the origin.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MeshBuiltin {
+    Box,
+    Pyramid,
+    Prism,
+    Icosahedron,
+}
+
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Normals {
+    /// One normal per face.
+    #[default]
+    Flat,
+    /// Area-weighted vertex normals, interpolated across faces.
+    Smooth,
+}
+
+/// Every shape kind a scene can name: the registry's, then `mesh`.
+pub fn kind_names() -> Vec<&'static str> {
+    let mut names: Vec<_> = SHAPES.iter().flat_map(|s| s.spec.kinds.iter().map(|k| k.name)).collect();
+    names.push("mesh");
+    names
+}
+
+impl<'de> Deserialize<'de> for ShapeDesc {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut table = toml::Table::deserialize(deserializer)?;
+        let kind = match table.remove("kind") {
+            Some(toml::Value::String(kind)) => kind,
+            Some(other) => return Err(D::Error::custom(format!("kind must be a string (got {other})"))),
+            None => return Err(D::Error::missing_field("kind")),
+        };
+        if kind == "mesh" {
+            return toml::Value::Table(table).try_into().map(ShapeDesc::Mesh).map_err(D::Error::custom);
+        }
+        let Some((shape, spec)) = shapes::kind(&kind) else {
+            let kinds = kind_names().join(", ");
+            return Err(D::Error::custom(format!("unknown shape kind {kind:?} (kinds: {kinds})")));
+        };
+        procedural(shape, spec, table).map(ShapeDesc::Procedural).map_err(D::Error::custom)
+    }
+}
+
+/// The keys of a `kind` table, checked against the kind's description: each key known and of
+/// its type, each required key present.
+fn procedural(
+    shape: &'static Shape,
+    kind: &'static ShapeKind,
+    mut table: toml::Table,
+) -> Result<ProceduralDesc, String> {
+    let mut values = Vec::new();
+    for param in kind.params {
+        let value = match table.remove(param.name) {
+            Some(v) => parse(&v, param.ty).map_err(|e| format!("{}: {e}", param.name))?,
+            None => param.default.ok_or_else(|| format!("missing key `{}` for a {}", param.name, kind.name))?,
+        };
+        values.push((param.name, value));
+    }
+    let formula = match table.remove("formula") {
+        Some(v) if shape.naive_module.is_some() => {
+            v.try_into::<Formula>().map_err(|e| format!("formula: {}", e.to_string().trim()))?
+        }
+        Some(_) => return Err(format!("a {} has no naive variant, so no `formula` key", kind.name)),
+        None => Formula::Robust,
+    };
+    if let Some(key) = table.keys().next() {
+        let mut known: Vec<&str> = kind.params.iter().map(|p| p.name).collect();
+        if shape.naive_module.is_some() {
+            known.push("formula");
+        }
+        return Err(format!("unknown key `{key}` for a {} (keys: kind, {})", kind.name, known.join(", ")));
+    }
+    Ok(ProceduralDesc { shape, kind, values: Values(values), formula })
+}
+
+fn parse(value: &toml::Value, ty: ParamType) -> Result<Value, String> {
+    let number = |v: &toml::Value| match v {
+        toml::Value::Float(f) => Ok(*f as f32),
+        toml::Value::Integer(i) => Ok(*i as f32),
+        other => Err(format!("expected a number, got {other}")),
+    };
+    let numbers = |n: usize| -> Result<Vec<f32>, String> {
+        match value {
+            toml::Value::Array(items) if items.len() == n => items.iter().map(number).collect(),
+            other => Err(format!("expected an array of {n} numbers, got {other}")),
+        }
+    };
+    let integer = |max: u64| match value {
+        toml::Value::Integer(i) if *i >= 0 && (*i as u64) <= max => Ok(*i as u64),
+        other => Err(format!("expected an integer in 0..={max}, got {other}")),
+    };
+    Ok(match ty {
+        ParamType::Number => Value::Number(number(value)?),
+        ParamType::Pair => {
+            let v = numbers(2)?;
+            Value::Pair([v[0], v[1]])
+        }
+        ParamType::Triple => {
+            let v = numbers(3)?;
+            Value::Triple([v[0], v[1], v[2]])
+        }
+        ParamType::Count => Value::Count(integer(u64::from(u32::MAX))? as u32),
+        ParamType::Seed => Value::Seed(integer(u64::MAX)?),
+    })
+}
+
+impl ShapeDesc {
+    /// Whether the shape has a naive variant.
+    pub fn has_naive(&self) -> bool {
+        matches!(self, ShapeDesc::Procedural(p) if p.shape.naive_module.is_some())
+    }
+
+    /// Sets the formula of a shape that has a naive variant; other shapes are left as they are.
+    pub fn set_formula(&mut self, to: Formula) {
+        if let ShapeDesc::Procedural(p) = self {
+            if p.shape.naive_module.is_some() {
+                p.formula = to;
+            }
+        }
+    }
+
+    /// How many primitives the shape has (a mesh's triangles are not primitives).
+    pub fn primitive_count(&self) -> u64 {
+        match self {
+            ShapeDesc::Procedural(p) => (p.kind.count)(&p.values),
+            ShapeDesc::Mesh(_) => 0,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn shape(text: &str) -> Result<ShapeDesc, String> {
+        toml::from_str::<toml::Table>(&format!("[s]\n{text}"))
+            .map_err(|e| e.to_string())
+            .and_then(|t| t["s"].clone().try_into::<ShapeDesc>().map_err(|e| e.to_string()))
+    }
+
+    #[test]
+    fn reads_every_key_of_a_kind_with_defaults_and_formula() {
+        let ShapeDesc::Procedural(p) =
+            shape("kind = \"torus\"\nmajor_radius = 2\nminor_radius = 0.5\nformula = \"naive\"").unwrap()
+        else {
+            panic!("a torus is procedural")
+        };
+        assert_eq!((p.kind.name, p.values.number("major_radius"), p.formula), ("torus", 2.0, Formula::Naive));
+        let ShapeDesc::Mesh(m) = shape("kind = \"mesh\"\nbuiltin = \"prism\"").unwrap() else { panic!("a mesh") };
+        assert_eq!((m.builtin, m.normals), (Some(MeshBuiltin::Prism), Normals::Flat));
+    }
+
+    #[test]
+    fn unknown_kinds_and_keys_wrong_types_and_missing_keys_are_named() {
+        let cases = [
+            ("kind = \"capsul\"", "unknown shape kind \"capsul\" (kinds: sphere"),
+            (
+                "kind = \"sphere\"\nradius = 1.0\nradiuss = 2.0",
+                "unknown key `radiuss` for a sphere (keys: kind, radius, formula)",
+            ),
+            ("kind = \"box\"\nsize = [1.0, 2.0]", "size: expected an array of 3 numbers"),
+            ("kind = \"cone\"\nradius = 1.0", "missing key `height` for a cone"),
+            ("kind = \"box\"\nsize = [1, 1, 1]\nformula = \"naive\"", "a box has no naive variant"),
+            ("kind = \"sphere_field\"\ncount = -3", "count: expected an integer"),
+            ("kind = \"mesh\"\nbuiltin = \"box\"\nfiel = \"x.obj\"", "unknown field `fiel`"),
+        ];
+        for (text, message) in cases {
+            let e = shape(text).err().unwrap_or_else(|| panic!("{text:?} parsed"));
+            assert!(e.contains(message), "{text:?}: {e}");
+        }
+    }
+}

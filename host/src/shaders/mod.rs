@@ -1,0 +1,17 @@
+//! Shader sets: which module each stage uses. A module comes from the built-in Rust or GLSL
+//! set (the committed SPIR-V, embedded), or from a SPIR-V file on disk, checked before use.
+//! The pipeline code never branches on where a module came from, so any per-stage mix, and a
+//! user's freshly built modules, are just other sets.
+
+mod builtin;
+mod module;
+mod set;
+
+pub use module::StageModule;
+pub use set::{parse_sets, ShaderSet};
+pub use twinray_shared::catalog::{Language, ModuleSpec, Stage, MODULES};
+
+/// The built-in module `name` in `language`, as committed in `spirv/`.
+pub fn builtin_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
+    builtin::spirv(language, name)
+}

@@ -1,0 +1,65 @@
+//! One module of a set, resolved for the pipeline, and modules read from disk: each checked as
+//! `cargo xtask shaders` checks the ones it builds (a SPIR-V 1.4 module, an entry point with
+//! the stage's execution model, only bindings of the shared layout that the stage can see).
+
+use std::ffi::CString;
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use twinray_shared::catalog::{Language, ModuleSpec};
+use twinray_shared::spirv_info;
+
+/// A stage resolved to what the pipeline needs.
+#[derive(Clone, Debug)]
+pub struct StageModule {
+    pub spec: ModuleSpec,
+    /// Where it came from, for reports and errors: `rust`, `glsl` or the file.
+    pub origin: String,
+    pub entry: CString,
+    pub spirv: Arc<[u8]>,
+}
+
+/// Where one module of a set comes from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Origin {
+    Builtin(Language),
+    Disk(Arc<DiskModule>),
+    /// Asked for from a folder that has no file for it: an error only if a pipeline needs it.
+    Missing(PathBuf),
+}
+
+/// A module read from a file and checked.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) struct DiskModule {
+    pub path: PathBuf,
+    pub spirv: Arc<[u8]>,
+    pub entry: String,
+}
+
+/// Reads `path` as the module `spec` and checks it; the error names the file and what is wrong.
+pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String> {
+    let file = path.display();
+    let bytes = std::fs::read(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
+    let info = spirv_info::parse(&bytes).map_err(|e| format!("{file}: not a SPIR-V module ({e})"))?;
+    let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
+    spec.check_module(&info, &entry).map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;
+    Ok(DiskModule { path: path.to_path_buf(), spirv: bytes.into(), entry })
+}
+
+impl Origin {
+    /// The module `spec` from here, ready for the pipeline.
+    pub(crate) fn resolve(&self, spec: &ModuleSpec) -> Result<StageModule, String> {
+        let (origin, entry, spirv): (String, &str, Arc<[u8]>) = match self {
+            Origin::Builtin(language) => {
+                let spirv = super::builtin::spirv(*language, spec.name)
+                    .ok_or_else(|| format!("no built-in {} module {}", language.name(), spec.name))?;
+                (language.name().into(), spec.entry_point(*language), spirv.into())
+            }
+            Origin::Disk(m) => (m.path.display().to_string(), &m.entry, m.spirv.clone()),
+            Origin::Missing(path) => {
+                return Err(format!("no module {} ({} does not exist)", spec.name, path.display()));
+            }
+        };
+        let entry = CString::new(entry).map_err(|_| format!("entry point of {} contains a NUL byte", spec.name))?;
+        Ok(StageModule { spec: *spec, origin, entry, spirv })
+    }
+}

@@ -1,0 +1,269 @@
+//! A shader set, written as a base followed by overrides, each `KEY=VALUE`:
+//!
+//! - the base: `rust`, `glsl` (the built-in sets), or a folder of compiled modules
+//!   (`NAME.spv` for each module of the catalog, as `cargo xtask shaders` writes them);
+//! - `STAGE=LANGUAGE` or `STAGE=FOLDER`: every module of a stage (`raygen`, `miss`,
+//!   `intersection`, `closest_hit`) from that set;
+//! - `MODULE=LANGUAGE`, `MODULE=FOLDER` or `MODULE=FILE.spv`: one module of the catalog
+//!   (`sphere_intersection`, `raygen`, ...) from there; `raygen=FILE.spv` and `miss=FILE.spv`
+//!   name the module of that name.
+//!
+//! Every file is read and checked when the set is parsed, so a bad module is an input error
+//! before any GPU work.
+
+use super::module::{load, Origin, StageModule};
+use crate::error::{Error, Result};
+use std::fmt;
+use std::path::{Path, PathBuf};
+use std::str::FromStr;
+use std::sync::Arc;
+use twinray_shared::catalog::{Language, ModuleSpec, Stage, MODULES};
+
+/// Which module each stage uses.
+#[derive(Clone, Debug)]
+pub struct ShaderSet {
+    /// One origin per module of the catalog, in catalog order.
+    origins: Vec<Origin>,
+    /// As written, for sets with modules from disk (built-in sets print canonically).
+    text: Option<String>,
+}
+
+impl PartialEq for ShaderSet {
+    fn eq(&self, other: &Self) -> bool {
+        self.origins == other.origins
+    }
+}
+
+impl Eq for ShaderSet {}
+
+/// What the value of an item names.
+enum Target {
+    Language(Language),
+    Folder(PathBuf),
+    File(PathBuf),
+}
+
+impl ShaderSet {
+    pub fn uniform(language: Language) -> Self {
+        ShaderSet { origins: vec![Origin::Builtin(language); MODULES.len()], text: None }
+    }
+
+    /// The built-in language of `stage`, when every module of the stage comes from one.
+    pub fn language(&self, stage: Stage) -> Option<Language> {
+        let mut languages = self.stage_origins(stage).map(|o| match o {
+            Origin::Builtin(language) => Some(*language),
+            _ => None,
+        });
+        let first = languages.next().flatten()?;
+        languages.all(|l| l == Some(first)).then_some(first)
+    }
+
+    fn stage_origins(&self, stage: Stage) -> impl Iterator<Item = &Origin> {
+        MODULES.iter().zip(&self.origins).filter(move |(m, _)| m.stage == stage).map(|(_, o)| o)
+    }
+
+    /// The module called `name` in this set.
+    pub fn module(&self, name: &str) -> Result<StageModule> {
+        let spec = twinray_shared::catalog::module(name)
+            .ok_or_else(|| Error::Unsupported(format!("no module {name} in the catalog")))?;
+        self.resolve(&spec)
+    }
+
+    /// The module for `spec` in this set.
+    pub fn resolve(&self, spec: &ModuleSpec) -> Result<StageModule> {
+        let index = MODULES.iter().position(|m| m.name == spec.name);
+        let origin = index.and_then(|i| self.origins.get(i)).ok_or_else(|| {
+            Error::Unsupported(format!("module {} is not in the catalog this build knows", spec.name))
+        })?;
+        origin.resolve(spec).map_err(|e| Error::Input(format!("shader set {self}: {e}")))
+    }
+
+    /// Whether any module comes from disk.
+    pub fn from_disk(&self) -> bool {
+        self.origins.iter().any(|o| !matches!(o, Origin::Builtin(_)))
+    }
+
+    fn set_where(&mut self, target: &Target, mut which: impl FnMut(&ModuleSpec) -> bool) -> Result<(), String> {
+        for (spec, origin) in MODULES.iter().zip(self.origins.iter_mut()) {
+            if which(spec) {
+                *origin = match target {
+                    Target::Language(language) => Origin::Builtin(*language),
+                    Target::Folder(dir) => from_folder(spec, dir)?,
+                    Target::File(file) => Origin::Disk(Arc::new(load(spec, file)?)),
+                };
+            }
+        }
+        Ok(())
+    }
+}
+
+/// Module `spec` of a folder set: `DIR/NAME.spv`, checked, or missing.
+fn from_folder(spec: &ModuleSpec, dir: &Path) -> Result<Origin, String> {
+    let path = dir.join(format!("{}.spv", spec.name));
+    if path.exists() {
+        Ok(Origin::Disk(Arc::new(load(spec, &path)?)))
+    } else {
+        Ok(Origin::Missing(path))
+    }
+}
+
+fn target(word: &str) -> Result<Target, String> {
+    match word.to_ascii_lowercase().as_str() {
+        "rust" => return Ok(Target::Language(Language::Rust)),
+        "glsl" => return Ok(Target::Language(Language::Glsl)),
+        _ => {}
+    }
+    let path = PathBuf::from(word);
+    if path.is_dir() {
+        Ok(Target::Folder(path))
+    } else if path.is_file() {
+        Ok(Target::File(path))
+    } else if word.ends_with(".spv") || word.contains('/') {
+        Err(format!("{word}: no such file or folder"))
+    } else {
+        Err(format!("unknown language {word:?} (expected rust, glsl, a folder of modules or a .spv file)"))
+    }
+}
+
+fn parse_stage(word: &str) -> Option<Stage> {
+    let normalized = word.to_ascii_lowercase().replace('-', "_");
+    Stage::ALL.into_iter().find(|s| s.name() == normalized)
+}
+
+impl ShaderSet {
+    fn apply(&mut self, key: &str, value: &str) -> Result<(), String> {
+        let target = target(value)?;
+        let module = MODULES.iter().find(|m| m.name == key);
+        match (parse_stage(key), &target, module) {
+            (Some(stage), Target::File(_), None) => {
+                let names: Vec<_> = MODULES.iter().filter(|m| m.stage == stage).map(|m| m.name).collect();
+                Err(format!("{key}={value}: the {key} stage has several modules; name one ({})", names.join(", ")))
+            }
+            (_, Target::File(_), Some(m)) => self.set_where(&target, |s| s.name == m.name),
+            (Some(stage), _, _) => self.set_where(&target, |s| s.stage == stage),
+            (None, _, Some(m)) => self.set_where(&target, |s| s.name == m.name),
+            (None, _, None) => {
+                let stages: Vec<_> = Stage::ALL.iter().map(|s| s.name()).collect();
+                Err(format!("unknown stage {key:?} (expected one of {}, or a module name)", stages.join(", ")))
+            }
+        }
+    }
+}
+
+impl FromStr for ShaderSet {
+    type Err = Error;
+
+    fn from_str(text: &str) -> Result<Self> {
+        let fail = |message: String| Error::Input(format!("shader set {text:?}: {message}"));
+        let mut parts = text.split(',').map(str::trim);
+        let mut set = match target(parts.next().unwrap_or_default()).map_err(fail)? {
+            Target::Language(language) => ShaderSet::uniform(language),
+            Target::Folder(dir) => {
+                let mut set = ShaderSet::uniform(Language::Rust);
+                set.set_where(&Target::Folder(dir), |_| true).map_err(fail)?;
+                set
+            }
+            Target::File(file) => {
+                return Err(fail(format!(
+                    "{}: a base set is rust, glsl or a folder; name the module of a file (MODULE=FILE.spv)",
+                    file.display()
+                )))
+            }
+        };
+        for part in parts {
+            let (key, value) = part
+                .split_once('=')
+                .ok_or_else(|| fail(format!("{part:?} is not STAGE=LANGUAGE (e.g. intersection=glsl)")))?;
+            set.apply(key.trim(), value.trim()).map_err(fail)?;
+        }
+        if set.from_disk() {
+            let parts: Vec<&str> = text.split(',').map(str::trim).collect();
+            set.text = Some(parts.join(","));
+        }
+        Ok(set)
+    }
+}
+
+/// Several sets, comma-separated, where a `KEY=VALUE` item changes the set before it:
+/// "rust,glsl,rust,intersection=glsl" is rust, glsl and a mix.
+pub fn parse_sets(text: &str) -> Result<Vec<ShaderSet>> {
+    let mut groups: Vec<String> = Vec::new();
+    for item in text.split(',').map(str::trim) {
+        match groups.last_mut() {
+            Some(group) if item.contains('=') => {
+                group.push(',');
+                group.push_str(item);
+            }
+            _ => groups.push(item.to_string()),
+        }
+    }
+    groups.iter().map(|g| g.parse()).collect()
+}
+
+/// A built-in set in the shortest form that parses to it (stage overrides in stage order, then
+/// single modules); a set with modules from disk as it was written.
+impl fmt::Display for ShaderSet {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if let Some(text) = &self.text {
+            return f.write_str(text);
+        }
+        let base = self.language(Stage::Raygen).unwrap_or(Language::Rust);
+        f.write_str(base.name())?;
+        for stage in Stage::ALL {
+            match self.language(stage) {
+                Some(language) if language == base => {}
+                Some(language) => write!(f, ",{}={}", stage.name(), language.name())?,
+                None => {
+                    for (spec, origin) in MODULES.iter().zip(&self.origins).filter(|(m, _)| m.stage == stage) {
+                        match origin {
+                            Origin::Builtin(language) if *language != base => {
+                                write!(f, ",{}={}", spec.name, language.name())?
+                            }
+                            _ => {}
+                        }
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn set_lists_attach_stage_overrides_to_the_set_before() {
+        let sets = super::parse_sets("rust, glsl,rust,intersection=glsl,miss=glsl").unwrap();
+        let names: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
+        assert_eq!(names, ["rust", "glsl", "rust,miss=glsl,intersection=glsl"]); // stage order
+        assert!(super::parse_sets("intersection=glsl").is_err(), "an override needs a set before it");
+    }
+
+    #[test]
+    fn parses_plain_and_mixed_sets() {
+        let mixed: ShaderSet = "rust,intersection=glsl".parse().unwrap();
+        assert_eq!(mixed.language(Stage::Intersection), Some(Language::Glsl));
+        assert_eq!(mixed.language(Stage::ClosestHit), Some(Language::Rust));
+        assert_eq!(mixed.to_string(), "rust,intersection=glsl");
+        assert_eq!("GLSL".parse::<ShaderSet>().unwrap(), ShaderSet::uniform(Language::Glsl));
+        assert_eq!("glsl,closest-hit=rust".parse::<ShaderSet>().unwrap().to_string(), "glsl,closest_hit=rust");
+        let one: ShaderSet = "rust,sphere_intersection=glsl".parse().unwrap();
+        assert_eq!(one.language(Stage::Intersection), None, "one module of the stage differs");
+        assert_eq!(one.to_string(), "rust,sphere_intersection=glsl");
+        assert_eq!(one.to_string().parse::<ShaderSet>().unwrap(), one);
+    }
+
+    #[test]
+    fn rejects_unknown_languages_and_stages() {
+        let e = "hlsl".parse::<ShaderSet>().unwrap_err().to_string();
+        assert!(e.contains("unknown language \"hlsl\""), "{e}");
+        let e = "rust,anyhit=glsl".parse::<ShaderSet>().unwrap_err().to_string();
+        assert!(e.contains("unknown stage \"anyhit\""), "{e}");
+        let e = "rust,glsl".parse::<ShaderSet>().unwrap_err().to_string();
+        assert!(e.contains("STAGE=LANGUAGE"), "{e}");
+        let e = "rust,raygen=no/such/raygen.spv".parse::<ShaderSet>().unwrap_err().to_string();
+        assert!(e.contains("no/such/raygen.spv: no such file or folder"), "{e}");
+    }
+}

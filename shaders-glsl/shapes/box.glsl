@@ -1,0 +1,64 @@
+// Twin of twinray_shared::shapes::boxes: NaN-safe slab test (pbrt-v3 after Ize 2013) of the box with
+// half extents a.xyz, t_far widened by 1 + 2 gamma_3, every min/max an explicit comparison.
+#ifndef TWINRAY_BOX_GLSL
+#define TWINRAY_BOX_GLSL
+#include "twinray_layout.glsl"
+
+struct Slabs {
+    float near;
+    float far;
+    vec3 near_axis;
+    vec3 far_axis;
+    bool empty;
+};
+
+Slabs slab(Slabs s, float o, float d, float h, vec3 unit) {
+    if (d == 0.0) {
+        s.empty = s.empty || o < -h || o > h;
+        return s;
+    }
+    float inv = 1.0 / d;
+    float a = (-h - o) * inv;
+    float b = (h - o) * inv;
+    float t0 = a <= b ? a : b;
+    float t1 = a <= b ? b : a;
+    t1 = t1 * (1.0 + 2.0 * BOX_GAMMA_3);
+    float sign_d = d > 0.0 ? 1.0 : -1.0;
+    Slabs next = s;
+    if (t0 > s.near) {
+        next.near = t0;
+        next.near_axis = unit * -sign_d;
+    }
+    if (t1 < s.far) {
+        next.far = t1;
+        next.far_axis = unit * sign_d;
+    }
+    next.empty = s.empty || next.near > next.far;
+    return next;
+}
+
+bool box_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
+    vec4 h = primitive.a;
+    const float MAX = 3.40282347e38;
+    Slabs s = Slabs(-MAX, MAX, vec3(0.0), vec3(0.0), false);
+    s = slab(s, origin.x, direction.x, h.x, vec3(1.0, 0.0, 0.0));
+    s = slab(s, origin.y, direction.y, h.y, vec3(0.0, 1.0, 0.0));
+    s = slab(s, origin.z, direction.z, h.z, vec3(0.0, 0.0, 1.0));
+    t = 0.0;
+    n = vec3(0.0);
+    if (s.empty) {
+        return false;
+    }
+    if (s.near >= t_min && s.near <= t_max) {
+        t = s.near;
+        n = s.near_axis;
+        return true;
+    }
+    if (s.far >= t_min && s.far <= t_max) {
+        t = s.far;
+        n = s.far_axis;
+        return true;
+    }
+    return false;
+}
+#endif

@@ -1,0 +1,25 @@
+// Twin of twinray_shared::shapes::plane: rectangles and disks in the plane y = 0 of object space.
+#ifndef TWINRAY_PLANE_GLSL
+#define TWINRAY_PLANE_GLSL
+#include "twinray_layout.glsl"
+
+// A ray parallel to the plane never meets it: no division by zero.
+bool plane_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
+                     out vec3 n) {
+    t = 0.0;
+    n = vec3(0.0, 1.0, 0.0);
+    if (direction.y == 0.0) {
+        return false;
+    }
+    t = -origin.y / direction.y;
+    if (!(t >= t_min && t <= t_max)) {
+        return false;
+    }
+    vec3 p = origin + direction * t;
+    vec4 a = primitive.a;
+    if (primitive.b.x == PLANE_DISK) {
+        return p.x * p.x + p.z * p.z <= a.x * a.x;
+    }
+    return abs(p.x) <= a.x && abs(p.z) <= a.y;
+}
+#endif

@@ -1,0 +1,115 @@
+//! Axis-aligned box centred at the object's origin with half extents `Primitive::a.xyz`: the
+//! slab test of pbrt-v3 (after Ize 2013) with t_far widened by 1 + 2 gamma_3. NaN-safe: an
+//! axis the ray is parallel to is decided by position, never by 0 * inf, and every min/max is
+//! an explicit comparison (the GPU's FMin/FMax are undefined for NaN).
+
+use crate::layout::Primitive;
+use crate::surface::SurfaceHit;
+use glam::Vec3;
+
+/// gamma_3 = 3 eps / (1 - 3 eps), eps = 2^-24 (pbrt's bound on three rounded operations).
+pub const GAMMA_3: f32 = 3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8);
+
+/// Slab interval so far, with the axis that set each end.
+#[derive(Clone, Copy)]
+struct Slabs {
+    near: f32,
+    far: f32,
+    near_axis: Vec3,
+    far_axis: Vec3,
+    empty: bool,
+}
+
+/// Narrows `s` by the slab |x| <= h of one axis (`unit` is that axis).
+fn slab(s: Slabs, o: f32, d: f32, h: f32, unit: Vec3) -> Slabs {
+    if d == 0.0 {
+        let outside = o < -h || o > h;
+        return Slabs { empty: s.empty || outside, ..s };
+    }
+    let inv = 1.0 / d;
+    let a = (-h - o) * inv;
+    let b = (h - o) * inv;
+    let (t0, t1) = if a <= b { (a, b) } else { (b, a) };
+    let t1 = t1 * (1.0 + 2.0 * GAMMA_3);
+    let sign = if d > 0.0 { 1.0 } else { -1.0 };
+    let mut next = s;
+    if t0 > s.near {
+        next.near = t0;
+        next.near_axis = unit * -sign;
+    }
+    if t1 < s.far {
+        next.far = t1;
+        next.far_axis = unit * sign;
+    }
+    next.empty = s.empty || next.near > next.far;
+    next
+}
+
+/// The entry point (or the exit, for a ray starting inside) within `[t_min, t_max]`.
+pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
+    let h = primitive.a;
+    let start = Slabs { near: -f32::MAX, far: f32::MAX, near_axis: Vec3::ZERO, far_axis: Vec3::ZERO, empty: false };
+    let s = slab(start, origin.x, direction.x, h.x, Vec3::X);
+    let s = slab(s, origin.y, direction.y, h.y, Vec3::Y);
+    let s = slab(s, origin.z, direction.z, h.z, Vec3::Z);
+    if s.empty {
+        None
+    } else if s.near >= t_min && s.near <= t_max {
+        Some(SurfaceHit { t: s.near, normal: s.near_axis })
+    } else if s.far >= t_min && s.far <= t_max {
+        Some(SurfaceHit { t: s.far, normal: s.far_axis })
+    } else {
+        None
+    }
+}
+
+/// The box's scene kind: an axis-aligned box centred at the origin.
+#[cfg(not(target_arch = "spirv"))]
+pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
+    kinds: &[super::spec::ShapeKind {
+        name: "box",
+        about: "an axis-aligned box; `size` is its extent along x, y and z",
+        params: &[super::spec::Param::positive_each("size", super::spec::ParamType::Triple)],
+        check: super::spec::no_check,
+        relations: "",
+        count: super::spec::one,
+        primitives: |v| {
+            let half = Vec3::from(v.triple("size")) / 2.0;
+            super::spec::single(half.extend(0.0), half)
+        },
+    }],
+    glsl_constants: &[("BOX_GAMMA_3", GAMMA_3)],
+};
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use glam::Vec4;
+
+    fn unit_box() -> Primitive {
+        Primitive { a: Vec4::new(1.0, 2.0, 3.0, 0.0), b: Vec4::ZERO, tint: Vec4::ONE }
+    }
+
+    #[test]
+    fn enters_through_the_facing_side() {
+        let hit = intersect(Vec3::new(-5.0, 0.5, 0.5), Vec3::X, &unit_box(), 0.0, 100.0).unwrap();
+        assert_eq!((hit.t, hit.normal), (4.0, -Vec3::X));
+        let inside = intersect(Vec3::ZERO, Vec3::Y, &unit_box(), 0.0, 100.0).unwrap();
+        assert_eq!((inside.t, inside.normal), (2.0 * (1.0 + 2.0 * GAMMA_3), Vec3::Y));
+    }
+
+    /// A ray lying in a face plane (d_i = 0, o_i = +-h_i) gives 0 * inf = NaN in the textbook
+    /// slab test; here it hits (the face is inclusive) and never returns NaN.
+    #[test]
+    fn rays_in_a_face_plane_are_decided_without_nan() {
+        let hit = intersect(Vec3::new(-5.0, 2.0, 0.0), Vec3::X, &unit_box(), 0.0, 100.0).unwrap();
+        assert_eq!(hit.t, 4.0);
+        assert!(intersect(Vec3::new(-5.0, 2.0001, 0.0), Vec3::X, &unit_box(), 0.0, 100.0).is_none());
+    }
+
+    #[test]
+    fn rays_leaving_a_face_miss() {
+        let p = crate::offset::offset_ray(Vec3::new(1.0, 0.3, 0.3), Vec3::X);
+        assert!(intersect(p, Vec3::new(1.0, 0.5, 0.0).normalize(), &unit_box(), 0.0, 100.0).is_none());
+    }
+}
