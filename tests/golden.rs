@@ -1,6 +1,7 @@
 //! Golden images: every built-in scene rendered by each shader set at the test size, against
-//! the committed PNGs in tests/golden/. Refreshed only by `cargo xtask golden`, which sets
-//! TWINRAY_REFRESH_GOLDEN=1; review the new images with git diff before committing them.
+//! the committed PNGs in tests/golden/. Refreshed only by `cargo xtask golden [SCENES]`, which
+//! sets TWINRAY_REFRESH_GOLDEN=1 (and TWINRAY_GOLDEN_SCENES to the scenes named, comma-separated;
+//! empty is all); review the new images with git diff before committing them.
 //!
 //! Tolerance: the scene's parity tolerance on colour, which covers a different Mesa or LLVM
 //! build rounding a few pixels differently; a changed shader fails it.
@@ -12,8 +13,14 @@ use twinray_tests::{builtin_scenes, render_scene, repo_root, validated_context, 
 fn check_goldens(set: &str) {
     let ctx = validated_context();
     let refresh = std::env::var_os("TWINRAY_REFRESH_GOLDEN").is_some();
+    let only = std::env::var("TWINRAY_GOLDEN_SCENES").unwrap_or_default();
+    let only: Vec<&str> = only.split(',').filter(|s| !s.is_empty()).collect();
+    let scenes = builtin_scenes();
+    for name in &only {
+        assert!(scenes.iter().any(|s| s.name() == *name), "TWINRAY_GOLDEN_SCENES names no built-in scene {name:?}");
+    }
     let mut failures = Vec::new();
-    for scene in builtin_scenes() {
+    for scene in scenes.into_iter().filter(|s| only.is_empty() || only.contains(&s.name())) {
         let out = render_scene(&ctx, &scene, set);
         let path = repo_root().join(format!("tests/golden/{}-{set}.png", scene.name()));
         if refresh {

@@ -55,7 +55,7 @@ bool sphere_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_
     return true;
 }
 
-// Twin of sphere::naive_hit: the textbook form, kept on purpose (it cancels for distant spheres).
+// Twin of sphere::naive_intersect: the textbook form, kept on purpose (it cancels for distant spheres).
 bool sphere_naive_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
                       out vec3 n) {
     vec4 s = primitive.a;

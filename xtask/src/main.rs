@@ -1,9 +1,11 @@
 //! `cargo xtask <task>`: set-up, shader builds, golden images, the demo and CI.
 
 mod bundle;
+mod new_shape;
 mod process;
 mod setup;
 mod shaders;
+mod watch;
 
 use anyhow::Result;
 use clap::{Parser, Subcommand};
@@ -33,8 +35,34 @@ enum Task {
         #[arg(long)]
         check: bool,
     },
-    /// Re-render the golden images of tests/golden/ from the current shaders.
-    Golden,
+    /// Re-render the golden images of tests/golden/ from the current shaders: of every built-in
+    /// scene, or only of the scenes named.
+    Golden {
+        /// Built-in scene names [default: all].
+        scenes: Vec<String>,
+    },
+    /// Scaffold a procedural shape in both languages (shared math with a placeholder robust
+    /// intersection and CPU tests, its registry line, the GLSL twin, a built-in scene), build
+    /// the shaders and compare its scene's renders with both sets.
+    NewShape {
+        /// The shape's name: lowercase letters, digits and underscores (e.g. capsule).
+        name: String,
+    },
+    /// Rebuild a shader set on every save under shaders-rs/ or shaders-glsl/ and compare the
+    /// fresh Rust and GLSL modules on a scene, printing the verdict and the time from the save.
+    Watch {
+        /// Scene file or built-in name [default: twinray's default scene].
+        scene: Option<String>,
+        /// How often to look for changes, in milliseconds.
+        #[arg(long, default_value_t = 200)]
+        poll_ms: u64,
+        /// Stop after this many rebuilds [default: run until interrupted].
+        #[arg(long)]
+        changes: Option<u32>,
+        /// More `twinray compare` arguments (after --), e.g. -- --width 1024 --height 768.
+        #[arg(last = true)]
+        compare_args: Vec<String>,
+    },
     /// Render the default scene with both shader sets and print the comparison.
     Demo,
     /// What CI runs: setup, fmt check, clippy (warnings denied), shaders --check, all tests.
@@ -52,15 +80,24 @@ fn main() -> Result<()> {
     match Cli::parse().task {
         Task::Setup { vulkan_only } => setup::run(if vulkan_only { Scope::Vulkan } else { Scope::Full }),
         Task::Shaders { check } => shaders::run(check),
-        Task::Golden => golden(),
+        Task::Golden { scenes } => golden(&scenes),
+        Task::NewShape { name } => new_shape::run(&name),
+        Task::Watch { scene, poll_ms, changes, compare_args } => watch::run(&watch::WatchArgs {
+            scene,
+            poll: std::time::Duration::from_millis(poll_ms),
+            changes,
+            compare_args,
+        }),
         Task::Demo => demo(),
         Task::Ci => ci(),
         Task::Bundle { out } => bundle::run_bundle(&repo_root().join(out)),
     }
 }
 
-fn golden() -> Result<()> {
-    cargo(&["test", "--release", "-p", "twinray-tests", "--test", "golden"], &[("TWINRAY_REFRESH_GOLDEN", "1")])?;
+fn golden(scenes: &[String]) -> Result<()> {
+    let only = scenes.join(",");
+    let env = [("TWINRAY_REFRESH_GOLDEN", "1"), ("TWINRAY_GOLDEN_SCENES", only.as_str())];
+    cargo(&["test", "--release", "-p", "twinray-tests", "--test", "golden"], &env)?;
     println!("golden images rewritten in tests/golden/; review them with git diff before committing");
     Ok(())
 }

@@ -27,7 +27,10 @@ pub fn output(command: &mut Command) -> Result<String> {
     let line = format!("{command:?}");
     let out = command.output().with_context(|| format!("starting {line}"))?;
     if !out.status.success() {
-        bail!("{line} failed with {}: {}", out.status, String::from_utf8_lossy(&out.stderr).trim());
+        // Both streams: glslang reports errors on stdout, cargo and rustc on stderr.
+        let said =
+            format!("{}\n{}", String::from_utf8_lossy(&out.stdout).trim(), String::from_utf8_lossy(&out.stderr).trim());
+        bail!("{line} failed with {}:\n{}", out.status, said.trim());
     }
     Ok(String::from_utf8_lossy(&out.stdout).into_owned())
 }

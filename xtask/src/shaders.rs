@@ -3,7 +3,7 @@
 //! point, SPIR-V version and bindings the host expects, and installs them in `spirv/` (or, with
 //! `--check`, fails if the committed modules differ).
 
-use crate::process::{self, have, output, repo_root};
+use crate::process::{self, have, repo_root};
 use crate::setup::NIGHTLY;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -16,26 +16,16 @@ const SCENE_FORMAT: &str = "docs/scene-format.md";
 
 pub fn run(check: bool) -> Result<()> {
     let root = repo_root();
-    for tool in ["glslangValidator", "spirv-val", "spirv-opt"] {
-        if !have(tool) {
-            bail!("{tool} not found: run `cargo xtask setup` (Debian packages glslang-tools, spirv-tools)");
-        }
-    }
+    require_tools()?;
     sync_generated(&root, check)?;
     let scratch = root.join("target/xtask-shaders");
     for language in Language::ALL {
-        let dir = scratch.join(language.name());
-        if dir.exists() {
-            std::fs::remove_dir_all(&dir)?;
-        }
-        std::fs::create_dir_all(&dir)?;
+        build_set(&root, language, &scratch.join(language.name()), Output::Shown)?;
     }
-    build_rust(&root, &scratch.join("rust"))?;
-    build_glsl(&root, &scratch.join("glsl"))?;
     let mut stale = Vec::new();
     println!("{:<28} {:>12} {:>12} {:>12} {:>12}", "module", "rust bytes", "glsl bytes", "rust instrs", "glsl instrs");
     for spec in MODULES {
-        let [rust, glsl] = Language::ALL.map(|language| check_module(&scratch, spec, language));
+        let [rust, glsl] = Language::ALL.map(|language| read_module(&scratch.join(language.name()), spec));
         let ((rust, rust_bytes), (glsl, glsl_bytes)) = (rust?, glsl?);
         if rust.bindings != glsl.bindings {
             bail!("{}: Rust binds {:?} but GLSL binds {:?}", spec.name, rust.bindings, glsl.bindings);
@@ -67,6 +57,53 @@ pub fn run(check: bool) -> Result<()> {
         if check { "up to date" } else { "installed in spirv/" }
     );
     Ok(())
+}
+
+/// Whether the build tools' own output is shown, or kept and shown only when they fail.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Output {
+    Shown,
+    OnFailure,
+}
+
+/// The tools every shader build needs.
+pub fn require_tools() -> Result<()> {
+    for tool in ["glslangValidator", "spirv-val", "spirv-opt"] {
+        if !have(tool) {
+            bail!("{tool} not found: run `cargo xtask setup` (Debian packages glslang-tools, spirv-tools)");
+        }
+    }
+    Ok(())
+}
+
+/// Builds every module of `language` into `dir` (emptied first) as `NAME.spv`, validates each
+/// with spirv-val and checks what it declares.
+pub fn build_set(root: &Path, language: Language, dir: &Path, output: Output) -> Result<()> {
+    if dir.exists() {
+        std::fs::remove_dir_all(dir)?;
+    }
+    std::fs::create_dir_all(dir)?;
+    match language {
+        Language::Rust => build_rust(root, dir, output)?,
+        Language::Glsl => build_glsl(root, dir, output)?,
+    }
+    for spec in MODULES {
+        let path = dir.join(format!("{}.spv", spec.name));
+        let label = format!("{} {}", language.name(), spec.name);
+        process::output(Command::new("spirv-val").args(["--target-env", "vulkan1.1spv1.4"]).arg(&path))
+            .with_context(|| format!("spirv-val rejected {label}"))?;
+        let (info, _) = read_module(dir, spec)?;
+        spec.check_declarations(&info, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    }
+    Ok(())
+}
+
+/// What a built module declares, and its size in bytes.
+fn read_module(dir: &Path, spec: &ModuleSpec) -> Result<(ModuleInfo, usize)> {
+    let path = dir.join(format!("{}.spv", spec.name));
+    let bytes = std::fs::read(&path).with_context(|| format!("reading {}", path.display()))?;
+    let info = spirv_info::parse(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok((info, bytes.len()))
 }
 
 /// Committed `.spv` files that no longer belong to a module of the catalog.
@@ -128,11 +165,14 @@ fn nightly(program: &str) -> Command {
     command
 }
 
-fn build_rust(root: &Path, out: &Path) -> Result<()> {
+fn build_rust(root: &Path, out: &Path, output: Output) -> Result<()> {
     let cache = cache_dir();
     let target = cache.join("builder-target");
-    println!("shaders: building the rust-gpu builder (first time about 9 minutes; cached in {})", target.display());
-    process::run(
+    if !target.join("release/twinray-shader-builder").exists() {
+        println!("shaders: building the rust-gpu builder (about 9 minutes, once; cached in {})", target.display());
+    }
+    run_tool(
+        output,
         nightly("cargo")
             .args(["build", "--release", "--manifest-path"])
             .arg(root.join("shaders-rs/builder/Cargo.toml"))
@@ -140,7 +180,8 @@ fn build_rust(root: &Path, out: &Path) -> Result<()> {
     )?;
     // spirv-builder looks for librustc_codegen_spirv.so on the library path.
     let deps = target.join("release");
-    process::run(
+    run_tool(
+        output,
         nightly(&target.join("release/twinray-shader-builder").to_string_lossy())
             .arg(root.join("shaders-rs/shaders"))
             .arg(out)
@@ -167,7 +208,7 @@ fn strip_debug_info(dir: &Path) -> Result<()> {
 /// Compiles every GLSL module; a shape's intersection stage is the few lines of
 /// `ModuleSpec::glsl_wrapper`, written beside the output, with `shaders-glsl/` on the include
 /// path.
-fn build_glsl(root: &Path, out: &Path) -> Result<()> {
+fn build_glsl(root: &Path, out: &Path, output: Output) -> Result<()> {
     let include = root.join("shaders-glsl");
     let wrappers = out.join("wrappers");
     std::fs::create_dir_all(&wrappers)?;
@@ -180,7 +221,8 @@ fn build_glsl(root: &Path, out: &Path) -> Result<()> {
             }
             None => include.join(spec.glsl_file()),
         };
-        process::run(
+        run_tool(
+            output,
             Command::new("glslangValidator")
                 .args(["-V", "--target-env", "spirv1.4", "-o"])
                 .arg(out.join(format!("{}.spv", spec.name)))
@@ -192,14 +234,9 @@ fn build_glsl(root: &Path, out: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Validates one built module and checks what it declares; returns what it declares and its size.
-fn check_module(scratch: &Path, spec: &ModuleSpec, language: Language) -> Result<(ModuleInfo, usize)> {
-    let path = scratch.join(language.name()).join(format!("{}.spv", spec.name));
-    let label = format!("{} {}", language.name(), spec.name);
-    output(Command::new("spirv-val").args(["--target-env", "vulkan1.1spv1.4"]).arg(&path))
-        .with_context(|| format!("spirv-val rejected {label}"))?;
-    let bytes = std::fs::read(&path).with_context(|| format!("{label}: reading {}", path.display()))?;
-    let info = spirv_info::parse(&bytes).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-    spec.check_declarations(&info, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
-    Ok((info, bytes.len()))
+fn run_tool(output: Output, command: &mut Command) -> Result<()> {
+    match output {
+        Output::Shown => process::run(command),
+        Output::OnFailure => process::output(command).map(|_| ()),
+    }
 }

@@ -255,9 +255,9 @@ fn describe_entries(info: &ModuleInfo) -> String {
     let list: Vec<String> = info
         .entry_points
         .iter()
-        .map(|(model, name)| {
-            let stage = Stage::ALL.iter().find(|s| s.execution_model() == *model).map_or("other", |s| s.name());
-            format!("a {stage} entry point {name:?}")
+        .map(|(model, name)| match Stage::ALL.iter().find(|s| s.execution_model() == *model) {
+            Some(stage) => format!("a {} entry point {name:?}", stage.name()),
+            None => format!("an entry point {name:?} of execution model {model}"),
         })
         .collect();
     format!("it has {}", list.join(", "))

@@ -1,0 +1,127 @@
+//! Shader sets from disk: a folder of modules or one module file takes the place of the
+//! built-in SPIR-V, and every file is checked before use, with a one-line error naming the file
+//! and what is wrong (exit code 2, nothing written).
+
+mod common;
+
+use common::{assert_bad_input, repo, twinray};
+use std::path::{Path, PathBuf};
+
+/// A copy of the committed GLSL set, as `cargo xtask shaders` leaves a build folder.
+fn glsl_folder(dir: &Path) -> PathBuf {
+    let folder = dir.join("modules");
+    std::fs::create_dir(&folder).unwrap();
+    for entry in std::fs::read_dir(repo().join("spirv/glsl")).unwrap() {
+        let path = entry.unwrap().path();
+        std::fs::copy(&path, folder.join(path.file_name().unwrap())).unwrap();
+    }
+    folder
+}
+
+fn words(path: &Path) -> Vec<u32> {
+    let bytes = std::fs::read(path).unwrap();
+    bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
+}
+
+fn write_words(path: &Path, words: &[u32]) -> String {
+    std::fs::write(path, words.iter().flat_map(|w| w.to_le_bytes()).collect::<Vec<u8>>()).unwrap();
+    path.to_string_lossy().into_owned()
+}
+
+/// The committed raygen module with `edit` applied to each instruction (opcode, operands).
+fn edited_raygen(dir: &Path, name: &str, edit: impl Fn(u32, &mut Vec<u32>) -> bool) -> String {
+    let words = words(&repo().join("spirv/rust/raygen.spv"));
+    let mut out = words[..5].to_vec();
+    let mut at = 5;
+    while at < words.len() {
+        let count = (words[at] >> 16) as usize;
+        let mut instruction = words[at..at + count].to_vec();
+        if edit(words[at] & 0xffff, &mut instruction) {
+            out.extend(instruction);
+        }
+        at += count;
+    }
+    write_words(&dir.join(name), &out)
+}
+
+#[test]
+fn compare_takes_a_folder_of_modules_and_a_single_module_file() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = glsl_folder(dir.path());
+    let folder_arg = folder.to_string_lossy().into_owned();
+    let raygen = repo().join("spirv/glsl/raygen.spv").to_string_lossy().into_owned();
+    let mix = format!("rust,raygen={raygen}");
+    let args = ["--validate", "compare", "--a", &mix, "--b", &folder_arg, "--width", "64", "--height", "48"];
+    let out = twinray(&[&args[..], &["--runs", "1", "--warmup", "0", "--json"]].concat(), dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_str(&stdout).expect("compare --json prints JSON");
+    assert_eq!(json["set_a"], mix.as_str());
+    assert_eq!(json["set_b"], folder_arg.as_str());
+    assert_eq!(json["pass"], true);
+    // The folder holds the GLSL set itself: the two renders agree to the bit with the built-in one.
+    let same = ["compare", "--a", "glsl", "--b", &folder_arg, "--width", "64", "--height", "48", "--runs", "1"];
+    let out = twinray(&[&same[..], &["--warmup", "0", "--json"]].concat(), dir.path());
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    assert_eq!((json["rmse"].as_f64(), json["hit_mismatches"].as_u64()), (Some(0.0), Some(0)));
+}
+
+#[test]
+fn a_folder_without_a_needed_module_is_named() {
+    let dir = tempfile::tempdir().unwrap();
+    let folder = glsl_folder(dir.path());
+    std::fs::remove_file(folder.join("sphere_intersection.spv")).unwrap();
+    let folder_arg = folder.to_string_lossy().into_owned();
+    assert_bad_input(
+        &["compare", "--b", &folder_arg, "--width", "8", "--height", "8"],
+        &["no module sphere_intersection", "sphere_intersection.spv does not exist"],
+    );
+    // A scene without spheres does not need it.
+    let out = twinray(&["render", "box", "--shaders", &folder_arg, "--width", "8", "--height", "8"], dir.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+#[test]
+fn bad_modules_are_refused_with_the_file_and_the_reason() {
+    let dir = tempfile::tempdir().unwrap();
+    let d = dir.path();
+    let text = d.join("text.spv");
+    std::fs::write(&text, "#version 460\nvoid main() {}\n").unwrap();
+    let old = {
+        let mut w = words(&repo().join("spirv/rust/raygen.spv"));
+        w[1] = 0x0001_0300;
+        write_words(&d.join("old.spv"), &w)
+    };
+    // OpEntryPoint is opcode 15; OpDecorate (71) with Binding (33) gets an unknown number.
+    let no_entry = edited_raygen(d, "no-entry.spv", |op, _| op != 15);
+    let unknown_binding = edited_raygen(d, "binding.spv", |op, i| {
+        if op == 71 && i.get(2) == Some(&33) {
+            i[3] = 99;
+        }
+        true
+    });
+    let miss = repo().join("spirv/glsl/miss.spv").to_string_lossy().into_owned();
+    let text = text.to_string_lossy().into_owned();
+    let cases = [
+        (format!("rust,raygen={text}"), vec![text.as_str(), "not a SPIR-V module"]),
+        (format!("rust,raygen={old}"), vec![old.as_str(), "SPIR-V 1.3, expected 1.4"]),
+        (format!("rust,raygen={miss}"), vec![miss.as_str(), "no raygen entry point", "a miss entry point \"main\""]),
+        (format!("glsl,raygen={no_entry}"), vec![no_entry.as_str(), "no raygen entry point", "it has none"]),
+        (format!("rust,raygen={unknown_binding}"), vec![unknown_binding.as_str(), "binding 99"]),
+        (
+            format!("rust,intersection={miss}"),
+            vec!["the intersection stage has several modules", "sphere_intersection"],
+        ),
+        ("rust,raygen=no/such.spv".to_string(), vec!["no/such.spv: no such file or folder"]),
+        (miss.clone(), vec!["a base set is rust, glsl or a folder"]),
+    ];
+    for (set, needles) in &cases {
+        let needles: Vec<&str> = needles.clone();
+        assert_bad_input(&["render", "--shaders", set, "--out", "x.png"], &needles);
+    }
+    // The same check for a bad file inside a folder set.
+    let folder = glsl_folder(d);
+    std::fs::copy(d.join("old.spv"), folder.join("raygen.spv")).unwrap();
+    let folder_arg = folder.to_string_lossy().into_owned();
+    assert_bad_input(&["compare", "--a", &folder_arg], &["raygen.spv", "SPIR-V 1.3, expected 1.4"]);
+}

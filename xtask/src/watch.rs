@@ -1,0 +1,197 @@
+//! `cargo xtask watch [SCENE]`: the edit loop. Builds the host once and both shader sets into
+//! `target/watch/`, then on every save under `shaders-rs/` or `shaders-glsl/` rebuilds only the
+//! set whose sources changed, runs `twinray compare` on the fresh modules from disk, and prints
+//! the verdict with the time from the save to it.
+
+use crate::process::{cargo, repo_root};
+use crate::shaders::{build_set, require_tools, Output};
+use anyhow::{Context, Result};
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use std::time::{Duration, Instant, SystemTime};
+use twinray_shared::catalog::Language;
+
+/// Sources of each set, relative to the repository root.
+const RUST_SOURCES: [&str; 2] = ["shaders-rs/shaders/src", "shaders-rs/shared/src"];
+const GLSL_SOURCES: [&str; 1] = ["shaders-glsl"];
+
+/// Shared files the host or the GLSL include are generated from: a change to them needs
+/// `cargo xtask shaders` and a new host, which this loop does not do.
+const GENERATORS: [&str; 5] = ["layout.rs", "bindings.rs", "catalog.rs", "glsl.rs", "shapes/mod.rs"];
+
+pub struct WatchArgs {
+    pub scene: Option<String>,
+    pub poll: Duration,
+    /// Stop after this many rebuilds (tests); watch until interrupted when `None`.
+    pub changes: Option<u32>,
+    /// More `twinray compare` arguments, after the defaults (`--runs 1 --warmup 0`).
+    pub compare_args: Vec<String>,
+}
+
+pub fn run(args: &WatchArgs) -> Result<()> {
+    let root = repo_root();
+    require_tools()?;
+    println!("watch: building the host (release)");
+    cargo(&["build", "--release", "--quiet", "-p", "twinray"], &[])?;
+    let twinray = target_dir(&root).join("release/twinray");
+    let out = root.join("target/watch");
+    let mut seen = snapshot(&root);
+    for language in Language::ALL {
+        rebuild(&root, &out, language)?;
+    }
+    compare(&twinray, &out, args)?;
+    println!("watch: watching {} and {} (Ctrl-C to stop)", RUST_SOURCES.join(", "), GLSL_SOURCES.join(", "));
+    let mut rebuilds = 0;
+    while args.changes.is_none_or(|n| rebuilds < n) {
+        std::thread::sleep(args.poll);
+        let now = snapshot(&root);
+        let changed = changed_files(&seen, &now);
+        if changed.is_empty() {
+            continue;
+        }
+        seen = now;
+        rebuilds += 1;
+        cycle(&root, &twinray, &out, args, &changed);
+    }
+    Ok(())
+}
+
+/// One save: rebuild what changed, compare, and say how long it took from the save.
+fn cycle(root: &Path, twinray: &Path, out: &Path, args: &WatchArgs, changed: &[(PathBuf, SystemTime)]) {
+    let saved = changed.iter().map(|(_, t)| *t).max().unwrap_or_else(SystemTime::now);
+    let names: Vec<String> = changed.iter().map(|(p, _)| p.display().to_string()).collect();
+    println!("\nwatch: changed {}", names.join(", "));
+    if changed.iter().any(|(p, _)| GENERATORS.iter().any(|g| p.ends_with(g))) {
+        println!("watch: a layout, binding, catalog or registry file changed: run `cargo xtask shaders` and restart");
+    }
+    let start = Instant::now();
+    let mut built = Vec::new();
+    for language in sets_for(changed) {
+        if let Err(e) = rebuild(root, out, language) {
+            println!("watch: the {} set does not build: {e:#}", language.name());
+            return;
+        }
+        built.push(language.name());
+    }
+    let rebuilt = start.elapsed();
+    let compared = Instant::now();
+    if let Err(e) = compare(twinray, out, args) {
+        println!("watch: {e:#}");
+    }
+    let to_verdict = SystemTime::now().duration_since(saved).unwrap_or_default();
+    println!(
+        "watch: save to verdict {:.1} s (rebuilt {} in {:.1} s, compared in {:.1} s)",
+        to_verdict.as_secs_f64(),
+        built.join(" and "),
+        rebuilt.as_secs_f64(),
+        compared.elapsed().as_secs_f64()
+    );
+}
+
+fn rebuild(root: &Path, out: &Path, language: Language) -> Result<()> {
+    let start = Instant::now();
+    build_set(root, language, &out.join(language.name()), Output::OnFailure)?;
+    println!("watch: built the {} set in {:.1} s", language.name(), start.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// `twinray compare` of the two fresh sets; its own output is the verdict. A failed parity
+/// (exit code 1) is a verdict, not an error of the loop.
+fn compare(twinray: &Path, out: &Path, args: &WatchArgs) -> Result<()> {
+    let mut command = Command::new(twinray);
+    command.arg("compare");
+    command.args(args.scene.as_deref());
+    command.arg("--a").arg(out.join("rust")).arg("--b").arg(out.join("glsl"));
+    command.arg("--out-dir").arg(out.join("compare")).args(["--runs", "1", "--warmup", "0"]);
+    command.args(&args.compare_args);
+    let status = command.status().with_context(|| format!("starting {}", twinray.display()))?;
+    if args.compare_args.is_empty() {
+        println!("watch: GPU times above are one cold trace per set; for a ratio, add -- --runs 10 --warmup 2");
+    }
+    match status.code() {
+        Some(0 | 1) => Ok(()),
+        _ => anyhow::bail!("twinray compare failed with {status}"),
+    }
+}
+
+/// Which sets a change rebuilds: the Rust set for `shaders-rs/`, the GLSL set for `shaders-glsl/`.
+fn sets_for(changed: &[(PathBuf, SystemTime)]) -> Vec<Language> {
+    let under = |dirs: &[&str]| changed.iter().any(|(p, _)| dirs.iter().any(|d| p.starts_with(d)));
+    let mut sets = Vec::new();
+    if under(&RUST_SOURCES) {
+        sets.push(Language::Rust);
+    }
+    if under(&GLSL_SOURCES) {
+        sets.push(Language::Glsl);
+    }
+    sets
+}
+
+/// Modification time and size of every file of both sets' sources, by path from the root.
+fn snapshot(root: &Path) -> BTreeMap<PathBuf, (SystemTime, u64)> {
+    let mut files = BTreeMap::new();
+    let mut stack: Vec<PathBuf> = RUST_SOURCES.iter().chain(&GLSL_SOURCES).map(|d| root.join(d)).collect();
+    while let Some(dir) = stack.pop() {
+        let Ok(entries) = std::fs::read_dir(&dir) else { continue };
+        for entry in entries.flatten() {
+            let path = entry.path();
+            let Ok(meta) = entry.metadata() else { continue };
+            if meta.is_dir() {
+                stack.push(path);
+            } else if let (Ok(modified), Ok(relative)) = (meta.modified(), path.strip_prefix(root)) {
+                files.insert(relative.to_path_buf(), (modified, meta.len()));
+            }
+        }
+    }
+    files
+}
+
+/// Files added, changed or removed between two snapshots, with when (removed: now).
+fn changed_files(
+    before: &BTreeMap<PathBuf, (SystemTime, u64)>,
+    after: &BTreeMap<PathBuf, (SystemTime, u64)>,
+) -> Vec<(PathBuf, SystemTime)> {
+    let mut changed: Vec<_> =
+        after.iter().filter(|(p, v)| before.get(*p) != Some(v)).map(|(p, (t, _))| (p.clone(), *t)).collect();
+    changed.extend(before.keys().filter(|p| !after.contains_key(*p)).map(|p| (p.clone(), SystemTime::now())));
+    changed
+}
+
+/// Where cargo puts builds: `CARGO_TARGET_DIR`, or `target/` of the workspace.
+fn target_dir(root: &Path) -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_change_rebuilds_only_the_set_of_its_sources() {
+        let at = |p: &str| (PathBuf::from(p), SystemTime::now());
+        assert_eq!(sets_for(&[at("shaders-rs/shared/src/shapes/sphere.rs")]), [Language::Rust]);
+        assert_eq!(sets_for(&[at("shaders-glsl/shapes/sphere.glsl")]), [Language::Glsl]);
+        let both = [at("shaders-rs/shaders/src/lib.rs"), at("shaders-glsl/raygen.rgen")];
+        assert_eq!(sets_for(&both), [Language::Rust, Language::Glsl]);
+    }
+
+    #[test]
+    fn snapshots_see_edits_additions_and_removals() {
+        let dir = std::env::temp_dir().join(format!("twinray-watch-test-{}", std::process::id()));
+        let glsl = dir.join("shaders-glsl");
+        std::fs::create_dir_all(&glsl).unwrap();
+        std::fs::write(glsl.join("a.glsl"), "x").unwrap();
+        let first = snapshot(&dir);
+        assert!(changed_files(&first, &snapshot(&dir)).is_empty());
+        std::fs::write(glsl.join("a.glsl"), "xy").unwrap();
+        std::fs::write(glsl.join("b.glsl"), "z").unwrap();
+        let second = snapshot(&dir);
+        let names: Vec<_> = changed_files(&first, &second).into_iter().map(|(p, _)| p).collect();
+        assert_eq!(names, [PathBuf::from("shaders-glsl/a.glsl"), PathBuf::from("shaders-glsl/b.glsl")]);
+        std::fs::remove_file(glsl.join("b.glsl")).unwrap();
+        let removed: Vec<_> = changed_files(&second, &snapshot(&dir)).into_iter().map(|(p, _)| p).collect();
+        assert_eq!(removed, [PathBuf::from("shaders-glsl/b.glsl")]);
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
