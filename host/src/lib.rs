@@ -3,17 +3,17 @@
 //! in GPU time.
 //!
 //! The modules are layers, listed here from the bottom up; each imports only from the layers
-//! below it (`docs/architecture.md`, checked by `tests/architecture.rs`):
+//! below it (`docs/architecture.md`, checked by `host/tests/architecture.rs`):
 //!
-//! - [`error`], [`util`]: the error type, statistics and file output;
-//! - [`vk`]: Vulkan objects, each owning its handles, fed plain Vulkan-shaped inputs;
-//! - [`shaders`]: shader sets, their modules (built in, or from disk) and the checks on them;
-//! - [`scene`]: the scene format, its checks and the GPU data and pipeline plan of a scene;
-//! - [`render`]: uploading a scene, building a set's pipeline and tracing it, timed;
-//! - [`reference`]: the f64 reference for shapes and scenes, and converged reference images;
-//! - [`probe`]: probe cases, their generators, judging rays, and the hard-case suite;
-//! - [`compare`]: image differences, verdicts and the report of two sets;
-//! - [`bench`]: speed against error, with tables, plots and HTML.
+//! - [`error`](mod@error), [`util`]: the error type, statistics and file output;
+//! - [`vk`](mod@vk): Vulkan objects, each owning its handles, fed plain Vulkan-shaped inputs;
+//! - [`shaders`](mod@shaders): shader sets, their modules (built in or from disk), checked;
+//! - [`scene`](mod@scene): the scene format, its checks, and a scene's GPU data and pipeline plan;
+//! - [`render`](mod@render): uploading a scene, building a set's pipeline and tracing it, timed;
+//! - [`reference`](mod@reference): the f64 reference of shapes and scenes; converged images;
+//! - [`probe`](mod@probe): probe cases, their generators, judging rays, and the hard-case suite;
+//! - [`compare`](mod@compare): image differences, verdicts and the report of two sets;
+//! - [`bench`](mod@bench): speed against error, with tables, plots and HTML.
 
 pub mod error;
 pub mod util;

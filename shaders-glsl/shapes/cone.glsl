@@ -8,7 +8,7 @@
 #include "surface.glsl"
 
 // One Newton step on the implicit function at the hit point, at most CONE_POLISH_LIMIT * t
-// (see twinray_shared::cone::polish).
+// (see twinray_shared::shapes::cone::polish).
 float cone_polish(vec3 co, vec3 d, float h2, float r2, float t) {
     vec3 cp = co + d * t;
     float f = r2 * cp.y * cp.y - h2 * (cp.x * cp.x + cp.z * cp.z);

@@ -65,7 +65,8 @@ enum Task {
     },
     /// Render the default scene with both shader sets and print the comparison.
     Demo,
-    /// What CI runs: setup, fmt check, clippy (warnings denied), shaders --check, all tests.
+    /// What CI runs: setup, fmt check, clippy and rustdoc (warnings denied), shaders --check,
+    /// all tests.
     Ci,
     /// One folder (and .tar.gz) that runs the whole bench on an NVIDIA machine without
     /// network: the release build, the Vulkan loader and GL dispatch libraries, run.sh.
@@ -119,6 +120,10 @@ fn ci() -> Result<()> {
         )
     })?;
     process::step("clippy", || cargo(&["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"], &[]))?;
+    // The library's public API is documented, and its doc links resolve.
+    process::step("docs", || {
+        cargo(&["doc", "--no-deps", "-p", "twinray", "-p", "twinray-shared"], &[("RUSTDOCFLAGS", "-D warnings")])
+    })?;
     process::step("shaders --check", || shaders::run(true))?;
     process::step("tests", || cargo(&["test", "--workspace", "--release"], &[]))
 }

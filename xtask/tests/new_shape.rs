@@ -133,4 +133,42 @@ fn new_shape_scaffolds_a_shape_that_builds_passes_parity_and_touches_four_files(
     assert!(said.contains(&far_test), "{said}");
     let again = cargo(&["xtask", "new-shape", &name], dir);
     assert!(!again.status.success() && text(&again).contains("already registered"), "{}", text(&again));
+    watch_sees_an_edit_of_the_twin(dir, &name);
+}
+
+/// `cargo xtask watch` on the new scene: after its first verdict, a one-line edit of the GLSL
+/// twin rebuilds the GLSL set only and prints a verdict and the time from the save.
+fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
+    use std::io::{BufRead, BufReader};
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut child = Command::new(cargo)
+        .args(["xtask", "watch", name, "--changes", "1", "--poll-ms", "100"])
+        .current_dir(dir)
+        .env("CARGO_TARGET_DIR", scaffold_target())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::inherit())
+        .spawn()
+        .expect("starting cargo xtask watch");
+    let lines = BufReader::new(child.stdout.take().expect("piped stdout")).lines();
+    let (send, receive) = std::sync::mpsc::channel();
+    std::thread::spawn(move || lines.map_while(Result::ok).for_each(|l| drop(send.send(l))));
+    let wait_for = |needle: &str, seen: &mut Vec<String>| loop {
+        match receive.recv_timeout(std::time::Duration::from_secs(600)) {
+            Ok(line) if line.contains(needle) => return seen.push(line),
+            Ok(line) => seen.push(line),
+            Err(e) => panic!("no {needle:?} from watch ({e}); it said:\n{}", seen.join("\n")),
+        }
+    };
+    let mut seen = Vec::new();
+    wait_for("watch: watching", &mut seen);
+    let twin = dir.join(format!("shaders-glsl/shapes/{name}.glsl"));
+    let text = std::fs::read_to_string(&twin).unwrap();
+    std::fs::write(&twin, text.replace("float radius = primitive.a.x;", "float radius = primitive.a.x; // edited"))
+        .unwrap();
+    wait_for("watch: save to verdict", &mut seen);
+    assert!(child.wait().expect("watch exits").success(), "{}", seen.join("\n"));
+    let after = seen.iter().skip_while(|l| !l.contains("watch: watching")).cloned().collect::<Vec<_>>().join("\n");
+    assert!(after.contains(&format!("watch: changed shaders-glsl/shapes/{name}.glsl")), "{after}");
+    assert!(after.contains("built the glsl set") && !after.contains("built the rust set"), "{after}");
+    assert!(after.contains("PASS: within the scene's parity tolerance"), "{after}");
 }

@@ -12,6 +12,7 @@ fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 
+/// Writes `index.html`: the tables, plots and images of the report, with the command that made it.
 pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str, dir: &Path) -> Result<()> {
     let html = page(report, ratios, command);
     let path = dir.join("index.html");

@@ -4,6 +4,7 @@
 
 use crate::render::to_rgba8;
 
+/// Image error of a render against a reference.
 pub struct Errors {
     pub rmse: f64,
     /// 20 log10(1 / RMSE); infinite for identical images.
@@ -13,6 +14,7 @@ pub struct Errors {
     pub flip_map_rgba: Vec<u8>,
 }
 
+/// RMSE, PSNR and mean FLIP of `test` against `reference` (linear RGB), with the FLIP map.
 pub fn errors(test: &[[f32; 3]], reference: &[[f32; 3]], (width, height): (u32, u32)) -> Errors {
     let rmse = rmse(test, reference);
     let flip_map =

@@ -41,6 +41,7 @@ pub struct Study<'a> {
     pub runs: u32,
 }
 
+/// The sampler study of one soft-shadow scene: each sampler at each shadow sample count.
 pub fn study(ctx: &Arc<Context>, scene: &Scene, s: &Study, progress: &dyn Fn(&str)) -> Result<Vec<SamplerRow>> {
     progress(&format!("{}: shadow reference at {} samples", scene.name(), s.reference_spp));
     let truth = converged(ctx, scene, s.set, s.size, (s.reference_spp, Converge::Shadows), s.cache)?;

@@ -18,8 +18,10 @@ pub fn ratios(report: &BenchReport) -> Vec<(String, u32, f64)> {
     out
 }
 
+/// The columns of `results.csv`.
 pub const CSV_HEADER: &str = "scene,set,spp,width,height,gpu_ms_median,gpu_ms_q1,gpu_ms_q3,runs,primary_rays,shadow_rays,mrays_per_s,rmse,psnr,flip,hit_mismatches,raygen_stack_bytes";
 
+/// `results.csv`: one row per scene, set and sample count.
 pub fn csv(report: &BenchReport) -> String {
     let opt = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
     let mut s = format!("{CSV_HEADER}\n");
@@ -49,8 +51,10 @@ pub fn csv(report: &BenchReport) -> String {
     s
 }
 
+/// The columns of `samplers.csv`.
 pub const SAMPLER_CSV_HEADER: &str = "scene,sampler,shadow_spp,gpu_ms_median,gpu_ms_q1,gpu_ms_q3,shadow_rays,rmse,flip";
 
+/// `samplers.csv`: one row per scene, sampler and shadow sample count.
 pub fn sampler_csv(report: &BenchReport) -> String {
     let mut s = format!("{SAMPLER_CSV_HEADER}\n");
     for r in &report.samplers {
@@ -73,9 +77,11 @@ pub fn sampler_csv(report: &BenchReport) -> String {
     s
 }
 
+/// The columns of `variants.csv`.
 pub const VARIANT_CSV_HEADER: &str =
     "case,variant,formula,rays,decided,false_hits,false_misses,relative_t_p99,gpu_ms_per_million_rays";
 
+/// `variants.csv`: robust against naive intersection per probe case.
 pub fn variant_csv(report: &BenchReport) -> String {
     let mut s = format!("{VARIANT_CSV_HEADER}\n");
     for row in &report.variants {

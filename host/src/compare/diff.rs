@@ -58,6 +58,7 @@ pub fn color_verdict(diff: &ColorDiff, parity: &Parity, pixels: u64) -> Vec<Stri
     failures
 }
 
+/// Colour and hit-id differences of two renders of one size.
 pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDiff {
     let (hit_mismatches, hit_mismatches_off_silhouette) = hit_mismatches(a, b);
     ImageDiff { color: color_diff(&a.rgba, &b.rgba, pixel_threshold), hit_mismatches, hit_mismatches_off_silhouette }

@@ -63,6 +63,7 @@ pub struct Comparison {
     pub report: CompareReport,
 }
 
+/// Renders `scene` with both sets (see `render_sets`) and compares them against its tolerance.
 pub fn compare_sets(
     ctx: &Arc<Context>,
     scene: &Scene,

@@ -10,6 +10,7 @@ use serde::Deserialize;
 use std::path::Path;
 use twinray_shared::layout::ProbeRay;
 
+/// A probe case file, as written (`docs/probe-format.md`).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ProbeFile {
@@ -37,10 +38,13 @@ pub struct Targets {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(untagged)]
 pub enum SceneRef {
+    /// A built-in scene's name, or a path relative to the case file.
     Named(String),
+    /// A scene written in the case file (camera, image and parity may be left out).
     Inline(toml::Table),
 }
 
+/// One explicit ray.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct RayDesc {
@@ -82,6 +86,7 @@ max_hit_mismatches = 0.0
 "#;
 
 impl ProbeCase {
+    /// Reads a case file: its scene, its rays (given and generated) and the reference.
     pub fn load(path: &Path) -> Result<ProbeCase> {
         let source = path.display().to_string();
         let case_error = |message: String| Error::Scene { path: source.clone(), message };

@@ -42,6 +42,7 @@ fn plane_distance() -> f32 {
     2.0
 }
 
+/// A ray generator of a probe case, by `kind`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Generator {

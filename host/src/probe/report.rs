@@ -26,6 +26,7 @@ impl Spread {
     }
 }
 
+/// The accuracy of one probe run against the reference; serialised as `probe --json` prints it.
 #[derive(Clone, Debug, Serialize)]
 pub struct ProbeReport {
     pub case: String,
@@ -56,6 +57,7 @@ fn ulp(x: f32) -> f64 {
     f64::from(f32::from_bits(x.to_bits() + 1) - x)
 }
 
+/// Judges each result against the reference of its ray.
 pub fn evaluate(
     case: &ProbeCase,
     results: &[ProbeResult],

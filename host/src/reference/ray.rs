@@ -7,6 +7,7 @@ use glam::DVec3;
 pub const AMBIGUOUS_ULPS: f64 = 16.0;
 pub(super) const F32_EPS: f64 = 1.0 / 16_777_216.0;
 
+/// A ray of the f64 reference, in the shape's own space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct RefRay {
     pub origin: DVec3,
@@ -22,12 +23,10 @@ pub struct RefRay {
 /// The true answer for one ray.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Verdict {
+    /// No hit in [t_min, t_max].
     Miss,
     /// The first hit in [t_min, t_max] and the outward unit normal there.
-    Hit {
-        t: f64,
-        normal: DVec3,
-    },
+    Hit { t: f64, normal: DVec3 },
     /// Within float noise of a boundary case: either answer is right.
     Ambiguous,
 }

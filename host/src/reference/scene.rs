@@ -17,13 +17,11 @@ pub struct RefObject {
 /// The first hit over all objects, in world space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SceneVerdict {
+    /// No object is hit.
     Miss,
     /// `normal`: world-space unit normal facing the ray's origin.
-    Hit {
-        object: usize,
-        t: f64,
-        normal: DVec3,
-    },
+    Hit { object: usize, t: f64, normal: DVec3 },
+    /// Within float noise of a boundary, or of a tie between objects: either answer is right.
     Ambiguous,
 }
 
@@ -39,6 +37,7 @@ impl RefObject {
     }
 }
 
+/// The f64 reference of every object of a scene.
 pub struct SceneReference {
     pub objects: Vec<RefObject>,
 }

@@ -17,16 +17,25 @@ use twinray_shared::shapes::plane::DISK;
 /// A shape in its own object space, with the meaning of `twinray_shared`'s primitives.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum RefShape {
+    /// Centre and radius.
     Sphere { center: DVec3, radius: f64 },
+    /// In y = 0, half extents along x and z.
     Rectangle { half_x: f64, half_z: f64 },
+    /// In y = 0, about the origin.
     Disk { radius: f64 },
+    /// Axis-aligned, half extents.
     Box { half: DVec3 },
+    /// Capped, about y.
     Cylinder { radius: f64, half_height: f64 },
+    /// Capped, about y, apex at +half_height.
     Cone { radius: f64, half_height: f64 },
+    /// About y: ring radius `major`, tube radius `minor`.
     Torus { major: f64, minor: f64 },
+    /// One triangle of a mesh.
     Triangle { p: [DVec3; 3] },
 }
 
+/// The true answer for `ray` and `shape`.
 pub fn intersect(shape: &RefShape, ray: &RefRay) -> Verdict {
     match *shape {
         RefShape::Sphere { center, radius } => sphere(ray, center, radius),

@@ -6,6 +6,7 @@ use twinray_shared::bindings as b;
 /// `RenderOutput::hit_ids` of a pixel whose first primary ray hit nothing.
 pub const NO_HIT_ID: u64 = u64::MAX;
 
+/// Image size and trace counts of a render.
 #[derive(Clone, Copy, Debug)]
 pub struct RenderOptions {
     pub width: u32,
@@ -46,6 +47,7 @@ pub struct RayCounts {
 }
 
 impl RayCounts {
+    /// Primary and shadow rays together.
     pub fn total(&self) -> u64 {
         self.primary + self.shadow
     }

@@ -71,6 +71,7 @@ pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static s
 }
 
 impl ScenePipeline {
+    /// The pipeline of `plan` with the modules of `set`, ray generation stage `raygen`.
     pub fn new(ctx: &Arc<Context>, set: &ShaderSet, plan: &PipelinePlan, raygen: &'static str) -> Result<Self> {
         let names = plan_modules(plan, raygen);
         let modules = names.iter().map(|name| set.module(name)).collect::<Result<Vec<StageModule>>>()?;
@@ -102,6 +103,7 @@ impl ScenePipeline {
         })
     }
 
+    /// What ray generation keeps across each trace call (see `RtPipeline::raygen_stack_bytes`).
     pub fn raygen_stack_bytes(&self) -> u64 {
         self.rt.raygen_stack_bytes()
     }

@@ -20,6 +20,7 @@ use std::rc::Rc;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
 
+/// Renders `scene` with one set.
 pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderOptions) -> Result<RenderOutput> {
     let mut outputs = render_sets(ctx, scene, std::slice::from_ref(set), opts)?;
     Ok(outputs.remove(0))

@@ -6,12 +6,14 @@ use glam::Vec3;
 
 /// Largest number of primitives one shape may have, and of objects in a scene.
 pub use twinray_shared::shapes::spec::MAX_PRIMITIVES;
+/// Largest number of objects in a scene, counting grids.
 pub const MAX_OBJECTS: usize = 1 << 20;
 /// Largest M (M x M primary samples) and N (N x N shadow samples per rect light).
 pub const MAX_SAMPLES_PER_SIDE: u32 = 16;
 
 /// Largest image side, and largest pixel count, twinray accepts before asking the device.
 pub const MAX_SIDE: u32 = 16384;
+/// Largest pixel count of an image.
 pub const MAX_PIXELS: u64 = 8192 * 8192;
 
 /// Checks an image size against twinray's own limits.

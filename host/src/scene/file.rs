@@ -16,6 +16,7 @@ pub fn kinds() -> [(&'static str, Vec<&'static str>); 4] {
     ]
 }
 
+/// A scene file, as written (`docs/scene-format.md`).
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
@@ -62,6 +63,7 @@ fn yes() -> bool {
     true
 }
 
+/// `[image]`: size, samples and seed.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ImageDesc {
@@ -75,6 +77,7 @@ pub struct ImageDesc {
     pub seed: u32,
 }
 
+/// `[camera]`: where it is, where it looks, and its vertical field of view.
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CameraDesc {
@@ -84,23 +87,19 @@ pub struct CameraDesc {
     pub fov_y_degrees: f32,
 }
 
+/// A material, by `kind`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum MaterialDesc {
-    Diffuse {
-        color: [f32; 3],
-    },
-    Emissive {
-        color: [f32; 3],
-        intensity: f32,
-    },
+    /// Lambert reflection with albedo `color`.
+    Diffuse { color: [f32; 3] },
+    /// Shows `color` x `intensity`; lights nothing.
+    Emissive { color: [f32; 3], intensity: f32 },
     /// Alternating cubes of side `1 / scale` in object space.
-    Checker {
-        colors: [[f32; 3]; 2],
-        scale: f32,
-    },
+    Checker { colors: [[f32; 3]; 2], scale: f32 },
 }
 
+/// A light, by `kind`.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum LightDesc {
@@ -112,6 +111,7 @@ pub enum LightDesc {
         #[serde(default = "yes")]
         shadows: bool,
     },
+    /// A point light, falling off with the square of the distance.
     Point {
         position: [f32; 3],
         color: [f32; 3],
@@ -132,6 +132,7 @@ pub enum LightDesc {
     },
 }
 
+/// One placed shape: a TLAS instance.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
@@ -192,7 +193,9 @@ impl GridDesc {
 #[derive(Clone, Copy, Debug, Deserialize)]
 #[serde(untagged)]
 pub enum Scale {
+    /// The same factor on every axis.
     Uniform(f32),
+    /// One factor per axis.
     PerAxis([f32; 3]),
 }
 
@@ -203,6 +206,7 @@ impl Default for Scale {
 }
 
 impl Scale {
+    /// The factor of each axis.
     pub fn axes(self) -> [f32; 3] {
         match self {
             Scale::Uniform(s) => [s; 3],
@@ -233,6 +237,7 @@ pub enum ShadowSampler {
 }
 
 impl ShadowSampler {
+    /// As the scene file writes it.
     pub fn name(self) -> &'static str {
         match self {
             ShadowSampler::Stratified => "stratified",

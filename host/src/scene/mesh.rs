@@ -22,6 +22,7 @@ struct Polyhedron {
     triangles: Vec<[u32; 3]>,
 }
 
+/// A generated mesh, with flat or smooth normals.
 pub fn builtin(kind: MeshBuiltin, normals: Normals) -> MeshData {
     let p = match kind {
         MeshBuiltin::Box => box_mesh(),

@@ -91,6 +91,7 @@ impl Scene {
         self.file.lights.iter().any(|l| matches!(l, file::LightDesc::Rect { shadows: true, .. }))
     }
 
+    /// The scene's `name`.
     pub fn name(&self) -> &str {
         &self.file.name
     }

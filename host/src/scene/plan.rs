@@ -8,12 +8,10 @@ use twinray_shared::shapes::{Shape, SHAPES};
 /// naive variants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum HitGroup {
+    /// Meshes: the built-in triangle test.
     Triangles,
     /// `SHAPES[shape]`, with its naive variant's intersection stage when `naive`.
-    Procedural {
-        naive: bool,
-        shape: usize,
-    },
+    Procedural { naive: bool, shape: usize },
 }
 
 impl HitGroup {
@@ -40,6 +38,7 @@ impl HitGroup {
         self.shape().and_then(|s| if naive { s.naive_module } else { Some(s.module) })
     }
 
+    /// The closest-hit module of the group.
     pub fn closest_hit_module(self) -> &'static str {
         match self {
             HitGroup::Triangles => "triangle_closest_hit",

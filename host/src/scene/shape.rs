@@ -12,8 +12,10 @@ use twinray_shared::shapes::{self, Shape, SHAPES};
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Formula {
+    /// The robust form (the default).
     #[default]
     Robust,
+    /// The textbook form it replaced.
     Naive,
 }
 
@@ -44,6 +46,7 @@ impl std::fmt::Debug for ProceduralDesc {
     }
 }
 
+/// A mesh shape: exactly one of `builtin` and `file`, and its normals.
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct MeshDesc {
@@ -57,12 +60,17 @@ pub struct MeshDesc {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum MeshBuiltin {
+    /// A unit cube.
     Box,
+    /// A square pyramid, base at y = -0.5, apex at +0.5.
     Pyramid,
+    /// A triangular prism along z.
     Prism,
+    /// An icosahedron of circumradius 0.5.
     Icosahedron,
 }
 
+/// How a mesh's shading normals are made.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Normals {

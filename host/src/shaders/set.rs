@@ -44,6 +44,7 @@ enum Target {
 }
 
 impl ShaderSet {
+    /// Every module from the built-in set of `language`.
     pub fn uniform(language: Language) -> Self {
         ShaderSet { origins: vec![Origin::Builtin(language); MODULES.len()], text: None }
     }

@@ -36,6 +36,7 @@ impl Spread {
         Some(Spread { median: at(0.5), q1: at(0.25), q3: at(0.75), samples: v.len() })
     }
 
+    /// Interquartile range, q3 - q1.
     pub fn iqr(&self) -> f64 {
         self.q3 - self.q1
     }

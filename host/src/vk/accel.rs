@@ -9,6 +9,7 @@ use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
+/// An acceleration structure with its storage buffer and device address.
 pub struct AccelStruct {
     ctx: Arc<Context>,
     pub raw: vk::AccelerationStructureKHR,

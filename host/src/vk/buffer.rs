@@ -7,6 +7,7 @@ use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
+/// A buffer with its memory, freed when dropped.
 pub struct Buffer {
     ctx: Arc<Context>,
     pub raw: vk::Buffer,

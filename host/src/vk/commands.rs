@@ -14,6 +14,7 @@ pub struct OneShot {
 }
 
 impl OneShot {
+    /// A command pool and a fence on the context's queue.
     pub fn new(ctx: &Arc<Context>) -> Result<Self> {
         // The one command buffer is re-recorded for each run(): it must be individually resettable.
         let pool_info = vk::CommandPoolCreateInfo::default()

@@ -42,6 +42,7 @@ pub struct ContextOptions {
     pub device_filter: Option<String>,
 }
 
+/// The Vulkan instance, device, queue, extension loaders and allocator; everything else holds an `Arc` to it.
 pub struct Context {
     pub entry: ash::Entry,
     pub instance: ash::Instance,
@@ -59,6 +60,7 @@ pub struct Context {
 }
 
 impl Context {
+    /// Opens the first capable device (or the one `options` names), with validation as asked.
     pub fn new(options: &ContextOptions) -> Result<Arc<Self>> {
         // SAFETY: loading the system Vulkan loader; its entry points are used as documented.
         let entry = unsafe { ash::Entry::load() }?;

@@ -15,6 +15,7 @@ pub struct DescriptorTargets {
     pub image_binding: u32,
 }
 
+/// A descriptor set of its own pool.
 pub struct DescriptorSet {
     ctx: Arc<Context>,
     pool: vk::DescriptorPool,
@@ -22,6 +23,7 @@ pub struct DescriptorSet {
 }
 
 impl DescriptorSet {
+    /// A set of `layout` writing `targets` (pool sized by `pool_sizes`).
     pub fn new(
         ctx: &Arc<Context>,
         layout: vk::DescriptorSetLayout,

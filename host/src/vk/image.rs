@@ -8,10 +8,12 @@ use gpu_allocator::vulkan::Allocation;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 
+/// Format of the output image: linear RGBA f32, as ray generation writes it.
 pub const FORMAT: vk::Format = vk::Format::R32G32B32A32_SFLOAT;
 /// Bytes per pixel of [`FORMAT`].
 pub const PIXEL_BYTES: u64 = 16;
 
+/// A 2D storage image with its view and memory.
 pub struct StorageImage {
     ctx: Arc<Context>,
     pub raw: vk::Image,
@@ -61,6 +63,7 @@ impl StorageImage {
     }
 }
 
+/// The one colour mip level and layer of an image.
 pub const COLOR_RANGE: vk::ImageSubresourceRange = vk::ImageSubresourceRange {
     aspect_mask: vk::ImageAspectFlags::COLOR,
     base_mip_level: 0,

@@ -40,6 +40,7 @@ pub struct PipelineDesc<'a> {
     pub max_recursion_depth: u32,
 }
 
+/// A ray tracing pipeline with its set and pipeline layouts.
 pub struct RtPipeline {
     ctx: Arc<Context>,
     pub set_layout: vk::DescriptorSetLayout,
@@ -48,6 +49,7 @@ pub struct RtPipeline {
 }
 
 impl RtPipeline {
+    /// Creates the pipeline `desc` describes.
     pub fn new(ctx: &Arc<Context>, desc: &PipelineDesc) -> Result<Self> {
         let bindings: Vec<_> = desc
             .bindings

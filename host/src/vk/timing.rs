@@ -5,6 +5,7 @@ use crate::error::{Result, VkContext};
 use ash::vk;
 use std::sync::Arc;
 
+/// A pool of timestamp queries: a begin and an end per timed trace.
 pub struct Timestamps {
     ctx: Arc<Context>,
     pool: vk::QueryPool,

@@ -5,11 +5,13 @@ use ash::{ext::debug_utils, vk};
 use std::ffi::{c_void, CStr};
 use std::sync::Mutex;
 
+/// The Khronos validation layer.
 pub const LAYER_NAME: &CStr = c"VK_LAYER_KHRONOS_validation";
 
 /// Whether to run with the Khronos validation layer.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Validation {
+    /// No validation layer.
     Off,
     /// Enable it; fail if it is not installed.
     Required,

@@ -104,14 +104,11 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
     kinds: &[super::spec::ShapeKind {
         name: "cone",
         about: "a capped cone about the y axis, base of `radius` at y = -height/2, apex at +height/2",
-        params: &[super::spec::Param::positive("radius"), super::spec::Param::positive("height")],
+        params: super::spec::RADIUS_AND_HEIGHT,
         check: super::spec::no_check,
         relations: "",
         count: super::spec::one,
-        primitives: |v| {
-            let (r, h) = (v.number("radius"), v.number("height"));
-            super::spec::single(glam::Vec4::new(r, h / 2.0, 0.0, 0.0), Vec3::new(r, h / 2.0, r))
-        },
+        primitives: super::spec::radius_and_half_height,
     }],
     glsl_constants: &[("CONE_POLISH_LIMIT", POLISH_LIMIT)],
 };

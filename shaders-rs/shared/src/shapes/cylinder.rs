@@ -109,14 +109,11 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
     kinds: &[super::spec::ShapeKind {
         name: "cylinder",
         about: "a capped cylinder about the y axis",
-        params: &[super::spec::Param::positive("radius"), super::spec::Param::positive("height")],
+        params: super::spec::RADIUS_AND_HEIGHT,
         check: super::spec::no_check,
         relations: "",
         count: super::spec::one,
-        primitives: |v| {
-            let (r, h) = (v.number("radius"), v.number("height"));
-            super::spec::single(glam::Vec4::new(r, h / 2.0, 0.0, 0.0), Vec3::new(r, h / 2.0, r))
-        },
+        primitives: super::spec::radius_and_half_height,
     }],
     glsl_constants: &[],
 };

@@ -243,6 +243,15 @@ pub fn single(a: Vec4, half: Vec3) -> Vec<(Primitive, Aabb)> {
     vec![(Primitive { a, b: Vec4::ZERO, tint: Vec4::ONE }, Aabb::centered(half))]
 }
 
+/// The keys of a shape about the y axis, centred at the origin: `radius` and `height`.
+pub const RADIUS_AND_HEIGHT: &[Param] = &[Param::positive("radius"), Param::positive("height")];
+
+/// The primitive of a shape of [`RADIUS_AND_HEIGHT`]: `a.x` the radius, `a.y` half the height.
+pub fn radius_and_half_height(v: &Values) -> Vec<(Primitive, Aabb)> {
+    let (r, h) = (v.number("radius"), v.number("height"));
+    single(Vec4::new(r, h / 2.0, 0.0, 0.0), Vec3::new(r, h / 2.0, r))
+}
+
 /// What the host needs of a procedural shape beyond its registration line.
 #[derive(Clone, Copy, Debug)]
 pub struct ShapeSpec {
