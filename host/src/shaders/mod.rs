@@ -10,8 +10,3 @@ mod set;
 pub use module::StageModule;
 pub use set::{parse_sets, ShaderSet};
 pub use twinray_shared::catalog::{Language, ModuleSpec, Stage, MODULES};
-
-/// The built-in module `name` in `language`, as committed in `spirv/`.
-pub fn builtin_spirv(language: Language, name: &str) -> Option<&'static [u8]> {
-    builtin::spirv(language, name)
-}
