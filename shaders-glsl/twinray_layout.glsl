@@ -50,6 +50,8 @@
 #define BOX_GAMMA_3 1.7881396e-7
 #define CONE_POLISH_LIMIT 0.1
 #define TORUS_ON_SURFACE 0.001
+#define TORUS_ROOT_TOLERANCE 9.536743e-7
+#define TORUS_SELF_BAND 0.004
 
 // 160 bytes, as twinray_shared::layout::FrameUniform
 struct FrameUniform {

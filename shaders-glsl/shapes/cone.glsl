@@ -9,8 +9,8 @@
 
 // One Newton step on the implicit function at the hit point, at most CONE_POLISH_LIMIT * t
 // (see twinray_shared::shapes::cone::polish).
-float cone_polish(vec3 co, vec3 d, float h2, float r2, float t) {
-    vec3 cp = co + d * t;
+float cone_polish(vec3 o, vec3 apex, vec3 d, float h2, float r2, float t) {
+    vec3 cp = point_at(o, d, t) - apex;
     float f = r2 * cp.y * cp.y - h2 * (cp.x * cp.x + cp.z * cp.z);
     float slope = 2.0 * (r2 * cp.y * d.y - h2 * (cp.x * d.x + cp.z * d.z));
     return abs(f) <= CONE_POLISH_LIMIT * abs(t) * abs(slope) ? t - f / slope : t;
@@ -20,8 +20,8 @@ void cone_side(inout bool found, inout float best_t, inout vec3 best_n, vec3 o, 
                float h2, float r2, bool ok, float t, bool other_ok, float other, float reach2, float t_min,
                float t_max) {
     if (ok && !is_self_root(reach2, t, other_ok, other)) {
-        t = cone_polish(o - apex, d, h2, r2, t);
-        vec3 cp = o + d * t - apex;
+        t = cone_polish(o, apex, d, h2, r2, t);
+        vec3 cp = point_at(o, d, t) - apex;
         float along = -cp.y;
         if (along >= 0.0 && along <= height) {
             closer(found, best_t, best_n, t, vec3(h2 * cp.x, -r2 * cp.y, h2 * cp.z), t_min, t_max);

@@ -1,14 +1,14 @@
 // Twin of twinray_shared::shapes::torus: torus about y (ring radius a.x, tube radius a.y). Scaled to
 // R = 1 with a unit direction, origin shifted onto the bounding sphere of radius R + 2r, the
-// quartic solved there (Inigo Quilez's closed form), each root polished by Newton steps on g.
+// quartic solved there (Inigo Quilez's closed form), each root polished by Newton steps on g
+// and kept only if g says it lies on the surface; then the entry and exit near the two places
+// where the ray passes closest to the ring, from g alone (a thin tube's quartic loses them).
 // The origin moves to the entry point even when it lies behind (see the Rust twin): a ray
 // starting on the torus would otherwise put a root at 0, where the solver divides by k0.
 #ifndef TWINRAY_TORUS_GLSL
 #define TWINRAY_TORUS_GLSL
 #include "twinray_layout.glsl"
 #include "sphere.glsl"
-
-const uint TORUS_POLISH_STEPS = 2u;
 
 void torus_quartic_roots(vec3 o, vec3 d, float r, out bool valid[4], out float roots[4]) {
     for (int i = 0; i < 4; i++) {
@@ -93,50 +93,117 @@ float torus_distance(vec3 p, float r, out vec3 grad) {
     return g - r;
 }
 
-float torus_polish(vec3 o, vec3 d, float r, float s) {
-    for (uint i = 0u; i < TORUS_POLISH_STEPS; i++) {
-        vec3 grad;
-        float g = torus_distance(o + d * s, r, grad);
-        float slope = dot(grad, d);
-        if (abs(slope) > 1.0e-6) {
-            s -= g / slope;
-        }
-    }
-    return s;
+float torus_polish_step(vec3 o, vec3 d, float r, float s) {
+    vec3 grad;
+    float g = torus_distance(o + d * s, r, grad);
+    float slope = dot(grad, d);
+    return abs(slope) > 1.0e-6 ? s - g / slope : s;
 }
 
-// Twin of the Rust Candidate: the nearest root of the quartic solved from `start` (`shift`
-// along the ray from o), polished or not, in [t_min, t_max]; when the ray starts on the surface
-// the root nearest t = 0 is its own origin and is skipped.
-bool torus_best(vec3 o, vec3 d, vec3 start, float r, float shift, float to_t, bool on_surface, bool polish, float t_min,
-                float t_max, out float t, out vec3 n) {
-    t = 0.0;
-    n = vec3(0.0);
+float torus_polish(vec3 o, vec3 d, float r, float s) {
+    return torus_polish_step(o, d, r, torus_polish_step(o, d, r, torus_polish_step(o, d, r, s)));
+}
+
+// One Newton step towards a local minimum of D(s) = (ring - 1)^2 + y^2 - r^2.
+float torus_approach_step(vec3 o, vec3 d, float s) {
+    vec3 p = o + d * s;
+    float ring = sqrt(p.x * p.x + p.z * p.z);
+    if (ring <= 0.0) {
+        return s;
+    }
+    float ring1 = (p.x * d.x + p.z * d.z) / ring;
+    float ring2 = (d.x * d.x + d.z * d.z - ring1 * ring1) / ring;
+    float radial = ring - 1.0;
+    float slope = radial * ring1 + p.y * d.y;
+    float curvature = ring1 * ring1 + radial * ring2 + d.y * d.y;
+    return curvature > 0.0 ? s - slope / curvature : s;
+}
+
+float torus_closest_approach(vec3 o, vec3 d, float s) {
+    return torus_approach_step(o, d, torus_approach_step(o, d, torus_approach_step(o, d, torus_approach_step(o, d, s))));
+}
+
+// Where the ray's projection on the ring's plane crosses the ring (or passes nearest it, or
+// where the ray crosses the plane when it runs along the axis).
+vec2 torus_ring_crossings(vec3 o, vec3 d) {
+    float flat_ = d.x * d.x + d.z * d.z;
+    if (flat_ < 1.0e-6) {
+        return vec2(-o.y * d.y);
+    }
+    float nearest = -(o.x * d.x + o.z * d.z) / flat_;
+    float x = o.x + d.x * nearest;
+    float z = o.z + d.z * nearest;
+    float half_ = sqrt(max((1.0 - x * x - z * z) / flat_, 0.0));
+    return vec2(nearest - half_, nearest + half_);
+}
+
+// Twin of the Rust Candidate.
+struct TorusCandidate {
+    vec3 o;
+    vec3 d;
+    vec3 start;
+    float r;
+    float shift;
+    float to_t;
+    bool on_surface;
+    float t_min;
+    float t_max;
+    bool polish;
+};
+
+// Twin of Candidate::consider: `found`, `t`, `n` hold the best hit so far.
+void torus_consider(TorusCandidate c, bool valid, float guess, inout bool found, inout float t, inout vec3 n) {
+    if (!valid) {
+        return;
+    }
+    float s = c.polish ? torus_polish(c.start, c.d, c.r, guess) : guess;
+    if (c.polish) {
+        vec3 p = c.start + c.d * s;
+        vec3 unused;
+        float g = torus_distance(p, c.r, unused);
+        if (!(abs(g) <= TORUS_ROOT_TOLERANCE * max(length(p), 1.0))) {
+            return;
+        }
+    }
+    s += c.shift;
+    if (c.on_surface && abs(s) <= TORUS_SELF_BAND * c.r) {
+        return;
+    }
+    float ti = s * c.to_t;
+    float limit = found ? t : c.t_max;
+    if (ti >= c.t_min && ti <= limit) {
+        vec3 p = c.o + c.d * s;
+        found = true;
+        t = ti;
+        n = p - normalize(vec3(p.x, 0.0, p.z));
+    }
+}
+
+// Twin of Candidate::consider_approach.
+void torus_consider_approach(TorusCandidate c, float around, inout bool found, inout float t, inout vec3 n) {
+    float s = torus_closest_approach(c.start, c.d, around);
+    vec3 p = c.start + c.d * s;
+    float ring = sqrt(p.x * p.x + p.z * p.z);
+    float dist = sqrt((ring - 1.0) * (ring - 1.0) + p.y * p.y);
+    if (dist >= c.r) {
+        return;
+    }
+    float ring1 = ring > 0.0 ? (p.x * c.d.x + p.z * c.d.z) / ring : 0.0;
+    float ring2 = ring > 0.0 ? (c.d.x * c.d.x + c.d.z * c.d.z - ring1 * ring1) / ring : 0.0;
+    float curvature = max(ring1 * ring1 + (ring - 1.0) * ring2 + c.d.y * c.d.y, 1.0e-12);
+    float half_ = sqrt((c.r - dist) * (c.r + dist) / curvature);
+    torus_consider(c, true, s - half_, found, t, n);
+    torus_consider(c, true, s + half_, found, t, n);
+}
+
+// The nearest of the quartic's roots (solved from `start`) that is a hit.
+void torus_consider_quartic(TorusCandidate c, inout bool found, inout float t, inout vec3 n) {
     bool valid[4];
     float roots[4];
-    torus_quartic_roots(start, d, r, valid, roots);
-    float nearest_abs = 3.40282347e38;
+    torus_quartic_roots(c.start, c.d, c.r, valid, roots);
     for (int i = 0; i < 4; i++) {
-        if (valid[i] && abs(roots[i] + shift) < nearest_abs) {
-            nearest_abs = abs(roots[i] + shift);
-        }
+        torus_consider(c, valid[i], roots[i], found, t, n);
     }
-    bool found = false;
-    for (int i = 0; i < 4; i++) {
-        if (!valid[i] || (on_surface && abs(roots[i] + shift) == nearest_abs)) {
-            continue;
-        }
-        float s = (polish ? torus_polish(start, d, r, roots[i]) : roots[i]) + shift;
-        float ti = s * to_t;
-        float limit = found ? t : t_max;
-        if (ti >= t_min && ti <= limit) {
-            vec3 p = o + d * s;
-            found = true;
-            t = ti;
-            n = p - normalize(vec3(p.x, 0.0, p.z));
-        }
-    }
-    return found;
 }
 
 bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
@@ -155,7 +222,14 @@ bool torus_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_m
     }
     vec3 unused;
     bool on_surface = abs(torus_distance(o, r, unused)) <= TORUS_ON_SURFACE * r;
-    return torus_best(o, d, o + d * near, r, near, big_r / len, on_surface, true, t_min, t_max, t, n);
+    vec3 start = o + d * near;
+    TorusCandidate c = TorusCandidate(o, d, start, r, near, big_r / len, on_surface, t_min, t_max, true);
+    bool found = false;
+    torus_consider_quartic(c, found, t, n);
+    vec2 crossings = torus_ring_crossings(start, d);
+    torus_consider_approach(c, crossings.x, found, t, n);
+    torus_consider_approach(c, crossings.y, found, t, n);
+    return found;
 }
 
 // Twin of torus::naive_intersect: the quartic from the ray's own origin, no shift onto the
@@ -166,6 +240,11 @@ bool torus_naive_intersect(vec3 origin, vec3 direction, Primitive primitive, flo
     float len = length(direction);
     vec3 d = direction / len;
     vec3 o = origin / big_r;
-    return torus_best(o, d, o, primitive.a.y / big_r, 0.0, big_r / len, false, false, t_min, t_max, t, n);
+    t = 0.0;
+    n = vec3(0.0);
+    TorusCandidate c = TorusCandidate(o, d, o, primitive.a.y / big_r, 0.0, big_r / len, false, t_min, t_max, false);
+    bool found = false;
+    torus_consider_quartic(c, found, t, n);
+    return found;
 }
 #endif

@@ -87,6 +87,10 @@ pub struct ProbeArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+    /// Write one CSV row per ray to FILE: origin, direction, t range, the reference's hit, t,
+    /// object and ambiguity, the set's hit, t, object and normal, and the verdict.
+    #[arg(long, value_name = "FILE")]
+    pub rays_out: Option<PathBuf>,
 }
 
 #[derive(Args)]

@@ -12,6 +12,9 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
         let formula = if formula == "naive" { Formula::Naive } else { Formula::Robust };
         case.set_formula(formula);
     }
+    if let Some(path) = &args.rays_out {
+        twinray::util::output::check_file_target(path).map_err(|e| anyhow::anyhow!("--rays-out {e}"))?;
+    }
     let ctx = context(global)?;
     let out = twinray::probe::probe(&ctx, &case.scene, &args.shaders, &case.rays, args.warmup, args.runs)?;
     let median = twinray::util::stats::median(&out.gpu_ms);
@@ -20,6 +23,11 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
         None => args.shaders.to_string(),
     };
     let report = twinray::probe::report::evaluate(&case, &out.results, &label, &ctx.info.name, median);
+    if let Some(path) = &args.rays_out {
+        let mut csv = Vec::new();
+        twinray::probe::report::write_rays_csv(&mut csv, &case, &[(&label, &out.results)])?;
+        twinray::util::output::write_atomically(path, &csv)?;
+    }
     if args.json {
         println!("{}", serde_json::to_string(&report)?);
     } else {

@@ -56,9 +56,21 @@ pub struct RayDesc {
     pub t_max: f32,
 }
 
+/// What one generator of a case made: the rays it was asked for and made (always the same
+/// number: a generator that cannot make them fails), and how many the set traced hit.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Generated {
+    pub kind: String,
+    pub made: usize,
+    /// Filled in by `probe::report::evaluate`.
+    pub hit: Option<usize>,
+}
+
 /// A loaded case: its scene, rays and the reference for them.
 pub struct ProbeCase {
     pub file: ProbeFile,
+    /// Per generator, in order: their rays follow the explicit ones in `rays`.
+    pub generated: Vec<Generated>,
     pub scene: Scene,
     /// The rays traced: `robust_rays` or `naive_rays`, by the formula in use.
     pub rays: Vec<ProbeRay>,
@@ -67,23 +79,37 @@ pub struct ProbeCase {
     naive_rays: Vec<ProbeRay>,
 }
 
-/// Defaults that an inline scene may leave out: a probe needs no camera, image or parity.
-const INLINE_DEFAULTS: &str = r#"
-name = "inline"
-[image]
-width = 1
-height = 1
-[camera]
-eye = [0.0, 0.0, 1.0]
-target = [0.0, 0.0, 0.0]
-up = [0.0, 1.0, 0.0]
-fov_y_degrees = 45.0
-[parity]
-max_rmse = 0.0
-pixel_threshold = 0
-max_pixels_over_threshold = 0.0
-max_hit_mismatches = 0.0
-"#;
+/// Tables an inline scene may leave out (a probe needs no camera or image), appended to the
+/// case's text where missing, after every line of it, so that errors keep the file's lines.
+const INLINE_DEFAULTS: [(&str, &str); 2] = [
+    ("image", "[scene.image]\nwidth = 1\nheight = 1\n"),
+    (
+        "camera",
+        "[scene.camera]\neye = [0.0, 0.0, 1.0]\ntarget = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov_y_degrees = 45.0\n",
+    ),
+];
+
+/// The case's text with the tables its inline scene leaves out appended. A scene written as
+/// one inline table (`scene = { ... }`) cannot be extended that way: it is written out again
+/// as a table, with the defaults (errors in it then give that text's positions).
+fn with_inline_defaults(text: &str, table: &toml::Table) -> std::result::Result<String, String> {
+    let missing = INLINE_DEFAULTS.iter().filter(|(key, _)| !table.contains_key(*key));
+    let inline_table =
+        text.lines().any(|l| l.trim_start().strip_prefix("scene").is_some_and(|r| r.trim_start().starts_with('=')));
+    if !inline_table {
+        return Ok(
+            missing.fold(text.to_string(), |doc, (key, defaults)| doc + &format!("\n# default {key}\n{defaults}"))
+        );
+    }
+    let mut scene = table.clone();
+    for (key, defaults) in missing {
+        let defaults: toml::Table = toml::from_str(defaults).map_err(|e| e.to_string())?;
+        scene.insert(key.to_string(), defaults["scene"][*key].clone());
+    }
+    let mut document = toml::Table::new();
+    document.insert("scene".into(), toml::Value::Table(scene));
+    Ok(document.to_string())
+}
 
 impl ProbeCase {
     /// Reads a case file: its scene, its rays (given and generated) and the reference.
@@ -91,8 +117,7 @@ impl ProbeCase {
         let source = path.display().to_string();
         let case_error = |message: String| Error::Scene { path: source.clone(), message };
         let text = std::fs::read_to_string(path).map_err(|e| case_error(format!("cannot read: {e}")))?;
-        let file: ProbeFile =
-            toml::from_str(&text).map_err(|e| case_error(e.to_string().trim_end().replace('\n', " ")))?;
+        let file: ProbeFile = toml::from_str(&text).map_err(|e| crate::scene::toml_error(&source, &text, &e))?;
         let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let scene = match &file.scene {
             SceneRef::Named(name) => {
@@ -100,25 +125,30 @@ impl ProbeCase {
                 Scene::load(Some(if relative.exists() { relative.to_str().unwrap_or(name) } else { name }))?
             }
             SceneRef::Inline(table) => {
-                let mut full: toml::Table = toml::from_str(INLINE_DEFAULTS).map_err(|e| case_error(e.to_string()))?;
-                full.extend(table.clone());
-                Scene::parse(&full.to_string(), &format!("{source} [scene]"), MeshFiles::Folder(folder))?
+                let document = with_inline_defaults(&text, table).map_err(case_error)?;
+                let mut scene = Scene::parse_embedded(&document, &source, MeshFiles::Folder(folder))?;
+                if !table.contains_key("name") {
+                    scene.file.name = "inline".into();
+                }
+                scene
             }
         };
         let reference = SceneReference::new(&scene).map_err(case_error)?;
         let explicit: Vec<ProbeRay> =
             file.rays.iter().map(|r| ray(r.origin.into(), r.direction.into(), r.t_min, r.t_max)).collect();
         let (mut robust_rays, mut naive_rays) = (explicit.clone(), explicit);
+        let mut generated = Vec::new();
         for (i, generator) in file.generators.iter().enumerate() {
-            let generated = generate(generator, &reference).map_err(|e| case_error(format!("generators[{i}]: {e}")))?;
-            robust_rays.extend(generated.iter().map(|pair| pair.0));
-            naive_rays.extend(generated.iter().map(|pair| pair.1));
+            let rays = generate(generator, &reference).map_err(|e| case_error(format!("generators[{i}]: {e}")))?;
+            robust_rays.extend(rays.iter().map(|pair| pair.0));
+            naive_rays.extend(rays.iter().map(|pair| pair.1));
+            generated.push(Generated { kind: generator.kind().into(), made: rays.len(), hit: None });
         }
         if robust_rays.is_empty() {
             return Err(case_error("no rays: give [[rays]] or [[generators]]".into()));
         }
         let rays = robust_rays.clone();
-        Ok(ProbeCase { file, scene, rays, reference, robust_rays, naive_rays })
+        Ok(ProbeCase { file, generated, scene, rays, reference, robust_rays, naive_rays })
     }
 }
 

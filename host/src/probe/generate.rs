@@ -2,8 +2,9 @@
 //! silhouette, secondary rays from a surface, grazing rays from far away, and rays lying in
 //! (or just beside) a face plane. Deterministic: the same keys give the same rays.
 
-use crate::reference::scene::{RefObject, SceneReference, SceneVerdict};
+use crate::reference::scene::{RefObject, SceneReference};
 use crate::reference::shapes::RefShape;
+use crate::reference::surface;
 use glam::{DVec3, Vec3};
 use serde::Deserialize;
 use twinray_shared::layout::ProbeRay;
@@ -12,6 +13,9 @@ use twinray_shared::random::random;
 
 /// t_min of the textbook shadow ray: a fixed epsilon, from an origin on the surface.
 pub const NAIVE_SHADOW_EPSILON: f32 = 1.0e-3;
+
+/// The most rays one generator makes: 2^22, 256 MiB of rays and results between them.
+pub const MAX_GENERATED_RAYS: u64 = 1 << 22;
 
 /// t_max of rays that should see everything ahead.
 pub(crate) fn far() -> f32 {
@@ -46,8 +50,9 @@ fn plane_distance() -> f32 {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum Generator {
-    /// `count` x `count` parallel rays from `from` towards the object's centre, across a
-    /// square `band` times its bounding radius wide: through its silhouette.
+    /// `count` x `count` parallel rays from around `from` towards the centre of the object's
+    /// bounding box, on a grid `band` times the extent of its projection wide and high (the
+    /// grid's rows run along the projection's longest extent): through its silhouette.
     Silhouette {
         object: usize,
         from: [f32; 3],
@@ -55,7 +60,7 @@ pub enum Generator {
         #[serde(default = "band")]
         band: f32,
     },
-    /// `count` secondary rays from points on the object's surface (found by the reference),
+    /// `count` secondary rays from points on the object's surface (drawn uniformly by area),
     /// offset as shadow rays are (Ray Tracing Gems ch. 6), in random directions of the outer
     /// hemisphere, with t_min 0.
     Surface {
@@ -94,23 +99,47 @@ pub enum Generator {
     },
 }
 
+impl Generator {
+    /// The name of its kind, as case files write it.
+    pub fn kind(&self) -> &'static str {
+        match self {
+            Generator::Silhouette { .. } => "silhouette",
+            Generator::Surface { .. } => "surface",
+            Generator::Grazing { .. } => "grazing",
+            Generator::FacePlane { .. } => "face_plane",
+        }
+    }
+
+    /// How many rays it is asked for.
+    pub fn asked(&self) -> u64 {
+        match *self {
+            Generator::Silhouette { count, .. } => u64::from(count) * u64::from(count),
+            Generator::Surface { count, .. }
+            | Generator::Grazing { count, .. }
+            | Generator::FacePlane { count, .. } => u64::from(count),
+        }
+    }
+}
+
 /// The generated rays, each as (robust, naive): they differ only for surface rays.
 pub fn generate(generator: &Generator, reference: &SceneReference) -> Result<Vec<(ProbeRay, ProbeRay)>, String> {
+    let asked = generator.asked();
+    if asked == 0 || asked > MAX_GENERATED_RAYS {
+        return Err(format!("makes {asked} rays; a generator makes 1..={MAX_GENERATED_RAYS}"));
+    }
     let same = |r: ProbeRay| (r, r);
     match *generator {
         Generator::Silhouette { object, from, count, band } => {
-            let (center, radius) = bounds(reference, object)?;
-            let from = Vec3::from(from).as_dvec3();
-            let forward = (center - from).normalize();
-            let (right, up) = tangents(forward);
-            let half = radius * f64::from(band);
-            let n = count.max(1);
+            let view = View::of(find(reference, object)?, Vec3::from(from).as_dvec3())?;
+            let (half_u, half_v) = (view.half.0 * f64::from(band), view.half.1 * f64::from(band));
+            let n = count;
             Ok((0..n * n)
                 .map(|k| {
                     let (i, j) = (k % n, k / n);
-                    let u = -half + 2.0 * half * (f64::from(i) + 0.5) / f64::from(n);
-                    let v = -half + 2.0 * half * (f64::from(j) + 0.5) / f64::from(n);
-                    same(ray((from + right * u + up * v).as_vec3(), forward.as_vec3(), 0.0, far()))
+                    let u = -half_u + 2.0 * half_u * (f64::from(i) + 0.5) / f64::from(n);
+                    let v = -half_v + 2.0 * half_v * (f64::from(j) + 0.5) / f64::from(n);
+                    let origin = view.from + view.right * u + view.up * v;
+                    same(ray(origin.as_vec3(), view.forward.as_vec3(), 0.0, far()))
                 })
                 .collect())
         }
@@ -163,30 +192,85 @@ fn find(reference: &SceneReference, object: usize) -> Result<&RefObject, String>
         .ok_or_else(|| format!("no object {object} (the scene has {})", reference.objects.len()))
 }
 
-/// Up to `count` points on the object's surface with their outward world normals, each with
-/// the index `k` of its random stream: the reference traced from random directions towards
-/// the centre; attempts whose first hit is another object are skipped.
+/// `count` points on the object's surface with their outward world normals, each with the
+/// index `k` of its random stream: drawn uniformly by object-space area from the shapes' own
+/// parametrisations (`reference::surface`), so every point asked for is made, however thin or
+/// stretched the object.
 fn surface_points(
     reference: &SceneReference,
     object: usize,
     count: u32,
     seed: u32,
 ) -> Result<Vec<(u32, DVec3, DVec3)>, String> {
-    let (center, radius) = bounds(reference, object)?;
-    let mut points = Vec::new();
-    for k in 0..count.saturating_mul(20) {
-        if points.len() >= count as usize {
-            break;
-        }
-        let toward = unit(draw(seed, k, 0), draw(seed, k, 1));
-        let start = center + toward * radius * 4.0;
-        if let SceneVerdict::Hit { object: hit, t, normal } = reference.trace(start, -toward, 0.0, f64::MAX) {
-            if hit == object {
-                points.push((k, start - toward * t, normal));
-            }
-        }
+    let o = find(reference, object)?;
+    let mut cumulative = Vec::with_capacity(o.shapes.len());
+    let mut total = 0.0;
+    for shape in &o.shapes {
+        total += surface::area(shape);
+        cumulative.push(total);
     }
-    Ok(points)
+    if !(total > 0.0 && total.is_finite()) {
+        return Err(format!("object {object} has no surface area to draw points from (area {total})"));
+    }
+    let normal_to_world = o.world_to_object.transpose();
+    Ok((0..count)
+        .map(|k| {
+            // Dimensions 0..16 of stream k are the generators' own; the surface draws above.
+            let mut dimension = 16;
+            let mut next = || {
+                dimension += 1;
+                draw(seed, k, dimension)
+            };
+            let pick = next() * total;
+            let i = cumulative.partition_point(|&c| c <= pick).min(o.shapes.len() - 1);
+            let (p, n) = surface::sample(&o.shapes[i], &mut next);
+            let world_n = normal_to_world.transform_vector3(n).normalize();
+            (k, o.object_to_world.transform_point3(p), world_n)
+        })
+        .collect())
+}
+
+/// How a silhouette grid sees an object: from `from` towards the centre of its bounding box,
+/// with `right` along the longest projected axis of its bounding box, and the half extents of
+/// the box's projection along `right` and `up` (so a needle or a strongly scaled object fills the grid).
+struct View {
+    from: DVec3,
+    forward: DVec3,
+    right: DVec3,
+    up: DVec3,
+    half: (f64, f64),
+}
+
+impl View {
+    fn of(o: &RefObject, from: DVec3) -> Result<View, String> {
+        let (mut lo, mut hi) = (DVec3::splat(f64::MAX), DVec3::splat(f64::MIN));
+        for shape in &o.shapes {
+            let (a, b) = surface::bounding_box(shape);
+            (lo, hi) = (lo.min(a), hi.max(b));
+        }
+        let center = o.object_to_world.transform_point3((lo + hi) / 2.0);
+        let forward = (center - from).normalize();
+        if !forward.is_finite() {
+            return Err(format!("`from` {from} is the object's centre: no direction to look in"));
+        }
+        // The box's half axes, in world space and projected across the view.
+        let axes: Vec<DVec3> = (0..3)
+            .map(|i| {
+                let mut half = DVec3::ZERO;
+                half[i] = (hi[i] - lo[i]) / 2.0;
+                let a = o.object_to_world.transform_vector3(half);
+                a - forward * a.dot(forward)
+            })
+            .collect();
+        let longest = axes.iter().copied().fold(DVec3::ZERO, |a, b| if b.length() > a.length() { b } else { a });
+        let right = if longest.length() > 0.0 { longest.normalize() } else { tangents(forward).0 };
+        let up = forward.cross(right);
+        let extent = |axis: DVec3| axes.iter().map(|a| a.dot(axis).abs()).sum::<f64>();
+        let half_u = extent(right).max(1e-30);
+        // Seen edge-on a flat shape has no height: keep the rows apart anyway.
+        let half_v = extent(up).max(half_u * 1e-6);
+        Ok(View { from, forward, right, up, half: (half_u, half_v) })
+    }
 }
 
 /// See `Generator::FacePlane`.

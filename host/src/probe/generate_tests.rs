@@ -67,3 +67,60 @@ fn face_plane_needs_flat_faces_and_an_existing_object() {
     let err = case("kind = \"sphere\"\nradius = 1.0", "", generator).err().unwrap();
     assert!(err.contains("no object 2 (the scene has 1)"), "{err}");
 }
+
+/// How many of the case's rays the reference says hit.
+fn reference_hits(case: &ProbeCase) -> usize {
+    let verdicts = case.rays.iter().map(|r| {
+        let (o, d) = (r.origin.truncate().as_dvec3(), r.direction.truncate().as_dvec3());
+        case.reference.trace(o, d, f64::from(r.origin.w), f64::from(r.direction.w))
+    });
+    verdicts.filter(|v| matches!(v, crate::reference::scene::SceneVerdict::Hit { .. })).count()
+}
+
+#[test]
+fn surface_makes_every_ray_asked_for_on_thin_and_stretched_objects() {
+    let cases = [
+        ("kind = \"cylinder\"\nradius = 1e-3\nheight = 1e3", "", 400),
+        ("kind = \"sphere\"\nradius = 1.0", "scale = [1e-3, 1.0, 1e3]\nrotate = [30.0, 40.0, 50.0]", 500),
+        ("kind = \"torus\"\nmajor_radius = 1.0\nminor_radius = 1e-3", "translate = [0.0, 0.0, 1e3]", 600),
+        ("kind = \"cone\"\nradius = 1e-3\nheight = 100.0", "", 300),
+        ("kind = \"box\"\nsize = [1e-3, 1e3, 1.0]", "rotate = [10.0, 0.0, 80.0]", 300),
+    ];
+    for (shape, transform, count) in cases {
+        let generator = format!("kind = \"surface\"\nobject = 0\ncount = {count}\nseed = 3");
+        let made = case(shape, transform, &generator).unwrap_or_else(|e| panic!("{shape}: {e}"));
+        assert_eq!(made.rays.len(), count, "{shape}");
+        assert_eq!(made.generated[0].made, count, "{shape}");
+        let grazing = format!("kind = \"grazing\"\nobject = 0\ncount = {count}\ndistance = 100.0");
+        assert_eq!(case(shape, transform, &grazing).unwrap().rays.len(), count, "{shape}");
+    }
+}
+
+#[test]
+fn silhouette_grids_cover_elongated_and_scaled_objects() {
+    let cases = [
+        ("kind = \"cylinder\"\nradius = 1e-2\nheight = 1e2", "rotate = [0.0, 0.0, 45.0]"),
+        ("kind = \"sphere\"\nradius = 1.0", "scale = [1e-2, 1.0, 1e2]\nrotate = [0.0, 30.0, 0.0]"),
+        ("kind = \"box\"\nsize = [1e3, 1.0, 1.0]", "rotate = [0.0, 0.0, 30.0]"),
+    ];
+    for (shape, transform) in cases {
+        let generator = "kind = \"silhouette\"\nobject = 0\nfrom = [0.0, 0.0, -50.0]\ncount = 32";
+        let case = case(shape, transform, generator).unwrap();
+        let hits = reference_hits(&case);
+        // The grid spans 1.2 times the projection along its longest extent: at least a third
+        // of the rays cross the object (a grid by bounding radius hits a few percent).
+        assert!(hits * 3 >= case.rays.len(), "{shape} {transform}: {hits} of {} rays hit", case.rays.len());
+    }
+}
+
+#[test]
+fn generators_refuse_counts_they_cannot_make() {
+    let sphere = "kind = \"sphere\"\nradius = 1.0";
+    let err = case(sphere, "", "kind = \"surface\"\nobject = 0\ncount = 0").err().unwrap();
+    assert!(err.contains("generators[0]: makes 0 rays; a generator makes 1..="), "{err}");
+    let err =
+        case(sphere, "", "kind = \"silhouette\"\nobject = 0\nfrom = [0.0, 0.0, 5.0]\ncount = 100000").err().unwrap();
+    assert!(err.contains("makes 10000000000 rays"), "{err}");
+    let err = case(sphere, "", "kind = \"silhouette\"\nobject = 0\nfrom = [0.0, 0.0, 0.0]\ncount = 4").err().unwrap();
+    assert!(err.contains("is the object's centre"), "{err}");
+}

@@ -1,11 +1,12 @@
 //! Judging a probe run against the f64 reference: false hits and misses on the rays the
 //! reference decides (ambiguous ones apart), and the error of t and of the normal.
 
+use super::case::Generated;
 use super::case::ProbeCase;
 use crate::reference::scene::SceneVerdict;
 use serde::Serialize;
 use twinray_shared::bindings::NO_HIT;
-use twinray_shared::layout::ProbeResult;
+use twinray_shared::layout::{ProbeRay, ProbeResult};
 
 /// Median, 99th percentile and maximum.
 #[derive(Clone, Copy, Debug, Default, Serialize)]
@@ -50,11 +51,68 @@ pub struct ProbeReport {
     /// Median GPU milliseconds of tracing every ray once, and per million rays.
     pub gpu_ms: Option<f64>,
     pub gpu_ms_per_million_rays: Option<f64>,
+    /// Per generator of the case: the rays it made, and how many of them the set hit.
+    pub generators: Vec<Generated>,
 }
 
 fn ulp(x: f32) -> f64 {
     let x = x.abs();
     f64::from(f32::from_bits(x.to_bits() + 1) - x)
+}
+
+/// How one ray's result compares with the reference.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Within float noise of a boundary: either answer is right.
+    Ambiguous,
+    /// Both miss, or both hit the same object.
+    Agrees,
+    FalseHit,
+    FalseMiss,
+    WrongObject,
+}
+
+impl Outcome {
+    /// The word `--rays-out` writes.
+    pub fn name(self) -> &'static str {
+        match self {
+            Outcome::Ambiguous => "ambiguous",
+            Outcome::Agrees => "agrees",
+            Outcome::FalseHit => "false_hit",
+            Outcome::FalseMiss => "false_miss",
+            Outcome::WrongObject => "wrong_object",
+        }
+    }
+}
+
+/// One ray judged: its reference verdict and the outcome of the result against it.
+pub struct Judged {
+    pub ray: ProbeRay,
+    pub verdict: SceneVerdict,
+    pub outcome: Outcome,
+}
+
+/// Each result against the reference of its ray, in order.
+pub fn judge(case: &ProbeCase, results: &[ProbeResult]) -> Vec<Judged> {
+    case.reference_rays()
+        .iter()
+        .zip(results)
+        .map(|(ray, result)| {
+            let o = ray.origin.truncate().as_dvec3();
+            let d = ray.direction.truncate().as_dvec3();
+            let verdict = case.reference.trace(o, d, f64::from(ray.origin.w), f64::from(ray.direction.w));
+            let got_hit = result.ids.w != NO_HIT;
+            let outcome = match verdict {
+                SceneVerdict::Ambiguous => Outcome::Ambiguous,
+                SceneVerdict::Miss if got_hit => Outcome::FalseHit,
+                SceneVerdict::Miss => Outcome::Agrees,
+                SceneVerdict::Hit { .. } if !got_hit => Outcome::FalseMiss,
+                SceneVerdict::Hit { object, .. } if result.ids.x as usize != object => Outcome::WrongObject,
+                SceneVerdict::Hit { .. } => Outcome::Agrees,
+            };
+            Judged { ray: *ray, verdict, outcome }
+        })
+        .collect()
 }
 
 /// Judges each result against the reference of its ray.
@@ -80,25 +138,17 @@ pub fn evaluate(
         normal_angle_error_p99: 0.0,
         gpu_ms,
         gpu_ms_per_million_rays: gpu_ms.map(|ms| ms * 1e6 / case.rays.len().max(1) as f64),
+        generators: case.generated.clone(),
     };
     let (mut rel, mut ulps, mut angles) = (Vec::new(), Vec::new(), Vec::new());
-    for (ray, result) in case.reference_rays().iter().zip(results) {
-        let o = ray.origin.truncate().as_dvec3();
-        let d = ray.direction.truncate().as_dvec3();
-        let verdict = case.reference.trace(o, d, f64::from(ray.origin.w), f64::from(ray.direction.w));
-        let got_hit = result.ids.w != NO_HIT;
-        match verdict {
-            SceneVerdict::Ambiguous => {
-                report.ambiguous += 1;
-                continue;
-            }
-            SceneVerdict::Miss => report.false_hits += usize::from(got_hit),
-            SceneVerdict::Hit { object, t, normal } => {
-                if !got_hit {
-                    report.false_misses += 1;
-                } else if result.ids.x as usize != object {
-                    report.wrong_object += 1;
-                } else {
+    for (judged, result) in judge(case, results).iter().zip(results) {
+        match judged.outcome {
+            Outcome::Ambiguous => report.ambiguous += 1,
+            Outcome::FalseHit => report.false_hits += 1,
+            Outcome::FalseMiss => report.false_misses += 1,
+            Outcome::WrongObject => report.wrong_object += 1,
+            Outcome::Agrees => {
+                if let SceneVerdict::Hit { t, normal, .. } = judged.verdict {
                     let got_t = f64::from(result.normal_t.w);
                     rel.push((got_t - t).abs() / t.abs().max(1e-30));
                     ulps.push((got_t - t).abs() / ulp(t as f32));
@@ -107,12 +157,73 @@ pub fn evaluate(
                 }
             }
         }
-        report.decided += 1;
+    }
+    report.decided = report.rays - report.ambiguous;
+    for (generated, judged) in report.generators.iter_mut().zip(generator_spans(case)) {
+        let hits = |range: std::ops::Range<usize>, results: &[ProbeResult]| {
+            results[range].iter().filter(|r| r.ids.w != NO_HIT).count()
+        };
+        generated.hit = Some(hits(judged, results));
     }
     report.relative_t_error = Spread::of(rel);
     report.ulp_error_p99 = Spread::of(ulps).p99;
     report.normal_angle_error_p99 = Spread::of(angles).p99;
     report
+}
+
+/// The index range of each generator's rays among the case's rays (explicit rays first).
+fn generator_spans(case: &ProbeCase) -> Vec<std::ops::Range<usize>> {
+    let mut start = case.file.rays.len();
+    case.generated
+        .iter()
+        .map(|g| {
+            start += g.made;
+            start - g.made..start
+        })
+        .collect()
+}
+
+/// Writes one CSV row per ray (`probe --rays-out`): the ray, the reference's answer, and for
+/// each set its hit, t, object, normal and outcome.
+pub fn write_rays_csv(
+    out: &mut impl std::io::Write,
+    case: &ProbeCase,
+    sets: &[(&str, &[ProbeResult])],
+) -> std::io::Result<()> {
+    let mut header = String::from("ray,ox,oy,oz,dx,dy,dz,t_min,t_max,ref_hit,ref_t,ref_object,ref_ambiguous");
+    for (name, _) in sets {
+        for column in ["hit", "t", "object", "nx", "ny", "nz", "outcome"] {
+            header += &format!(",{}_{column}", csv_name(name));
+        }
+    }
+    writeln!(out, "{header}")?;
+    let judged: Vec<Vec<Judged>> = sets.iter().map(|(_, results)| judge(case, results)).collect();
+    for (i, ray) in case.reference_rays().iter().enumerate() {
+        let (o, d) = (ray.origin, ray.direction);
+        let mut row = format!("{i},{},{},{},{},{},{},{},{}", o.x, o.y, o.z, d.x, d.y, d.z, o.w, d.w);
+        row += &match judged.first().map(|j| j[i].verdict) {
+            Some(SceneVerdict::Hit { object, t, .. }) => format!(",1,{t},{object},0"),
+            Some(SceneVerdict::Miss) => ",0,,,0".into(),
+            Some(SceneVerdict::Ambiguous) | None => ",,,,1".into(),
+        };
+        for ((_, results), judged) in sets.iter().zip(&judged) {
+            let r = results[i];
+            row += &if r.ids.w == NO_HIT {
+                ",0,,,,,".into()
+            } else {
+                let n = r.normal_t;
+                format!(",1,{},{},{},{},{}", n.w, r.ids.x, n.x, n.y, n.z)
+            };
+            row += &format!(",{}", judged[i].outcome.name());
+        }
+        writeln!(out, "{row}")?;
+    }
+    Ok(())
+}
+
+/// A set's label as a CSV column prefix: letters, digits and '_' only.
+fn csv_name(set: &str) -> String {
+    set.chars().map(|c| if c.is_ascii_alphanumeric() { c } else { '_' }).collect()
 }
 
 impl ProbeReport {
@@ -127,6 +238,15 @@ impl ProbeReport {
             "case {} with {} on {}: {} rays, {} decided, {} ambiguous\n  false hits {}, false misses {}, wrong object {}\n  relative t error: median {:.2e}, p99 {:.2e}, max {:.2e}; ULP error p99 {:.1}\n  normal angle error p99 {:.2e} rad\n  {ms}\n",
             self.case, self.set, self.device, self.rays, self.decided, self.ambiguous, self.false_hits,
             self.false_misses, self.wrong_object, t.median, t.p99, t.max, self.ulp_error_p99, self.normal_angle_error_p99
-        )
+        ) + &if self.generators.is_empty() { String::new() } else { format!("  generators: {}\n", self.generators_made()) }
+    }
+
+    /// Per generator, the rays it made and how many of them the set hit.
+    pub fn generators_made(&self) -> String {
+        let each = self.generators.iter().map(|g| match g.hit {
+            Some(hit) => format!("{} made {}, {hit} hit", g.kind, g.made),
+            None => format!("{} made {}", g.kind, g.made),
+        });
+        each.collect::<Vec<_>>().join("; ")
     }
 }

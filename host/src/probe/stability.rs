@@ -130,6 +130,7 @@ pub fn failures(case: &ProbeCase, r: &ProbeReport) -> Vec<String> {
 /// The table `twinray stability` prints, then what robustness costs.
 pub fn table(rows: &[StabilityRow]) -> String {
     let mut s = results(rows);
+    s += &generators(rows);
     s += &costs(rows);
     s
 }
@@ -160,6 +161,16 @@ fn costs(rows: &[StabilityRow]) -> String {
         let logs: Vec<f64> = ratios.iter().filter(|r| (r.0, r.1) == (variant, set)).map(|r| r.2.ln()).collect();
         let mean = (logs.iter().sum::<f64>() / logs.len() as f64).exp();
         s += &format!("{variant:<32} {set:<5} {:>5} {mean:>12.3}\n", logs.len());
+    }
+    s
+}
+
+/// Per case with generators, set and formula: the rays each generator made and how many hit.
+fn generators(rows: &[StabilityRow]) -> String {
+    let mut s = format!("\n{:<26} {:<5} {:<7} generators\n", "case", "set", "formula");
+    for row in rows.iter().filter(|r| !r.report.generators.is_empty()) {
+        let r = &row.report;
+        s += &format!("{:<26} {:<5} {:<7} {}\n", r.case, r.set, row.formula, r.generators_made());
     }
     s
 }

@@ -5,4 +5,5 @@ pub mod image;
 mod ray;
 pub mod scene;
 pub mod shapes;
+pub mod surface;
 mod torus;

@@ -20,6 +20,8 @@ pub fn kinds() -> [(&'static str, Vec<&'static str>); 4] {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct SceneFile {
+    /// Empty when the file leaves it out: `Scene::parse` fills in the file's stem.
+    #[serde(default)]
     pub name: String,
     #[serde(default)]
     pub description: String,
@@ -44,6 +46,8 @@ pub struct SceneFile {
     /// Regular arrays of objects, expanded into `objects` when the scene is loaded.
     #[serde(default)]
     pub grids: Vec<GridDesc>,
+    /// Only comparisons read it; a scene without `[parity]` gets `Parity::default()`.
+    #[serde(default)]
     pub parity: Parity,
 }
 
@@ -215,14 +219,21 @@ impl Scale {
     }
 }
 
-/// How close two shader sets' renders of this scene must be.
+/// How close two shader sets' renders of this scene must be. A key left out takes its
+/// default: what eleven of the twelve built-in scenes ask for.
 #[derive(Clone, Copy, Debug, Deserialize, serde::Serialize)]
-#[serde(deny_unknown_fields)]
+#[serde(deny_unknown_fields, default)]
 pub struct Parity {
     pub max_rmse: f64,
     pub pixel_threshold: u8,
     pub max_pixels_over_threshold: f64,
     pub max_hit_mismatches: f64,
+}
+
+impl Default for Parity {
+    fn default() -> Self {
+        Parity { max_rmse: 0.01, pixel_threshold: 2, max_pixels_over_threshold: 0.002, max_hit_mismatches: 0.002 }
+    }
 }
 
 /// Placement of a rect light's N x N shadow samples.

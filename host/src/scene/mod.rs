@@ -56,9 +56,28 @@ impl Scene {
 
     /// Parses and checks scene text and loads its meshes; `source` names it in errors.
     pub fn parse(text: &str, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
+        let file: SceneFile = toml::from_str(text).map_err(|e| toml_error(source, text, &e))?;
+        Scene::from_file(file, source, mesh_files)
+    }
+
+    /// Parses the scene written as the `[scene]` table of a larger TOML document (a probe
+    /// case's inline scene): errors give the document's own lines and table names.
+    pub fn parse_embedded(document: &str, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
+        #[derive(serde::Deserialize)]
+        struct Document {
+            scene: SceneFile,
+        }
+        let doc: Document = toml::from_str(document).map_err(|e| toml_error(source, document, &e))?;
+        Scene::from_file(doc.scene, source, mesh_files)
+    }
+
+    /// Checks a parsed scene, expands its grids and loads its meshes.
+    fn from_file(mut file: SceneFile, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
         let scene_error = |message: String| Error::Scene { path: source.into(), message };
-        let mut file: SceneFile =
-            toml::from_str(text).map_err(|e| scene_error(e.to_string().trim_end().replace('\n', " ")))?;
+        if file.name.is_empty() {
+            let stem = Path::new(source).file_stem().map(|s| s.to_string_lossy().into_owned());
+            file.name = stem.unwrap_or_else(|| "scene".into());
+        }
         check::check(&file).map_err(scene_error)?;
         let grid_objects: Vec<_> = file.grids.iter().flat_map(|g| g.objects()).collect();
         file.objects.extend(grid_objects);
@@ -105,6 +124,22 @@ impl Scene {
     pub fn frame_uniform(&self, width: u32, height: u32) -> FrameUniform {
         build::frame_uniform(&self.file, width, height)
     }
+}
+
+/// A TOML error as one line: where (line, column and that line's text) and what.
+pub fn toml_error(source: &str, text: &str, e: &toml::de::Error) -> Error {
+    let message = e.message().trim().replace('\n', " ");
+    let message = match e.span() {
+        Some(span) if span.start <= text.len() => {
+            let before = &text[..span.start];
+            let line = before.matches('\n').count() + 1;
+            let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
+            let quoted = text[span.start - (column - 1)..].lines().next().unwrap_or("").trim();
+            format!("line {line}, column {column} (`{quoted}`): {message}")
+        }
+        _ => message,
+    };
+    Error::Scene { path: source.into(), message }
 }
 
 /// Where a scene's mesh files are.

@@ -19,6 +19,28 @@ pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()
     })
 }
 
+/// Writes `bytes` at `path`, atomically: through a temporary file beside it, renamed.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> Result<()> {
+    let tmp = temp_path(path);
+    let written = std::fs::write(&tmp, bytes).and_then(|()| std::fs::rename(&tmp, path));
+    written.map_err(|source| {
+        let _ = std::fs::remove_file(&tmp);
+        Error::Io { what: "writing", path: path.to_path_buf(), source }
+    })
+}
+
+/// Checks up front that `path` can be written: a file name in an existing directory.
+pub fn check_file_target(path: &Path) -> Result<()> {
+    let dir = parent_dir(path);
+    if path.file_name().is_none() || path.is_dir() {
+        return Err(Error::Input(format!("{}: not a file name", path.display())));
+    }
+    if !dir.is_dir() {
+        return Err(Error::Input(format!("{}: directory {} does not exist", path.display(), dir.display())));
+    }
+    Ok(())
+}
+
 /// Checks up front that `path` can be written: a PNG name in an existing directory.
 pub fn check_png_target(path: &Path) -> Result<()> {
     let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));

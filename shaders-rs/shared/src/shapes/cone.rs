@@ -11,7 +11,7 @@
 
 use super::sphere::ON_SURFACE;
 use crate::layout::Primitive;
-use crate::surface::{closer, is_self_root, self_reach2, stable_roots, SurfaceHit};
+use crate::surface::{closer, is_self_root, point_at, self_reach2, stable_roots, SurfaceHit};
 use glam::Vec3;
 
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
@@ -65,8 +65,8 @@ fn side(
 ) -> Option<SurfaceHit> {
     match root {
         Some(t) if !is_self_root(reach2, t, other) => {
-            let t = polish(o - apex, d, (h2, r2), t);
-            let cp = o + d * t - apex;
+            let t = polish(o, apex, d, (h2, r2), t);
+            let cp = point_at(o, d, t) - apex;
             let along = -cp.y; // distance below the apex along the axis
             if along >= 0.0 && along <= height {
                 // Outward normal (h^2 + r^2) (cos^2 cp - (cp.v) v), with v = -y.
@@ -86,9 +86,12 @@ pub const POLISH_LIMIT: f32 = 0.1;
 /// Root `t` after one Newton step on the cone's implicit function at the hit point. From an
 /// origin near the surface, c is a small difference of large terms (relative error 5e-5 at a
 /// tenth of a percent from the surface, for rays along a generator); at the hit point the
-/// function is evaluated from small, accurate coordinates.
-fn polish(co: Vec3, d: Vec3, (h2, r2): (f32, f32), t: f32) -> f32 {
-    let cp = co + d * t;
+/// function is evaluated from small, accurate coordinates (`point_at`: accurate without a
+/// fused multiply-add, which lavapipe does not do).
+fn polish(o: Vec3, apex: Vec3, d: Vec3, (h2, r2): (f32, f32), t: f32) -> f32 {
+    // The hit point from the ray's own origin, then the apex: o - apex would round the origin
+    // off the ray (by its ULPs, 1e-3 at 1e4), which a grazing ray turns into a large t error.
+    let cp = point_at(o, d, t) - apex;
     let f = r2 * cp.y * cp.y - h2 * (cp.x * cp.x + cp.z * cp.z);
     let slope = 2.0 * (r2 * cp.y * d.y - h2 * (cp.x * d.x + cp.z * d.z));
     if f.abs() <= POLISH_LIMIT * t.abs() * slope.abs() {

@@ -5,6 +5,15 @@
 //! form; add the shift back; polish each root with Newton steps on the distance function
 //! g(p) = |(|p_xz| - 1, p_y)| - r.
 //!
+//! Two additions for thin tubes (r/R down to 1e-3), where the f32 quartic's coefficients are
+//! too coarse (its features are r^2 against terms of 1) to tell a near miss from a hit:
+//! - a polished root counts only if g there is within `ROOT_TOLERANCE` of 0, which drops the
+//!   quartic's phantom roots (false hits);
+//! - near the two places where the ray passes closest to the ring circle (found by Newton steps
+//!   on the squared distance to it), the ray hits if that distance is below r, decided by g
+//!   alone, and the entry and exit there come from a parabola of that distance, polished like
+//!   the quartic's roots (the roots the quartic lost: false misses).
+//!
 //! One change to the recipe: the origin moves to the sphere's entry point even when that lies
 //! behind it (NUMERICS.md's max(0, entry) keeps origins inside the sphere). A ray starting on
 //! the torus, as every shadow ray from it does, would otherwise give the quartic a root at 0
@@ -21,8 +30,12 @@ use spirv_std::num_traits::Float;
 /// Relative distance from the surface, |g| / r, under which a ray's origin lies on the torus
 /// (a shadow ray leaving it): the root nearest 0 is then its own origin, not a hit.
 pub const ON_SURFACE: f32 = 1.0e-3;
-/// Newton steps per root.
-const POLISH_STEPS: u32 = 2;
+/// Largest |g| at a polished root, relative to the magnitude of its point (R = 1): 8 f32
+/// ULPs. A candidate farther from the surface is no root.
+pub const ROOT_TOLERANCE: f32 = 8.0 * f32::EPSILON;
+/// For a ray that starts on the surface, roots within this many tube radii of its origin are
+/// the origin itself.
+pub const SELF_BAND: f32 = 4.0 * ON_SURFACE;
 
 /// Roots of the torus quartic for a unit-direction ray from `o` (R = 1, tube radius `r`), in
 /// the ray's parameter; up to four, as (valid, value) pairs.
@@ -106,29 +119,69 @@ fn distance(p: Vec3, r: f32) -> (f32, Vec3) {
     (g - r, grad)
 }
 
-/// `s` moved onto the surface along the ray by Newton steps on g.
-fn polish(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
-    let mut s = s;
-    for _ in 0..POLISH_STEPS {
-        let (g, grad) = distance(o + d * s, r);
-        let slope = grad.dot(d);
-        if slope.abs() > 1.0e-6 {
-            s -= g / slope;
-        }
-    }
-    s
-}
-
-/// |root + shift| of a valid root, or f32::MAX.
-fn nearest_abs((valid, s): (bool, f32), shift: f32) -> f32 {
-    if valid {
-        (s + shift).abs()
+/// One Newton step on g from `s`.
+fn polish_step(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
+    let (g, grad) = distance(o + d * s, r);
+    let slope = grad.dot(d);
+    if slope.abs() > 1.0e-6 {
+        s - g / slope
     } else {
-        f32::MAX
+        s
     }
 }
 
-/// What turning one quartic root into a hit needs.
+/// `s` moved onto the surface along the ray by Newton steps on g (written out, not a loop:
+/// see the README on loops NVIDIA's driver miscompiles).
+fn polish(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
+    let s = polish_step(o, d, r, s);
+    let s = polish_step(o, d, r, s);
+    polish_step(o, d, r, s)
+}
+
+/// One Newton step towards a local minimum of D(s) = (ring - 1)^2 + y^2 - r^2, the squared
+/// distance from the ray's point to the ring circle less r^2: on D'/2 and D''/2.
+fn approach_step(o: Vec3, d: Vec3, s: f32) -> f32 {
+    let p = o + d * s;
+    let ring = (p.x * p.x + p.z * p.z).sqrt();
+    if ring <= 0.0 {
+        return s;
+    }
+    let ring1 = (p.x * d.x + p.z * d.z) / ring;
+    let ring2 = (d.x * d.x + d.z * d.z - ring1 * ring1) / ring;
+    let radial = ring - 1.0;
+    let slope = radial * ring1 + p.y * d.y;
+    let curvature = ring1 * ring1 + radial * ring2 + d.y * d.y;
+    if curvature > 0.0 {
+        s - slope / curvature
+    } else {
+        s
+    }
+}
+
+/// Where near `s` the ray passes closest to the ring circle.
+fn closest_approach(o: Vec3, d: Vec3, s: f32) -> f32 {
+    let s = approach_step(o, d, s);
+    let s = approach_step(o, d, s);
+    let s = approach_step(o, d, s);
+    approach_step(o, d, s)
+}
+
+/// Where the ray's projection on the ring's plane crosses the ring (or passes nearest it,
+/// or where the ray crosses the plane when it runs along the axis): the two places near which
+/// the ray passes closest to the ring circle.
+fn ring_crossings(o: Vec3, d: Vec3) -> (f32, f32) {
+    let flat = d.x * d.x + d.z * d.z;
+    if flat < 1.0e-6 {
+        let s = -o.y * d.y;
+        return (s, s);
+    }
+    let nearest = -(o.x * d.x + o.z * d.z) / flat;
+    let (x, z) = (o.x + d.x * nearest, o.z + d.z * nearest);
+    let half = ((1.0 - x * x - z * z) / flat).max(0.0).sqrt();
+    (nearest - half, nearest + half)
+}
+
+/// What turning a guess of a root into a hit needs.
 struct Candidate {
     o: Vec3,
     d: Vec3,
@@ -137,21 +190,35 @@ struct Candidate {
     shift: f32,
     to_t: f32,
     on_surface: bool,
-    nearest_abs: f32,
     t_min: f32,
     t_max: f32,
-    /// Newton steps on each root (off only in the naive variant).
+    /// Newton steps on each root, and the check that it lies on the surface (off only in the
+    /// naive variant).
     polish: bool,
 }
 
 impl Candidate {
-    /// `best`, or the polished `root` if it is a nearer hit in range (and not the ray's own
-    /// origin when it starts on the surface).
-    fn consider(&self, best: Option<SurfaceHit>, (valid, s): (bool, f32)) -> Option<SurfaceHit> {
-        if !valid || (self.on_surface && (s + self.shift).abs() == self.nearest_abs) {
+    /// `best`, or the root that `guess` (from `start`) polishes to, if it lies on the surface
+    /// and is a nearer hit in range (and not the ray's own origin when it starts on it).
+    fn consider(&self, best: Option<SurfaceHit>, (valid, guess): (bool, f32)) -> Option<SurfaceHit> {
+        if !valid {
             return best;
         }
-        let s = if self.polish { polish(self.start, self.d, self.r, s) } else { s } + self.shift;
+        let s = if self.polish { polish(self.start, self.d, self.r, guess) } else { guess };
+        if self.polish {
+            // A root of the f32 quartic that is no root of g: for a thin tube the quartic's
+            // coefficients are too coarse to tell a near miss from a hit; g is not.
+            let p = self.start + self.d * s;
+            let g = distance(p, self.r).0;
+            let on_surface = g.abs() <= ROOT_TOLERANCE * p.length().max(1.0);
+            if !on_surface {
+                return best;
+            }
+        }
+        let s = s + self.shift;
+        if self.on_surface && s.abs() <= SELF_BAND * self.r {
+            return best;
+        }
         let t = s * self.to_t;
         let limit = match best {
             Some(b) => b.t,
@@ -164,6 +231,26 @@ impl Candidate {
         } else {
             best
         }
+    }
+
+    /// `best`, or the entry or exit of the tube near `around`, where the ray passes closest
+    /// to the ring: found from the distance function alone, they catch the roots a thin
+    /// tube's quartic loses.
+    fn consider_approach(&self, best: Option<SurfaceHit>, around: f32) -> Option<SurfaceHit> {
+        let s = closest_approach(self.start, self.d, around);
+        let p = self.start + self.d * s;
+        let ring = (p.x * p.x + p.z * p.z).sqrt();
+        let dist = ((ring - 1.0) * (ring - 1.0) + p.y * p.y).sqrt();
+        if dist >= self.r {
+            return best;
+        }
+        // D is nearly a parabola about its minimum: D(s) = D(m) + D''(m)/2 (s - m)^2.
+        let ring1 = if ring > 0.0 { (p.x * self.d.x + p.z * self.d.z) / ring } else { 0.0 };
+        let ring2 = if ring > 0.0 { (self.d.x * self.d.x + self.d.z * self.d.z - ring1 * ring1) / ring } else { 0.0 };
+        let curvature = (ring1 * ring1 + (ring - 1.0) * ring2 + self.d.y * self.d.y).max(1.0e-12);
+        let half = ((self.r - dist) * (self.r + dist) / curvature).sqrt();
+        let best = self.consider(best, (true, s - half));
+        self.consider(best, (true, s + half))
     }
 }
 
@@ -182,17 +269,17 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
     let shift = bound.near;
     let start = o + d * shift;
     let on_surface = distance(o, r).0.abs() <= ON_SURFACE * r;
-    let roots = quartic_roots(start, d, r);
     // The four roots one by one, not by index: rust-gpu turns an index's bounds-check panic
     // path inside a loop into control flow NVIDIA's driver miscompiles (see the shaders' trace.rs).
-    let [r0, r1, r2, r3] = roots;
-    let nearest_abs =
-        nearest_abs(r0, shift).min(nearest_abs(r1, shift)).min(nearest_abs(r2, shift).min(nearest_abs(r3, shift)));
-    let candidate = Candidate { o, d, start, r, shift, to_t, on_surface, nearest_abs, t_min, t_max, polish: true };
+    let [r0, r1, r2, r3] = quartic_roots(start, d, r);
+    let candidate = Candidate { o, d, start, r, shift, to_t, on_surface, t_min, t_max, polish: true };
     let best = candidate.consider(None, r0);
     let best = candidate.consider(best, r1);
     let best = candidate.consider(best, r2);
-    candidate.consider(best, r3)
+    let best = candidate.consider(best, r3);
+    let (near, far) = ring_crossings(start, d);
+    let best = candidate.consider_approach(best, near);
+    candidate.consider_approach(best, far)
 }
 
 /// The quartic solved from the ray's own origin, without the shift onto the bounding sphere,
@@ -212,19 +299,7 @@ pub fn naive_intersect(
     let o = origin / big_r;
     let to_t = big_r / length;
     let [r0, r1, r2, r3] = quartic_roots(o, d, r);
-    let candidate = Candidate {
-        o,
-        d,
-        start: o,
-        r,
-        shift: 0.0,
-        to_t,
-        on_surface: false,
-        nearest_abs: f32::MAX,
-        t_min,
-        t_max,
-        polish: false,
-    };
+    let candidate = Candidate { o, d, start: o, r, shift: 0.0, to_t, on_surface: false, t_min, t_max, polish: false };
     let best = candidate.consider(None, r0);
     let best = candidate.consider(best, r1);
     let best = candidate.consider(best, r2);
@@ -255,7 +330,11 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
             super::spec::single(glam::Vec4::new(major, minor, 0.0, 0.0), Vec3::new(outer, minor, outer))
         },
     }],
-    glsl_constants: &[("TORUS_ON_SURFACE", ON_SURFACE)],
+    glsl_constants: &[
+        ("TORUS_ON_SURFACE", ON_SURFACE),
+        ("TORUS_ROOT_TOLERANCE", ROOT_TOLERANCE),
+        ("TORUS_SELF_BAND", SELF_BAND),
+    ],
 };
 
 #[cfg(test)]
