@@ -4,6 +4,14 @@ use clap::Args;
 use std::path::PathBuf;
 use twinray::ShaderSet;
 
+/// Most timed traces a command takes: past it, a typo (an extra zero or three) would hold the
+/// GPU for hours. Work over 100 rounds shows progress.
+pub const MAX_RUNS: u32 = 10_000;
+/// Most untimed warm-up traces.
+pub const MAX_WARMUP: u32 = 10_000;
+/// Most rays a probe case is repeated to for timing: 2^23 rays and results take 512 MiB.
+pub const MAX_TIMING_RAYS: u64 = 1 << 23;
+
 #[derive(Args, Clone)]
 pub struct GlobalArgs {
     /// Enable the Khronos validation layer; its errors fail the command.
@@ -26,10 +34,10 @@ pub struct FrameArgs {
     #[arg(long)]
     pub height: Option<u32>,
     /// Timed traces; the median GPU time is reported [default: render 1, compare 10].
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: Option<u32>,
     /// Untimed traces before the timed ones [default: render 0, compare 2].
-    #[arg(long)]
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: Option<u32>,
     /// Print one JSON object instead of text.
     #[arg(long)]
@@ -79,10 +87,10 @@ pub struct ProbeArgs {
     #[arg(long, value_parser = ["robust", "naive"])]
     pub formula: Option<String>,
     /// Timed passes over all the rays; the median is reported.
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
     /// Untimed passes before the timed ones.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
     /// Print one JSON object.
     #[arg(long)]
@@ -102,14 +110,14 @@ pub struct StabilityArgs {
     #[arg(long, default_value = "rust;glsl")]
     pub sets: String,
     /// Timed passes per case, set and formula.
-    #[arg(long, default_value_t = 5)]
+    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
     /// Untimed passes before the timed ones.
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
     /// Time each case over its rays repeated up to at least this many (0: the case's rays).
-    #[arg(long, default_value_t = 262_144)]
-    pub timing_rays: usize,
+    #[arg(long, default_value_t = 262_144, value_parser = clap::value_parser!(u64).range(0..=MAX_TIMING_RAYS))]
+    pub timing_rays: u64,
     /// Print one JSON array of rows.
     #[arg(long)]
     pub json: bool,
@@ -163,10 +171,10 @@ pub struct BenchArgs {
     #[arg(long, requires = "width")]
     pub height: Option<u32>,
     /// Timed traces per measurement (at least 10).
-    #[arg(long, default_value_t = 10)]
+    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
     /// Untimed traces before them.
-    #[arg(long, default_value_t = 2)]
+    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
     /// Samples per pixel of the references.
     #[arg(long, default_value_t = 1024)]
@@ -185,8 +193,8 @@ pub struct BenchArgs {
     #[arg(long, default_value = "probes/stability")]
     pub probes: PathBuf,
     /// Time each probe case over its rays repeated up to at least this many.
-    #[arg(long, default_value_t = 1_048_576)]
-    pub timing_rays: usize,
+    #[arg(long, default_value_t = 1_048_576, value_parser = clap::value_parser!(u64).range(0..=MAX_TIMING_RAYS))]
+    pub timing_rays: u64,
     /// Which renders to keep as PNG files with their FLIP maps (references are always kept).
     #[arg(long, value_enum, default_value = "all")]
     pub images: twinray::bench::Images,

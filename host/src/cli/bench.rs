@@ -87,7 +87,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         out: args.out.clone(),
         shadow_spp,
         probes: Some(args.probes.clone()).filter(|p| p.as_os_str() != "none"),
-        timing_rays: args.timing_rays,
+        timing_rays: args.timing_rays as usize,
         images: args.images,
     };
     let ctx = context(global)?;

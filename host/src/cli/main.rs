@@ -77,6 +77,7 @@ fn main() -> ExitCode {
         _ => "debug",
     };
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
+    session::show_progress();
     let result = match cli.command {
         Command::Info { json } => summary::info(&cli.global, json),
         Command::Scenes { json } => summary::scenes(json),

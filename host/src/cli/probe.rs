@@ -13,7 +13,7 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
         case.set_formula(formula);
     }
     if let Some(path) = &args.rays_out {
-        twinray::util::output::check_file_target(path).map_err(|e| anyhow::anyhow!("--rays-out {e}"))?;
+        twinray::util::output::check_file_target(path).map_err(|e| twinray::Error::Input(format!("--rays-out {e}")))?;
     }
     let ctx = context(global)?;
     let out = twinray::probe::probe(&ctx, &case.scene, &args.shaders, &case.rays, args.warmup, args.runs)?;
@@ -41,7 +41,8 @@ pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
     let sets = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::ShaderSet>, _>>()?;
     let ctx = context(global)?;
     let formulas = [Formula::Robust, Formula::Naive];
-    let timing = twinray::probe::stability::Timing { warmup: args.warmup, runs: args.runs, rays: args.timing_rays };
+    let timing =
+        twinray::probe::stability::Timing { warmup: args.warmup, runs: args.runs, rays: args.timing_rays as usize };
     let rows = twinray::probe::stability::run(&ctx, &files, &sets, &formulas, timing)?;
     if args.json {
         println!("{}", serde_json::to_string(&rows)?);

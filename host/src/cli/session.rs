@@ -28,3 +28,26 @@ pub fn render_options(scene: &Scene, frame: &FrameArgs, (warmup, runs): (u32, u3
     check_size(width, height).map_err(Error::Input)?;
     Ok(RenderOptions { width, height, warmup: frame.warmup.unwrap_or(warmup), runs: frame.runs.unwrap_or(runs) })
 }
+
+/// Shows the library's progress reports (long runs of timed traces) as a bar on stderr; the
+/// bar draws only on a terminal, so scripted output is unchanged.
+pub fn show_progress() {
+    let bar: std::sync::Mutex<Option<indicatif::ProgressBar>> = std::sync::Mutex::new(None);
+    twinray::util::progress::set_sink(Box::new(move |what, done, total| {
+        let Ok(mut slot) = bar.lock() else { return };
+        let b = slot.get_or_insert_with(|| {
+            let b = indicatif::ProgressBar::new(total);
+            if let Ok(style) = indicatif::ProgressStyle::with_template("{bar:30} {pos}/{len} {msg} {elapsed_precise}") {
+                b.set_style(style);
+            }
+            b
+        });
+        b.set_length(total);
+        b.set_message(what.to_string());
+        b.set_position(done);
+        if done >= total {
+            b.finish_and_clear();
+            *slot = None;
+        }
+    }));
+}

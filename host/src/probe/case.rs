@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::reference::scene::SceneReference;
 use crate::scene::shape::Formula;
 use crate::scene::{MeshFiles, Scene};
+use crate::util::input::{read_text, MAX_TEXT_BYTES};
 use serde::Deserialize;
 use std::path::Path;
 use twinray_shared::layout::ProbeRay;
@@ -116,7 +117,7 @@ impl ProbeCase {
     pub fn load(path: &Path) -> Result<ProbeCase> {
         let source = path.display().to_string();
         let case_error = |message: String| Error::Scene { path: source.clone(), message };
-        let text = std::fs::read_to_string(path).map_err(|e| case_error(format!("cannot read: {e}")))?;
+        let text = read_text(path, MAX_TEXT_BYTES).map_err(|e| case_error(format!("cannot read: {e}")))?;
         let file: ProbeFile = toml::from_str(&text).map_err(|e| crate::scene::toml_error(&source, &text, &e))?;
         let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let scene = match &file.scene {

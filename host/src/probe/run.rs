@@ -3,7 +3,7 @@
 //! intersection and hit stages are the very ones that render images.
 
 use crate::error::{Error, Result};
-use crate::render::{prepare, storage_buffer, transition, STORAGE_IMAGE, UNUSED_IMAGE};
+use crate::render::{prepare, storage_buffer, submit, transition, STORAGE_IMAGE, UNUSED_IMAGE};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::vk::buffer::Buffer;
@@ -68,9 +68,8 @@ fn probe_and_release(
     let readback =
         Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
     let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
-    p.one_shot.run(|device, cmd| {
-        transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
-        trace.record(ctx, cmd);
+    let before = |device: &ash::Device, cmd| transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
+    submit(ctx, &p.one_shot, &[trace], before, |device, cmd| {
         let written = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
         memory_barrier(device, cmd, written, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));
         let region = [vk::BufferCopy::default().size(bytes)];
@@ -78,7 +77,6 @@ fn probe_and_release(
         unsafe { device.cmd_copy_buffer(cmd, results.raw, readback.raw, &region) };
         let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
         memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
-        Ok(())
     })?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
     Ok(ProbeOutput { results: bytemuck::pod_collect_to_vec(&readback.mapped()?[..bytes as usize]), gpu_ms })

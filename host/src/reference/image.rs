@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use crate::render::{render, RenderOptions};
 use crate::scene::Scene;
 use crate::shaders::{ShaderSet, MODULES};
+use crate::util::input::read_bounded;
 use crate::util::output::file_safe;
 use crate::vk::context::Context;
 use std::path::{Path, PathBuf};
@@ -14,7 +15,7 @@ use std::sync::Arc;
 
 /// Primary samples per side in one frame: 16 x 16, the most a scene allows.
 pub const FRAME_SIDE: u32 = 16;
-const MAGIC: &[u8; 8] = b"TWREF1\0\0";
+const MAGIC: &[u8; 8] = b"TWREF2\0\0";
 
 /// A converged image: mean radiance per pixel over `spp` samples.
 pub struct ReferenceImage {
@@ -28,9 +29,17 @@ pub struct ReferenceImage {
     pub cached: bool,
 }
 
+/// Most samples per pixel of a reference: 256 frames of 16 x 16.
+pub const MAX_REFERENCE_SPP: u32 = 1 << 16;
+
 /// Frames and samples per side that make `spp` samples per pixel: a square up to 16 x 16 in
 /// one frame, or a multiple of 256 in frames of 16 x 16.
 pub fn frames(spp: u32) -> Result<(u32, u32)> {
+    if spp > MAX_REFERENCE_SPP {
+        return Err(Error::Input(format!(
+            "reference samples per pixel must be at most {MAX_REFERENCE_SPP} (got {spp})"
+        )));
+    }
     let side = (1..=FRAME_SIDE).find(|m| m * m == spp);
     match side {
         Some(m) => Ok((1, m)),
@@ -82,6 +91,8 @@ pub fn converged(
     if let Some(linear) = read(&path, (width, height, spp)) {
         return Ok(ReferenceImage { width, height, spp, linear, path, cached: true });
     }
+    // Before a render that may take minutes: can its result be kept?
+    check_writable(cache)?;
     let mut sum = vec![[0.0f64; 3]; (width as usize) * (height as usize)];
     for k in 0..frames {
         let mut frame = scene.clone();
@@ -130,17 +141,47 @@ fn key(scene: &Scene, set: &ShaderSet, (width, height): (u32, u32), spp: u32, wh
     hash
 }
 
-/// The pixels of a cache file whose header matches; `None` if absent, short or different.
+/// The pixels of a cache file whose header, size and checksum match and whose pixels are
+/// finite; `None` for anything else (absent, short, foreign, corrupted, not a regular file),
+/// which is then rendered again and overwritten.
 fn read(path: &Path, (width, height, spp): (u32, u32, u32)) -> Option<Vec<[f32; 3]>> {
-    let bytes = std::fs::read(path).ok()?;
     let header: Vec<u8> = [MAGIC.as_slice(), &[width, height, spp].map(u32::to_le_bytes).concat()].concat();
-    let body = bytes.strip_prefix(header.as_slice())?;
     let pixels = (width as usize) * (height as usize);
-    if body.len() != pixels * 12 {
+    let size = header.len() + pixels * 12 + 8;
+    let bytes = read_bounded(path, size as u64).ok()?;
+    if bytes.len() != size {
         return None;
     }
+    let (content, sum) = bytes.split_at(size - 8);
+    if sum != checksum(content).to_le_bytes() {
+        return None;
+    }
+    let body = content.strip_prefix(header.as_slice())?;
     let floats: Vec<f32> = body.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
+    if !floats.iter().all(|v| v.is_finite()) {
+        return None;
+    }
     Some(floats.chunks_exact(3).map(|p| [p[0], p[1], p[2]]).collect())
+}
+
+/// FNV-1a over a cache file's header and pixels: its last eight bytes.
+fn checksum(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |hash, &b| (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+}
+
+/// Fails, naming the folder, when references cannot be written into `cache`.
+fn check_writable(cache: &Path) -> Result<()> {
+    let cannot = |e: std::io::Error| {
+        Error::Input(format!(
+            "reference cache {}: cannot write there ({e}); choose another with --cache",
+            cache.display()
+        ))
+    };
+    std::fs::create_dir_all(cache).map_err(cannot)?;
+    let probe = cache.join(format!(".write-test-{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(cannot)?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
 }
 
 /// Writes through a temporary file and a rename, so that a failure leaves no partial file.
@@ -155,6 +196,7 @@ fn write(path: &Path, (width, height, spp): (u32, u32, u32), linear: &[[f32; 3]]
     let mut bytes: Vec<u8> = MAGIC.to_vec();
     bytes.extend([width, height, spp].map(u32::to_le_bytes).concat());
     bytes.extend(linear.iter().flatten().flat_map(|v| v.to_le_bytes()));
+    bytes.extend(checksum(&bytes).to_le_bytes());
     let temporary = path.with_extension("ref.partial");
     std::fs::write(&temporary, bytes).map_err(io("writing", &temporary))?;
     std::fs::rename(&temporary, path).map_err(io("renaming", path))
@@ -195,6 +237,29 @@ mod tests {
         assert_eq!(read(&path, (1, 2, 16)), None, "another size");
         std::fs::write(&path, b"TWREF1\0\0short").unwrap();
         assert_eq!(read(&path, (2, 1, 16)), None);
+    }
+
+    /// One flipped bit anywhere, a truncation, a byte more, or non-finite pixels with a
+    /// matching checksum: never read.
+    #[test]
+    fn corrupted_cache_files_are_not_read() {
+        let dir = tempfile::tempdir().unwrap();
+        let path = dir.path().join("x.ref");
+        let pixels = vec![[0.25, 1.5, 2.0], [3.0, 0.0, 1e-3]];
+        write(&path, (2, 1, 16), &pixels).unwrap();
+        let good = std::fs::read(&path).unwrap();
+        for i in 0..good.len() {
+            let mut bad = good.clone();
+            bad[i] ^= 0x10;
+            std::fs::write(&path, &bad).unwrap();
+            assert_eq!(read(&path, (2, 1, 16)), None, "bit flipped in byte {i}");
+        }
+        for bad in [&good[..good.len() - 1], &[good.as_slice(), &[0]].concat()[..]] {
+            std::fs::write(&path, bad).unwrap();
+            assert_eq!(read(&path, (2, 1, 16)), None, "{} bytes", bad.len());
+        }
+        write(&path, (2, 1, 16), &[[f32::NAN, 0.0, 0.0], [0.0; 3]]).unwrap();
+        assert_eq!(read(&path, (2, 1, 16)), None, "NaN pixel");
     }
 
     #[test]

@@ -15,3 +15,4 @@ pub use output::{to_rgba8, RayCounts, RenderOptions, RenderOutput, NO_HIT_ID};
 pub use prepare::MIN_WARM_MS;
 pub(crate) use prepare::{prepare, storage_buffer};
 pub use sets::{render, render_sets};
+pub(crate) use tracing::submit;

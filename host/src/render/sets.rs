@@ -144,9 +144,8 @@ fn render_and_release(
         .map(|r| r.prepared.trace(ctx, r.timestamps.as_ref(), size, (opts.warmup, opts.runs)))
         .collect::<Result<Vec<_>>>()?;
     let Some(first) = renders.first() else { return Ok(Vec::new()) };
-    first.prepared.one_shot.run(|device, cmd| {
-        transition(device, cmd, outputs.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
-        tracing::record(ctx, cmd, &traces);
+    let before = |device: &ash::Device, cmd| transition(device, cmd, outputs.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
+    tracing::submit(ctx, &first.prepared.one_shot, &traces, before, |device, cmd| {
         // Each set's output: one more trace of it, copied out before the next set's overwrites it.
         for (r, trace) in renders.iter().zip(&traces) {
             trace.once(ctx, cmd);
@@ -158,7 +157,6 @@ fn render_and_release(
         }
         let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
         memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
-        Ok(())
     })?;
     renders.iter().zip(&traces).map(|(r, t)| r.output(scene, opts, t.warmup)).collect()
 }

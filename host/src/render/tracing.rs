@@ -3,7 +3,9 @@
 //! drift of the GPU's clocks over the submission reaches every pipeline alike; measured on the
 //! H200, two identical GLSL pipelines timed one after the other differed by 4.7% (lights).
 
-use crate::vk::commands::memory_barrier;
+use crate::error::Result;
+use crate::util::progress;
+use crate::vk::commands::{memory_barrier, OneShot};
 use crate::vk::context::Context;
 use crate::vk::descriptors::DescriptorSet;
 use crate::vk::pipeline::RtPipeline;
@@ -74,9 +76,19 @@ impl Trace<'_> {
     }
 }
 
+/// Timed rounds recorded in one submission. Longer work is split over several submissions,
+/// with progress reported between them; up to this many, one submission as always.
+pub(crate) const ROUNDS_PER_SUBMIT: u32 = 100;
+
 /// Every trace's warm-up traces, one pipeline after the other, then round k of the timed
 /// traces: timed trace k of each pipeline in turn. Every trace waits for the previous one.
 pub(crate) fn record(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace]) {
+    record_warmup(ctx, cmd, traces);
+    record_rounds(ctx, cmd, traces, 0..rounds(traces));
+}
+
+/// Timestamps reset, then every trace's warm-up traces.
+fn record_warmup(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace]) {
     for t in traces.iter().filter_map(|t| t.timestamps) {
         t.reset(cmd);
     }
@@ -86,14 +98,64 @@ pub(crate) fn record(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace]) {
             trace.trace(ctx, cmd, None);
         }
     }
-    let rounds = traces.iter().map(|t| t.runs.max(1)).max().unwrap_or(0);
-    for k in 0..rounds {
+}
+
+fn rounds(traces: &[Trace]) -> u32 {
+    traces.iter().map(|t| t.runs.max(1)).max().unwrap_or(0)
+}
+
+/// Rounds `range` of the timed traces (see `record`).
+fn record_rounds(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace], range: std::ops::Range<u32>) {
+    // A lone pipeline stays bound from its warm-up, but not into another command buffer.
+    if let [only] = traces {
+        only.bind(ctx, cmd);
+    }
+    for k in range {
         for trace in traces.iter().filter(|t| k < t.runs.max(1)) {
-            // A lone pipeline is still bound from its warm-up.
             if traces.len() > 1 {
                 trace.bind(ctx, cmd);
             }
             trace.trace(ctx, cmd, Some(k).filter(|&k| k < trace.runs));
         }
     }
+}
+
+/// Records and submits `before`, the traces (as `record` orders them) and `after`: in one
+/// submission up to `ROUNDS_PER_SUBMIT` timed rounds, else the rounds in batches of that many,
+/// reporting progress after each.
+pub(crate) fn submit(
+    ctx: &Context,
+    one_shot: &OneShot,
+    traces: &[Trace],
+    before: impl FnOnce(&ash::Device, vk::CommandBuffer),
+    after: impl FnOnce(&ash::Device, vk::CommandBuffer),
+) -> Result<()> {
+    let rounds = rounds(traces);
+    if rounds <= ROUNDS_PER_SUBMIT {
+        return one_shot.run(|device, cmd| {
+            before(device, cmd);
+            record(ctx, cmd, traces);
+            after(device, cmd);
+            Ok(())
+        });
+    }
+    one_shot.run(|device, cmd| {
+        before(device, cmd);
+        record_warmup(ctx, cmd, traces);
+        Ok(())
+    })?;
+    let mut done = 0;
+    while done < rounds {
+        let end = (done + ROUNDS_PER_SUBMIT).min(rounds);
+        one_shot.run(|_, cmd| {
+            record_rounds(ctx, cmd, traces, done..end);
+            Ok(())
+        })?;
+        progress::report("timed traces", u64::from(end), u64::from(rounds));
+        done = end;
+    }
+    one_shot.run(|device, cmd| {
+        after(device, cmd);
+        Ok(())
+    })
 }

@@ -3,6 +3,7 @@
 use super::file::{CameraDesc, GridDesc, LightDesc, MaterialDesc, ObjectDesc, Parity, SceneFile};
 use super::shape::ShapeDesc;
 use glam::Vec3;
+use twinray_shared::shapes::spec::{MAX_LENGTH, MIN_LENGTH};
 
 /// Largest number of primitives one shape may have, and of objects in a scene.
 pub use twinray_shared::shapes::spec::MAX_PRIMITIVES;
@@ -31,8 +32,18 @@ pub fn check_size(width: u32, height: u32) -> std::result::Result<(), String> {
 
 type Checked = Result<(), String>;
 
+/// Smallest and largest magnitude of an object's scale on any axis: beyond, its world-to-object
+/// transform (the inverse) overflows or loses the object in f32 rounding.
+pub const SCALE_RANGE: (f32, f32) = (1.0e-6, 1.0e6);
+
+/// Finite numbers of magnitude at most `MAX_LENGTH` (coordinates, directions, colours, angles).
 fn finite(name: &str, values: &[f32]) -> Checked {
     if values.iter().all(|v| v.is_finite()) {
+        if let Some(v) = values.iter().find(|v| v.abs() > MAX_LENGTH) {
+            return Err(format!(
+                "{name} must be at most {MAX_LENGTH:e} in magnitude (got {v:e}): beyond, its GPU data overflows f32"
+            ));
+        }
         Ok(())
     } else {
         Err(format!("{name} must be finite numbers (got {values:?})"))
@@ -48,11 +59,13 @@ fn color(name: &str, c: [f32; 3]) -> Checked {
 }
 
 fn positive(name: &str, v: f32) -> Checked {
-    if v > 0.0 && v.is_finite() {
-        Ok(())
-    } else {
-        Err(format!("{name} must be > 0 (got {v})"))
+    if !(v > 0.0 && v.is_finite()) {
+        return Err(format!("{name} must be > 0 (got {v})"));
     }
+    if !(MIN_LENGTH..=MAX_LENGTH).contains(&v) {
+        return Err(format!("{name} must be in [{MIN_LENGTH:e}, {MAX_LENGTH:e}] (got {v:e}): beyond, its GPU data overflows or degenerates in f32"));
+    }
+    Ok(())
 }
 
 fn samples(name: &str, n: u32) -> Checked {
@@ -191,6 +204,12 @@ fn check_object(scene: &SceneFile, object: &ObjectDesc) -> Checked {
     if scale.contains(&0.0) {
         return Err(format!("scale must not be zero on any axis (got {scale:?})"));
     }
+    let (low, high) = SCALE_RANGE;
+    if let Some(s) = scale.iter().find(|s| !(low..=high).contains(&s.abs())) {
+        return Err(format!(
+            "scale must be in [{low:e}, {high:e}] in magnitude on every axis (got {s:e}): beyond, the object's transform overflows or degenerates in f32"
+        ));
+    }
     Ok(())
 }
 
@@ -204,6 +223,8 @@ fn check_grid(scene: &SceneFile, grid: &GridDesc) -> Checked {
     finite("spacing", &grid.spacing)?;
     finite("origin", &grid.origin)?;
     finite("rotate_step", &grid.rotate_step)?;
+    let last: Vec<f32> = (0..3).map(|i| grid.origin[i] + grid.spacing[i] * (grid.count[i] - 1) as f32).collect();
+    finite("origin + spacing * (count - 1)", &last)?;
     // Each material and the shape, checked as one object of the grid would be.
     for material in &grid.materials {
         let object = ObjectDesc {

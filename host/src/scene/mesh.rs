@@ -5,9 +5,11 @@
 //! does not depend on how the faces were split into triangles.
 
 use super::shape::{MeshBuiltin, Normals};
+use crate::util::input::read_bounded;
 use glam::Vec3;
 use std::path::Path;
 use twinray_shared::layout::Vertex;
+use twinray_shared::shapes::spec::{MAX_LENGTH, MAX_PRIMITIVES};
 
 /// A mesh ready to upload: vertices and three indices per triangle.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -36,17 +38,34 @@ pub fn builtin(kind: MeshBuiltin, normals: Normals) -> MeshData {
 const OBJ_OPTIONS: tobj::LoadOptions =
     tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
 
-/// Reads an OBJ file (all its models, triangulated); the error says why it could not.
-pub fn load_obj(path: &Path, normals: Normals) -> Result<MeshData, String> {
-    let (models, _) =
-        tobj::load_obj(path, &OBJ_OPTIONS).map_err(|e| format!("cannot read mesh file {}: {e}", path.display()))?;
-    from_models(&models, &path.display().to_string(), normals)
+/// Largest mesh file read, in bytes, unless `TWINRAY_MAX_MESH_BYTES` says otherwise.
+pub const DEFAULT_MAX_MESH_BYTES: u64 = 64 << 20;
+
+/// The mesh file size limit: `TWINRAY_MAX_MESH_BYTES` if set (a byte count), else the default.
+pub fn max_mesh_bytes() -> Result<u64, String> {
+    match std::env::var("TWINRAY_MAX_MESH_BYTES") {
+        Ok(v) => v.trim().parse().map_err(|_| format!("TWINRAY_MAX_MESH_BYTES must be a byte count (got {v:?})")),
+        Err(_) => Ok(DEFAULT_MAX_MESH_BYTES),
+    }
 }
 
-/// Reads OBJ text (a mesh file shipped in the binary); `name` names it in errors. Material
-/// libraries are not read: twinray's materials come from the scene.
-pub fn parse_obj(text: &str, name: &str, normals: Normals) -> Result<MeshData, String> {
-    let mut reader = std::io::BufReader::new(text.as_bytes());
+/// Reads an OBJ file (all its models, triangulated); the error says why it could not. Only a
+/// regular file no larger than `max_mesh_bytes` is read, and never past that bound: a device
+/// or a FIFO (which would never end, or never start) is refused before it is opened.
+pub fn load_obj(path: &Path, normals: Normals) -> Result<MeshData, String> {
+    let cannot = |why: String| format!("cannot read mesh file {}: {why}", path.display());
+    let limit = max_mesh_bytes().map_err(cannot)?;
+    let bytes = read_bounded(path, limit).map_err(|e| {
+        let raise = if e.contains("limit") { " (TWINRAY_MAX_MESH_BYTES raises it)" } else { "" };
+        cannot(format!("{e}{raise}"))
+    })?;
+    parse_obj(&bytes, &path.display().to_string(), normals)
+}
+
+/// Reads OBJ text (a mesh file shipped in the binary, or one read by `load_obj`); `name` names
+/// it in errors. Material libraries are not read: twinray's materials come from the scene.
+pub fn parse_obj(text: &[u8], name: &str, normals: Normals) -> Result<MeshData, String> {
+    let mut reader = std::io::BufReader::new(text);
     let (models, _) = tobj::load_obj_buf(&mut reader, &OBJ_OPTIONS, |_| Err(tobj::LoadError::OpenFileFailed))
         .map_err(|e| format!("cannot read mesh file {name}: {e}"))?;
     from_models(&models, name, normals)
@@ -64,8 +83,14 @@ fn from_models(models: &[tobj::Model], name: &str, normals: Normals) -> Result<M
     if p.triangles.is_empty() {
         return Err(format!("mesh file {path} has no triangles"));
     }
-    if !p.positions.iter().all(|v| v.is_finite()) {
-        return Err(format!("mesh file {path} has non-finite vertex positions"));
+    if p.triangles.len() > MAX_PRIMITIVES as usize {
+        return Err(format!("mesh file {path} has {} triangles (at most {MAX_PRIMITIVES})", p.triangles.len()));
+    }
+    let far = p.positions.iter().find(|v| !v.is_finite() || v.abs().max_element() > MAX_LENGTH);
+    if let Some(v) = far {
+        return Err(format!(
+            "mesh file {path} has a vertex at {v}: coordinates must be finite, at most {MAX_LENGTH:e}"
+        ));
     }
     if p.triangles.iter().flatten().any(|&i| i as usize >= p.positions.len()) {
         return Err(format!("mesh file {path} indexes a vertex it does not have"));

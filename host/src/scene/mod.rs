@@ -10,6 +10,7 @@ pub mod plan;
 pub mod shape;
 
 use crate::error::{Error, Result};
+use crate::util::input::{read_text, MAX_TEXT_BYTES};
 pub use build::{object_transform, Aabb, BlasDesc, InstanceDesc, SceneData};
 pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
 pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE, MAX_SIDE};
@@ -37,7 +38,7 @@ impl Scene {
         let arg = arg.unwrap_or(DEFAULT_SCENE);
         let path = Path::new(arg);
         if path.exists() {
-            let text = std::fs::read_to_string(path)
+            let text = read_text(path, MAX_TEXT_BYTES)
                 .map_err(|e| Error::Scene { path: arg.into(), message: format!("cannot read: {e}") })?;
             let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
             return Scene::parse(&text, arg, MeshFiles::Folder(folder));
@@ -155,7 +156,7 @@ impl MeshFiles {
         match self {
             MeshFiles::Folder(folder) => mesh::load_obj(&folder.join(name), normals),
             MeshFiles::Builtin => match BUILTIN_MESH_FILES.iter().find(|(n, _)| *n == name) {
-                Some((_, text)) => mesh::parse_obj(text, name, normals),
+                Some((_, text)) => mesh::parse_obj(text.as_bytes(), name, normals),
                 None => Err(format!("no built-in mesh file {name:?}")),
             },
         }

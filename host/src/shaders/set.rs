@@ -171,10 +171,16 @@ impl FromStr for ShaderSet {
                 )))
             }
         };
+        let mut named: Vec<&str> = Vec::new();
         for part in parts {
             let (key, value) = part
                 .split_once('=')
                 .ok_or_else(|| fail(format!("{part:?} is not STAGE=LANGUAGE (e.g. intersection=glsl)")))?;
+            // Which of two answers was meant is a guess: say so instead.
+            if named.contains(&key.trim()) {
+                return Err(fail(format!("{:?} is named twice", key.trim())));
+            }
+            named.push(key.trim());
             set.apply(key.trim(), value.trim()).map_err(fail)?;
         }
         if set.from_disk() {

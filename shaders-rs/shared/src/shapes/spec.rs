@@ -6,6 +6,13 @@
 use crate::layout::Primitive;
 use glam::{Vec3, Vec4};
 
+/// Largest length or coordinate a scene may give (a radius, a size, a translation, a vertex):
+/// the shaders square lengths and multiply squares (a cone's coefficients), which must stay
+/// finite in f32 (3.4e38).
+pub const MAX_LENGTH: f32 = 1.0e9;
+/// Smallest length > 0 a shape may have: its square and their products stay normal f32s.
+pub const MIN_LENGTH: f32 = 1.0e-9;
+
 /// What a scene key holds.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ParamType {
@@ -34,9 +41,9 @@ pub enum Value {
 /// What a key's value must satisfy on its own (relations between keys are the kind's `check`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Rule {
-    /// Every number finite.
+    /// Every number finite, of magnitude at most `MAX_LENGTH`.
     Finite,
-    /// Every number finite and > 0.
+    /// Every number in [`MIN_LENGTH`, `MAX_LENGTH`].
     Positive,
     /// A count in `1..=max`.
     CountUpTo(u32),
@@ -86,21 +93,22 @@ impl Param {
             }
             Value::Seed(_) => return Ok(()),
         };
-        match self.rule {
-            Rule::Finite if numbers.iter().any(|v| !v.is_finite()) => {
-                Err(format!("{} must be finite numbers (got {numbers:?})", self.name))
+        let (low, positive) = match self.rule {
+            Rule::Finite => (-MAX_LENGTH, false),
+            Rule::Positive => (MIN_LENGTH, true),
+            _ => return Ok(()),
+        };
+        for (i, v) in numbers.iter().enumerate() {
+            if !(*v >= low && *v <= MAX_LENGTH) {
+                let name = if numbers.len() > 1 { format!("{}[{i}]", self.name) } else { self.name.into() };
+                return Err(if positive && *v <= 0.0 {
+                    format!("{name} must be > 0 (got {v})")
+                } else {
+                    format!("{name} must be in [{low:e}, {MAX_LENGTH:e}] (got {v:e}): beyond, its GPU data overflows or degenerates in f32")
+                });
             }
-            Rule::Positive => {
-                for (i, v) in numbers.iter().enumerate() {
-                    if !(*v > 0.0 && v.is_finite()) {
-                        let name = if numbers.len() > 1 { format!("{}[{i}]", self.name) } else { self.name.into() };
-                        return Err(format!("{name} must be > 0 (got {v})"));
-                    }
-                }
-                Ok(())
-            }
-            _ => Ok(()),
         }
+        Ok(())
     }
 
     /// How the docs write this key: `radius` > 0, `size` [x, y, z] > 0, `count` 1..1048576.
