@@ -34,10 +34,10 @@ pub struct FrameArgs {
     #[arg(long)]
     pub height: Option<u32>,
     /// Timed traces; the median GPU time is reported [default: render 1, compare 10].
-    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: Option<u32>,
     /// Untimed traces before the timed ones [default: render 0, compare 2].
-    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: Option<u32>,
     /// Print one JSON object instead of text.
     #[arg(long)]
@@ -87,10 +87,10 @@ pub struct ProbeArgs {
     #[arg(long, value_parser = ["robust", "naive"])]
     pub formula: Option<String>,
     /// Timed passes over all the rays; the median is reported.
-    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
+    #[arg(long, default_value_t = 10, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
     /// Untimed passes before the timed ones.
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
+    #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
     /// Print one JSON object.
     #[arg(long)]
@@ -110,10 +110,10 @@ pub struct StabilityArgs {
     #[arg(long, default_value = "rust;glsl")]
     pub sets: String,
     /// Timed passes per case, set and formula.
-    #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
+    #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
     /// Untimed passes before the timed ones.
-    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
+    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
     /// Time each case over its rays repeated up to at least this many (0: the case's rays).
     #[arg(long, default_value_t = 262_144, value_parser = clap::value_parser!(u64).range(0..=MAX_TIMING_RAYS))]
@@ -171,10 +171,10 @@ pub struct BenchArgs {
     #[arg(long, requires = "width")]
     pub height: Option<u32>,
     /// Timed traces per measurement (at least 10).
-    #[arg(long, default_value_t = 10, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
+    #[arg(long, default_value_t = 10, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
     /// Untimed traces before them.
-    #[arg(long, default_value_t = 2, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
+    #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
     /// Samples per pixel of the references.
     #[arg(long, default_value_t = 1024)]

@@ -56,6 +56,9 @@ enum Command {
 }
 
 /// Image size and timing options shared by `render` and `compare`.
+/// Longest error line printed.
+const MAX_ERROR_CHARS: usize = 2000;
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -91,7 +94,11 @@ fn main() -> ExitCode {
     match result {
         Ok(code) => code,
         Err(e) => {
-            eprintln!("error: {e:#}");
+            // One line, and not a megabyte one when a hostile input is echoed in it.
+            let text = format!("{e:#}").replace('\n', " ");
+            let short: String = text.chars().take(MAX_ERROR_CHARS).collect();
+            let more = if short.len() < text.len() { "..." } else { "" };
+            eprintln!("error: {short}{more}");
             let input = e.downcast_ref::<twinray::Error>().is_some_and(twinray::Error::is_input);
             ExitCode::from(if input { 2 } else { 1 })
         }

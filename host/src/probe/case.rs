@@ -90,6 +90,25 @@ const INLINE_DEFAULTS: [(&str, &str); 2] = [
     ),
 ];
 
+/// What Vulkan asks of a ray (finite origin and direction, 0 <= t_min <= t_max, no NaN) and
+/// what a ray needs to go anywhere (a direction); the error starts with the field's name.
+fn check_ray(r: &RayDesc) -> std::result::Result<(), String> {
+    let finite = |v: &[f32]| v.iter().all(|x| x.is_finite());
+    if !finite(&r.origin) {
+        return Err(format!("origin must be finite (got {:?})", r.origin));
+    }
+    if !finite(&r.direction) || r.direction == [0.0; 3] {
+        return Err(format!("direction must be finite and not zero (got {:?})", r.direction));
+    }
+    if !(r.t_min >= 0.0 && r.t_min.is_finite()) {
+        return Err(format!("t_min must be finite and >= 0 (got {})", r.t_min));
+    }
+    if !(r.t_max >= r.t_min && r.t_max.is_finite()) {
+        return Err(format!("t_max must be finite and >= t_min (got {} < {})", r.t_max, r.t_min));
+    }
+    Ok(())
+}
+
 /// The case's text with the tables its inline scene leaves out appended. A scene written as
 /// one inline table (`scene = { ... }`) cannot be extended that way: it is written out again
 /// as a table, with the defaults (errors in it then give that text's positions).
@@ -123,7 +142,8 @@ impl ProbeCase {
         let scene = match &file.scene {
             SceneRef::Named(name) => {
                 let relative = folder.join(name);
-                Scene::load(Some(if relative.exists() { relative.to_str().unwrap_or(name) } else { name }))?
+                let scene = Scene::load(Some(if relative.exists() { relative.to_str().unwrap_or(name) } else { name }));
+                scene.map_err(|e| case_error(format!("scene: {e}")))?
             }
             SceneRef::Inline(table) => {
                 let document = with_inline_defaults(&text, table).map_err(case_error)?;
@@ -135,6 +155,9 @@ impl ProbeCase {
             }
         };
         let reference = SceneReference::new(&scene).map_err(case_error)?;
+        for (i, r) in file.rays.iter().enumerate() {
+            check_ray(r).map_err(|e| case_error(format!("rays[{i}].{e}")))?;
+        }
         let explicit: Vec<ProbeRay> =
             file.rays.iter().map(|r| ray(r.origin.into(), r.direction.into(), r.t_min, r.t_max)).collect();
         let (mut robust_rays, mut naive_rays) = (explicit.clone(), explicit);

@@ -110,6 +110,42 @@ impl Generator {
         }
     }
 
+    /// Its numbers: finite, and those that are sizes > 0 (`from` at most 1e9 away).
+    fn check(&self) -> Result<(), String> {
+        let positive = |name: &str, v: f32| {
+            if v > 0.0 && v <= twinray_shared::shapes::spec::MAX_LENGTH {
+                Ok(())
+            } else {
+                Err(format!("{name} must be in (0, 1e9] (got {v})"))
+            }
+        };
+        match *self {
+            Generator::Silhouette { from, band, .. } => {
+                if !from.iter().all(|v| v.abs() <= twinray_shared::shapes::spec::MAX_LENGTH) {
+                    return Err(format!("from must be finite, at most 1e9 in magnitude (got {from:?})"));
+                }
+                positive("band", band)
+            }
+            Generator::Surface { .. } => Ok(()),
+            Generator::Grazing { distance, angle, lift, .. } => {
+                positive("distance", distance)?;
+                if !(0.0..=90.0).contains(&angle) {
+                    return Err(format!("angle must be in [0, 90] degrees (got {angle})"));
+                }
+                if !(0.0..=1.0).contains(&lift) {
+                    return Err(format!("lift must be in [0, 1] bounding radii (got {lift})"));
+                }
+                Ok(())
+            }
+            Generator::FacePlane { offset, distance, .. } => {
+                if !(0.0..=1.0).contains(&offset) {
+                    return Err(format!("offset must be in [0, 1] bounding radii (got {offset})"));
+                }
+                positive("distance", distance)
+            }
+        }
+    }
+
     /// How many rays it is asked for.
     pub fn asked(&self) -> u64 {
         match *self {
@@ -127,6 +163,7 @@ pub fn generate(generator: &Generator, reference: &SceneReference) -> Result<Vec
     if asked == 0 || asked > MAX_GENERATED_RAYS {
         return Err(format!("makes {asked} rays; a generator makes 1..={MAX_GENERATED_RAYS}"));
     }
+    generator.check()?;
     let same = |r: ProbeRay| (r, r);
     match *generator {
         Generator::Silhouette { object, from, count, band } => {

@@ -28,7 +28,8 @@ pub struct StabilityRow {
 
 /// The case files of `dir`, sorted by name.
 pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
-    let entries = std::fs::read_dir(dir).map_err(|source| Error::Io { what: "listing", path: dir.into(), source })?;
+    let entries =
+        std::fs::read_dir(dir).map_err(|e| Error::Input(format!("probe case folder {}: {e}", dir.display())))?;
     let mut files: Vec<PathBuf> = entries
         .filter_map(|e| e.ok().map(|e| e.path()))
         .filter(|p| p.extension().is_some_and(|e| e == "toml"))

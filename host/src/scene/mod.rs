@@ -136,7 +136,10 @@ pub fn toml_error(source: &str, text: &str, e: &toml::de::Error) -> Error {
             let line = before.matches('\n').count() + 1;
             let column = before.len() - before.rfind('\n').map_or(0, |i| i + 1) + 1;
             let quoted = text[span.start - (column - 1)..].lines().next().unwrap_or("").trim();
-            format!("line {line}, column {column} (`{quoted}`): {message}")
+            // A line of a hostile file may be megabytes long: quote its start only.
+            let short: String = quoted.chars().take(60).collect();
+            let more = if short.len() < quoted.len() { "..." } else { "" };
+            format!("line {line}, column {column} (`{short}{more}`): {message}")
         }
         _ => message,
     };
