@@ -1,6 +1,7 @@
 //! Every built-in scene renders with the Rust set, the GLSL set and a per-stage mix, on
 //! lavapipe with validation on, and each pair agrees within the scene's own parity tolerance
 //! (its `[parity]` table; see scenes/spheres.toml for why a tolerance and not equality).
+//! The context closes at the end, so an object leaked by any of the renders fails the test.
 
 use twinray::compare::{diff, verdict};
 use twinray_tests::{builtin_scenes, render_scene, validated_context, SCENE_TEST_SIZE};
@@ -39,4 +40,6 @@ fn every_builtin_scene_agrees_across_sets_and_a_mix() {
         }
     }
     assert!(failures.is_empty(), "{failures:#?}");
+    // Every scene's objects are destroyed by now: the layer reports any that are not.
+    ctx.close().expect("validation errors or leaked objects at teardown");
 }

@@ -17,6 +17,8 @@ fn robust_formulas_meet_every_target_and_naive_ones_fail_where_expected() {
     // Accuracy only: one timed pass over the case's own rays.
     let timing = Timing { warmup: 0, runs: 1, rays: 0 };
     let rows = run(&ctx, &files, &sets, &[Formula::Robust, Formula::Naive], timing).expect("suite");
+    // Every probe's objects are destroyed by now: the layer reports any that are not.
+    ctx.close().expect("validation errors or leaked objects at teardown");
     let mut missed = Vec::new();
     for row in rows.iter().filter(|r| r.formula == "robust" && !r.failures.is_empty()) {
         missed.push(format!("{} {}: {:?}", row.report.case, row.report.set, row.failures));

@@ -18,6 +18,13 @@ struct Tally {
 }
 
 impl Tally {
+    /// Fails unless at least `min_decided` rays were decided and none of them wrong.
+    fn assert_none_wrong(&self, min_decided: usize) {
+        assert!(self.decided >= min_decided, "only {} rays decided", self.decided);
+        let shown = self.wrong[..self.wrong.len().min(20)].join("\n");
+        assert!(self.wrong.is_empty(), "{} of {} decided rays wrong:\n{shown}", self.wrong.len(), self.decided);
+    }
+
     fn check(&mut self, minor: f32, origin: Vec3, direction: Vec3) {
         let reference = intersect(
             &RefShape::Torus { major: 1.0, minor: f64::from(minor) },
@@ -87,20 +94,11 @@ fn thin_tori_edge_on_from_afar_have_no_false_answers() {
     for minor in [1e-2f32, 3e-3, 1e-3] {
         for distance in [1e1f32, 1e2, 1e3, 1e4] {
             for elevation in [0.0f32, 0.05, 0.5, 5.0] {
-                let before = tally.wrong.len();
                 band_rays(&mut tally, minor, distance, elevation);
-                eprintln!("r {minor} distance {distance} elevation {elevation}: {} wrong", tally.wrong.len() - before);
             }
         }
     }
-    assert!(tally.decided > 50_000, "only {} rays decided", tally.decided);
-    assert!(
-        tally.wrong.is_empty(),
-        "{} of {} decided rays wrong:\n{}",
-        tally.wrong.len(),
-        tally.decided,
-        tally.wrong[..tally.wrong.len().min(20)].join("\n")
-    );
+    tally.assert_none_wrong(50_000);
 }
 
 #[test]
@@ -109,12 +107,5 @@ fn rays_leaving_thin_tori_have_no_false_answers() {
     for minor in [1e-2f32, 3e-3, 1e-3] {
         surface_rays(&mut tally, minor);
     }
-    assert!(tally.decided > 8000, "only {} rays decided", tally.decided);
-    assert!(
-        tally.wrong.is_empty(),
-        "{} of {} decided rays wrong:\n{}",
-        tally.wrong.len(),
-        tally.decided,
-        tally.wrong[..tally.wrong.len().min(20)].join("\n")
-    );
+    tally.assert_none_wrong(8000);
 }

@@ -13,7 +13,8 @@
 //! - [`reference`](mod@reference): the f64 reference of shapes and scenes; converged images;
 //! - [`probe`](mod@probe): probe cases, their generators, judging rays, and the hard-case suite;
 //! - [`compare`](mod@compare): image differences, verdicts and the report of two sets;
-//! - [`bench`](mod@bench): speed against error, with tables, plots and HTML.
+//! - [`bench`](mod@bench): speed against error, with tables, plots and HTML;
+//! - [`fuzz`](mod@fuzz): what the fuzz targets feed arbitrary bytes.
 
 pub mod error;
 pub mod util;
@@ -33,6 +34,8 @@ pub mod probe;
 pub mod compare;
 
 pub mod bench;
+
+pub mod fuzz;
 
 pub use error::{Error, Result};
 pub use render::{render, render_sets, RenderOptions, RenderOutput};

@@ -135,10 +135,18 @@ impl ProbeCase {
     /// Reads a case file: its scene, its rays (given and generated) and the reference.
     pub fn load(path: &Path) -> Result<ProbeCase> {
         let source = path.display().to_string();
-        let case_error = |message: String| Error::Scene { path: source.clone(), message };
-        let text = read_text(path, MAX_TEXT_BYTES).map_err(|e| case_error(format!("cannot read: {e}")))?;
+        let text = read_text(path, MAX_TEXT_BYTES)
+            .map_err(|e| Error::Scene { path: source.clone(), message: format!("cannot read: {e}") })?;
+        ProbeCase::parse(&text, &source, path.parent().map(Path::to_path_buf).unwrap_or_default())
+    }
+
+    /// Parses case text; `source` names it in errors, and named scenes and mesh files are
+    /// looked up relative to `folder`.
+    pub fn parse(text: &str, source: &str, folder: std::path::PathBuf) -> Result<ProbeCase> {
+        let case_error = |message: String| Error::Scene { path: source.into(), message };
+        let text = text.to_string();
+        let source = source.to_string();
         let file: ProbeFile = toml::from_str(&text).map_err(|e| crate::scene::toml_error(&source, &text, &e))?;
-        let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
         let scene = match &file.scene {
             SceneRef::Named(name) => {
                 let relative = folder.join(name);

@@ -9,6 +9,10 @@ use twinray_shared::shapes::spec::{MAX_LENGTH, MIN_LENGTH};
 pub use twinray_shared::shapes::spec::MAX_PRIMITIVES;
 /// Largest number of objects in a scene, counting grids.
 pub const MAX_OBJECTS: usize = 1 << 20;
+/// Most lights in a scene: every hit shades every light (and traces its shadow rays).
+pub const MAX_LIGHTS: usize = 1024;
+/// Most shapes in a scene: each becomes one BLAS (instances share them).
+pub const MAX_SHAPES: usize = 4096;
 /// Largest M (M x M primary samples) and N (N x N shadow samples per rect light).
 pub const MAX_SAMPLES_PER_SIDE: u32 = 16;
 
@@ -85,8 +89,14 @@ pub fn check(scene: &SceneFile) -> Checked {
     for (name, m) in &scene.materials {
         check_material(m).map_err(|e| format!("material {name:?}: {e}"))?;
     }
+    if scene.lights.len() > MAX_LIGHTS {
+        return Err(format!("a scene has at most {MAX_LIGHTS} lights (got {}): every hit shades every light", scene.lights.len()));
+    }
     for (i, light) in scene.lights.iter().enumerate() {
         check_light(light).map_err(|e| format!("lights[{i}]: {e}"))?;
+    }
+    if scene.shapes.len() > MAX_SHAPES {
+        return Err(format!("a scene has at most {MAX_SHAPES} shapes (got {}): each is an acceleration structure", scene.shapes.len()));
     }
     let mut primitives = 0u64;
     for (name, shape) in &scene.shapes {

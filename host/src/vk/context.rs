@@ -57,6 +57,8 @@ pub struct Context {
     messenger: Option<Messenger>,
     // Boxed so the messenger's user-data pointer stays put; dropped after the messenger.
     validation_log: Box<ValidationLog>,
+    /// Set once `close` has destroyed the device, so that `Drop` does not again.
+    device_destroyed: bool,
 }
 
 impl Context {
@@ -118,6 +120,7 @@ impl Context {
             allocator: ManuallyDrop::new(Mutex::new(allocator)),
             messenger,
             validation_log,
+            device_destroyed: false,
         }))
     }
 
@@ -161,15 +164,41 @@ impl Context {
     }
 }
 
-impl Drop for Context {
-    fn drop(&mut self) {
+impl Context {
+    /// Destroys the device and reports what the validation layer said about it, leaks above
+    /// all: an object still alive when its device goes is a validation error
+    /// (VUID-vkDestroyDevice-device-05137), which only teardown can reveal. Needs the last
+    /// reference to the context.
+    pub fn close(self: Arc<Self>) -> Result<()> {
+        let mut ctx = Arc::try_unwrap(self).map_err(|ctx| {
+            Error::Input(format!("closing a context still held in {} places", Arc::strong_count(&ctx)))
+        })?;
+        ctx.destroy_device();
+        ctx.check_validation()
+    }
+
+    fn destroy_device(&mut self) {
+        if std::mem::replace(&mut self.device_destroyed, true) {
+            return;
+        }
         // SAFETY: every object made from the device holds an Arc<Context>, so none is alive now;
-        // the allocator goes before the device, the messenger before the instance.
+        // the allocator goes before the device.
         unsafe {
             let _ = self.device.device_wait_idle();
             ManuallyDrop::drop(&mut self.allocator);
             self.device.destroy_device(None);
         }
+    }
+}
+
+impl Drop for Context {
+    fn drop(&mut self) {
+        self.destroy_device();
+        // Nobody can be told any more: what the layer said at teardown goes to the log.
+        if let Err(e) = self.check_validation() {
+            log::error!("at Vulkan teardown: {e}");
+        }
+        // The messenger goes before the instance.
         destroy_instance(&self.instance, self.messenger.take());
     }
 }

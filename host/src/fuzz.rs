@@ -1,0 +1,33 @@
+//! What the fuzz targets (`fuzz/`, run with `cargo fuzz`) and their seed test
+//! (`host/tests/fuzz_seeds.rs`, run by `cargo test`) feed arbitrary bytes. Each goes as far
+//! as input can reach without a GPU: parse, check, then build what a render or probe would
+//! build from the result. An `Err` is the right answer to bad input; a panic, a hang or an
+//! allocation that eats the machine is a finding.
+
+use crate::probe::case::ProbeCase;
+use crate::reference::scene::SceneReference;
+use crate::scene::shape::Normals;
+use crate::scene::{mesh, MeshFiles, Scene};
+
+/// A scene file: parsed, checked, its GPU data built and its reference made.
+pub fn scene(bytes: &[u8]) {
+    let Ok(text) = std::str::from_utf8(bytes) else { return };
+    if let Ok(scene) = Scene::parse(text, "fuzz.toml", MeshFiles::Builtin) {
+        let _ = scene.build();
+        let _ = SceneReference::new(&scene);
+    }
+}
+
+/// An OBJ file, with flat and with smooth normals.
+pub fn obj(bytes: &[u8]) {
+    for normals in [Normals::Flat, Normals::Smooth] {
+        let _ = mesh::parse_obj(bytes, "fuzz.obj", normals);
+    }
+}
+
+/// A probe case: parsed, its scene loaded (built-in names only: the folder does not exist),
+/// its rays generated and checked.
+pub fn probe_case(bytes: &[u8]) {
+    let Ok(text) = std::str::from_utf8(bytes) else { return };
+    let _ = ProbeCase::parse(text, "fuzz.toml", std::path::PathBuf::from("/nonexistent/fuzz"));
+}
