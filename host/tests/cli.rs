@@ -228,3 +228,20 @@ fn reference_renders_then_reads_the_cache() {
     assert!(dir.path().join("r.png").exists());
     assert_bad_input(&["reference", "lights", "--spp", "3"], &["square up to 256", "got 3"]);
 }
+
+/// Parity belongs to comparisons and the name can come from the file: a scene with neither
+/// renders (issue 11), and its name is the file's stem.
+#[test]
+fn a_scene_without_parity_or_name_renders() {
+    let dir = tempfile::tempdir().unwrap();
+    let text = include_str!("../../scenes/spheres.toml");
+    let parity = text.find("[parity]").expect("the default scene has a [parity] table");
+    let without: String =
+        text[..parity].lines().filter(|l| !l.starts_with("name =")).map(|l| format!("{l}\n")).collect();
+    std::fs::write(dir.path().join("bare.toml"), without).unwrap();
+    let args = ["render", "bare.toml", "--width", "16", "--height", "16", "--out", "bare.png", "--json"];
+    let out = twinray(&args, dir.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    assert_eq!(json["scene"], "bare");
+}

@@ -90,13 +90,19 @@ pub fn check(scene: &SceneFile) -> Checked {
         check_material(m).map_err(|e| format!("material {name:?}: {e}"))?;
     }
     if scene.lights.len() > MAX_LIGHTS {
-        return Err(format!("a scene has at most {MAX_LIGHTS} lights (got {}): every hit shades every light", scene.lights.len()));
+        return Err(format!(
+            "a scene has at most {MAX_LIGHTS} lights (got {}): every hit shades every light",
+            scene.lights.len()
+        ));
     }
     for (i, light) in scene.lights.iter().enumerate() {
         check_light(light).map_err(|e| format!("lights[{i}]: {e}"))?;
     }
     if scene.shapes.len() > MAX_SHAPES {
-        return Err(format!("a scene has at most {MAX_SHAPES} shapes (got {}): each is an acceleration structure", scene.shapes.len()));
+        return Err(format!(
+            "a scene has at most {MAX_SHAPES} shapes (got {}): each is an acceleration structure",
+            scene.shapes.len()
+        ));
     }
     let mut primitives = 0u64;
     for (name, shape) in &scene.shapes {
