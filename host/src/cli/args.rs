@@ -2,6 +2,7 @@
 
 use clap::Args;
 use std::path::PathBuf;
+use twinray::render::{FrameRange, TlasKind, TlasMode};
 use twinray::ShaderSet;
 
 /// Most timed traces a command takes: past it, a typo (an extra zero or three) would hold the
@@ -44,6 +45,28 @@ pub struct FrameArgs {
     pub json: bool,
 }
 
+/// What `render` and `compare` take for moving scenes.
+#[derive(Args, Clone)]
+pub struct AnimationArgs {
+    /// Frames of an animated scene: A..B (B excluded), A..=B, A, or all. Without it, frame 0
+    /// renders as a still image.
+    #[arg(long, value_name = "RANGE")]
+    pub frames: Option<FrameRange>,
+    /// How the TLAS follows moving objects: rebuilt (preferring fast trace), rebuilt preferring
+    /// fast build, or updated in place.
+    #[arg(long, value_enum, default_value = "update")]
+    pub tlas: TlasKind,
+    /// With --tlas update: a full rebuild every N frames of the sequence (0: the first only).
+    #[arg(long, value_name = "N", default_value_t = twinray::render::DEFAULT_TLAS.rebuild_every)]
+    pub rebuild_every: u32,
+}
+
+impl AnimationArgs {
+    pub fn mode(&self) -> TlasMode {
+        TlasMode { kind: self.tlas, rebuild_every: self.rebuild_every }
+    }
+}
+
 #[derive(Args)]
 pub struct RenderArgs {
     /// Scene file, or the name of a built-in scene [default: spheres].
@@ -51,11 +74,13 @@ pub struct RenderArgs {
     /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
     #[arg(long, default_value = "rust")]
     pub shaders: ShaderSet,
-    /// Output PNG file.
+    /// Output PNG file; with --frames, an animated PNG, each frame also as STEM-NNNN.png beside it.
     #[arg(long, default_value = "render.png")]
     pub out: PathBuf,
     #[command(flatten)]
     pub frame: FrameArgs,
+    #[command(flatten)]
+    pub animation: AnimationArgs,
 }
 
 #[derive(Args)]
@@ -68,11 +93,14 @@ pub struct CompareArgs {
     /// Second shader set.
     #[arg(long, default_value = "glsl")]
     pub b: ShaderSet,
-    /// Directory for a.png, b.png and diff.png (created if missing).
+    /// Directory for a.png, b.png and diff.png (created if missing); with --frames, those of
+    /// the worst frame, and diff-NNNN.png of every frame outside the tolerance.
     #[arg(long, default_value = "compare")]
     pub out_dir: PathBuf,
     #[command(flatten)]
     pub frame: FrameArgs,
+    #[command(flatten)]
+    pub animation: AnimationArgs,
 }
 
 #[derive(Args)]

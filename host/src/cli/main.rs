@@ -3,6 +3,7 @@
 
 mod args;
 mod bench;
+mod frames;
 mod probe;
 mod render;
 mod session;
@@ -39,9 +40,10 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
-    /// Render a scene with one shader set to a PNG.
+    /// Render a scene with one shader set to a PNG; with --frames, a moving scene's frames.
     Render(RenderArgs),
-    /// Render a scene with two shader sets and report how they differ in image and GPU time.
+    /// Render a scene with two shader sets and report how they differ in image and GPU time;
+    /// with --frames, on every frame of a moving scene.
     Compare(CompareArgs),
     /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
     Probe(ProbeArgs),

@@ -10,6 +10,9 @@ use twinray::util::output::{check_png_target, write_png};
 use twinray::{Error, Scene};
 
 pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
+    if let Some(range) = args.animation.frames {
+        return crate::frames::render(global, args, range);
+    }
     let scene = Scene::load(args.scene.as_deref())?;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     check_png_target(&args.out)?;
@@ -47,6 +50,9 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
 }
 
 pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
+    if let Some(range) = args.animation.frames {
+        return crate::frames::compare(global, args, range);
+    }
     let scene = Scene::load(args.scene.as_deref())?;
     let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
     if args.out_dir.exists() && !args.out_dir.is_dir() {

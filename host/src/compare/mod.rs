@@ -2,7 +2,9 @@
 //! the scene's parity tolerance, and the report `twinray compare` prints.
 
 pub mod diff;
+pub mod frames;
 pub mod report;
 
 pub use diff::{color_diff, color_verdict, diff, diff_image, hit_count, verdict, ColorDiff, ImageDiff, DIFF_LEGEND};
+pub use frames::{compare_frames, FrameFigures, FramesReport};
 pub use report::{compare_sets, CompareReport, Comparison};

@@ -3,6 +3,7 @@
 //! timestamps), and read back colour and hit ids.
 
 mod barriers;
+pub mod frames;
 pub mod output;
 pub mod pipeline;
 pub(crate) mod prepare;
@@ -11,6 +12,7 @@ mod tracing;
 mod upload;
 
 pub(crate) use barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
+pub use frames::{render_frames, AsWork, Frame, FrameRange, TlasKind, TlasMode, DEFAULT_TLAS};
 pub use output::{to_rgba8, RayCounts, RenderOptions, RenderOutput, NO_HIT_ID};
 pub use prepare::MIN_WARM_MS;
 pub(crate) use prepare::{prepare, storage_buffer};

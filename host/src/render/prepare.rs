@@ -105,10 +105,10 @@ pub(crate) fn prepare_on(
     let pipeline = ScenePipeline::new(ctx, set, &scene.data.plan, raygen)?;
     let storage = vk::DescriptorType::STORAGE_BUFFER;
     let mut buffers: Vec<_> =
-        resources.buffers.iter().map(|(binding, ty, buffer)| (*binding, buffer.raw, *ty)).collect();
+        resources.buffers.borrow().iter().map(|(binding, ty, buffer)| (*binding, buffer.raw, *ty)).collect();
     buffers.extend(extra.iter().map(|(binding, buffer)| (*binding, buffer.raw, storage)));
     let targets = DescriptorTargets {
-        tlas: resources.tlas.raw,
+        tlas: resources.tlas.borrow().accel.raw,
         tlas_binding: b::BINDING_TLAS,
         image_view: image.view,
         image_binding: b::BINDING_IMAGE,

@@ -53,14 +53,14 @@ pub fn render_sets(
 
 /// The outputs every set of a render writes in turn (one image, one hit-id buffer), so that
 /// the sets' GPU times differ only by their pipelines.
-struct SharedOutputs {
-    image: Rc<StorageImage>,
-    hit_ids: Buffer,
+pub(super) struct SharedOutputs {
+    pub image: Rc<StorageImage>,
+    pub hit_ids: Buffer,
     unused: Buffer,
 }
 
 impl SharedOutputs {
-    fn new(ctx: &Arc<Context>, opts: &RenderOptions) -> Result<Self> {
+    pub fn new(ctx: &Arc<Context>, opts: &RenderOptions) -> Result<Self> {
         let pixels = u64::from(opts.width) * u64::from(opts.height);
         Ok(SharedOutputs {
             image: Rc::new(StorageImage::new(ctx, opts.width, opts.height)?),
@@ -79,15 +79,15 @@ impl SharedOutputs {
 }
 
 /// One set's pipeline over the shared scene and outputs, with its timestamps and readbacks.
-struct SetRender {
-    prepared: Prepared,
-    timestamps: Option<Timestamps>,
+pub(super) struct SetRender {
+    pub prepared: Prepared,
+    pub timestamps: Option<Timestamps>,
     image_readback: Buffer,
     ids_readback: Buffer,
 }
 
 impl SetRender {
-    fn new(
+    pub fn new(
         ctx: &Arc<Context>,
         scene: &UploadedScene,
         outputs: &SharedOutputs,
@@ -106,7 +106,7 @@ impl SetRender {
         })
     }
 
-    fn output(&self, scene: &Scene, opts: &RenderOptions, warmup_traces: u32) -> Result<RenderOutput> {
+    pub fn output(&self, scene: &Scene, opts: &RenderOptions, warmup_traces: u32) -> Result<RenderOutput> {
         let gpu_ms = self.timestamps.as_ref().map(|t| t.read_ms()).transpose()?.unwrap_or_default();
         let (hit_ids, shadow) = read_ids(&self.ids_readback.mapped()?[..self.ids_readback.size as usize]);
         let linear = read_linear(&self.image_readback.mapped()?[..self.image_readback.size as usize]);
@@ -145,23 +145,34 @@ fn render_and_release(
         .collect::<Result<Vec<_>>>()?;
     let Some(first) = renders.first() else { return Ok(Vec::new()) };
     let before = |device: &ash::Device, cmd| transition(device, cmd, outputs.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
-    tracing::submit(ctx, &first.prepared.one_shot, &traces, before, |device, cmd| {
-        // Each set's output: one more trace of it, copied out before the next set's overwrites it.
-        for (r, trace) in renders.iter().zip(&traces) {
-            trace.once(ctx, cmd);
-            let written = (STORAGE_IMAGE.1, STORAGE_IMAGE.2);
-            memory_barrier(device, cmd, written, (COPY_SOURCE.1, COPY_SOURCE.2));
-            transition(device, cmd, outputs.image.raw, STORAGE_IMAGE, COPY_SOURCE);
-            copy_out(device, cmd, &outputs.image, &r.image_readback, &outputs.hit_ids, &r.ids_readback);
-            transition(device, cmd, outputs.image.raw, COPY_SOURCE, STORAGE_IMAGE);
-        }
-        let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
-        memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
-    })?;
+    let after = |device: &ash::Device, cmd| copy_outputs(ctx, device, cmd, &outputs, &renders, &traces);
+    tracing::submit(ctx, &first.prepared.one_shot, &traces, before, after)?;
     renders.iter().zip(&traces).map(|(r, t)| r.output(scene, opts, t.warmup)).collect()
 }
 
-fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {
+/// Each set's output: one more trace of it, copied out before the next set's overwrites it,
+/// then made visible to the host.
+pub(super) fn copy_outputs(
+    ctx: &Context,
+    device: &ash::Device,
+    cmd: vk::CommandBuffer,
+    outputs: &SharedOutputs,
+    renders: &[SetRender],
+    traces: &[tracing::Trace],
+) {
+    for (r, trace) in renders.iter().zip(traces) {
+        trace.once(ctx, cmd);
+        let written = (STORAGE_IMAGE.1, STORAGE_IMAGE.2);
+        memory_barrier(device, cmd, written, (COPY_SOURCE.1, COPY_SOURCE.2));
+        transition(device, cmd, outputs.image.raw, STORAGE_IMAGE, COPY_SOURCE);
+        copy_out(device, cmd, &outputs.image, &r.image_readback, &outputs.hit_ids, &r.ids_readback);
+        transition(device, cmd, outputs.image.raw, COPY_SOURCE, STORAGE_IMAGE);
+    }
+    let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
+    memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
+}
+
+pub(super) fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {
     let info = &ctx.info;
     let invocations = u64::from(opts.width) * u64::from(opts.height);
     if opts.width.max(opts.height) > info.max_image_dimension_2d

@@ -3,46 +3,73 @@
 
 use crate::error::Result;
 use crate::scene::{BlasDesc, Scene, SceneData};
-use crate::vk::accel::{build_aabb_blas, build_tlas, build_triangle_blas, AccelStruct, InstanceRecord};
+use crate::vk::accel::{
+    build_aabb_blas, build_tlas, build_triangle_blas, AccelStruct, InstanceRecord, Tlas, TlasFlags,
+};
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
 use ash::vk;
+use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
 
 const VERTEX_BYTES: u64 = size_of::<twinray_shared::layout::Vertex>() as u64;
 
-/// The scene's GPU data; kept alive until the trace has completed.
+/// The scene's GPU data; kept alive until the trace has completed. The TLAS and the buffers
+/// can be rewritten between submissions (moving scenes), never during one.
 pub(crate) struct SceneResources {
     _blases: Vec<AccelStruct>,
-    pub tlas: AccelStruct,
+    pub tlas: RefCell<Tlas>,
     /// (binding, buffer) of every storage and uniform buffer the scene provides.
-    pub buffers: Vec<(u32, vk::DescriptorType, Buffer)>,
+    pub buffers: RefCell<Vec<(u32, vk::DescriptorType, Buffer)>>,
+}
+
+impl SceneResources {
+    /// Rewrites the host-visible buffer at `binding` (the frame constants, the lights).
+    pub fn write(&self, binding: u32, bytes: &[u8]) -> Result<()> {
+        let mut buffers = self.buffers.borrow_mut();
+        match buffers.iter_mut().find(|(b, ..)| *b == binding) {
+            Some((.., buffer)) => buffer.write(bytes),
+            None => Err(crate::error::Error::Unsupported(format!("the scene has no buffer at binding {binding}"))),
+        }
+    }
 }
 
 /// A scene's data and GPU resources, which any number of pipelines can trace.
 pub(crate) struct UploadedScene {
     pub data: SceneData,
     pub resources: Rc<SceneResources>,
+    /// The TLAS instances as uploaded: a moving scene rewrites their transforms.
+    pub instances: Vec<InstanceRecord>,
 }
 
 /// Builds the scene's acceleration structures and buffers, frame constants for `frame` pixels.
 pub(crate) fn upload_shared(ctx: &Arc<Context>, scene: &Scene, frame: (u32, u32)) -> Result<UploadedScene> {
-    let one_shot = OneShot::new(ctx)?;
-    let data = scene.build();
-    let resources = Rc::new(upload_scene(ctx, &one_shot, scene, &data, frame)?);
-    Ok(UploadedScene { data, resources })
+    upload_scene(ctx, scene, frame, None)
+}
+
+/// As `upload_shared`, with a TLAS made with `flags` but not built: the caller builds it,
+/// frame after frame, with `Tlas::record`.
+pub(crate) fn upload_moving(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    frame: (u32, u32),
+    flags: TlasFlags,
+) -> Result<UploadedScene> {
+    upload_scene(ctx, scene, frame, Some(flags))
 }
 
 fn upload_scene(
     ctx: &Arc<Context>,
-    one_shot: &OneShot,
     scene: &Scene,
-    data: &SceneData,
     (width, height): (u32, u32),
-) -> Result<SceneResources> {
+    moving: Option<TlasFlags>,
+) -> Result<UploadedScene> {
+    let one_shot = &OneShot::new(ctx)?;
+    let built = scene.build();
+    let data = &built;
     // Meshes are read by the BLAS builds and by the triangle closest-hit stage.
     let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
         | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
@@ -90,7 +117,10 @@ fn upload_scene(
             blas_address: blases[i.blas].address,
         })
         .collect();
-    let tlas = build_tlas(ctx, one_shot, &instances)?;
+    let tlas = match moving {
+        Some(flags) => Tlas::new(ctx, &instances, flags)?,
+        None => build_tlas(ctx, one_shot, &instances)?,
+    };
     let frame = scene.frame_uniform(width, height);
     let storage = vk::DescriptorType::STORAGE_BUFFER;
     let buffers = vec![
@@ -102,7 +132,8 @@ fn upload_scene(
         (b::BINDING_VERTICES, storage, vertices),
         (b::BINDING_INDICES, storage, indices),
     ];
-    Ok(SceneResources { _blases: blases, tlas, buffers })
+    let resources = SceneResources { _blases: blases, tlas: RefCell::new(tlas), buffers: RefCell::new(buffers) };
+    Ok(UploadedScene { data: built, resources: Rc::new(resources), instances })
 }
 
 /// A host-visible buffer usable as a uniform or storage buffer; an empty slice still gets a

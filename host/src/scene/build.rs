@@ -127,7 +127,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
             hit_group: groups.iter().position(|g| *g == hit_group(shape)).unwrap_or(0) as u32,
         });
     }
-    let lights: Vec<Light> = scene.lights.iter().map(|l| light(l, scene.shadow_samples)).collect();
+    let lights = lights(scene);
     let plan = PipelinePlan {
         hit_groups: groups,
         shadows: lights.iter().any(|l| l.shadows != 0),
@@ -140,6 +140,27 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
     let materials = scene.materials.values().map(material).collect();
     let Geometry { blases, primitives, vertices, indices } = geometry;
     SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights }
+}
+
+/// What a frame of a moving scene rewrites on the GPU, from the scene posed at that frame.
+pub struct FrameData {
+    /// Each object's object-to-world transform, in object (TLAS instance) order.
+    pub transforms: Vec<Mat4>,
+    pub lights: Vec<Light>,
+    pub uniform: FrameUniform,
+}
+
+/// The transforms, lights and frame constants of `scene` as it stands.
+pub fn frame_data(scene: &SceneFile, width: u32, height: u32) -> FrameData {
+    FrameData {
+        transforms: scene.objects.iter().map(|o| object_transform(o.translate, o.rotate, o.scale.axes())).collect(),
+        lights: lights(scene),
+        uniform: frame_uniform(scene, width, height),
+    }
+}
+
+fn lights(scene: &SceneFile) -> Vec<Light> {
+    scene.lights.iter().map(|l| light(l, scene.shadow_samples)).collect()
 }
 
 /// Camera and frame constants for an image of `width` x `height`.

@@ -41,7 +41,7 @@ type Checked = Result<(), String>;
 pub const SCALE_RANGE: (f32, f32) = (1.0e-6, 1.0e6);
 
 /// Finite numbers of magnitude at most `MAX_LENGTH` (coordinates, directions, colours, angles).
-fn finite(name: &str, values: &[f32]) -> Checked {
+pub(super) fn finite(name: &str, values: &[f32]) -> Checked {
     if values.iter().all(|v| v.is_finite()) {
         if let Some(v) = values.iter().find(|v| v.abs() > MAX_LENGTH) {
             return Err(format!(
@@ -127,7 +127,7 @@ pub fn check(scene: &SceneFile) -> Checked {
     check_parity(&scene.parity)
 }
 
-fn check_camera(c: &CameraDesc) -> Checked {
+pub(super) fn check_camera(c: &CameraDesc) -> Checked {
     finite("camera.eye", &c.eye)?;
     finite("camera.target", &c.target)?;
     finite("camera.up", &c.up)?;
@@ -159,7 +159,7 @@ fn check_material(m: &MaterialDesc) -> Checked {
     }
 }
 
-fn check_light(light: &LightDesc) -> Checked {
+pub(super) fn check_light(light: &LightDesc) -> Checked {
     match light {
         LightDesc::Directional { direction, color: c, intensity, .. } => {
             finite("direction", direction)?;
@@ -213,6 +213,11 @@ fn check_object(scene: &SceneFile, object: &ObjectDesc) -> Checked {
     if !scene.materials.contains_key(&object.material) {
         return Err(format!("unknown material {:?} (materials: {})", object.material, names(scene.materials.keys())));
     }
+    check_placement(object)
+}
+
+/// An object's translation, rotation and scale: what an animation may change.
+pub(super) fn check_placement(object: &ObjectDesc) -> Checked {
     finite("translate", &object.translate)?;
     finite("rotate", &object.rotate)?;
     let scale = object.scale.axes();

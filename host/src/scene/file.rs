@@ -1,6 +1,7 @@
 //! The scene file format (TOML), as serde reads it. `docs/scene-format.md` documents every
 //! field; `check.rs` rejects impossible values; `build.rs` turns a scene into GPU data.
 
+use super::animation::format::AnimationDesc;
 use super::shape::ShapeDesc;
 use serde::Deserialize;
 use std::collections::BTreeMap;
@@ -49,6 +50,9 @@ pub struct SceneFile {
     /// Only comparisons read it; a scene without `[parity]` gets `Parity::default()`.
     #[serde(default)]
     pub parity: Parity,
+    /// What moves, frame by frame; a scene without it is still.
+    #[serde(default)]
+    pub animation: Option<AnimationDesc>,
 }
 
 fn default_background() -> [f32; 3] {

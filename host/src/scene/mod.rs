@@ -1,6 +1,7 @@
 //! Scenes: loaded from a TOML file or by built-in name, checked before any GPU work, and
 //! turned into GPU data and a pipeline plan.
 
+pub mod animation;
 mod build;
 mod builtin;
 mod check;
@@ -11,7 +12,8 @@ pub mod shape;
 
 use crate::error::{Error, Result};
 use crate::util::input::{read_text, MAX_TEXT_BYTES};
-pub use build::{object_transform, Aabb, BlasDesc, InstanceDesc, SceneData};
+pub use animation::Animation;
+pub use build::{frame_data, object_transform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
 pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
 pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE, MAX_SIDE};
 pub use file::{Parity, SceneFile};
@@ -30,6 +32,8 @@ pub struct Scene {
     pub source: String,
     /// The triangles of every mesh shape, by shape name.
     pub meshes: BTreeMap<String, MeshData>,
+    /// What moves, checked; `None` for a still scene. `file` holds frame 0's values.
+    pub animation: Option<Animation>,
 }
 
 impl Scene {
@@ -80,8 +84,19 @@ impl Scene {
             file.name = stem.unwrap_or_else(|| "scene".into());
         }
         check::check(&file).map_err(scene_error)?;
+        let mut grids = Vec::with_capacity(file.grids.len());
         let grid_objects: Vec<_> = file.grids.iter().flat_map(|g| g.objects()).collect();
+        for grid in &file.grids {
+            let start = grids.last().map_or(file.objects.len(), |r: &std::ops::Range<usize>| r.end);
+            grids.push(start..start + grid.count.iter().map(|&c| c as usize).product::<usize>());
+        }
         file.objects.extend(grid_objects);
+        let animation = file.animation.as_ref().map(|a| animation::resolve(a, &file, &grids)).transpose();
+        let animation = animation.map_err(scene_error)?;
+        // Whatever reads `file` (a still render, the reference, a probe) sees frame 0.
+        if let Some(a) = &animation {
+            a.pose(0, &mut file);
+        }
         let mut meshes = BTreeMap::new();
         for (name, shape) in &file.shapes {
             if let ShapeDesc::Mesh(m) = shape {
@@ -93,7 +108,7 @@ impl Scene {
                 meshes.insert(name.clone(), mesh.map_err(|e| scene_error(format!("shape {name:?}: {e}")))?);
             }
         }
-        Ok(Scene { file, source: source.into(), meshes })
+        Ok(Scene { file, source: source.into(), meshes, animation })
     }
 
     /// Gives every rect light `n` x `n` shadow samples.
@@ -109,6 +124,27 @@ impl Scene {
     /// Whether a rect light casts shadows: soft shadows, whose sampler matters.
     pub fn has_soft_shadows(&self) -> bool {
         self.file.lights.iter().any(|l| matches!(l, file::LightDesc::Rect { shadows: true, .. }))
+    }
+
+    /// Frames of the animation; a still scene has one.
+    pub fn frame_count(&self) -> u32 {
+        self.animation.as_ref().map_or(1, |a| a.frames)
+    }
+
+    /// Writes frame `frame`'s values of what moves into `out`, a copy of `self.file`.
+    pub fn pose(&self, frame: u32, out: &mut SceneFile) {
+        if let Some(animation) = &self.animation {
+            animation.pose(frame, out);
+        }
+    }
+
+    /// The still scene with everything placed as at frame `frame`.
+    pub fn at_frame(&self, frame: u32) -> Scene {
+        let mut still = self.clone();
+        self.pose(frame, &mut still.file);
+        still.file.animation = None;
+        still.animation = None;
+        still
     }
 
     /// The scene's `name`.

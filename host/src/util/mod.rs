@@ -1,5 +1,6 @@
-//! Helpers below every other layer: statistics of timings, bounded file input, atomic file output and progress.
+//! Helpers below every other layer: statistics of timings, bounded file input, atomic file output (PNG and animated PNG) and progress.
 
+pub mod apng;
 pub mod input;
 pub mod output;
 pub mod progress;

@@ -1,4 +1,5 @@
-//! Bottom- and top-level acceleration structures: BLASes of AABBs, and a TLAS of instances.
+//! Bottom- and top-level acceleration structures: BLASes of AABBs or triangles, built once,
+//! and a TLAS of instances that can be rebuilt or updated in place frame after frame.
 
 use super::buffer::Buffer;
 use super::commands::{memory_barrier, OneShot};
@@ -49,7 +50,7 @@ pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[vk::Aabb
         .geometry_type(vk::GeometryTypeKHR::AABBS)
         .geometry(vk::AccelerationStructureGeometryDataKHR { aabbs: data })
         .flags(vk::GeometryFlagsKHR::OPAQUE);
-    build(ctx, one_shot, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, aabbs.len() as u32, "blas")
+    build(ctx, one_shot, geometry, aabbs.len() as u32, "blas")
 }
 
 /// A BLAS over one mesh: `vertex_count` vertices of `vertex_stride` bytes (an f32 position at
@@ -74,44 +75,167 @@ pub fn build_triangle_blas(
         .geometry_type(vk::GeometryTypeKHR::TRIANGLES)
         .geometry(vk::AccelerationStructureGeometryDataKHR { triangles: data })
         .flags(vk::GeometryFlagsKHR::OPAQUE);
-    build(ctx, one_shot, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, geometry, index_count / 3, "mesh blas")
+    build(ctx, one_shot, geometry, index_count / 3, "mesh blas")
 }
 
-/// A TLAS over `instances`.
-pub fn build_tlas(ctx: &Arc<Context>, one_shot: &OneShot, instances: &[InstanceRecord]) -> Result<AccelStruct> {
-    let instance: Vec<u8> = instances.iter().flat_map(instance_bytes).collect();
-    let usage = vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
-        | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
-    let instance_buffer = Buffer::with_data(ctx, "instances", &instance, usage)?;
+/// How a TLAS is built: the `VkBuildAccelerationStructureFlagsKHR` it is built with.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TlasFlags {
+    /// `PREFER_FAST_TRACE`: rebuilt when it changes.
+    FastTrace,
+    /// `PREFER_FAST_BUILD`: rebuilt when it changes, quickly, possibly tracing slower.
+    FastBuild,
+    /// `ALLOW_UPDATE | PREFER_FAST_TRACE`: refitted in place (`MODE_UPDATE`) when it changes.
+    Updatable,
+}
+
+impl TlasFlags {
+    fn raw(self) -> vk::BuildAccelerationStructureFlagsKHR {
+        type F = vk::BuildAccelerationStructureFlagsKHR;
+        match self {
+            TlasFlags::FastTrace => F::PREFER_FAST_TRACE,
+            TlasFlags::FastBuild => F::PREFER_FAST_BUILD,
+            TlasFlags::Updatable => F::ALLOW_UPDATE | F::PREFER_FAST_TRACE,
+        }
+    }
+}
+
+/// A TLAS with its host-visible instance buffer and its scratch: rewritten and rebuilt (or
+/// updated) in place, so descriptors that name it stay valid across frames.
+pub struct Tlas {
+    pub accel: AccelStruct,
+    instances: Buffer,
+    _scratch: Buffer,
+    scratch_address: vk::DeviceAddress,
+    flags: TlasFlags,
+    count: u32,
+}
+
+impl Tlas {
+    /// Storage and scratch for a TLAS over `instances`, which it holds; nothing is built yet.
+    pub fn new(ctx: &Arc<Context>, instances: &[InstanceRecord], flags: TlasFlags) -> Result<Tlas> {
+        let bytes: Vec<u8> = instances.iter().flat_map(instance_bytes).collect();
+        let usage = vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
+            | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
+        let instance_buffer = Buffer::with_data(ctx, "instances", &bytes, usage)?;
+        let count = instances.len() as u32;
+        let geometry = instances_geometry(&instance_buffer);
+        let info = build_info(vk::AccelerationStructureTypeKHR::TOP_LEVEL, flags.raw(), &geometry);
+        let (accel, sizes) = allocate(ctx, &info, count, "tlas")?;
+        let scratch_size = if flags == TlasFlags::Updatable {
+            sizes.build_scratch_size.max(sizes.update_scratch_size)
+        } else {
+            sizes.build_scratch_size
+        };
+        let (scratch, scratch_address) = scratch(ctx, scratch_size)?;
+        Ok(Tlas { accel, instances: instance_buffer, _scratch: scratch, scratch_address, flags, count })
+    }
+
+    /// The flags it was made with.
+    pub fn flags(&self) -> TlasFlags {
+        self.flags
+    }
+
+    /// Rewrites the instances (as many as it was made with) for the next build or update;
+    /// the GPU must not be using the buffer.
+    pub fn write(&mut self, instances: &[InstanceRecord]) -> Result<()> {
+        if instances.len() as u32 != self.count {
+            return Err(crate::error::Error::Unsupported(format!(
+                "a TLAS of {} instances rewritten with {}",
+                self.count,
+                instances.len()
+            )));
+        }
+        let bytes: Vec<u8> = instances.iter().flat_map(instance_bytes).collect();
+        self.instances.write(&bytes)
+    }
+
+    /// Records a full build (`update` false) or an in-place update of an `Updatable` TLAS that
+    /// was built before, between barriers: after every earlier trace and build, before every
+    /// later one.
+    pub fn record(&self, ctx: &Context, cmd: vk::CommandBuffer, update: bool) {
+        let geometry = instances_geometry(&self.instances);
+        let mode = if update && self.flags == TlasFlags::Updatable {
+            vk::BuildAccelerationStructureModeKHR::UPDATE
+        } else {
+            vk::BuildAccelerationStructureModeKHR::BUILD
+        };
+        let mut info = build_info(vk::AccelerationStructureTypeKHR::TOP_LEVEL, self.flags.raw(), &geometry)
+            .mode(mode)
+            .dst_acceleration_structure(self.accel.raw)
+            .scratch_data(vk::DeviceOrHostAddressKHR { device_address: self.scratch_address });
+        if mode == vk::BuildAccelerationStructureModeKHR::UPDATE {
+            info = info.src_acceleration_structure(self.accel.raw);
+        }
+        // Earlier traces read the structure and earlier builds wrote it and the scratch.
+        let earlier = (
+            vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR | vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
+            vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR | vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
+        );
+        let build = (
+            vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
+            vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR | vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
+        );
+        memory_barrier(&ctx.device, cmd, earlier, build);
+        let range = [vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(self.count)];
+        // SAFETY: the instance, storage and scratch buffers live as long as self.
+        unsafe { ctx.accel.cmd_build_acceleration_structures(cmd, &[info], &[&range]) };
+        memory_barrier(&ctx.device, cmd, build, built_for_reading());
+    }
+}
+
+/// A TLAS over `instances`, built once.
+pub fn build_tlas(ctx: &Arc<Context>, one_shot: &OneShot, instances: &[InstanceRecord]) -> Result<Tlas> {
+    let tlas = Tlas::new(ctx, instances, TlasFlags::FastTrace)?;
+    one_shot.run(|_, cmd| {
+        tlas.record(ctx, cmd, false);
+        Ok(())
+    })?;
+    Ok(tlas)
+}
+
+fn instances_geometry(instances: &Buffer) -> [vk::AccelerationStructureGeometryKHR<'static>; 1] {
     let data = vk::AccelerationStructureGeometryInstancesDataKHR::default()
         .array_of_pointers(false)
-        .data(vk::DeviceOrHostAddressConstKHR { device_address: instance_buffer.device_address() });
-    let geometry = vk::AccelerationStructureGeometryKHR::default()
+        .data(vk::DeviceOrHostAddressConstKHR { device_address: instances.device_address() });
+    [vk::AccelerationStructureGeometryKHR::default()
         .geometry_type(vk::GeometryTypeKHR::INSTANCES)
-        .geometry(vk::AccelerationStructureGeometryDataKHR { instances: data });
-    build(ctx, one_shot, vk::AccelerationStructureTypeKHR::TOP_LEVEL, geometry, instances.len() as u32, "tlas")
+        .geometry(vk::AccelerationStructureGeometryDataKHR { instances: data })]
 }
 
-fn build(
-    ctx: &Arc<Context>,
-    one_shot: &OneShot,
+fn build_info<'a>(
     ty: vk::AccelerationStructureTypeKHR,
-    geometry: vk::AccelerationStructureGeometryKHR<'_>,
+    flags: vk::BuildAccelerationStructureFlagsKHR,
+    geometries: &'a [vk::AccelerationStructureGeometryKHR<'a>],
+) -> vk::AccelerationStructureBuildGeometryInfoKHR<'a> {
+    vk::AccelerationStructureBuildGeometryInfoKHR::default()
+        .ty(ty)
+        .flags(flags)
+        .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
+        .geometries(geometries)
+}
+
+/// What reads a built structure: later builds (a TLAS over a BLAS) and traces.
+fn built_for_reading() -> (vk::PipelineStageFlags, vk::AccessFlags) {
+    (
+        vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR | vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR,
+        vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR,
+    )
+}
+
+/// An acceleration structure of the size `info` over `primitive_count` needs, and the sizes.
+fn allocate(
+    ctx: &Arc<Context>,
+    info: &vk::AccelerationStructureBuildGeometryInfoKHR<'_>,
     primitive_count: u32,
     name: &str,
-) -> Result<AccelStruct> {
-    let geometries = [geometry];
-    let mut info = vk::AccelerationStructureBuildGeometryInfoKHR::default()
-        .ty(ty)
-        .flags(vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE)
-        .mode(vk::BuildAccelerationStructureModeKHR::BUILD)
-        .geometries(&geometries);
+) -> Result<(AccelStruct, vk::AccelerationStructureBuildSizesInfoKHR<'static>)> {
     let mut sizes = vk::AccelerationStructureBuildSizesInfoKHR::default();
     // SAFETY: info describes geometry whose buffers are alive.
     unsafe {
         ctx.accel.get_acceleration_structure_build_sizes(
             vk::AccelerationStructureBuildTypeKHR::DEVICE,
-            &info,
+            info,
             &[primitive_count],
             &mut sizes,
         )
@@ -126,40 +250,57 @@ fn build(
     let create = vk::AccelerationStructureCreateInfoKHR::default()
         .buffer(storage.raw)
         .size(sizes.acceleration_structure_size)
-        .ty(ty);
+        .ty(info.ty);
     // SAFETY: the storage buffer is large enough and outlives the structure (held in AccelStruct).
     let raw =
         unsafe { ctx.accel.create_acceleration_structure(&create, None) }.call("vkCreateAccelerationStructureKHR")?;
     let address_info = vk::AccelerationStructureDeviceAddressInfoKHR::default().acceleration_structure(raw);
     // SAFETY: raw is live.
     let address = unsafe { ctx.accel.get_acceleration_structure_device_address(&address_info) };
-    let accel = AccelStruct { ctx: ctx.clone(), raw, address, _storage: storage };
-    // Scratch must be aligned to minAccelerationStructureScratchOffsetAlignment: over-allocate and round up.
+    Ok((AccelStruct { ctx: ctx.clone(), raw, address, _storage: storage }, sizes))
+}
+
+/// A scratch buffer of `size` bytes and its address, aligned to
+/// minAccelerationStructureScratchOffsetAlignment (over-allocated, then rounded up).
+fn scratch(ctx: &Arc<Context>, size: u64) -> Result<(Buffer, vk::DeviceAddress)> {
     let align = u64::from(ctx.info.min_scratch_offset_alignment.max(1));
-    let scratch = Buffer::new(
+    let buffer = Buffer::new(
         ctx,
         "scratch",
-        sizes.build_scratch_size + align,
+        size + align,
         vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS,
         MemoryLocation::GpuOnly,
     )?;
-    info = info
-        .dst_acceleration_structure(raw)
-        .scratch_data(vk::DeviceOrHostAddressKHR { device_address: scratch.device_address().next_multiple_of(align) });
+    let address = buffer.device_address().next_multiple_of(align);
+    Ok((buffer, address))
+}
+
+/// A bottom-level structure over one geometry, built and waited for.
+fn build(
+    ctx: &Arc<Context>,
+    one_shot: &OneShot,
+    geometry: vk::AccelerationStructureGeometryKHR<'_>,
+    primitive_count: u32,
+    name: &str,
+) -> Result<AccelStruct> {
+    let geometries = [geometry];
+    let ty = vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL;
+    let info = build_info(ty, vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE, &geometries);
+    let (accel, sizes) = allocate(ctx, &info, primitive_count, name)?;
+    let (_scratch, scratch_address) = scratch(ctx, sizes.build_scratch_size)?;
+    let info = info
+        .dst_acceleration_structure(accel.raw)
+        .scratch_data(vk::DeviceOrHostAddressKHR { device_address: scratch_address });
     let range = [vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(primitive_count)];
     one_shot.run(|device, cmd| {
         // SAFETY: every buffer referenced by `info` is alive until run() has waited.
         unsafe { ctx.accel.cmd_build_acceleration_structures(cmd, &[info], &[&range]) };
         // The build's writes must land before a later build or trace reads the structure.
-        let build = (
+        let written = (
             vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
             vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
         );
-        let read = (
-            vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR | vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR,
-            vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR,
-        );
-        memory_barrier(device, cmd, build, read);
+        memory_barrier(device, cmd, written, built_for_reading());
         Ok(())
     })?;
     Ok(accel)

@@ -1,0 +1,190 @@
+//! `compare --frames`: two sets over the frames of a moving scene, each frame judged against
+//! the scene's parity tolerance, and the worst frame named.
+
+use super::diff::{diff, verdict, ImageDiff};
+use crate::error::Result;
+use crate::render::{render_frames, AsWork, Frame, RayCounts, RenderOptions, RenderOutput, TlasMode};
+use crate::scene::{Parity, Scene};
+use crate::shaders::ShaderSet;
+use crate::vk::context::Context;
+use serde::Serialize;
+use std::ops::Range;
+use std::sync::Arc;
+
+/// One frame's figures, as `compare --frames --json` prints them.
+#[derive(Clone, Debug, Serialize)]
+pub struct FrameFigures {
+    pub frame: u32,
+    /// Seconds into the animation.
+    pub time: f32,
+    pub as_work: AsWork,
+    /// GPU milliseconds of the frame's TLAS work (shared by both sets).
+    pub as_ms: Option<f64>,
+    /// Median GPU milliseconds of each set's timed traces of the frame.
+    pub trace_ms_a: Option<f64>,
+    pub trace_ms_b: Option<f64>,
+    pub rays_a: RayCounts,
+    pub rays_b: RayCounts,
+    #[serde(flatten)]
+    pub diff: ImageDiff,
+    pub pass: bool,
+    pub failures: Vec<String>,
+}
+
+/// Every frame's figures and the verdict on the sequence.
+#[derive(Clone, Debug, Serialize)]
+pub struct FramesReport {
+    pub scene: String,
+    pub device: String,
+    pub width: u32,
+    pub height: u32,
+    pub set_a: String,
+    pub set_b: String,
+    pub tlas: String,
+    pub pixel_threshold: u8,
+    pub frames: Vec<FrameFigures>,
+    /// The frame closest to (or furthest past) the tolerance: see [`badness`].
+    pub worst_frame: Option<u32>,
+    /// Frames outside the tolerance.
+    pub failed_frames: Vec<u32>,
+    pub pass: bool,
+}
+
+/// How far a frame's differences go towards the tolerance: the largest of each measured
+/// fraction over its limit (1 is at the limit). A hit mismatch away from every silhouette,
+/// which fails any frame, counts as infinitely bad.
+pub fn badness(d: &ImageDiff, parity: &Parity, pixels: u64) -> f64 {
+    if d.hit_mismatches_off_silhouette > 0 {
+        return f64::INFINITY;
+    }
+    let fraction = |n: u64| n as f64 / pixels.max(1) as f64;
+    let over = |value: f64, limit: f64| {
+        if limit > 0.0 {
+            value / limit
+        } else if value > 0.0 {
+            f64::INFINITY
+        } else {
+            0.0
+        }
+    };
+    over(d.color.rmse, parity.max_rmse)
+        .max(over(fraction(d.color.pixels_over_threshold), parity.max_pixels_over_threshold))
+        .max(over(fraction(d.hit_mismatches), parity.max_hit_mismatches))
+}
+
+/// Renders frames `frames` of `scene` with both sets over the same TLAS, and judges each;
+/// `each` sees every frame's figures and both renders as they complete.
+pub fn compare_frames(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    (set_a, set_b): (&ShaderSet, &ShaderSet),
+    opts: &RenderOptions,
+    frames: Range<u32>,
+    mode: TlasMode,
+    mut each: impl FnMut(&FrameFigures, &RenderOutput, &RenderOutput) -> Result<()>,
+) -> Result<FramesReport> {
+    let parity = scene.file.parity;
+    let pixels = u64::from(opts.width) * u64::from(opts.height);
+    let mut figures = Vec::new();
+    let mut worst: Option<(f64, u32)> = None;
+    render_frames(ctx, scene, &[set_a.clone(), set_b.clone()], opts, frames, mode, |frame: Frame| {
+        let [a, b] = &frame.outputs[..] else { return Ok(()) };
+        let d = diff(a, b, parity.pixel_threshold);
+        let bad = badness(&d, &parity, pixels);
+        if worst.is_none_or(|(w, _)| bad > w) {
+            worst = Some((bad, frame.index));
+        }
+        let failures = verdict(&d, &parity, pixels);
+        let row = FrameFigures {
+            frame: frame.index,
+            time: frame.time,
+            as_work: frame.as_work,
+            as_ms: frame.as_ms,
+            trace_ms_a: a.median_ms(),
+            trace_ms_b: b.median_ms(),
+            rays_a: a.rays,
+            rays_b: b.rays,
+            diff: d,
+            pass: failures.is_empty(),
+            failures,
+        };
+        each(&row, a, b)?;
+        figures.push(row);
+        Ok(())
+    })?;
+    let failed_frames: Vec<u32> = figures.iter().filter(|f| !f.pass).map(|f| f.frame).collect();
+    Ok(FramesReport {
+        scene: scene.name().to_string(),
+        device: ctx.info.name.clone(),
+        width: opts.width,
+        height: opts.height,
+        set_a: set_a.to_string(),
+        set_b: set_b.to_string(),
+        tlas: mode.name(),
+        pixel_threshold: parity.pixel_threshold,
+        frames: figures,
+        worst_frame: worst.map(|w| w.1),
+        pass: failed_frames.is_empty(),
+        failed_frames,
+    })
+}
+
+impl FramesReport {
+    /// The text `compare --frames` prints: one line per frame, then the worst frame and verdict.
+    pub fn summary(&self) -> String {
+        let ms = |v: Option<f64>| v.map_or("n/a".to_string(), |v| format!("{v:.3}"));
+        let mut s = format!(
+            "scene {} {}x{} on {}, a = {}, b = {}, TLAS {}\n{:>6} {:>7} {:>8} {:>9} {:>9} {:>9} {:>9} {:>8}  verdict\n",
+            self.scene,
+            self.width,
+            self.height,
+            self.device,
+            self.set_a,
+            self.set_b,
+            self.tlas,
+            "frame",
+            "AS",
+            "AS ms",
+            "a ms",
+            "b ms",
+            "rmse",
+            "px over",
+            "hits"
+        );
+        for f in &self.frames {
+            let work = match f.as_work {
+                AsWork::Build => "build",
+                AsWork::Update => "update",
+                AsWork::None => "-",
+            };
+            s += &format!(
+                "{:>6} {:>7} {:>8} {:>9} {:>9} {:>9.6} {:>9} {:>8}  {}\n",
+                f.frame,
+                work,
+                ms(f.as_ms),
+                ms(f.trace_ms_a),
+                ms(f.trace_ms_b),
+                f.diff.color.rmse,
+                f.diff.color.pixels_over_threshold,
+                f.diff.hit_mismatches,
+                if f.pass { "pass".to_string() } else { format!("FAIL: {}", f.failures.join("; ")) }
+            );
+        }
+        if let Some(w) = self.worst_frame.and_then(|w| self.frames.iter().find(|f| f.frame == w)) {
+            s += &format!(
+                "  worst frame {}: rmse {:.6}, {} pixels over {} steps, {} hit mismatches\n",
+                w.frame,
+                w.diff.color.rmse,
+                w.diff.color.pixels_over_threshold,
+                self.pixel_threshold,
+                w.diff.hit_mismatches
+            );
+        }
+        if self.pass {
+            s += &format!("  PASS: all {} frames within the scene's parity tolerance\n", self.frames.len());
+        } else {
+            s += &format!("  FAIL: frames {:?} outside the scene's parity tolerance\n", self.failed_frames);
+        }
+        s
+    }
+}
