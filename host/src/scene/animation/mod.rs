@@ -9,3 +9,6 @@ mod resolve;
 
 pub use pose::{Animation, Cycle, Motion, MotionKind, Moves, Property, Target, Track};
 pub use resolve::{resolve, MAX_FPS, MAX_FRAMES};
+
+#[cfg(test)]
+mod tests;

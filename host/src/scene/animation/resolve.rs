@@ -100,7 +100,7 @@ impl Scope<'_> {
                 (_, Some(true)) => return Err(format!("{at}.value: {:?} takes one number", desc.property)),
                 (_, Some(false)) => return Err(format!("{at}.value: {:?} takes [x, y, z]", desc.property)),
             };
-            finite(&format!("{at}.value"), &value).map_err(|e| format!("{at}: {e}"))?;
+            finite(&format!("{at}.value"), &value)?;
             keys.push((key.time, value));
         }
         Ok(Track { target, property, interpolation: desc.interpolation, keys })
