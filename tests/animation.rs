@@ -152,10 +152,10 @@ fn the_orbit_scene_agrees_across_tlas_modes_sets_and_its_still_frames() {
     let pixels = u64::from(SIZE.0 * SIZE.1);
     let mut failures = Vec::new();
     for k in 0..count as usize {
-        for s in 0..sets.len() {
+        for (s, language) in sets.iter().enumerate() {
             for (name, other) in [("rebuilt", &rebuilt), ("fast-built", &fast)] {
                 if updated[k].1[s].hit_ids != other[k].1[s].hit_ids {
-                    failures.push(format!("frame {k} {}: updated and {name} TLAS hit different ids", sets[s]));
+                    failures.push(format!("frame {k} {language}: updated and {name} TLAS hit different ids"));
                 }
             }
         }

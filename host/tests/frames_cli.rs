@@ -11,7 +11,8 @@ const SMALL: [&str; 4] = ["--width", "64", "--height", "48"];
 #[test]
 fn render_frames_writes_numbered_pngs_an_animated_png_and_json() {
     let dir = tempfile::tempdir().unwrap();
-    let args = [&["--validate", "render", "orbit", "--frames", "2..=4", "--out", "o.png", "--json"][..], &SMALL].concat();
+    let args =
+        [&["--validate", "render", "orbit", "--frames", "2..=4", "--out", "o.png", "--json"][..], &SMALL].concat();
     let out = twinray(&args, dir.path());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");

@@ -3,6 +3,7 @@
 //! PSNR, mean FLIP), with hit mismatches against the first set; then tables, plots and an
 //! HTML page in one folder.
 
+pub mod animation;
 pub mod html;
 pub mod metrics;
 pub mod plots;

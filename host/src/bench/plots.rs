@@ -120,6 +120,46 @@ pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], dir: &Path) ->
     draw_ratios(SVGBackend::new(&svg, SIZE).into_drawing_area(), ratios).map_err(plot_error)
 }
 
+/// A line plot of `data` as `{name}.png` and `{name}.svg` in `dir`: linear x, log y.
+pub fn write_lines(dir: &Path, name: &str, (x_label, y_label): (&str, &str), data: &[Series]) -> Result<()> {
+    let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
+    let (png, svg) = (dir.join(format!("{name}.png")), dir.join(format!("{name}.svg")));
+    draw_lines(BitMapBackend::new(&png, SIZE).into_drawing_area(), x_label, y_label, data).map_err(plot_error)?;
+    draw_lines(SVGBackend::new(&svg, SIZE).into_drawing_area(), x_label, y_label, data).map_err(plot_error)
+}
+
+fn draw_lines<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, x_label: &str, y_label: &str, data: &[Series]) -> Drawn
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let ((_, _), (y0, y1)) = bounds(data);
+    let x1 = data.iter().flat_map(|s| s.points.iter().map(|p| p.0)).fold(1.0, f64::max);
+    let mut chart = framed(&root).build_cartesian_2d(0.0..x1, (y0..y1).log_scale())?;
+    chart
+        .configure_mesh()
+        .light_line_style(WHITE)
+        .y_label_formatter(&|v| tick(*v))
+        .x_desc(x_label)
+        .y_desc(y_label)
+        .draw()?;
+    for (i, s) in data.iter().enumerate() {
+        let colour = Palette99::pick(i).to_rgba();
+        chart
+            .draw_series(LineSeries::new(s.points.clone(), colour.stroke_width(2)))?
+            .label(s.label.clone())
+            .legend(move |(x, y)| PathElement::new([(x, y), (x + 16, y)], colour.stroke_width(2)));
+    }
+    chart
+        .configure_series_labels()
+        .position(SeriesLabelPosition::UpperRight)
+        .background_style(WHITE.mix(0.8))
+        .border_style(BLACK)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
+
 fn plot_error(e: impl std::fmt::Display) -> Error {
     Error::Input(format!("drawing a plot: {e}"))
 }

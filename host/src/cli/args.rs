@@ -227,3 +227,41 @@ pub struct BenchArgs {
     #[arg(long, value_enum, default_value = "all")]
     pub images: twinray::bench::Images,
 }
+
+#[derive(Args)]
+pub struct AnimateBenchArgs {
+    /// A moving scene with a [[grids]] table (its first grid is resized) [default: swarm].
+    #[arg(default_value = "swarm")]
+    pub scene: String,
+    /// Instance counts, comma-separated (each made an n x n grid, n the nearest square root).
+    #[arg(long, default_value = "1000,10000,100000")]
+    pub instances: String,
+    /// TLAS modes, comma-separated: rebuild, fast-build, update.
+    #[arg(long, default_value = "rebuild,fast-build,update")]
+    pub modes: String,
+    /// For the update mode: a full rebuild every N frames (0: the first frame only, so the
+    /// TLAS is refitted through the whole motion).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub rebuild_every: u32,
+    /// Frames 0..N of the scene [default: all of them].
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// Shader set that traces.
+    #[arg(long, default_value = "rust")]
+    pub shaders: ShaderSet,
+    /// Image width [default: the scene's].
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height [default: the scene's].
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Timed traces per frame.
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
+    pub runs: u32,
+    /// Untimed traces before the first frame (and at least 200 ms of GPU time when above 0).
+    #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
+    pub warmup: u32,
+    /// Output folder (created if missing).
+    #[arg(long, default_value = "bench/out-animation")]
+    pub out: PathBuf,
+}

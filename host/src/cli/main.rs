@@ -1,6 +1,7 @@
 //! The `twinray` command: `info`, `render` and `compare`. Bad input exits with code 2 and a
 //! one-line error; a failed comparison exits with 1.
 
+mod animate;
 mod args;
 mod bench;
 mod frames;
@@ -9,7 +10,7 @@ mod render;
 mod session;
 mod summary;
 
-use args::{BenchArgs, CompareArgs, GlobalArgs, ProbeArgs, ReferenceArgs, RenderArgs, StabilityArgs};
+use args::{AnimateBenchArgs, BenchArgs, CompareArgs, GlobalArgs, ProbeArgs, ReferenceArgs, RenderArgs, StabilityArgs};
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -55,6 +56,10 @@ enum Command {
     /// Speed against error: per scene, set and samples per pixel, GPU time, rays per second and
     /// error against a converged reference; writes tables, plots and index.html.
     Bench(BenchArgs),
+    /// Moving scenes: per frame, GPU time of the TLAS work for each mode (rebuild, fast-build,
+    /// update) and of the trace as objects drift, at several instance counts; writes tables,
+    /// plots and index.html.
+    AnimateBench(AnimateBenchArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -92,6 +97,7 @@ fn main() -> ExitCode {
         Command::Stability(args) => probe::stability(&cli.global, args),
         Command::Reference(args) => bench::reference(&cli.global, args),
         Command::Bench(args) => bench::bench(&cli.global, args),
+        Command::AnimateBench(args) => animate::animate_bench(&cli.global, args),
     };
     match result {
         Ok(code) => code,

@@ -39,16 +39,23 @@ pub struct Scene {
 impl Scene {
     /// Loads `arg` as a file path, or else as a built-in scene name; `None` is the default scene.
     pub fn load(arg: Option<&str>) -> Result<Scene> {
+        let (text, source, mesh_files) = Scene::read(arg)?;
+        Scene::parse(&text, &source, mesh_files)
+    }
+
+    /// The text of the scene `load` would load, the name it goes by in errors, and where its
+    /// mesh files are.
+    pub fn read(arg: Option<&str>) -> Result<(String, String, MeshFiles)> {
         let arg = arg.unwrap_or(DEFAULT_SCENE);
         let path = Path::new(arg);
         if path.exists() {
             let text = read_text(path, MAX_TEXT_BYTES)
                 .map_err(|e| Error::Scene { path: arg.into(), message: format!("cannot read: {e}") })?;
             let folder = path.parent().map(Path::to_path_buf).unwrap_or_default();
-            return Scene::parse(&text, arg, MeshFiles::Folder(folder));
+            return Ok((text, arg.to_string(), MeshFiles::Folder(folder)));
         }
         if let Some((name, text)) = BUILTIN.iter().find(|(name, _)| *name == arg) {
-            return Scene::parse(text, &format!("builtin:{name}"), MeshFiles::Builtin);
+            return Ok((text.to_string(), format!("builtin:{name}"), MeshFiles::Builtin));
         }
         // The default first, then the rest in order.
         let others = BUILTIN.iter().map(|(n, _)| *n).filter(|n| *n != DEFAULT_SCENE);
@@ -183,6 +190,7 @@ pub fn toml_error(source: &str, text: &str, e: &toml::de::Error) -> Error {
 }
 
 /// Where a scene's mesh files are.
+#[derive(Clone, Debug)]
 pub enum MeshFiles {
     /// Relative to this folder (the scene file's).
     Folder(PathBuf),

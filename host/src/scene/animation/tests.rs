@@ -86,7 +86,10 @@ fn smooth_keys_ease_in_and_out() {
 #[test]
 fn frame_zero_is_what_the_scene_holds() {
     let s = scene(KEYS).unwrap();
-    assert_eq!(s.file.objects[0].translate, [0.0; 3], "file is posed at frame 0 (key value, not the written [1, 0, 0])");
+    assert_eq!(
+        s.file.objects[0].translate, [0.0; 3],
+        "file is posed at frame 0 (key value, not the written [1, 0, 0])"
+    );
     assert_eq!(s.frame_count(), 5);
     let still = s.at_frame(2);
     assert!(still.animation.is_none() && still.file.animation.is_none());

@@ -1,0 +1,75 @@
+//! `twinray animate-bench`: AS time per frame for each TLAS mode, and trace time of each
+//! mode's TLAS as objects drift, at several instance counts.
+
+use crate::args::{AnimateBenchArgs, GlobalArgs};
+use crate::session::context;
+use anyhow::Result;
+use std::process::ExitCode;
+use twinray::bench::animation::{resize_grid, run, write, AnimateConfig};
+use twinray::render::{TlasKind, TlasMode};
+use twinray::scene::check_size;
+use twinray::{Error, Scene};
+
+/// Most instances the bench resizes a grid to: the scene limit.
+const MAX_INSTANCES: usize = twinray::scene::MAX_OBJECTS;
+
+fn instance_counts(text: &str) -> Result<Vec<usize>, Error> {
+    let bad = || Error::Input(format!("--instances {text:?}: expected counts in 1..={MAX_INSTANCES}, comma-separated"));
+    let counts: Vec<usize> =
+        text.split(',').map(|c| c.trim().parse::<usize>().map_err(|_| bad())).collect::<Result<_, _>>()?;
+    if counts.is_empty() || counts.iter().any(|&c| c == 0 || c > MAX_INSTANCES) {
+        return Err(bad());
+    }
+    Ok(counts)
+}
+
+fn modes(text: &str, rebuild_every: u32) -> Result<Vec<TlasMode>, Error> {
+    use clap::ValueEnum;
+    text.split(',')
+        .map(|m| {
+            TlasKind::from_str(m.trim(), false)
+                .map(|kind| TlasMode { kind, rebuild_every })
+                .map_err(|_| Error::Input(format!("--modes: {m:?} is not rebuild, fast-build or update")))
+        })
+        .collect()
+}
+
+pub fn animate_bench(global: &GlobalArgs, args: AnimateBenchArgs) -> Result<ExitCode> {
+    let modes = modes(&args.modes, args.rebuild_every)?;
+    let (text, source, mesh_files) = Scene::read(Some(&args.scene))?;
+    let scenes = instance_counts(&args.instances)?
+        .into_iter()
+        .map(|n| Scene::parse(&resize_grid(&text, n)?, &source, mesh_files.clone()))
+        .collect::<Result<Vec<_>, _>>()?;
+    let first = &scenes[0];
+    if first.animation.is_none() {
+        return Err(Error::Input(format!("{}: a still scene; animate-bench needs an [animation]", args.scene)).into());
+    }
+    let frames = args.frames.unwrap_or(first.frame_count());
+    twinray::render::frames::check_frames(first, &(0..frames))?;
+    let (width, height) =
+        (args.width.unwrap_or(first.file.image.width), args.height.unwrap_or(first.file.image.height));
+    check_size(width, height).map_err(Error::Input)?;
+    std::fs::create_dir_all(&args.out).map_err(|source| Error::Io {
+        what: "creating",
+        path: args.out.clone(),
+        source,
+    })?;
+    let ctx = context(global)?;
+    let config = AnimateConfig {
+        scenes,
+        set: args.shaders.clone(),
+        modes,
+        frames,
+        width,
+        height,
+        warmup: args.warmup,
+        runs: args.runs,
+    };
+    let report = run(&ctx, &config, |step| eprintln!("animate-bench: {step}"))?;
+    let command = std::env::args().collect::<Vec<_>>().join(" ");
+    write(&report, &command, &args.out)?;
+    print!("{}", twinray::bench::animation::report_table(&report));
+    println!("report in {}", args.out.display());
+    Ok(ExitCode::SUCCESS)
+}
