@@ -1,25 +1,12 @@
-//! Rendering the frames of a moving scene with one or more shader sets. BLASes are built once;
-//! per frame only what moved is rewritten (instance transforms, lights, frame constants) and
-//! the TLAS is rebuilt or updated in place, in its own submission between timestamps, so the
-//! acceleration-structure time and each set's trace time are measured apart.
+//! The frames of a moving scene: TLAS modes, what a rendered frame holds, and frame ranges as
+//! the command line writes them. `moving.rs` renders them.
 
-use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
-use super::output::{RenderOptions, RenderOutput};
-use super::sets::{check_device_limits, copy_outputs, SetRender, SharedOutputs};
-use super::tracing::{self, Trace};
-use super::upload::upload_moving;
+use super::output::RenderOutput;
 use crate::error::{Error, Result};
-use crate::scene::{check_size, frame_data, Scene};
-use crate::shaders::ShaderSet;
-use crate::util::progress;
+use crate::scene::Scene;
 use crate::vk::accel::TlasFlags;
-use crate::vk::commands::OneShot;
-use crate::vk::context::Context;
-use crate::vk::timing::Timestamps;
 use serde::Serialize;
 use std::ops::Range;
-use std::sync::Arc;
-use twinray_shared::bindings as b;
 
 /// How the TLAS is remade when objects move (`--tlas`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
@@ -55,7 +42,7 @@ impl TlasMode {
         }
     }
 
-    fn flags(self) -> TlasFlags {
+    pub(super) fn flags(self) -> TlasFlags {
         match self.kind {
             TlasKind::Rebuild => TlasFlags::FastTrace,
             TlasKind::FastBuild => TlasFlags::FastBuild,
@@ -64,7 +51,7 @@ impl TlasMode {
     }
 
     /// The AS work of the `i`-th frame of a sequence (counted from 0) when objects move.
-    fn work(self, i: u32) -> AsWork {
+    pub(super) fn work(self, i: u32) -> AsWork {
         let rebuild =
             i == 0 || self.kind != TlasKind::Update || (self.rebuild_every > 0 && i.is_multiple_of(self.rebuild_every));
         if rebuild {
@@ -97,93 +84,6 @@ pub struct Frame {
     pub as_ms: Option<f64>,
     /// One output per set, in the order of the sets.
     pub outputs: Vec<RenderOutput>,
-}
-
-/// Renders frames `frames` of `scene` with each of `sets` over one upload, handing each frame
-/// to `each` as it completes. Warm-up traces run before the first frame only; each frame's
-/// timed traces are interleaved between the sets as `render_sets` does.
-pub fn render_frames(
-    ctx: &Arc<Context>,
-    scene: &Scene,
-    sets: &[ShaderSet],
-    opts: &RenderOptions,
-    frames: Range<u32>,
-    mode: TlasMode,
-    mut each: impl FnMut(Frame) -> Result<()>,
-) -> Result<()> {
-    check_frames(scene, &frames)?;
-    check_size(opts.width, opts.height).map_err(Error::Input)?;
-    check_device_limits(ctx, opts)?;
-    let size = (opts.width, opts.height);
-    let first = scene.at_frame(frames.start);
-    let uploaded = upload_moving(ctx, &first, size, mode.flags())?;
-    let outputs = SharedOutputs::new(ctx, opts)?;
-    let renders =
-        sets.iter().map(|set| SetRender::new(ctx, &uploaded, &outputs, set, opts)).collect::<Result<Vec<_>>>()?;
-    let one_shot = OneShot::new(ctx)?;
-    let timer = Timestamps::new(ctx, 1)?;
-    let moves = scene.animation.as_ref().map(|a| a.moves()).unwrap_or_default();
-    let mut posed = first.file.clone();
-    let mut records = uploaded.instances.clone();
-    let mut traces: Vec<Trace> = Vec::new();
-    let count = frames.len() as u32;
-    for (i, frame) in frames.clone().enumerate() {
-        let i = i as u32;
-        scene.pose(frame, &mut posed);
-        let data = frame_data(&posed, opts.width, opts.height);
-        let resources = &uploaded.resources;
-        let work = if i == 0 || moves.objects { mode.work(i) } else { AsWork::None };
-        if work != AsWork::None && i > 0 {
-            for (record, instance) in records.iter_mut().zip(&uploaded.data.instances) {
-                record.object_to_world = data.transforms[instance.object as usize];
-            }
-            resources.tlas.borrow_mut().write(&records)?;
-        }
-        // The first frame's values went up with the scene; later, only what moves is rewritten.
-        if i > 0 && moves.camera {
-            resources.write(b::BINDING_FRAME, bytemuck::bytes_of(&data.uniform))?;
-        }
-        if i > 0 && moves.lights {
-            resources.write(b::BINDING_LIGHTS, bytemuck::cast_slice(&data.lights))?;
-        }
-        let as_ms = if work == AsWork::None {
-            None
-        } else {
-            let tlas = resources.tlas.borrow();
-            one_shot.run(|_, cmd| {
-                if let Some(t) = &timer {
-                    t.reset(cmd);
-                    t.begin(cmd, 0);
-                }
-                tlas.record(ctx, cmd, work == AsWork::Update);
-                if let Some(t) = &timer {
-                    t.end(cmd, 0);
-                }
-                Ok(())
-            })?;
-            timer.as_ref().map(|t| t.read_ms()).transpose()?.and_then(|ms| ms.first().copied())
-        };
-        traces = if i == 0 {
-            // Warm-up (and its GPU-clock calibration) once, over the first frame's structures.
-            let warmup = (opts.warmup, opts.runs);
-            renders.iter().map(|r| r.prepared.trace(ctx, r.timestamps.as_ref(), size, warmup)).collect::<Result<_>>()?
-        } else {
-            traces.iter().map(|t| Trace { warmup: 0, ..*t }).collect()
-        };
-        let before = |device: &ash::Device, cmd| {
-            if i == 0 {
-                transition(device, cmd, outputs.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
-            }
-        };
-        let after = |device: &ash::Device, cmd| copy_outputs(ctx, device, cmd, &outputs, &renders, &traces);
-        tracing::submit(ctx, &one_shot, &traces, before, after)?;
-        let rendered =
-            renders.iter().zip(&traces).map(|(r, t)| r.output(scene, opts, t.warmup)).collect::<Result<_>>()?;
-        let time = scene.animation.as_ref().map_or(0.0, |a| a.time(frame));
-        each(Frame { index: frame, time, as_work: work, as_ms, outputs: rendered })?;
-        progress::report("frames", u64::from(i + 1), u64::from(count));
-    }
-    ctx.check_validation()
 }
 
 /// A frame range must be non-empty and within the scene's frames.

@@ -4,6 +4,7 @@
 
 mod barriers;
 pub mod frames;
+mod moving;
 pub mod output;
 pub mod pipeline;
 pub(crate) mod prepare;
@@ -12,7 +13,8 @@ mod tracing;
 mod upload;
 
 pub(crate) use barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
-pub use frames::{render_frames, AsWork, Frame, FrameRange, TlasKind, TlasMode, DEFAULT_TLAS};
+pub use frames::{AsWork, Frame, FrameRange, TlasKind, TlasMode, DEFAULT_TLAS};
+pub use moving::{render_frames, FrameRenderer};
 pub use output::{to_rgba8, RayCounts, RenderOptions, RenderOutput, NO_HIT_ID};
 pub use prepare::MIN_WARM_MS;
 pub(crate) use prepare::{prepare, storage_buffer};

@@ -88,7 +88,7 @@ pub(crate) fn record(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace]) {
 }
 
 /// Timestamps reset, then every trace's warm-up traces.
-fn record_warmup(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace]) {
+pub(crate) fn record_warmup(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace]) {
     for t in traces.iter().filter_map(|t| t.timestamps) {
         t.reset(cmd);
     }

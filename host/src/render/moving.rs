@@ -1,0 +1,207 @@
+//! Rendering the frames of a moving scene. One moving scene's GPU state across frames: the upload (BLASes once, a TLAS rebuilt or
+//! updated in place), each set's pipeline, and per frame the rewrite of what moved, the TLAS
+//! work between timestamps and the sets' traces. Several renderers (one per TLAS mode) can
+//! take turns frame by frame, so that a drift of the GPU's clocks reaches every mode alike.
+
+use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
+use super::frames::{check_frames, AsWork, Frame, TlasMode};
+use super::output::RenderOptions;
+use super::sets::{check_device_limits, copy_outputs, SetRender, SharedOutputs};
+use super::tracing::{self, Trace};
+use super::upload::{upload_moving, UploadedScene};
+use crate::error::{Error, Result};
+use crate::scene::animation::Moves;
+use crate::scene::file::SceneFile;
+use crate::scene::{check_size, frame_data, Scene};
+use crate::shaders::ShaderSet;
+use crate::vk::accel::InstanceRecord;
+use crate::vk::commands::OneShot;
+use crate::vk::context::Context;
+use crate::vk::timing::Timestamps;
+use std::ops::Range;
+use std::sync::Arc;
+use twinray_shared::bindings as b;
+
+/// A moving scene set up for frame-by-frame rendering with one TLAS mode.
+pub struct FrameRenderer<'a> {
+    ctx: Arc<Context>,
+    scene: &'a Scene,
+    opts: RenderOptions,
+    mode: TlasMode,
+    renders: Vec<SetRender>,
+    outputs: SharedOutputs,
+    uploaded: UploadedScene,
+    one_shot: OneShot,
+    timer: Option<Timestamps>,
+    moves: Moves,
+    posed: SceneFile,
+    records: Vec<InstanceRecord>,
+    /// Warm-up traces per set, as the first frame's calibration found them.
+    warm: Vec<u32>,
+    /// Frames rendered so far.
+    done: u32,
+}
+
+impl<'a> FrameRenderer<'a> {
+    /// Uploads `scene` posed at frame `first` and builds each set's pipeline over it.
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &'a Scene,
+        sets: &[ShaderSet],
+        opts: &RenderOptions,
+        first: u32,
+        mode: TlasMode,
+    ) -> Result<Self> {
+        check_size(opts.width, opts.height).map_err(Error::Input)?;
+        check_device_limits(ctx, opts)?;
+        let start = scene.at_frame(first);
+        let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags())?;
+        let outputs = SharedOutputs::new(ctx, opts)?;
+        let renders =
+            sets.iter().map(|set| SetRender::new(ctx, &uploaded, &outputs, set, opts)).collect::<Result<Vec<_>>>()?;
+        Ok(FrameRenderer {
+            ctx: ctx.clone(),
+            scene,
+            opts: *opts,
+            mode,
+            renders,
+            outputs,
+            records: uploaded.instances.clone(),
+            uploaded,
+            one_shot: OneShot::new(ctx)?,
+            timer: Timestamps::new(ctx, 1)?,
+            moves: scene.animation.as_ref().map(|a| a.moves()).unwrap_or_default(),
+            posed: start.file,
+            warm: Vec::new(),
+            done: 0,
+        })
+    }
+
+    /// Renders `frame`, the next of the sequence. The first frame builds the TLAS, then runs
+    /// the warm-up traces the options ask for; with `warm_each`, every later frame runs as
+    /// many again before its TLAS work, so that the TLAS and trace timings of every frame are
+    /// taken on a GPU that is already busy.
+    pub fn render(&mut self, frame: u32, warm_each: bool) -> Result<Frame> {
+        let i = self.done;
+        self.done += 1;
+        let work = if i == 0 || self.moves.objects { self.mode.work(i) } else { AsWork::None };
+        self.rewrite(frame, i, work)?;
+        let ctx = &self.ctx;
+        let size = (self.opts.width, self.opts.height);
+        let runs = self.opts.runs;
+        let (as_ms, traces) = if i == 0 {
+            let as_ms = self.tlas_work(work, &[])?;
+            // Warm-up (and its GPU-clock calibration) over the first frame's structures.
+            let traces = self
+                .renders
+                .iter()
+                .map(|r| timed(ctx, r, size, (self.opts.warmup, runs)))
+                .collect::<Result<Vec<_>>>()?;
+            self.warm = traces.iter().map(|t| t.warmup).collect();
+            (as_ms, traces)
+        } else {
+            let cold = self.renders.iter().map(|r| timed(ctx, r, size, (0, runs))).collect::<Result<Vec<_>>>()?;
+            let warm: Vec<Trace> = if warm_each {
+                cold.iter().zip(&self.warm).map(|(t, &warmup)| Trace { warmup, ..*t }).collect()
+            } else {
+                Vec::new()
+            };
+            (self.tlas_work(work, &warm)?, cold)
+        };
+        let image = self.outputs.image.raw;
+        let before = |device: &ash::Device, cmd| {
+            if i == 0 {
+                transition(device, cmd, image, UNUSED_IMAGE, STORAGE_IMAGE);
+            }
+        };
+        let after = |device: &ash::Device, cmd| copy_outputs(ctx, device, cmd, &self.outputs, &self.renders, &traces);
+        tracing::submit(ctx, &self.one_shot, &traces, before, after)?;
+        let outputs = self
+            .renders
+            .iter()
+            .zip(&traces)
+            .map(|(r, t)| r.output(self.scene, &self.opts, t.warmup))
+            .collect::<Result<_>>()?;
+        let time = self.scene.animation.as_ref().map_or(0.0, |a| a.time(frame));
+        Ok(Frame { index: frame, time, as_work: work, as_ms, outputs })
+    }
+
+    /// Poses frame `frame` (the `i`-th) and rewrites what moved: the TLAS instances when the
+    /// TLAS is remade, the frame constants when the camera moves, the lights when they do. The
+    /// first frame's values went up with the scene.
+    fn rewrite(&mut self, frame: u32, i: u32, work: AsWork) -> Result<()> {
+        if i == 0 {
+            return Ok(());
+        }
+        self.scene.pose(frame, &mut self.posed);
+        let data = frame_data(&self.posed, self.opts.width, self.opts.height);
+        let resources = &self.uploaded.resources;
+        if work != AsWork::None {
+            for (record, instance) in self.records.iter_mut().zip(&self.uploaded.data.instances) {
+                record.object_to_world = data.transforms[instance.object as usize];
+            }
+            resources.tlas.borrow_mut().write(&self.records)?;
+        }
+        if self.moves.camera {
+            resources.write(b::BINDING_FRAME, bytemuck::bytes_of(&data.uniform))?;
+        }
+        if self.moves.lights {
+            resources.write(b::BINDING_LIGHTS, bytemuck::cast_slice(&data.lights))?;
+        }
+        Ok(())
+    }
+
+    /// The warm-up traces `warm`, then the TLAS work between timestamps: its GPU milliseconds.
+    fn tlas_work(&self, work: AsWork, warm: &[Trace]) -> Result<Option<f64>> {
+        if work == AsWork::None && warm.is_empty() {
+            return Ok(None);
+        }
+        let tlas = self.uploaded.resources.tlas.borrow();
+        let timer = self.timer.as_ref().filter(|_| work != AsWork::None);
+        self.one_shot.run(|_, cmd| {
+            tracing::record_warmup(&self.ctx, cmd, warm);
+            if work != AsWork::None {
+                if let Some(t) = timer {
+                    t.reset(cmd);
+                    t.begin(cmd, 0);
+                }
+                tlas.record(&self.ctx, cmd, work == AsWork::Update);
+                if let Some(t) = timer {
+                    t.end(cmd, 0);
+                }
+            }
+            Ok(())
+        })?;
+        Ok(timer.map(|t| t.read_ms()).transpose()?.and_then(|ms| ms.first().copied()))
+    }
+}
+
+/// A set's traces of a frame: `warmup` warm-up traces (calibrated to fill `MIN_WARM_MS` when
+/// above 0), then `runs` timed ones.
+fn timed<'r>(ctx: &Arc<Context>, r: &'r SetRender, size: (u32, u32), counts: (u32, u32)) -> Result<Trace<'r>> {
+    r.prepared.trace(ctx, r.timestamps.as_ref(), size, counts)
+}
+
+/// Renders frames `frames` of `scene` with each of `sets` over one upload, handing each frame
+/// to `each` as it completes. Warm-up traces run before the first frame only; each frame's
+/// timed traces are interleaved between the sets as `render_sets` does.
+pub fn render_frames(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    sets: &[ShaderSet],
+    opts: &RenderOptions,
+    frames: Range<u32>,
+    mode: TlasMode,
+    mut each: impl FnMut(Frame) -> Result<()>,
+) -> Result<()> {
+    check_frames(scene, &frames)?;
+    let count = frames.len() as u64;
+    let mut renderer = FrameRenderer::new(ctx, scene, sets, opts, frames.start, mode)?;
+    for (i, frame) in frames.enumerate() {
+        each(renderer.render(frame, false)?)?;
+        crate::util::progress::report("frames", i as u64 + 1, count);
+    }
+    drop(renderer);
+    // Every object of the render is destroyed by now: catch what the layer said about that too.
+    ctx.check_validation()
+}
