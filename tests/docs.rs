@@ -9,17 +9,37 @@ fn format_doc() -> String {
     std::fs::read_to_string(repo_root().join("docs/scene-format.md")).expect("docs/scene-format.md")
 }
 
+/// The first TOML block after the heading `heading`.
+fn toml_block<'a>(doc: &'a str, heading: &str) -> &'a str {
+    let section = doc.find(heading).unwrap_or_else(|| panic!("no {heading:?} in the docs"));
+    let start = section + doc[section..].find("```toml\n").expect("a toml example") + "```toml\n".len();
+    let end = start + doc[start..].find("```").expect("the example's end");
+    &doc[start..end]
+}
+
 #[test]
 fn the_documented_example_loads_and_renders() {
     let doc = format_doc();
-    let start = doc.find("```toml\n").expect("a toml example") + "```toml\n".len();
-    let end = start + doc[start..].find("```").expect("the example's end");
-    let scene = Scene::parse(&doc[start..end], "docs/scene-format.md", MeshFiles::Folder(repo_root().join("scenes")))
+    let example = toml_block(&doc, "## A complete example");
+    let scene = Scene::parse(example, "docs/scene-format.md", MeshFiles::Folder(repo_root().join("scenes")))
         .unwrap_or_else(|e| panic!("the documented example does not load: {e}"));
     let ctx = validated_context();
     let opts = RenderOptions { width: 64, height: 36, warmup: 0, runs: 1 };
     let out = twinray::render(&ctx, &scene, &set("rust"), &opts).expect("the documented example renders");
     assert!(twinray::compare::hit_count(&out) > 0);
+}
+
+/// The animation the docs show, appended to the complete example, loads, moves what it says.
+#[test]
+fn the_documented_animation_loads_with_the_example() {
+    let doc = format_doc();
+    let text = format!("{}\n{}", toml_block(&doc, "## A complete example"), toml_block(&doc, "## Animation"));
+    let scene = Scene::parse(&text, "docs/scene-format.md", MeshFiles::Folder(repo_root().join("scenes")))
+        .unwrap_or_else(|e| panic!("the documented animation does not load: {e}"));
+    assert_eq!(scene.frame_count(), 48);
+    let (first, later) = (scene.at_frame(0), scene.at_frame(12));
+    assert_ne!(first.file.objects[1].translate, later.file.objects[1].translate, "the sphere bounces");
+    assert_ne!(first.file.camera.eye, later.file.camera.eye, "the camera rises");
 }
 
 #[test]

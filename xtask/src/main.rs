@@ -7,7 +7,7 @@ mod setup;
 mod shaders;
 mod watch;
 
-use anyhow::Result;
+use anyhow::{Context, Result};
 use clap::{Parser, Subcommand};
 use process::{cargo, repo_root};
 use setup::Scope;
@@ -63,8 +63,13 @@ enum Task {
         #[arg(last = true)]
         compare_args: Vec<String>,
     },
-    /// Render the default scene with both shader sets and print the comparison.
-    Demo,
+    /// Render the default scene with both shader sets and print the comparison; with
+    /// --animated, the moving `orbit` scene: its frames as an animated PNG, and both sets
+    /// compared on every frame.
+    Demo {
+        #[arg(long)]
+        animated: bool,
+    },
     /// What CI runs: setup, fmt check, clippy and rustdoc (warnings denied), shaders --check,
     /// all tests.
     Ci,
@@ -89,7 +94,7 @@ fn main() -> Result<()> {
             changes,
             compare_args,
         }),
-        Task::Demo => demo(),
+        Task::Demo { animated } => demo(animated),
         Task::Ci => ci(),
         Task::Bundle { out } => bundle::run_bundle(&repo_root().join(out)),
     }
@@ -103,11 +108,22 @@ fn golden(scenes: &[String]) -> Result<()> {
     Ok(())
 }
 
-fn demo() -> Result<()> {
+fn demo(animated: bool) -> Result<()> {
     setup::run(Scope::Vulkan)?;
     let out = repo_root().join("target/demo");
-    let out = out.to_string_lossy();
-    cargo(&["run", "--release", "--quiet", "-p", "twinray", "--", "compare", "--out-dir", &out], &[])
+    let dir = out.to_string_lossy();
+    let twinray = ["run", "--release", "--quiet", "-p", "twinray", "--"];
+    if !animated {
+        return cargo(&[&twinray[..], &["compare", "--out-dir", &dir]].concat(), &[]);
+    }
+    // Half the scene's size: lavapipe renders the 48 frames in about a minute.
+    std::fs::create_dir_all(&out).with_context(|| format!("creating {dir}"))?;
+    let movie = out.join("orbit.png");
+    let size = ["--width", "320", "--height", "180"];
+    let render = ["render", "orbit", "--frames", "all", "--out", &movie.to_string_lossy()];
+    cargo(&[&twinray[..], &render, &size].concat(), &[])?;
+    let compare = ["compare", "orbit", "--frames", "all", "--runs", "1", "--warmup", "0", "--out-dir"];
+    cargo(&[&twinray[..], &compare, &[dir.as_ref()], &size].concat(), &[])
 }
 
 fn ci() -> Result<()> {

@@ -51,6 +51,7 @@ pub fn scenes(json: bool) -> Result<ExitCode> {
             "samples": scene.file.image.samples,
             "objects": scene.file.objects.len(),
             "lights": scene.file.lights.len(),
+            "frames": scene.frame_count(),
             "hit_groups": groups,
             "shadows": data.plan.shadows,
         }));
@@ -62,13 +63,17 @@ pub fn scenes(json: bool) -> Result<ExitCode> {
         println!("{}", serde_json::json!({ "scenes": rows, "kinds": kinds }));
         return Ok(ExitCode::SUCCESS);
     }
-    println!("{:<10} {:>9} {:>7} {:>7}  {:<28} description", "scene", "size", "objects", "shadows", "hit groups");
+    println!(
+        "{:<10} {:>9} {:>7} {:>6} {:>7}  {:<28} description",
+        "scene", "size", "objects", "frames", "shadows", "hit groups"
+    );
     for r in &rows {
         println!(
-            "{:<10} {:>9} {:>7} {:>7}  {:<28} {}",
+            "{:<10} {:>9} {:>7} {:>6} {:>7}  {:<28} {}",
             r["name"].as_str().unwrap_or_default(),
             format!("{}x{}", r["width"], r["height"]),
-            r["objects"],
+            r["objects"].as_u64().unwrap_or(0),
+            r["frames"].as_u64().unwrap_or(1),
             if r["shadows"] == true { "yes" } else { "no" },
             r["hit_groups"]
                 .as_array()

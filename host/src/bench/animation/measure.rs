@@ -13,7 +13,7 @@ use std::sync::Arc;
 /// What to measure.
 #[derive(Clone, Debug)]
 pub struct AnimateConfig {
-    /// The scene at each instance count (see [`resize_grid`]).
+    /// The scene at each instance count (see [`super::resize_grid`]).
     pub scenes: Vec<Scene>,
     pub set: ShaderSet,
     pub modes: Vec<TlasMode>,
