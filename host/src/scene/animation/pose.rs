@@ -152,9 +152,10 @@ impl Animation {
 impl Track {
     /// The value at `t` seconds: held before the first key and after the last.
     pub fn value_at(&self, t: f32) -> [f32; 3] {
-        let Some(next) = self.keys.iter().position(|k| k.0 > t) else {
+        let next = self.keys.partition_point(|k| k.0 <= t);
+        if next == self.keys.len() {
             return self.keys.last().map_or([0.0; 3], |k| k.1);
-        };
+        }
         if next == 0 {
             return self.keys[0].1;
         }

@@ -12,6 +12,10 @@ use glam::Vec3;
 pub const MAX_FRAMES: u32 = 100_000;
 /// Highest frame rate.
 pub const MAX_FPS: f32 = 1000.0;
+/// Most moving values (objects, lights, the camera, one per track or motion) times frames:
+/// every frame is posed and checked when the scene loads. `animate-bench`'s 100,000
+/// instances over 48 frames is 4.8 million; beyond this, loading would take minutes.
+pub const MAX_POSED: u64 = 50_000_000;
 
 type Checked<T> = Result<T, String>;
 
@@ -38,6 +42,18 @@ pub fn resolve(desc: &AnimationDesc, scene: &SceneFile, grids: &[std::ops::Range
         .enumerate()
         .map(|(i, m)| scope.motion(m).map_err(|e| format!("animation.motions[{i}] ({}){e}", m.kind())))
         .collect::<Checked<Vec<_>>>()?;
+    let moving: u64 = tracks
+        .iter()
+        .map(|t| &t.target)
+        .chain(motions.iter().map(|m| &m.target))
+        .map(|t| if let Target::Objects(r) = t { r.len() as u64 } else { 1 })
+        .sum();
+    if moving.saturating_mul(u64::from(desc.frames)) > MAX_POSED {
+        return Err(format!(
+            "animation: {} frames of {moving} moving values is more than {MAX_POSED} to pose and check; use fewer frames or move fewer objects",
+            desc.frames
+        ));
+    }
     let rest = Box::new(scene.clone());
     let animation = Animation { frames: desc.frames, fps: desc.fps, tracks, motions, rest };
     check_frames(&animation, scene)?;
