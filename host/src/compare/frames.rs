@@ -188,3 +188,26 @@ impl FramesReport {
         s
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compare::ColorDiff;
+
+    fn diff(rmse: f64, over: u64, hits: u64, off: u64) -> ImageDiff {
+        let color = ColorDiff { rmse, psnr: 0.0, max_abs_diff: 0, pixels_over_threshold: over };
+        ImageDiff { color, hit_mismatches: hits, hit_mismatches_off_silhouette: off }
+    }
+
+    #[test]
+    fn badness_is_the_largest_fraction_of_a_limit() {
+        let parity = Parity::default();
+        let pixels = 10_000;
+        assert_eq!(badness(&diff(0.0, 0, 0, 0), &parity, pixels), 0.0);
+        assert!((badness(&diff(0.005, 0, 0, 0), &parity, pixels) - 0.5).abs() < 1e-12);
+        // 40 of 10,000 pixels over is 0.004, twice the 0.002 allowed.
+        assert!((badness(&diff(0.001, 40, 0, 0), &parity, pixels) - 2.0).abs() < 1e-12);
+        assert!((badness(&diff(0.001, 0, 10, 0), &parity, pixels) - 0.5).abs() < 1e-12);
+        assert!(badness(&diff(0.0, 0, 1, 1), &parity, pixels).is_infinite(), "off a silhouette fails any frame");
+    }
+}

@@ -149,3 +149,30 @@ impl FrameRange {
         Ok(frames)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn frame_ranges_parse_as_the_command_line_writes_them() {
+        let parse = |s: &str| s.parse::<FrameRange>();
+        assert_eq!(parse("all"), Ok(FrameRange::All));
+        assert_eq!(parse("2..5"), Ok(FrameRange::Span(2, 5)));
+        assert_eq!(parse("2..=5"), Ok(FrameRange::Span(2, 6)));
+        assert_eq!(parse(" 7 "), Ok(FrameRange::Span(7, 8)));
+        for bad in ["5..2", "3..3", "x", "1..y", "-1..2", "..", "4294967295..=4294967295"] {
+            assert!(parse(bad).is_err(), "{bad:?} accepted");
+        }
+    }
+
+    #[test]
+    fn update_mode_rebuilds_on_the_first_frame_and_every_n() {
+        let works = |mode: TlasMode| (0..5).map(|i| mode.work(i)).collect::<Vec<_>>();
+        let (b, u) = (AsWork::Build, AsWork::Update);
+        assert_eq!(works(TlasMode { kind: TlasKind::Update, rebuild_every: 0 }), [b, u, u, u, u]);
+        assert_eq!(works(TlasMode { kind: TlasKind::Update, rebuild_every: 2 }), [b, u, b, u, b]);
+        assert_eq!(works(TlasMode { kind: TlasKind::FastBuild, rebuild_every: 2 }), [b, b, b, b, b]);
+        assert_eq!(TlasMode { kind: TlasKind::Update, rebuild_every: 30 }.name(), "update (rebuild every 30)");
+    }
+}
