@@ -192,7 +192,7 @@ impl FramesReport {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::compare::ColorDiff;
+    use crate::compare::diff::ColorDiff;
 
     fn diff(rmse: f64, over: u64, hits: u64, off: u64) -> ImageDiff {
         let color = ColorDiff { rmse, psnr: 0.0, max_abs_diff: 0, pixels_over_threshold: over };
