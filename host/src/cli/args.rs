@@ -21,6 +21,13 @@ pub struct GlobalArgs {
     /// Use the first ray tracing device whose name contains this text.
     #[arg(long, global = true, value_name = "NAME")]
     pub device: Option<String>,
+    /// Compile every pipeline cold: no pipeline cache is read or written.
+    #[arg(long, global = true, conflicts_with = "pipeline_cache")]
+    pub no_pipeline_cache: bool,
+    /// Folder of the pipeline caches, one file per device and driver [default:
+    /// $XDG_CACHE_HOME/twinray/pipelines or ~/.cache/twinray/pipelines].
+    #[arg(long, global = true, value_name = "DIR")]
+    pub pipeline_cache: Option<PathBuf>,
     /// More log output (-v info, -vv debug); RUST_LOG overrides.
     #[arg(short, long, global = true, action = clap::ArgAction::Count)]
     pub verbose: u8,

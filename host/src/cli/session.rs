@@ -5,12 +5,18 @@ use crate::args::{FrameArgs, GlobalArgs};
 use anyhow::{Context as _, Result};
 use std::sync::Arc;
 use twinray::scene::check_size;
+use twinray::util::output::cache_dir;
 use twinray::{Context, ContextOptions, Error, RenderOptions, Scene, Validation};
 
 pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
     let options = ContextOptions {
         validation: if global.validate { Validation::Required } else { Validation::Off },
         device_filter: global.device.clone(),
+        pipeline_cache: if global.no_pipeline_cache {
+            None
+        } else {
+            Some(global.pipeline_cache.clone().unwrap_or_else(|| cache_dir("pipelines")))
+        },
     };
     Context::new(&options).context("setting up Vulkan")
 }

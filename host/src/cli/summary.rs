@@ -9,8 +9,14 @@ use twinray::Scene;
 pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
     let ctx = context(global)?;
     let i = &ctx.info;
+    let cache = ctx.pipeline_cache_state();
     if json {
-        println!("{}", serde_json::to_string_pretty(i)?);
+        let mut value = serde_json::to_value(i)?;
+        value["pipeline_cache"] = serde_json::json!(cache.map(|(file, bytes)| serde_json::json!({
+            "file": file,
+            "loaded_bytes": bytes,
+        })));
+        println!("{}", serde_json::to_string_pretty(&value)?);
     } else {
         println!("device      {} ({})", i.name, i.device_type);
         println!("driver      {} {}", i.driver_name, i.driver_info);
@@ -30,6 +36,11 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             "not available on this queue".into()
         };
         println!("timestamps  {timing}");
+        match cache {
+            Some((file, 0)) => println!("pipelines   cache {} (cold: nothing read)", file.display()),
+            Some((file, bytes)) => println!("pipelines   cache {} ({bytes} bytes read)", file.display()),
+            None => println!("pipelines   no cache (--no-pipeline-cache)"),
+        }
         if let Some(threads) = i.cpu_threads {
             println!("threads     {threads} (a CPU device: LP_NUM_THREADS, else the CPU count)");
         }

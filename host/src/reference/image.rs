@@ -7,8 +7,9 @@ use crate::error::{Error, Result};
 use crate::render::{render, RenderOptions};
 use crate::scene::Scene;
 use crate::shaders::{ShaderSet, MODULES};
+use crate::util::checksum::{fnv1a, Fnv};
 use crate::util::input::read_bounded;
-use crate::util::output::file_safe;
+use crate::util::output::{cache_dir, file_safe};
 use crate::vk::context::Context;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -125,20 +126,15 @@ fn frame_seed(seed: u32, k: u32) -> u32 {
 /// FNV-1a over everything the image depends on: the parsed scene and its meshes, the size,
 /// the sample count and the SPIR-V of every module the set resolves to.
 fn key(scene: &Scene, set: &ShaderSet, (width, height): (u32, u32), spp: u32, what: Converge) -> u64 {
-    let mut hash = 0xcbf2_9ce4_8422_2325u64;
-    let mut eat = |bytes: &[u8]| {
-        for &b in bytes {
-            hash = (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3);
-        }
-    };
-    eat(format!("{:?}{:?}{what:?}", scene.file, scene.meshes).as_bytes());
-    eat(&[width, height, spp].map(u32::to_le_bytes).concat());
+    let mut hash = Fnv::default();
+    hash.eat(format!("{:?}{:?}{what:?}", scene.file, scene.meshes).as_bytes());
+    hash.eat(&[width, height, spp].map(u32::to_le_bytes).concat());
     for spec in MODULES.iter() {
         if let Ok(module) = set.resolve(spec) {
-            eat(&module.spirv);
+            hash.eat(&module.spirv);
         }
     }
-    hash
+    hash.value()
 }
 
 /// The pixels of a cache file whose header, size and checksum match and whose pixels are
@@ -166,7 +162,7 @@ fn read(path: &Path, (width, height, spp): (u32, u32, u32)) -> Option<Vec<[f32; 
 
 /// FNV-1a over a cache file's header and pixels: its last eight bytes.
 fn checksum(bytes: &[u8]) -> u64 {
-    bytes.iter().fold(0xcbf2_9ce4_8422_2325u64, |hash, &b| (hash ^ u64::from(b)).wrapping_mul(0x0100_0000_01b3))
+    fnv1a(bytes)
 }
 
 /// Fails, naming the folder, when references cannot be written into `cache`.
@@ -205,10 +201,7 @@ fn write(path: &Path, (width, height, spp): (u32, u32, u32), linear: &[[f32; 3]]
 /// Where references are cached by default: $XDG_CACHE_HOME/twinray/references, else
 /// ~/.cache/twinray/references, else ./twinray-references.
 pub fn default_cache() -> PathBuf {
-    let base = std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")));
-    base.map_or_else(|| PathBuf::from("twinray-references"), |b| b.join("twinray").join("references"))
+    cache_dir("references")
 }
 
 #[cfg(test)]

@@ -61,9 +61,22 @@ fn parent_dir(path: &Path) -> PathBuf {
     }
 }
 
+/// A temporary name beside `path`, unique to this process and call: two threads (or two
+/// processes) writing the same file never share one.
 pub(crate) fn temp_path(path: &Path) -> PathBuf {
+    static COUNT: std::sync::atomic::AtomicU64 = std::sync::atomic::AtomicU64::new(0);
+    let n = COUNT.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
     let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    parent_dir(path).join(format!(".{name}.{}.tmp", std::process::id()))
+    parent_dir(path).join(format!(".{name}.{}.{n}.tmp", std::process::id()))
+}
+
+/// `name` in twinray's cache folder: `$XDG_CACHE_HOME/twinray`, else `~/.cache/twinray`,
+/// else `twinray-NAME` in the working directory.
+pub fn cache_dir(name: &str) -> PathBuf {
+    let base = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")));
+    base.map_or_else(|| PathBuf::from(format!("twinray-{name}")), |b| b.join("twinray").join(name))
 }
 
 /// A name usable in a file name: letters, digits, '-' and '_' kept, anything else '_'.

@@ -2,6 +2,7 @@
 //! the ray tracing loaders. Everything else holds an `Arc<Context>`, so it is dropped last.
 
 use super::device_select::{self, Candidate, REQUIRED_EXTENSIONS};
+use super::pipeline_cache::{cache_file, PipelineCache};
 use super::validation::{self, Messenger, Validation, ValidationLog};
 use crate::error::{Error, Result, VkContext};
 use ash::{ext::debug_utils, khr, vk};
@@ -40,6 +41,9 @@ pub struct ContextOptions {
     pub validation: Validation,
     /// Only devices whose name contains this (case-insensitive).
     pub device_filter: Option<String>,
+    /// Folder of the on-disk pipeline caches (one file per device and driver); `None`: every
+    /// pipeline is compiled cold and nothing is written.
+    pub pipeline_cache: Option<std::path::PathBuf>,
 }
 
 /// The Vulkan instance, device, queue, extension loaders and allocator; everything else holds an `Arc` to it.
@@ -59,6 +63,8 @@ pub struct Context {
     validation_log: Box<ValidationLog>,
     /// Set once `close` has destroyed the device, so that `Drop` does not again.
     device_destroyed: bool,
+    /// The pipeline cache every pipeline is created with, when one was asked for.
+    pipeline_cache: Option<PipelineCache>,
 }
 
 impl Context {
@@ -107,6 +113,13 @@ impl Context {
         .map_err(|source| Error::Allocation { what: "the allocator".into(), source })?;
         // SAFETY: the queue family was created with one queue.
         let queue = unsafe { device.get_device_queue(candidate.queue_family, 0) };
+        // SAFETY: the physical device is live.
+        let props = unsafe { instance.get_physical_device_properties(candidate.physical) };
+        let pipeline_cache = options
+            .pipeline_cache
+            .as_ref()
+            .map(|dir| PipelineCache::open(&device, &props, cache_file(dir, &props)))
+            .transpose()?;
         Ok(Arc::new(Context {
             accel: khr::acceleration_structure::Device::new(&instance, &device),
             rt: khr::ray_tracing_pipeline::Device::new(&instance, &device),
@@ -121,6 +134,7 @@ impl Context {
             messenger,
             validation_log,
             device_destroyed: false,
+            pipeline_cache,
         }))
     }
 
@@ -154,6 +168,17 @@ impl Context {
         }
     }
 
+    /// The pipeline cache to create pipelines with (null when none was asked for).
+    pub fn pipeline_cache(&self) -> vk::PipelineCache {
+        self.pipeline_cache.as_ref().map_or(vk::PipelineCache::null(), |c| c.raw)
+    }
+
+    /// The pipeline cache's file and the bytes of driver data it started from (0: cold);
+    /// `None` when no cache was asked for.
+    pub fn pipeline_cache_state(&self) -> Option<(&std::path::Path, usize)> {
+        self.pipeline_cache.as_ref().map(|c| (c.file.as_path(), c.loaded_bytes))
+    }
+
     /// Fails if the validation layer reported errors since the last check.
     pub fn check_validation(&self) -> Result<()> {
         let errors = self.validation_log.take_errors();
@@ -185,6 +210,13 @@ impl Context {
         // the allocator goes before the device.
         unsafe {
             let _ = self.device.device_wait_idle();
+            if let Some(cache) = self.pipeline_cache.take() {
+                // A cache that cannot be written costs the next run its warm start, nothing more.
+                if let Err(e) = cache.save(&self.device) {
+                    log::warn!("saving the pipeline cache: {e}");
+                }
+                cache.destroy(&self.device);
+            }
             ManuallyDrop::drop(&mut self.allocator);
             self.device.destroy_device(None);
         }

@@ -8,6 +8,7 @@ pub mod descriptors;
 pub mod device_select;
 pub mod image;
 pub mod pipeline;
+pub mod pipeline_cache;
 pub mod sbt;
 pub mod timing;
 pub mod validation;

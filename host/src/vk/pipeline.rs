@@ -144,7 +144,7 @@ fn create_pipeline(ctx: &Context, layout: vk::PipelineLayout, desc: &PipelineDes
         .layout(layout)];
     // SAFETY: stages, groups and layout are valid and alive for the call.
     let pipelines = unsafe {
-        ctx.rt.create_ray_tracing_pipelines(vk::DeferredOperationKHR::null(), vk::PipelineCache::null(), &info, None)
+        ctx.rt.create_ray_tracing_pipelines(vk::DeferredOperationKHR::null(), ctx.pipeline_cache(), &info, None)
     }
     .map_err(|(_, result)| Error::Vulkan { call: "vkCreateRayTracingPipelinesKHR", result })?;
     pipelines
