@@ -18,7 +18,14 @@ pub fn repo_root() -> PathBuf {
 /// layer is missing, and any validation error fails the render that caused it. Each test gets
 /// its own device, so tests running in parallel never share a queue.
 pub fn validated_context() -> Arc<Context> {
-    let options = ContextOptions { validation: Validation::Required, device_filter: None, pipeline_cache: None };
+    validated_context_making(None)
+}
+
+/// As [`validated_context`], making pipelines as `pipelines` says (`None`: the default,
+/// libraries where the device has them).
+pub fn validated_context_making(pipelines: Option<twinray::vk::context::PipelineKind>) -> Arc<Context> {
+    let options =
+        ContextOptions { validation: Validation::Required, device_filter: None, pipeline_cache: None, pipelines };
     match Context::new(&options) {
         Ok(ctx) => ctx,
         Err(e) => panic!("creating a validated Vulkan context: {e} (run `cargo xtask setup`)"),

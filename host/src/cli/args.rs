@@ -21,6 +21,10 @@ pub struct GlobalArgs {
     /// Use the first ray tracing device whose name contains this text.
     #[arg(long, global = true, value_name = "NAME")]
     pub device: Option<String>,
+    /// How ray tracing pipelines are made: whole, or linked from per-stage libraries
+    /// [default: libraries where the device has VK_KHR_pipeline_library].
+    #[arg(long, global = true, value_enum)]
+    pub pipeline: Option<twinray::vk::context::PipelineKind>,
     /// Compile every pipeline cold: no pipeline cache is read or written.
     #[arg(long, global = true, conflicts_with = "pipeline_cache")]
     pub no_pipeline_cache: bool,

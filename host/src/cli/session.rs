@@ -17,6 +17,7 @@ pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
         } else {
             Some(global.pipeline_cache.clone().unwrap_or_else(|| cache_dir("pipelines")))
         },
+        pipelines: global.pipeline,
     };
     Context::new(&options).context("setting up Vulkan")
 }

@@ -36,6 +36,7 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             "not available on this queue".into()
         };
         println!("timestamps  {timing}");
+        println!("libraries   VK_KHR_pipeline_library {}", if i.pipeline_library { "yes" } else { "no" });
         match cache {
             Some((file, 0)) => println!("pipelines   cache {} (cold: nothing read)", file.display()),
             Some((file, bytes)) => println!("pipelines   cache {} ({bytes} bytes read)", file.display()),

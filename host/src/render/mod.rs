@@ -4,6 +4,7 @@
 
 mod barriers;
 pub mod frames;
+pub mod libraries;
 mod moving;
 pub mod output;
 pub mod pipeline;

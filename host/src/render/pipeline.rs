@@ -3,10 +3,11 @@
 //! shape kind the scene uses. Specialisation constants carry the plan's sample count, shadow
 //! switch and shadow sampler into ray generation.
 
+use super::libraries::{Libraries, LibraryDesc};
 use crate::error::Result;
 use crate::scene::PipelinePlan;
 use crate::shaders::{ShaderSet, Stage, StageModule};
-use crate::vk::context::Context;
+use crate::vk::context::{Context, PipelineKind};
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
 use ash::vk;
 use std::sync::Arc;
@@ -20,6 +21,8 @@ pub struct ScenePipeline {
     pub group_counts: [u32; 3],
     /// Names of the modules in the pipeline, in stage order (for tests and reports).
     pub modules: Vec<&'static str>,
+    /// The libraries it was linked from (none when made whole), kept while it lives.
+    _libraries: Vec<std::rc::Rc<RtPipeline>>,
 }
 
 /// (binding, type, stages) of every descriptor, from the shared layout.
@@ -71,8 +74,15 @@ pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static s
 }
 
 impl ScenePipeline {
-    /// The pipeline of `plan` with the modules of `set`, ray generation stage `raygen`.
-    pub fn new(ctx: &Arc<Context>, set: &ShaderSet, plan: &PipelinePlan, raygen: &'static str) -> Result<Self> {
+    /// The pipeline of `plan` with the modules of `set`, ray generation stage `raygen`: whole,
+    /// or linked from libraries kept in `libraries`, as the context makes pipelines.
+    pub fn new(
+        ctx: &Arc<Context>,
+        set: &ShaderSet,
+        plan: &PipelinePlan,
+        raygen: &'static str,
+        libraries: &Libraries,
+    ) -> Result<Self> {
         let names = plan_modules(plan, raygen);
         let modules = names.iter().map(|name| set.module(name)).collect::<Result<Vec<StageModule>>>()?;
         let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler];
@@ -81,7 +91,11 @@ impl ScenePipeline {
             .enumerate()
             .map(|(i, &id)| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i as u32, size: 4 })
             .collect();
-        let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(bytemuck::cast_slice(&spec_data));
+        let spec_bytes: &[u8] = bytemuck::cast_slice(&spec_data);
+        let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
+        let groups = groups(plan, &names);
+        let misses = if plan.shadows { 2 } else { 1 };
+        let bindings = descriptor_bindings();
         let stages: Vec<_> = modules
             .iter()
             .map(|m| StageDesc {
@@ -92,21 +106,41 @@ impl ScenePipeline {
                 specialization: (m.spec.stage == Stage::Raygen).then_some(&spec),
             })
             .collect();
-        let groups = groups(plan, &names);
-        let misses = if plan.shadows { 2 } else { 1 };
-        let desc =
-            PipelineDesc { bindings: &descriptor_bindings(), stages: &stages, groups: &groups, max_recursion_depth: 1 };
+        let (rt, held) = if ctx.pipeline_kind() == PipelineKind::Libraries {
+            let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, spec_bytes)).collect();
+            libraries.link(ctx, &bindings, &descs)?
+        } else {
+            let desc = PipelineDesc { bindings: &bindings, stages: &stages, groups: &groups, max_recursion_depth: 1 };
+            (RtPipeline::new(ctx, &desc)?, Vec::new())
+        };
         Ok(ScenePipeline {
-            rt: RtPipeline::new(ctx, &desc)?,
+            rt,
             group_counts: [1, misses, plan.hit_groups.len() as u32],
             modules: names,
+            _libraries: held,
         })
     }
 
     /// What ray generation keeps across each trace call (see `RtPipeline::raygen_stack_bytes`).
+    /// Of a linked pipeline, the ray generation library's figure: the same compiled stage,
+    /// and the validation layer (1.3.239) counts a linked pipeline's groups as none.
     pub fn raygen_stack_bytes(&self) -> u64 {
-        self.rt.raygen_stack_bytes()
+        self._libraries.first().map_or_else(|| self.rt.raygen_stack_bytes(), |raygen| raygen.raygen_stack_bytes())
     }
+}
+
+/// The library of one group: its stages, renumbered from 0 within it.
+fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8]) -> LibraryDesc<'a> {
+    let (own, group) = match group {
+        GroupDesc::General(i) => (vec![i], GroupDesc::General(0)),
+        GroupDesc::Triangles { closest_hit } => (vec![closest_hit], GroupDesc::Triangles { closest_hit: 0 }),
+        GroupDesc::Procedural { intersection, closest_hit } => {
+            (vec![intersection, closest_hit], GroupDesc::Procedural { intersection: 0, closest_hit: 1 })
+        }
+    };
+    let stages: Vec<StageDesc> = own.iter().map(|&i| stages[i as usize]).collect();
+    let spec_bytes = if stages.iter().any(|s| s.specialization.is_some()) { spec_bytes } else { &[] };
+    LibraryDesc { stages, group, spec_bytes }
 }
 
 /// SBT order: raygen, miss (`MISS_PRIMARY`), shadow miss (`MISS_SHADOW`), then the hit groups

@@ -2,6 +2,7 @@
 //! the pipeline, its descriptors and SBT, and the warm-up that brings GPU clocks up first.
 
 use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
+use super::libraries::Libraries;
 use super::pipeline::{descriptor_bindings, ScenePipeline};
 use super::tracing::Trace;
 use super::upload::{upload_shared, SceneResources, UploadedScene};
@@ -88,21 +89,23 @@ pub(crate) fn prepare(
     extra: &[(u32, &Buffer)],
 ) -> Result<Prepared> {
     let image = Rc::new(StorageImage::new(ctx, image_size.0, image_size.1)?);
-    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, set, raygen, image, extra)
+    let libraries = Libraries::default();
+    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, (set, &libraries), raygen, image, extra)
 }
 
-/// The pipeline of `set` (ray generation stage `raygen`) over an uploaded scene, with its
-/// descriptors (the scene's buffers, the output `image` and `extra`) and SBT.
+/// The pipeline of `set` (ray generation stage `raygen`; linked from `libraries` when the
+/// context links pipelines) over an uploaded scene, with its descriptors (the scene's
+/// buffers, the output `image` and `extra`) and SBT.
 pub(crate) fn prepare_on(
     ctx: &Arc<Context>,
     scene: &UploadedScene,
-    set: &ShaderSet,
+    (set, libraries): (&ShaderSet, &Libraries),
     raygen: &'static str,
     image: Rc<StorageImage>,
     extra: &[(u32, &Buffer)],
 ) -> Result<Prepared> {
     let resources = scene.resources.clone();
-    let pipeline = ScenePipeline::new(ctx, set, &scene.data.plan, raygen)?;
+    let pipeline = ScenePipeline::new(ctx, set, &scene.data.plan, raygen, libraries)?;
     let storage = vk::DescriptorType::STORAGE_BUFFER;
     let mut buffers: Vec<_> =
         resources.buffers.borrow().iter().map(|(binding, ty, buffer)| (*binding, buffer.raw, *ty)).collect();

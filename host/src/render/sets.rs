@@ -2,6 +2,7 @@
 //! image, their traces interleaved (see `tracing`), in every build order when timed.
 
 use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE, UNUSED_IMAGE};
+use super::libraries::Libraries;
 use super::output::{read_ids, read_linear, to_rgba8, RayCounts, RenderOptions, RenderOutput};
 use super::prepare::{prepare_on, storage_buffer, Prepared};
 use super::tracing;
@@ -91,7 +92,7 @@ impl SetRender {
         ctx: &Arc<Context>,
         scene: &UploadedScene,
         outputs: &SharedOutputs,
-        set: &ShaderSet,
+        set: (&ShaderSet, &Libraries),
         opts: &RenderOptions,
     ) -> Result<Self> {
         let image = outputs.image.clone();
@@ -137,8 +138,11 @@ fn render_and_release(
     let size = (opts.width, opts.height);
     let uploaded = upload_shared(ctx, scene, size)?;
     let outputs = SharedOutputs::new(ctx, opts)?;
-    let renders =
-        sets.iter().map(|set| SetRender::new(ctx, &uploaded, &outputs, set, opts)).collect::<Result<Vec<_>>>()?;
+    let libraries = Libraries::default();
+    let renders = sets
+        .iter()
+        .map(|set| SetRender::new(ctx, &uploaded, &outputs, (set, &libraries), opts))
+        .collect::<Result<Vec<_>>>()?;
     let traces = renders
         .iter()
         .map(|r| r.prepared.trace(ctx, r.timestamps.as_ref(), size, (opts.warmup, opts.runs)))

@@ -8,6 +8,7 @@ use crate::error::{Error, Result, VkContext};
 use ash::{ext::debug_utils, khr, vk};
 use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme, Allocator, AllocatorCreateDesc};
 use gpu_allocator::MemoryLocation;
+use std::ffi::CStr;
 use std::mem::ManuallyDrop;
 use std::sync::{Arc, Mutex};
 
@@ -33,6 +34,8 @@ pub struct DeviceInfo {
     /// Threads of a CPU device (lavapipe): LP_NUM_THREADS if set, else the CPU count, which
     /// is what lavapipe uses; `None` for GPUs.
     pub cpu_threads: Option<u32>,
+    /// Whether the device has (and twinray enabled) VK_KHR_pipeline_library.
+    pub pipeline_library: bool,
 }
 
 /// Options for [`Context::new`].
@@ -44,6 +47,20 @@ pub struct ContextOptions {
     /// Folder of the on-disk pipeline caches (one file per device and driver); `None`: every
     /// pipeline is compiled cold and nothing is written.
     pub pipeline_cache: Option<std::path::PathBuf>,
+    /// How ray tracing pipelines are made; `None`: from libraries where the device has
+    /// VK_KHR_pipeline_library, else whole.
+    pub pipelines: Option<PipelineKind>,
+}
+
+/// How ray tracing pipelines are made.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, clap::ValueEnum)]
+#[serde(rename_all = "snake_case")]
+pub enum PipelineKind {
+    /// Each pipeline compiled whole from its stages.
+    Monolithic,
+    /// Each stage (or hit group) compiled once into a pipeline library, pipelines linked from
+    /// them (VK_KHR_pipeline_library).
+    Libraries,
 }
 
 /// The Vulkan instance, device, queue, extension loaders and allocator; everything else holds an `Arc` to it.
@@ -65,6 +82,7 @@ pub struct Context {
     device_destroyed: bool,
     /// The pipeline cache every pipeline is created with, when one was asked for.
     pipeline_cache: Option<PipelineCache>,
+    pipelines: PipelineKind,
 }
 
 impl Context {
@@ -92,16 +110,33 @@ impl Context {
         } else {
             None
         };
-        let created = device_select::pick(&instance, options.device_filter.as_deref())
-            .and_then(|candidate| Ok((create_device(&instance, &candidate)?, candidate)));
-        let (device, candidate) = match created {
+        let created = device_select::pick(&instance, options.device_filter.as_deref()).and_then(|candidate| {
+            let optional = device_select::optional_extensions(&instance, candidate.physical)?;
+            Ok((create_device(&instance, &candidate, &optional)?, candidate, optional))
+        });
+        let (device, candidate, optional) = match created {
             Ok(made) => made,
             Err(e) => {
                 destroy_instance(&instance, messenger);
                 return Err(e);
             }
         };
-        let info = device_info(&instance, candidate.physical, candidate.queue_family, candidate.name);
+        let mut info = device_info(&instance, candidate.physical, candidate.queue_family, candidate.name);
+        info.pipeline_library = optional.contains(&ash::khr::pipeline_library::NAME);
+        let pipelines = match options.pipelines {
+            Some(PipelineKind::Libraries) if !info.pipeline_library => {
+                // SAFETY: nothing was made from the device yet.
+                unsafe { device.destroy_device(None) };
+                destroy_instance(&instance, messenger);
+                return Err(Error::Unsupported(format!(
+                    "pipeline libraries were asked for, but {} lacks VK_KHR_pipeline_library (use --pipeline monolithic)",
+                    info.name
+                )));
+            }
+            Some(kind) => kind,
+            None if info.pipeline_library => PipelineKind::Libraries,
+            None => PipelineKind::Monolithic,
+        };
         let allocator = Allocator::new(&AllocatorCreateDesc {
             instance: instance.clone(),
             device: device.clone(),
@@ -135,6 +170,7 @@ impl Context {
             validation_log,
             device_destroyed: false,
             pipeline_cache,
+            pipelines,
         }))
     }
 
@@ -166,6 +202,11 @@ impl Context {
         if let Err(e) = self.allocator().free(allocation) {
             log::error!("freeing device memory: {e}");
         }
+    }
+
+    /// How this context makes ray tracing pipelines.
+    pub fn pipeline_kind(&self) -> PipelineKind {
+        self.pipelines
     }
 
     /// The pipeline cache to create pipelines with (null when none was asked for).
@@ -268,11 +309,11 @@ fn create_instance(entry: &ash::Entry, validate: bool, log: &ValidationLog) -> R
     unsafe { entry.create_instance(&info, None) }.call("vkCreateInstance")
 }
 
-fn create_device(instance: &ash::Instance, candidate: &Candidate) -> Result<ash::Device> {
+fn create_device(instance: &ash::Instance, candidate: &Candidate, optional: &[&CStr]) -> Result<ash::Device> {
     let priorities = [1.0];
     let queues =
         [vk::DeviceQueueCreateInfo::default().queue_family_index(candidate.queue_family).queue_priorities(&priorities)];
-    let extensions: Vec<_> = REQUIRED_EXTENSIONS.iter().map(|e| e.as_ptr()).collect();
+    let extensions: Vec<_> = REQUIRED_EXTENSIONS.iter().chain(optional).map(|e| e.as_ptr()).collect();
     let mut f12 = vk::PhysicalDeviceVulkan12Features::default().buffer_device_address(true).vulkan_memory_model(true);
     let mut accel = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
     let mut rt = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default().ray_tracing_pipeline(true);
@@ -302,6 +343,7 @@ fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_fam
         name,
         device_type: format!("{:?}", props.device_type),
         cpu_threads: (props.device_type == vk::PhysicalDeviceType::CPU).then(cpu_threads),
+        pipeline_library: false,
         api_version: format!(
             "{}.{}.{}",
             vk::api_version_major(props.api_version),

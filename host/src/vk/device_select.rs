@@ -60,6 +60,21 @@ pub fn pick(instance: &ash::Instance, filter: Option<&str>) -> Result<Candidate>
     }
 }
 
+/// Extensions twinray enables where the device has them: pipeline libraries (`--pipeline
+/// libraries`).
+pub const OPTIONAL_EXTENSIONS: [&CStr; 1] = [ash::khr::pipeline_library::NAME];
+
+/// The optional extensions `physical` has.
+pub fn optional_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<Vec<&'static CStr>> {
+    // SAFETY: physical comes from this instance.
+    let available = unsafe { instance.enumerate_device_extension_properties(physical) }
+        .call("vkEnumerateDeviceExtensionProperties")?;
+    Ok(OPTIONAL_EXTENSIONS
+        .into_iter()
+        .filter(|wanted| available.iter().any(|e| e.extension_name_as_c_str() == Ok(*wanted)))
+        .collect())
+}
+
 /// What `physical` lacks of twinray's needs, by name; empty when it has everything.
 pub fn missing_requirements(instance: &ash::Instance, physical: vk::PhysicalDevice, api: u32) -> Result<Vec<String>> {
     let mut missing = Vec::new();

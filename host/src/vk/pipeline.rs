@@ -9,6 +9,7 @@ use std::ffi::CStr;
 use std::sync::Arc;
 
 /// One shader stage of a pipeline.
+#[derive(Clone, Copy)]
 pub struct StageDesc<'a> {
     /// Names the module in errors.
     pub name: &'a str,
@@ -40,6 +41,26 @@ pub struct PipelineDesc<'a> {
     pub max_recursion_depth: u32,
 }
 
+/// What every library of a linked pipeline, and the pipeline itself, agree on
+/// (`VkRayTracingPipelineInterfaceCreateInfoKHR`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub struct Interface {
+    pub max_payload_bytes: u32,
+    pub max_hit_attribute_bytes: u32,
+    pub max_recursion_depth: u32,
+}
+
+/// How a pipeline is made (`VK_KHR_pipeline_library`).
+#[derive(Clone, Copy)]
+enum Making<'a> {
+    /// Whole, from its own stages.
+    Whole,
+    /// A library of its own stages and groups, for linking.
+    Library(Interface),
+    /// Linked from libraries, with no stages of its own: its groups are theirs, in order.
+    Linked(Interface, &'a [vk::Pipeline]),
+}
+
 /// A ray tracing pipeline with its set and pipeline layouts.
 pub struct RtPipeline {
     ctx: Arc<Context>,
@@ -51,6 +72,30 @@ pub struct RtPipeline {
 impl RtPipeline {
     /// Creates the pipeline `desc` describes.
     pub fn new(ctx: &Arc<Context>, desc: &PipelineDesc) -> Result<Self> {
+        Self::make(ctx, desc, Making::Whole)
+    }
+
+    /// A pipeline library of `desc`'s stages and groups (`VK_KHR_pipeline_library`), to be
+    /// linked into pipelines with the same bindings and `interface`.
+    pub fn library(ctx: &Arc<Context>, desc: &PipelineDesc, interface: Interface) -> Result<Self> {
+        Self::make(ctx, desc, Making::Library(interface))
+    }
+
+    /// A pipeline linked from `libraries`, its groups theirs in order: each library made by
+    /// [`RtPipeline::library`] with `bindings` and `interface`.
+    pub fn link(
+        ctx: &Arc<Context>,
+        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        libraries: &[&RtPipeline],
+        interface: Interface,
+    ) -> Result<Self> {
+        let raw: Vec<vk::Pipeline> = libraries.iter().map(|l| l.raw).collect();
+        let desc =
+            PipelineDesc { bindings, stages: &[], groups: &[], max_recursion_depth: interface.max_recursion_depth };
+        Self::make(ctx, &desc, Making::Linked(interface, &raw))
+    }
+
+    fn make(ctx: &Arc<Context>, desc: &PipelineDesc, making: Making) -> Result<Self> {
         let bindings: Vec<_> = desc
             .bindings
             .iter()
@@ -72,7 +117,7 @@ impl RtPipeline {
         let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts);
         // SAFETY: valid create info; destroyed in Drop.
         pipeline.layout = unsafe { ctx.device.create_pipeline_layout(&info, None) }.call("vkCreatePipelineLayout")?;
-        pipeline.raw = create_pipeline(ctx, pipeline.layout, desc)?;
+        pipeline.raw = create_pipeline(ctx, pipeline.layout, desc, making)?;
         Ok(pipeline)
     }
 
@@ -99,7 +144,12 @@ impl Drop for Modules<'_> {
     }
 }
 
-fn create_pipeline(ctx: &Context, layout: vk::PipelineLayout, desc: &PipelineDesc) -> Result<vk::Pipeline> {
+fn create_pipeline(
+    ctx: &Context,
+    layout: vk::PipelineLayout,
+    desc: &PipelineDesc,
+    making: Making,
+) -> Result<vk::Pipeline> {
     let mut made = Modules { ctx, raw: Vec::new() };
     let mut stages = Vec::new();
     for s in desc.stages {
@@ -137,11 +187,31 @@ fn create_pipeline(ctx: &Context, layout: vk::PipelineLayout, desc: &PipelineDes
                 .intersection_shader(intersection)
         })
         .collect();
-    let info = [vk::RayTracingPipelineCreateInfoKHR::default()
+    let mut interface_info = vk::RayTracingPipelineInterfaceCreateInfoKHR::default();
+    let mut library_info = vk::PipelineLibraryCreateInfoKHR::default();
+    let mut info = vk::RayTracingPipelineCreateInfoKHR::default()
         .stages(&stages)
         .groups(&groups)
         .max_pipeline_ray_recursion_depth(desc.max_recursion_depth)
-        .layout(layout)];
+        .layout(layout);
+    match making {
+        Making::Whole => {}
+        Making::Library(interface) | Making::Linked(interface, _) => {
+            interface_info = interface_info
+                .max_pipeline_ray_payload_size(interface.max_payload_bytes)
+                .max_pipeline_ray_hit_attribute_size(interface.max_hit_attribute_bytes);
+            info = info.library_interface(&interface_info);
+        }
+    }
+    match making {
+        Making::Library(_) => info = info.flags(vk::PipelineCreateFlags::LIBRARY_KHR),
+        Making::Linked(_, libraries) => {
+            library_info = library_info.libraries(libraries);
+            info = info.library_info(&library_info);
+        }
+        Making::Whole => {}
+    }
+    let info = [info];
     // SAFETY: stages, groups and layout are valid and alive for the call.
     let pipelines = unsafe {
         ctx.rt.create_ray_tracing_pipelines(vk::DeferredOperationKHR::null(), ctx.pipeline_cache(), &info, None)

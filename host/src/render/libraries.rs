@@ -1,0 +1,97 @@
+//! Pipelines linked from libraries (`VK_KHR_pipeline_library`): ray generation, each miss
+//! stage and each hit group compiled once into a library, and a scene's pipeline linked from
+//! them in shader binding table order. A [`Libraries`] keeps what it compiled, keyed by the
+//! exact SPIR-V and specialisation of each library, so every set and per-stage mix built
+//! through it compiles each module once.
+
+use crate::error::Result;
+use crate::util::checksum::Fnv;
+use crate::vk::context::Context;
+use crate::vk::pipeline::{GroupDesc, Interface, PipelineDesc, RtPipeline, StageDesc};
+use ash::vk;
+use std::cell::{Cell, RefCell};
+use std::collections::HashMap;
+use std::rc::Rc;
+use std::sync::Arc;
+
+/// What every library and linked pipeline agree on: the payloads' and hit attributes' largest
+/// sizes (the primary payload; a procedural hit's object-space normal) and recursion depth 1.
+pub const INTERFACE: Interface = Interface {
+    max_payload_bytes: size_of::<twinray_shared::layout::HitPayload>() as u32,
+    max_hit_attribute_bytes: 3 * size_of::<f32>() as u32,
+    max_recursion_depth: 1,
+};
+
+/// One library: its stages and its one group, indices into those stages.
+pub(crate) struct LibraryDesc<'a> {
+    pub stages: Vec<StageDesc<'a>>,
+    pub group: GroupDesc,
+    /// The specialisation data of its stages (part of its identity).
+    pub spec_bytes: &'a [u8],
+}
+
+/// The libraries compiled so far, shared by every pipeline linked through this.
+#[derive(Default)]
+pub struct Libraries {
+    made: RefCell<HashMap<u64, Rc<RtPipeline>>>,
+    compiled: Cell<usize>,
+}
+
+impl Libraries {
+    /// Libraries compiled so far (each module and specialisation once).
+    pub fn compiled(&self) -> usize {
+        self.compiled.get()
+    }
+
+    /// The pipeline linked from `libraries` (in SBT group order), compiling those not made
+    /// before; returns it with the libraries it holds.
+    pub(crate) fn link(
+        &self,
+        ctx: &Arc<Context>,
+        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        libraries: &[LibraryDesc],
+    ) -> Result<(RtPipeline, Vec<Rc<RtPipeline>>)> {
+        let held = libraries.iter().map(|l| self.library(ctx, bindings, l)).collect::<Result<Vec<_>>>()?;
+        let refs: Vec<&RtPipeline> = held.iter().map(|l| l.as_ref()).collect();
+        Ok((RtPipeline::link(ctx, bindings, &refs, INTERFACE)?, held))
+    }
+
+    fn library(
+        &self,
+        ctx: &Arc<Context>,
+        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        desc: &LibraryDesc,
+    ) -> Result<Rc<RtPipeline>> {
+        let key = key(desc);
+        if let Some(made) = self.made.borrow().get(&key) {
+            return Ok(made.clone());
+        }
+        let pipeline = PipelineDesc {
+            bindings,
+            stages: &desc.stages,
+            groups: std::slice::from_ref(&desc.group),
+            max_recursion_depth: INTERFACE.max_recursion_depth,
+        };
+        let library = Rc::new(RtPipeline::library(ctx, &pipeline, INTERFACE)?);
+        self.compiled.set(self.compiled.get() + 1);
+        self.made.borrow_mut().insert(key, library.clone());
+        Ok(library)
+    }
+}
+
+/// The identity of a library: its group's shape, each stage's kind, name, entry point and
+/// exact SPIR-V, and the specialisation data.
+fn key(desc: &LibraryDesc) -> u64 {
+    let mut hash = Fnv::default();
+    hash.eat(format!("{:?}", desc.group).as_bytes());
+    for s in &desc.stages {
+        hash.eat(&s.stage.as_raw().to_le_bytes());
+        hash.eat(s.name.as_bytes());
+        hash.eat(s.entry.to_bytes_with_nul());
+        hash.eat(&(s.spirv.len() as u64).to_le_bytes());
+        hash.eat(s.spirv);
+        hash.eat(&[u8::from(s.specialization.is_some())]);
+    }
+    hash.eat(desc.spec_bytes);
+    hash.value()
+}
