@@ -24,8 +24,13 @@ pub fn validated_context() -> Arc<Context> {
 /// As [`validated_context`], making pipelines as `pipelines` says (`None`: the default,
 /// libraries where the device has them).
 pub fn validated_context_making(pipelines: Option<twinray::vk::context::PipelineKind>) -> Arc<Context> {
-    let options =
-        ContextOptions { validation: Validation::Required, device_filter: None, pipeline_cache: None, pipelines };
+    let options = ContextOptions {
+        validation: Validation::Required,
+        device_filter: None,
+        pipeline_cache: None,
+        pipelines,
+        pipeline_threads: None,
+    };
     match Context::new(&options) {
         Ok(ctx) => ctx,
         Err(e) => panic!("creating a validated Vulkan context: {e} (run `cargo xtask setup`)"),

@@ -25,6 +25,10 @@ pub struct GlobalArgs {
     /// [default: libraries where the device has VK_KHR_pipeline_library].
     #[arg(long, global = true, value_enum)]
     pub pipeline: Option<twinray::vk::context::PipelineKind>,
+    /// Threads that join each pipeline creation, a deferred host operation [default: the
+    /// machine's cores].
+    #[arg(long, global = true, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1024))]
+    pub threads: Option<u32>,
     /// Compile every pipeline cold: no pipeline cache is read or written.
     #[arg(long, global = true, conflicts_with = "pipeline_cache")]
     pub no_pipeline_cache: bool,

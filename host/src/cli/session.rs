@@ -18,6 +18,7 @@ pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
             Some(global.pipeline_cache.clone().unwrap_or_else(|| cache_dir("pipelines")))
         },
         pipelines: global.pipeline,
+        pipeline_threads: global.threads.map(|n| n as usize),
     };
     Context::new(&options).context("setting up Vulkan")
 }

@@ -36,7 +36,15 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             "not available on this queue".into()
         };
         println!("timestamps  {timing}");
-        println!("libraries   VK_KHR_pipeline_library {}", if i.pipeline_library { "yes" } else { "no" });
+        println!(
+            "libraries   VK_KHR_pipeline_library {}; pipelines made {:?}",
+            if i.pipeline_library { "yes" } else { "no" },
+            ctx.pipeline_kind()
+        );
+        match ctx.pipeline_threads() {
+            0 => println!("deferred    no: pipelines created directly (under the validation layer)"),
+            n => println!("deferred    pipeline creation joined by {n} threads"),
+        }
         match cache {
             Some((file, 0)) => println!("pipelines   cache {} (cold: nothing read)", file.display()),
             Some((file, bytes)) => println!("pipelines   cache {} ({bytes} bytes read)", file.display()),

@@ -50,6 +50,9 @@ pub struct ContextOptions {
     /// How ray tracing pipelines are made; `None`: from libraries where the device has
     /// VK_KHR_pipeline_library, else whole.
     pub pipelines: Option<PipelineKind>,
+    /// Threads that join each pipeline creation (a deferred host operation); `None`: as many
+    /// as the machine has cores.
+    pub pipeline_threads: Option<usize>,
 }
 
 /// How ray tracing pipelines are made.
@@ -73,6 +76,7 @@ pub struct Context {
     pub queue_family: u32,
     pub accel: khr::acceleration_structure::Device,
     pub rt: khr::ray_tracing_pipeline::Device,
+    pub deferred: khr::deferred_host_operations::Device,
     pub info: DeviceInfo,
     allocator: ManuallyDrop<Mutex<Allocator>>,
     messenger: Option<Messenger>,
@@ -83,6 +87,7 @@ pub struct Context {
     /// The pipeline cache every pipeline is created with, when one was asked for.
     pipeline_cache: Option<PipelineCache>,
     pipelines: PipelineKind,
+    pipeline_threads: usize,
 }
 
 impl Context {
@@ -158,6 +163,7 @@ impl Context {
         Ok(Arc::new(Context {
             accel: khr::acceleration_structure::Device::new(&instance, &device),
             rt: khr::ray_tracing_pipeline::Device::new(&instance, &device),
+            deferred: khr::deferred_host_operations::Device::new(&instance, &device),
             entry,
             instance,
             physical: candidate.physical,
@@ -171,6 +177,10 @@ impl Context {
             device_destroyed: false,
             pipeline_cache,
             pipelines,
+            pipeline_threads: options
+                .pipeline_threads
+                .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
+                .max(1),
         }))
     }
 
@@ -201,6 +211,18 @@ impl Context {
     pub fn free(&self, allocation: Allocation) {
         if let Err(e) = self.allocator().free(allocation) {
             log::error!("freeing device memory: {e}");
+        }
+    }
+
+    /// Threads that join each pipeline creation; 0 when pipelines are not created as
+    /// deferred operations: under the validation layer, whose version 1.3.239 (Debian
+    /// bookworm) crashes in vkCreateRayTracingPipelinesKHR given one (measured on lavapipe,
+    /// whole and linked pipelines; fixed upstream in 2024, Vulkan-ValidationLayers #8364).
+    pub fn pipeline_threads(&self) -> usize {
+        if self.messenger.is_some() {
+            0
+        } else {
+            self.pipeline_threads
         }
     }
 

@@ -4,6 +4,7 @@ pub mod accel;
 pub mod buffer;
 pub mod commands;
 pub mod context;
+pub mod deferred;
 pub mod descriptors;
 pub mod device_select;
 pub mod image;

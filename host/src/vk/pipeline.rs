@@ -211,16 +211,7 @@ fn create_pipeline(
         }
         Making::Whole => {}
     }
-    let info = [info];
-    // SAFETY: stages, groups and layout are valid and alive for the call.
-    let pipelines = unsafe {
-        ctx.rt.create_ray_tracing_pipelines(vk::DeferredOperationKHR::null(), ctx.pipeline_cache(), &info, None)
-    }
-    .map_err(|(_, result)| Error::Vulkan { call: "vkCreateRayTracingPipelinesKHR", result })?;
-    pipelines
-        .first()
-        .copied()
-        .ok_or(Error::Vulkan { call: "vkCreateRayTracingPipelinesKHR", result: vk::Result::ERROR_UNKNOWN })
+    super::deferred::create_pipeline(ctx, &info, ctx.pipeline_threads())
 }
 
 /// Descriptor pool sizes for one set with these bindings.
