@@ -53,8 +53,9 @@ fn each_library_is_compiled_once() {
     ctx.close().unwrap();
 }
 
-/// Pipeline creation as a deferred host operation joined by 1 and by 4 threads, for whole and
-/// linked pipelines, renders the same bits as direct creation. Without the validation layer:
+/// Contexts that create whole pipelines as deferred host operations joined by 1 and by 4
+/// threads (libraries and links directly, see `vk::pipeline`) render the same bits as direct
+/// creation. Without the validation layer:
 /// its version here (1.3.239) crashes given a deferred operation, so a validated context
 /// creates pipelines directly (see `Context::pipeline_threads`).
 #[test]

@@ -211,7 +211,11 @@ fn create_pipeline(
         }
         Making::Whole => {}
     }
-    super::deferred::create_pipeline(ctx, &info, ctx.pipeline_threads())
+    // Libraries and links are created directly: on the H100 (driver 580.159.04) creating them
+    // as deferred operations crashed the process (a segfault, no message) with 1 and with 16
+    // joining threads, while whole pipelines were fine; lavapipe took both.
+    let threads = if matches!(making, Making::Whole) { ctx.pipeline_threads() } else { 0 };
+    super::deferred::create_pipeline(ctx, &info, threads)
 }
 
 /// Descriptor pool sizes for one set with these bindings.
