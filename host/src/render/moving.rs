@@ -5,7 +5,6 @@
 
 use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
 use super::frames::{check_frames, AsWork, Frame, TlasMode};
-use super::libraries::Libraries;
 use super::output::RenderOptions;
 use super::sets::{check_device_limits, copy_outputs, SetRender, SharedOutputs};
 use super::tracing::{self, Trace};
@@ -58,11 +57,7 @@ impl<'a> FrameRenderer<'a> {
         let start = scene.at_frame(first);
         let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags())?;
         let outputs = SharedOutputs::new(ctx, opts)?;
-        let libraries = Libraries::default();
-        let renders = sets
-            .iter()
-            .map(|set| SetRender::new(ctx, &uploaded, &outputs, (set, &libraries), opts))
-            .collect::<Result<Vec<_>>>()?;
+        let renders = SetRender::each(ctx, &uploaded, &outputs, sets, opts)?;
         Ok(FrameRenderer {
             ctx: ctx.clone(),
             scene,

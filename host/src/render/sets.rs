@@ -88,7 +88,20 @@ pub(super) struct SetRender {
 }
 
 impl SetRender {
-    pub fn new(
+    /// One per set, over the same scene and outputs, their pipelines linked from one set of
+    /// libraries (when the context links pipelines), so that each module compiles once.
+    pub fn each(
+        ctx: &Arc<Context>,
+        scene: &UploadedScene,
+        outputs: &SharedOutputs,
+        sets: &[ShaderSet],
+        opts: &RenderOptions,
+    ) -> Result<Vec<Self>> {
+        let libraries = Libraries::default();
+        sets.iter().map(|set| SetRender::new(ctx, scene, outputs, (set, &libraries), opts)).collect()
+    }
+
+    fn new(
         ctx: &Arc<Context>,
         scene: &UploadedScene,
         outputs: &SharedOutputs,
@@ -138,11 +151,7 @@ fn render_and_release(
     let size = (opts.width, opts.height);
     let uploaded = upload_shared(ctx, scene, size)?;
     let outputs = SharedOutputs::new(ctx, opts)?;
-    let libraries = Libraries::default();
-    let renders = sets
-        .iter()
-        .map(|set| SetRender::new(ctx, &uploaded, &outputs, (set, &libraries), opts))
-        .collect::<Result<Vec<_>>>()?;
+    let renders = SetRender::each(ctx, &uploaded, &outputs, sets, opts)?;
     let traces = renders
         .iter()
         .map(|r| r.prepared.trace(ctx, r.timestamps.as_ref(), size, (opts.warmup, opts.runs)))
