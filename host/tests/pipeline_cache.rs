@@ -63,3 +63,25 @@ fn no_pipeline_cache_reads_and_writes_nothing() {
     let both = twinray(&["--no-pipeline-cache", "--pipeline-cache", "x", "info"], work.path());
     assert_eq!(both.status.code(), Some(2), "the two flags conflict");
 }
+
+/// `pipeline-bench` times every configuration and writes its table and rows; bad thread
+/// counts are refused.
+#[test]
+fn pipeline_bench_writes_a_row_per_configuration() {
+    let work = tempfile::tempdir().unwrap();
+    let args = ["pipeline-bench", "sphere", "--repeats", "1", "--thread-counts", "1", "--out", "pb"];
+    let out = twinray(&args, work.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let rows: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(work.path().join("pb/results.json")).unwrap()).unwrap();
+    let rows = rows.as_array().unwrap();
+    // Whole and linked, 2 sets and 16 mixes, cold and warm.
+    assert_eq!(rows.len(), 8);
+    assert!(rows.iter().all(|r| r["ms"].as_f64().is_some_and(|ms| ms > 0.0)));
+    let linked_mixes = rows.iter().find(|r| r["pipelines"] == "libraries" && r["sets"] == 16).unwrap();
+    assert!(linked_mixes["libraries"].as_u64().is_some_and(|n| n > 0 && n < 16 * 4), "{linked_mixes}");
+    assert!(std::fs::read_to_string(work.path().join("pb/table.md")).unwrap().contains("| Libraries |"));
+    assert!(!work.path().join("pb/caches").exists(), "the bench's cache files are removed");
+    let bad = twinray(&["pipeline-bench", "--thread-counts", "0"], work.path());
+    assert_eq!(bad.status.code(), Some(2));
+}

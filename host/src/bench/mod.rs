@@ -6,6 +6,7 @@
 pub mod animation;
 pub mod html;
 pub mod metrics;
+pub mod pipelines;
 pub mod plots;
 pub mod samplers;
 pub mod tables;

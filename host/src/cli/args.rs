@@ -280,3 +280,19 @@ pub struct AnimateBenchArgs {
     #[arg(long, default_value = "bench/out-animation")]
     pub out: PathBuf,
 }
+
+#[derive(Args)]
+pub struct PipelineBenchArgs {
+    /// Scene whose pipelines are made [default: showcase, every hit group kind].
+    #[arg(default_value = "showcase")]
+    pub scene: String,
+    /// Joining thread counts to compare, comma-separated [default: 1 and the machine's cores].
+    #[arg(long)]
+    pub thread_counts: Option<String>,
+    /// Timed repeats per configuration (the median is reported), each on a fresh device.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub repeats: u32,
+    /// Output folder for table.md and results.json (created if missing).
+    #[arg(long, default_value = "bench/out-pipelines")]
+    pub out: PathBuf,
+}

@@ -10,7 +10,10 @@ mod render;
 mod session;
 mod summary;
 
-use args::{AnimateBenchArgs, BenchArgs, CompareArgs, GlobalArgs, ProbeArgs, ReferenceArgs, RenderArgs, StabilityArgs};
+use args::{
+    AnimateBenchArgs, BenchArgs, CompareArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs, ReferenceArgs, RenderArgs,
+    StabilityArgs,
+};
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
@@ -60,6 +63,9 @@ enum Command {
     /// update) and of the trace as objects drift, at several instance counts; writes tables,
     /// plots and index.html.
     AnimateBench(AnimateBenchArgs),
+    /// Pipeline creation time: both sets and all 16 per-stage mixes, whole or linked from
+    /// libraries, joined by 1 or N threads, from a cold or a warm pipeline cache.
+    PipelineBench(PipelineBenchArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -98,6 +104,7 @@ fn main() -> ExitCode {
         Command::Reference(args) => bench::reference(&cli.global, args),
         Command::Bench(args) => bench::bench(&cli.global, args),
         Command::AnimateBench(args) => animate::animate_bench(&cli.global, args),
+        Command::PipelineBench(args) => animate::pipeline_bench(&cli.global, args),
     };
     match result {
         Ok(code) => code,

@@ -9,7 +9,12 @@ use twinray::util::output::cache_dir;
 use twinray::{Context, ContextOptions, Error, RenderOptions, Scene, Validation};
 
 pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
-    let options = ContextOptions {
+    Context::new(&options(global)).context("setting up Vulkan")
+}
+
+/// The context options the global flags ask for.
+pub fn options(global: &GlobalArgs) -> ContextOptions {
+    ContextOptions {
         validation: if global.validate { Validation::Required } else { Validation::Off },
         device_filter: global.device.clone(),
         pipeline_cache: if global.no_pipeline_cache {
@@ -19,8 +24,7 @@ pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
         },
         pipelines: global.pipeline,
         pipeline_threads: global.threads.map(|n| n as usize),
-    };
-    Context::new(&options).context("setting up Vulkan")
+    }
 }
 
 /// (warm-up, timed) traces when not given: `render` wants an image quickly, `compare` a
