@@ -44,7 +44,7 @@ fn each_library_is_compiled_once() {
     let mut count = Vec::new();
     let mut pipelines = Vec::new();
     for s in ["rust", "glsl", "rust,intersection=glsl", "rust", "glsl"] {
-        pipelines.push(ScenePipeline::new(&ctx, &set(s), &plan, "raygen", &libraries).unwrap());
+        pipelines.push(ScenePipeline::new(&ctx, &set(s), &plan, "raygen", Some(&libraries)).unwrap());
         count.push(libraries.compiled());
     }
     assert_eq!(count, [10, 20, 26, 26, 26]);

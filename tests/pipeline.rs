@@ -12,7 +12,8 @@ fn spheres_only_scene_builds_one_hit_group_and_no_shadow_miss() {
     assert_eq!(groups, ["sphere"]);
     assert!(!plan.shadows, "the sphere scene's light casts no shadows");
     let ctx = validated_context();
-    let pipeline = ScenePipeline::new(&ctx, &set("rust"), &plan, "raygen", &Default::default()).expect("pipeline");
+    let pipeline =
+        ScenePipeline::new(&ctx, &set("rust"), &plan, "raygen", Some(&Default::default())).expect("pipeline");
     assert_eq!(pipeline.modules, ["raygen", "miss", "sphere_intersection", "procedural_closest_hit"]);
     assert_eq!(pipeline.group_counts, [1, 1, 1]);
     drop(pipeline);
@@ -30,7 +31,8 @@ fn a_shadow_casting_light_adds_the_shadow_miss_shader() {
     let plan = scene.build().plan;
     assert!(plan.shadows);
     let ctx = validated_context();
-    let pipeline = ScenePipeline::new(&ctx, &set("glsl"), &plan, "raygen", &Default::default()).expect("pipeline");
+    let pipeline =
+        ScenePipeline::new(&ctx, &set("glsl"), &plan, "raygen", Some(&Default::default())).expect("pipeline");
     assert!(pipeline.modules.contains(&"shadow_miss"));
     assert_eq!(pipeline.group_counts, [1, 2, 1]);
 }

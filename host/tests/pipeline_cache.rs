@@ -64,24 +64,38 @@ fn no_pipeline_cache_reads_and_writes_nothing() {
     assert_eq!(both.status.code(), Some(2), "the two flags conflict");
 }
 
-/// `pipeline-bench` times every configuration and writes its table and rows; bad thread
-/// counts are refused.
+/// `pipeline-bench` times every configuration, each in a process of its own, and linked
+/// against whole trace time; it writes its table and rows; bad input is refused.
 #[test]
 fn pipeline_bench_writes_a_row_per_configuration() {
     let work = tempfile::tempdir().unwrap();
+    let trace = ["--trace-scenes", "sphere", "--width", "48", "--height", "32", "--runs", "3", "--warmup", "0"];
     let args = ["pipeline-bench", "sphere", "--repeats", "1", "--thread-counts", "1", "--out", "pb"];
-    let out = twinray(&args, work.path());
+    let out = twinray(&[&args[..], &trace[..]].concat(), work.path());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let rows: serde_json::Value =
+    let results: serde_json::Value =
         serde_json::from_slice(&std::fs::read(work.path().join("pb/results.json")).unwrap()).unwrap();
-    let rows = rows.as_array().unwrap();
+    let rows = results["creation"].as_array().unwrap();
     // Whole and linked, 2 sets and 16 mixes, cold and warm.
     assert_eq!(rows.len(), 8);
     assert!(rows.iter().all(|r| r["ms"].as_f64().is_some_and(|ms| ms > 0.0)));
     let linked_mixes = rows.iter().find(|r| r["pipelines"] == "libraries" && r["sets"] == 16).unwrap();
     assert!(linked_mixes["libraries"].as_u64().is_some_and(|n| n > 0 && n < 16 * 4), "{linked_mixes}");
-    assert!(std::fs::read_to_string(work.path().join("pb/table.md")).unwrap().contains("| Libraries |"));
+    // Rust and GLSL, whole against linked, each timed in both build orders.
+    let linking = results["linking"].as_array().unwrap();
+    assert_eq!(linking.len(), 2);
+    for row in linking {
+        assert_eq!(row["identical"], true, "{row}");
+        assert_eq!(row["whole"]["samples"], 6, "3 runs in each of 2 orders: {row}");
+        assert!(row["ratio"].as_f64().is_some_and(|r| r > 0.0), "{row}");
+    }
+    let table = std::fs::read_to_string(work.path().join("pb/table.md")).unwrap();
+    assert!(table.contains("| Libraries |") && table.contains("| sphere | 48x32 | rust |"), "{table}");
     assert!(!work.path().join("pb/caches").exists(), "the bench's cache files are removed");
     let bad = twinray(&["pipeline-bench", "--thread-counts", "0"], work.path());
     assert_eq!(bad.status.code(), Some(2));
+    let bad = twinray(&["pipeline-bench", "--trace-scenes", "sphere,nosuchscene"], work.path());
+    assert_eq!(bad.status.code(), Some(2), "{}", String::from_utf8_lossy(&bad.stderr));
+    let bad = twinray(&["pipeline-bench", "--measure-one", "{}"], work.path());
+    assert_eq!(bad.status.code(), Some(2), "{}", String::from_utf8_lossy(&bad.stderr));
 }

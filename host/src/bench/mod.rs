@@ -5,6 +5,7 @@
 
 pub mod animation;
 pub mod html;
+pub mod linking;
 pub mod metrics;
 pub mod pipelines;
 pub mod plots;

@@ -35,6 +35,55 @@ pub fn all_mixes() -> Result<Vec<ShaderSet>> {
         .collect()
 }
 
+/// One configuration of pipeline creation.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, serde::Deserialize)]
+pub struct Config {
+    pub pipelines: PipelineKind,
+    pub threads: usize,
+    /// From the cache file that a first, untimed run of the same configuration wrote.
+    pub warm: bool,
+    /// All 16 mixes, else the two whole sets.
+    pub mixes: bool,
+}
+
+impl Config {
+    /// Every configuration, in the order the table lists them. Libraries and links are created
+    /// directly, not as deferred operations (see `vk::pipeline`): joining threads cannot change
+    /// their time, so they run with the first count only.
+    pub fn all(threads: &[usize]) -> Vec<Config> {
+        let mut out = Vec::new();
+        for pipelines in [PipelineKind::Monolithic, PipelineKind::Libraries] {
+            let counts = if pipelines == PipelineKind::Libraries { &threads[..1] } else { threads };
+            for &threads in counts {
+                for mixes in [false, true] {
+                    for warm in [false, true] {
+                        out.push(Config { pipelines, threads, warm, mixes });
+                    }
+                }
+            }
+        }
+        out
+    }
+
+    /// Its own cache folder under `root`.
+    pub fn cache_dir(&self, root: &Path) -> std::path::PathBuf {
+        root.join(format!("{:?}-{}-{}", self.pipelines, self.threads, if self.mixes { 16 } else { 2 }))
+    }
+
+    fn describe(&self) -> String {
+        let sets = if self.mixes { 16 } else { 2 };
+        format!("{:?}, {} threads, {sets} sets, {}", self.pipelines, self.threads, self.cache())
+    }
+
+    fn cache(&self) -> &'static str {
+        if self.warm {
+            "warm"
+        } else {
+            "cold"
+        }
+    }
+}
+
 /// One configuration's creation time.
 #[derive(Clone, Debug, Serialize)]
 pub struct CreationRow {
@@ -51,80 +100,75 @@ pub struct CreationRow {
     pub libraries: usize,
 }
 
-/// Wall milliseconds to make one pipeline per set for `scene` on a fresh context made with
-/// `options`, and the libraries compiled; the context is closed after.
-fn time_once(options: &ContextOptions, scene: &Scene, sets: &[ShaderSet]) -> Result<(f64, usize)> {
-    let ctx = Context::new(options)?;
+/// What one timed creation gave: wall milliseconds and libraries compiled.
+#[derive(Clone, Copy, Debug, Serialize, serde::Deserialize)]
+pub struct Measured {
+    pub ms: f64,
+    pub libraries: usize,
+}
+
+/// Makes `config`'s pipelines for `scene` once, on a fresh context from `base` (whose
+/// validation and device filter it keeps), with the cache folder `cache_root` gives it when
+/// warm; the context is closed after.
+pub fn measure(base: &ContextOptions, scene: &Scene, config: &Config, cache_root: &Path) -> Result<Measured> {
+    let options = ContextOptions {
+        pipelines: Some(config.pipelines),
+        pipeline_threads: Some(config.threads),
+        pipeline_cache: config.warm.then(|| config.cache_dir(cache_root)),
+        ..base.clone()
+    };
+    let sets = if config.mixes {
+        all_mixes()?
+    } else {
+        vec![ShaderSet::uniform(crate::shaders::Language::Rust), ShaderSet::uniform(crate::shaders::Language::Glsl)]
+    };
+    let ctx = Context::new(&options)?;
     let plan = scene.build().plan;
     let libraries = Libraries::default();
+    let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
     let start = Instant::now();
-    let pipelines = sets
-        .iter()
-        .map(|set| ScenePipeline::new(&ctx, set, &plan, "raygen", &libraries))
-        .collect::<Result<Vec<_>>>()?;
+    let pipelines =
+        sets.iter().map(|set| ScenePipeline::new(&ctx, set, &plan, "raygen", linking)).collect::<Result<Vec<_>>>()?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let compiled = libraries.compiled();
     drop(pipelines);
     drop(libraries);
     ctx.close()?;
-    Ok((ms, compiled))
+    Ok(Measured { ms, libraries: compiled })
 }
 
-/// Every configuration, `repeats` times each; `base` gives validation and device; `cache_dir`
-/// holds the warm runs' cache files (one per configuration).
+/// Every configuration of `configs`, `repeats` times each, each time through `measure_one`
+/// (in this process, or in a process of its own: NVIDIA's driver 580 stops making instances
+/// after about 30 in one process). A warm configuration is first run once untimed, to write
+/// its cache file.
 pub fn run(
-    base: &ContextOptions,
-    scene: &Scene,
-    threads: &[usize],
+    configs: &[Config],
     repeats: usize,
-    cache_dir: &Path,
+    mut measure_one: impl FnMut(&Config) -> Result<Measured>,
     mut progress: impl FnMut(&str),
 ) -> Result<Vec<CreationRow>> {
-    let whole =
-        [ShaderSet::uniform(crate::shaders::Language::Rust), ShaderSet::uniform(crate::shaders::Language::Glsl)];
-    let mixes = all_mixes()?;
     // Untimed: what the first pipelines of a process pay once (the driver's compiler starting
     // up) would otherwise fall on the first configuration alone.
-    time_once(&ContextOptions { pipeline_cache: None, ..base.clone() }, scene, &whole)?;
+    if let Some(first) = configs.first() {
+        measure_one(&Config { warm: false, ..*first })?;
+    }
     let mut rows = Vec::new();
-    for kind in [PipelineKind::Monolithic, PipelineKind::Libraries] {
-        // Libraries and links are created directly, not as deferred operations (see
-        // `vk::pipeline`): joining threads cannot change their time.
-        let counts = if kind == PipelineKind::Libraries { &threads[..1] } else { threads };
-        for &n in counts {
-            for sets in [&whole[..], &mixes[..]] {
-                for cache in ["cold", "warm"] {
-                    progress(&format!("{kind:?}, {n} threads, {} sets, {cache}", sets.len()));
-                    let dir = cache_dir.join(format!("{kind:?}-{n}-{}", sets.len()));
-                    let options = ContextOptions {
-                        pipelines: Some(kind),
-                        pipeline_threads: Some(n),
-                        pipeline_cache: (cache == "warm").then(|| dir.clone()),
-                        ..base.clone()
-                    };
-                    if cache == "warm" {
-                        // The run that fills the cache file.
-                        time_once(&options, scene, sets)?;
-                    }
-                    let mut times = Vec::with_capacity(repeats);
-                    let mut libraries = 0;
-                    for _ in 0..repeats.max(1) {
-                        let (ms, compiled) = time_once(&options, scene, sets)?;
-                        times.push(ms);
-                        libraries = compiled;
-                    }
-                    rows.push(CreationRow {
-                        pipelines: kind,
-                        threads: n,
-                        cache,
-                        sets: sets.len(),
-                        ms: median(&times).unwrap_or(0.0),
-                        repeats: times,
-                        libraries,
-                    });
-                }
-            }
+    for config in configs {
+        progress(&config.describe());
+        if config.warm {
+            measure_one(config)?;
         }
+        let measured = (0..repeats.max(1)).map(|_| measure_one(config)).collect::<Result<Vec<_>>>()?;
+        let times: Vec<f64> = measured.iter().map(|m| m.ms).collect();
+        rows.push(CreationRow {
+            pipelines: config.pipelines,
+            threads: config.threads,
+            cache: config.cache(),
+            sets: if config.mixes { 16 } else { 2 },
+            ms: median(&times).unwrap_or(0.0),
+            repeats: times,
+            libraries: measured.last().map_or(0, |m| m.libraries),
+        });
     }
     Ok(rows)
 }

@@ -2,7 +2,7 @@
 //! mode's TLAS as objects drift, at several instance counts) and `twinray pipeline-bench`
 //! (pipeline creation time per way of making them).
 
-use crate::args::{AnimateBenchArgs, GlobalArgs, PipelineBenchArgs};
+use crate::args::{AnimateBenchArgs, GlobalArgs};
 use crate::session::context;
 use anyhow::Result;
 use std::process::ExitCode;
@@ -71,48 +71,6 @@ pub fn animate_bench(global: &GlobalArgs, args: AnimateBenchArgs) -> Result<Exit
     let command = std::env::args().collect::<Vec<_>>().join(" ");
     write(&report, &command, &args.out)?;
     print!("{}", twinray::bench::animation::report_table(&report));
-    println!("report in {}", args.out.display());
-    Ok(ExitCode::SUCCESS)
-}
-
-/// `twinray pipeline-bench`: pipeline creation time per configuration.
-pub fn pipeline_bench(global: &GlobalArgs, args: PipelineBenchArgs) -> Result<ExitCode> {
-    use twinray::bench::pipelines::{run, table};
-    let scene = Scene::load(Some(&args.scene))?;
-    let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let threads: Vec<usize> = match &args.thread_counts {
-        None => {
-            if cores > 1 {
-                vec![1, cores]
-            } else {
-                vec![1]
-            }
-        }
-        Some(text) => text
-            .split(',')
-            .map(|t| t.trim().parse::<usize>().ok().filter(|n| (1..=1024).contains(n)))
-            .collect::<Option<_>>()
-            .ok_or_else(|| {
-                Error::Input(format!("--thread-counts {text:?}: expected counts in 1..=1024, comma-separated"))
-            })?,
-    };
-    std::fs::create_dir_all(&args.out).map_err(|source| Error::Io {
-        what: "creating",
-        path: args.out.clone(),
-        source,
-    })?;
-    let cache = args.out.join("caches");
-    let _ = std::fs::remove_dir_all(&cache);
-    let mut base = crate::session::options(global);
-    base.pipeline_cache = None;
-    let rows = run(&base, &scene, &threads, args.repeats as usize, &cache, |step| eprintln!("pipeline-bench: {step}"))?;
-    let _ = std::fs::remove_dir_all(&cache);
-    let text = table(&rows);
-    let json = serde_json::to_string_pretty(&rows)?;
-    for (name, body) in [("table.md", &text), ("results.json", &json)] {
-        twinray::util::output::write_atomically(&args.out.join(name), body.as_bytes())?;
-    }
-    print!("{text}");
     println!("report in {}", args.out.display());
     Ok(ExitCode::SUCCESS)
 }

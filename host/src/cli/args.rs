@@ -119,6 +119,25 @@ pub struct CompareArgs {
 }
 
 #[derive(Args)]
+pub struct BisectArgs {
+    /// Scene file, or the name of a built-in scene [default: spheres].
+    #[arg(conflicts_with = "probe")]
+    pub scene: Option<String>,
+    /// Bisect on a probe case's rays (TOML; see docs/probe-format.md) instead of a scene's
+    /// image: which stage makes false hits or misses.
+    #[arg(long, value_name = "CASE")]
+    pub probe: Option<PathBuf>,
+    /// Set A.
+    #[arg(long, default_value = "rust")]
+    pub a: ShaderSet,
+    /// Set B.
+    #[arg(long, default_value = "glsl")]
+    pub b: ShaderSet,
+    #[command(flatten)]
+    pub frame: FrameArgs,
+}
+
+#[derive(Args)]
 pub struct ProbeArgs {
     /// Probe case file (TOML; see docs/probe-format.md).
     pub case: PathBuf,
@@ -292,7 +311,22 @@ pub struct PipelineBenchArgs {
     /// Timed repeats per configuration (the median is reported), each on a fresh device.
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
     pub repeats: u32,
-    /// Output folder for table.md and results.json (created if missing).
+    /// Scenes whose trace time is measured whole against linked, comma-separated ("" for
+    /// none); each renders at its own size unless --width and --height are given.
+    #[arg(long, default_value = "showcase,spheres,meshes,lights")]
+    pub trace_scenes: String,
+    /// Image size and trace counts of the trace-time part [default: each scene's size, 10
+    /// timed traces after 2 untimed].
+    #[command(flatten)]
+    pub frame: FrameArgs,
+    /// Measure every configuration in this process instead of one process each (NVIDIA's
+    /// driver 580 stops making instances after about 30 in one process).
+    #[arg(long)]
+    pub in_process: bool,
+    /// Internal: measure one configuration (JSON) with caches under --out and print the result.
+    #[arg(long, hide = true)]
+    pub measure_one: Option<String>,
+    /// Output folder for table.md, linking.md and results.json (created if missing).
     #[arg(long, default_value = "bench/out-pipelines")]
     pub out: PathBuf,
 }

@@ -4,15 +4,17 @@
 mod animate;
 mod args;
 mod bench;
+mod bisect;
 mod frames;
+mod pipelines;
 mod probe;
 mod render;
 mod session;
 mod summary;
 
 use args::{
-    AnimateBenchArgs, BenchArgs, CompareArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs, ReferenceArgs, RenderArgs,
-    StabilityArgs,
+    AnimateBenchArgs, BenchArgs, BisectArgs, CompareArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs, ReferenceArgs,
+    RenderArgs, StabilityArgs,
 };
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -49,6 +51,10 @@ enum Command {
     /// Render a scene with two shader sets and report how they differ in image and GPU time;
     /// with --frames, on every frame of a moving scene.
     Compare(CompareArgs),
+    /// Which stage makes two sets differ: renders A, B, and every set that takes one stage (or,
+    /// where none explains it, two) from the other, and reports each stage's share of the image
+    /// and time differences. Exit code 0 when every difference was pinned on a stage or pair.
+    Bisect(BisectArgs),
     /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
     Probe(ProbeArgs),
     /// The hard-case suite: every probe case of a folder, per set and formula, against the
@@ -99,12 +105,13 @@ fn main() -> ExitCode {
         Command::Scenes { json } => summary::scenes(json),
         Command::Render(args) => render::render(&cli.global, args),
         Command::Compare(args) => render::compare(&cli.global, args),
+        Command::Bisect(args) => bisect::bisect(&cli.global, args),
         Command::Probe(args) => probe::probe(&cli.global, args),
         Command::Stability(args) => probe::stability(&cli.global, args),
         Command::Reference(args) => bench::reference(&cli.global, args),
         Command::Bench(args) => bench::bench(&cli.global, args),
         Command::AnimateBench(args) => animate::animate_bench(&cli.global, args),
-        Command::PipelineBench(args) => animate::pipeline_bench(&cli.global, args),
+        Command::PipelineBench(args) => pipelines::pipeline_bench(&cli.global, args),
     };
     match result {
         Ok(code) => code,

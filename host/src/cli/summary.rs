@@ -41,6 +41,10 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             if i.pipeline_library { "yes" } else { "no" },
             ctx.pipeline_kind()
         );
+        println!(
+            "host AS     accelerationStructureHostCommands {} (twinray builds acceleration structures on the device)",
+            if i.host_acceleration_structure_commands { "yes" } else { "no" }
+        );
         match ctx.pipeline_threads() {
             0 => println!("deferred    no: pipelines created directly (under the validation layer)"),
             n => println!("deferred    pipeline creation joined by {n} threads"),

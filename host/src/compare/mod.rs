@@ -1,6 +1,7 @@
 //! Comparing two shader sets on one scene: image and hit-id differences, the verdict against
 //! the scene's parity tolerance, and the report `twinray compare` prints.
 
+pub mod bisect;
 pub mod diff;
 pub mod frames;
 pub mod report;

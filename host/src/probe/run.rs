@@ -22,6 +22,8 @@ pub struct ProbeOutput {
     pub results: Vec<ProbeResult>,
     /// GPU milliseconds of each timed trace of all the rays.
     pub gpu_ms: Vec<f64>,
+    /// Stack bytes the probe ray generation stage needs, as the driver reports it.
+    pub raygen_stack_bytes: u64,
 }
 
 /// Traces `rays` through `scene` with `set`: `warmup` untimed passes, then `runs` timed ones.
@@ -79,5 +81,6 @@ fn probe_and_release(
         memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
     })?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
-    Ok(ProbeOutput { results: bytemuck::pod_collect_to_vec(&readback.mapped()?[..bytes as usize]), gpu_ms })
+    let results = bytemuck::pod_collect_to_vec(&readback.mapped()?[..bytes as usize]);
+    Ok(ProbeOutput { results, gpu_ms, raygen_stack_bytes: p.pipeline.raygen_stack_bytes() })
 }

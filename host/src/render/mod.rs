@@ -19,5 +19,5 @@ pub use moving::{render_frames, FrameRenderer};
 pub use output::{to_rgba8, RayCounts, RenderOptions, RenderOutput, NO_HIT_ID};
 pub use prepare::MIN_WARM_MS;
 pub(crate) use prepare::{prepare, storage_buffer};
-pub use sets::{render, render_sets};
+pub use sets::{render, render_made, render_sets, render_there_and_back};
 pub(crate) use tracing::submit;

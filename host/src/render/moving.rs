@@ -6,7 +6,7 @@
 use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
 use super::frames::{check_frames, AsWork, Frame, TlasMode};
 use super::output::RenderOptions;
-use super::sets::{check_device_limits, copy_outputs, SetRender, SharedOutputs};
+use super::sets::{check_device_limits, copy_outputs, made_as_context_says, SetRender, SharedOutputs};
 use super::tracing::{self, Trace};
 use super::upload::{upload_moving, UploadedScene};
 use crate::error::{Error, Result};
@@ -57,7 +57,7 @@ impl<'a> FrameRenderer<'a> {
         let start = scene.at_frame(first);
         let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags())?;
         let outputs = SharedOutputs::new(ctx, opts)?;
-        let renders = SetRender::each(ctx, &uploaded, &outputs, sets, opts)?;
+        let renders = SetRender::each(ctx, &uploaded, &outputs, &made_as_context_says(ctx, sets), opts)?;
         Ok(FrameRenderer {
             ctx: ctx.clone(),
             scene,

@@ -7,7 +7,7 @@ use super::libraries::{Libraries, LibraryDesc};
 use crate::error::Result;
 use crate::scene::PipelinePlan;
 use crate::shaders::{ShaderSet, Stage, StageModule};
-use crate::vk::context::{Context, PipelineKind};
+use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
 use ash::vk;
 use std::sync::Arc;
@@ -74,14 +74,14 @@ pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static s
 }
 
 impl ScenePipeline {
-    /// The pipeline of `plan` with the modules of `set`, ray generation stage `raygen`: whole,
-    /// or linked from libraries kept in `libraries`, as the context makes pipelines.
+    /// The pipeline of `plan` with the modules of `set`, ray generation stage `raygen`: linked
+    /// from libraries kept in `libraries`, or whole when that is `None`.
     pub fn new(
         ctx: &Arc<Context>,
         set: &ShaderSet,
         plan: &PipelinePlan,
         raygen: &'static str,
-        libraries: &Libraries,
+        libraries: Option<&Libraries>,
     ) -> Result<Self> {
         let names = plan_modules(plan, raygen);
         let modules = names.iter().map(|name| set.module(name)).collect::<Result<Vec<StageModule>>>()?;
@@ -106,7 +106,7 @@ impl ScenePipeline {
                 specialization: (m.spec.stage == Stage::Raygen).then_some(&spec),
             })
             .collect();
-        let (rt, held) = if ctx.pipeline_kind() == PipelineKind::Libraries {
+        let (rt, held) = if let Some(libraries) = libraries {
             let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, spec_bytes)).collect();
             libraries.link(ctx, &bindings, &descs)?
         } else {

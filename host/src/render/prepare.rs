@@ -11,7 +11,7 @@ use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::OneShot;
-use crate::vk::context::Context;
+use crate::vk::context::{Context, PipelineKind};
 use crate::vk::descriptors::{DescriptorSet, DescriptorTargets};
 use crate::vk::image::StorageImage;
 use crate::vk::pipeline::pool_sizes;
@@ -90,16 +90,17 @@ pub(crate) fn prepare(
 ) -> Result<Prepared> {
     let image = Rc::new(StorageImage::new(ctx, image_size.0, image_size.1)?);
     let libraries = Libraries::default();
-    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, (set, &libraries), raygen, image, extra)
+    let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
+    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, (set, linking), raygen, image, extra)
 }
 
-/// The pipeline of `set` (ray generation stage `raygen`; linked from `libraries` when the
-/// context links pipelines) over an uploaded scene, with its descriptors (the scene's
+/// The pipeline of `set` (ray generation stage `raygen`; linked from `libraries` when given,
+/// else whole) over an uploaded scene, with its descriptors (the scene's
 /// buffers, the output `image` and `extra`) and SBT.
 pub(crate) fn prepare_on(
     ctx: &Arc<Context>,
     scene: &UploadedScene,
-    (set, libraries): (&ShaderSet, &Libraries),
+    (set, libraries): (&ShaderSet, Option<&Libraries>),
     raygen: &'static str,
     image: Rc<StorageImage>,
     extra: &[(u32, &Buffer)],

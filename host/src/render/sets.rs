@@ -12,7 +12,7 @@ use crate::scene::{check_size, Scene};
 use crate::shaders::ShaderSet;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::memory_barrier;
-use crate::vk::context::Context;
+use crate::vk::context::{Context, PipelineKind};
 use crate::vk::image::{StorageImage, PIXEL_BYTES};
 use crate::vk::timing::Timestamps;
 use ash::vk;
@@ -39,17 +39,70 @@ pub fn render_sets(
     sets: &[ShaderSet],
     opts: &RenderOptions,
 ) -> Result<Vec<RenderOutput>> {
-    let mut outputs = render_and_release(ctx, scene, sets, opts)?;
+    render_made(ctx, scene, &made_as_context_says(ctx, sets), opts)
+}
+
+/// Each set with the way the context makes pipelines.
+pub(crate) fn made_as_context_says(ctx: &Context, sets: &[ShaderSet]) -> Vec<(ShaderSet, PipelineKind)> {
+    sets.iter().map(|s| (s.clone(), ctx.pipeline_kind())).collect()
+}
+
+/// [`render_sets`] with each set's pipeline made its own way, whole or linked (what
+/// `pipeline-bench` times linking by).
+pub fn render_made(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    sets: &[(ShaderSet, PipelineKind)],
+    opts: &RenderOptions,
+) -> Result<Vec<RenderOutput>> {
     let rotations = if opts.runs > 1 { sets.len() } else { 1 };
-    for shift in 1..rotations {
-        let rotated: Vec<_> = sets.iter().cycle().skip(shift).take(sets.len()).cloned().collect();
-        for (k, out) in render_and_release(ctx, scene, &rotated, opts)?.into_iter().enumerate() {
-            outputs[(k + shift) % sets.len()].gpu_ms.extend(out.gpu_ms);
+    let orders: Vec<Vec<usize>> =
+        (0..rotations).map(|shift| (0..sets.len()).map(|k| (k + shift) % sets.len()).collect()).collect();
+    render_in_orders(ctx, scene, sets, opts, &orders)
+}
+
+/// [`render_sets`] built and traced in the given order and then in reverse (when several
+/// timed runs are asked for): every set is timed at both ends of the order without the
+/// square of the sets' count that every rotation costs (`twinray bisect` renders up to 16).
+pub fn render_there_and_back(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    sets: &[ShaderSet],
+    opts: &RenderOptions,
+) -> Result<Vec<RenderOutput>> {
+    let forward: Vec<usize> = (0..sets.len()).collect();
+    let mut orders = vec![forward.clone()];
+    if opts.runs > 1 && sets.len() > 1 {
+        orders.push(forward.into_iter().rev().collect());
+    }
+    render_in_orders(ctx, scene, &made_as_context_says(ctx, sets), opts, &orders)
+}
+
+/// One render per order (indices into `sets`), pooling each set's timed traces; images and hit
+/// ids are the first order's.
+fn render_in_orders(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    sets: &[(ShaderSet, PipelineKind)],
+    opts: &RenderOptions,
+    orders: &[Vec<usize>],
+) -> Result<Vec<RenderOutput>> {
+    let mut outputs: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
+    for order in orders {
+        let ordered: Vec<_> = order.iter().map(|&i| sets[i].clone()).collect();
+        for (&i, out) in order.iter().zip(render_and_release(ctx, scene, &ordered, opts)?) {
+            match &mut outputs[i] {
+                Some(first) => first.gpu_ms.extend(out.gpu_ms),
+                slot => *slot = Some(out),
+            }
         }
     }
     // Every object of the render is destroyed by now: catch what the layer said about that too.
     ctx.check_validation()?;
-    Ok(outputs)
+    outputs
+        .into_iter()
+        .collect::<Option<Vec<_>>>()
+        .ok_or_else(|| Error::Unsupported("an order of the render left a set out".into()))
 }
 
 /// The outputs every set of a render writes in turn (one image, one hit-id buffer), so that
@@ -88,24 +141,29 @@ pub(super) struct SetRender {
 }
 
 impl SetRender {
-    /// One per set, over the same scene and outputs, their pipelines linked from one set of
-    /// libraries (when the context links pipelines), so that each module compiles once.
+    /// One per set, over the same scene and outputs, the linked ones linked from one set of
+    /// libraries, so that each module compiles once.
     pub fn each(
         ctx: &Arc<Context>,
         scene: &UploadedScene,
         outputs: &SharedOutputs,
-        sets: &[ShaderSet],
+        sets: &[(ShaderSet, PipelineKind)],
         opts: &RenderOptions,
     ) -> Result<Vec<Self>> {
         let libraries = Libraries::default();
-        sets.iter().map(|set| SetRender::new(ctx, scene, outputs, (set, &libraries), opts)).collect()
+        sets.iter()
+            .map(|(set, kind)| {
+                let linking = (*kind == PipelineKind::Libraries).then_some(&libraries);
+                SetRender::new(ctx, scene, outputs, (set, linking), opts)
+            })
+            .collect()
     }
 
     fn new(
         ctx: &Arc<Context>,
         scene: &UploadedScene,
         outputs: &SharedOutputs,
-        set: (&ShaderSet, &Libraries),
+        set: (&ShaderSet, Option<&Libraries>),
         opts: &RenderOptions,
     ) -> Result<Self> {
         let image = outputs.image.clone();
@@ -143,7 +201,7 @@ impl SetRender {
 fn render_and_release(
     ctx: &Arc<Context>,
     scene: &Scene,
-    sets: &[ShaderSet],
+    sets: &[(ShaderSet, PipelineKind)],
     opts: &RenderOptions,
 ) -> Result<Vec<RenderOutput>> {
     check_size(opts.width, opts.height).map_err(Error::Input)?;

@@ -79,6 +79,34 @@ impl ShaderSet {
         origin.resolve(spec).map_err(|e| Error::Input(format!("shader set {self}: {e}")))
     }
 
+    /// This set with the modules called `names` taken from `other` (what `twinray bisect`
+    /// renders). Printed as this set followed by one `MODULE=ORIGIN` per module taken, so a
+    /// set from disk stays a set that parses back.
+    pub fn with_modules_from(&self, other: &ShaderSet, names: &[&str]) -> ShaderSet {
+        let mut out = self.clone();
+        let mut taken = Vec::new();
+        for (i, spec) in MODULES.iter().enumerate().filter(|(_, m)| names.contains(&m.name)) {
+            out.origins[i] = other.origins[i].clone();
+            taken.push(match &other.origins[i] {
+                Origin::Builtin(language) => format!("{}={}", spec.name, language.name()),
+                Origin::Disk(m) => format!("{}={}", spec.name, m.path.display()),
+                Origin::Missing(path) => format!("{}={}", spec.name, path.display()),
+            });
+        }
+        out.text =
+            out.from_disk().then(|| std::iter::once(self.to_string()).chain(taken).collect::<Vec<_>>().join(","));
+        out
+    }
+
+    /// Whether the module called `name` is the same code in both sets (same SPIR-V and entry
+    /// point), wherever each comes from.
+    pub fn same_module(&self, other: &ShaderSet, name: &str) -> bool {
+        match (self.module(name), other.module(name)) {
+            (Ok(a), Ok(b)) => a.spirv == b.spirv && a.entry == b.entry,
+            _ => false,
+        }
+    }
+
     /// Whether any module comes from disk.
     pub fn from_disk(&self) -> bool {
         self.origins.iter().any(|o| !matches!(o, Origin::Builtin(_)))
@@ -272,5 +300,20 @@ mod tests {
         assert!(e.contains("STAGE=LANGUAGE"), "{e}");
         let e = "rust,raygen=no/such/raygen.spv".parse::<ShaderSet>().unwrap_err().to_string();
         assert!(e.contains("no/such/raygen.spv: no such file or folder"), "{e}");
+    }
+
+    #[test]
+    fn modules_taken_from_another_set_print_as_a_set_that_parses_back() {
+        let (rust, glsl) = (ShaderSet::uniform(Language::Rust), ShaderSet::uniform(Language::Glsl));
+        let swapped = rust.with_modules_from(&glsl, &["miss", "shadow_miss"]);
+        assert_eq!(swapped.to_string(), "rust,miss=glsl");
+        assert!(!swapped.same_module(&rust, "miss") && swapped.same_module(&glsl, "miss"));
+        assert!(swapped.same_module(&rust, "raygen"));
+        let file = format!("{}/../spirv/rust/sphere_naive_intersection.spv", env!("CARGO_MANIFEST_DIR"));
+        let naive: ShaderSet = format!("rust,sphere_intersection={file}").parse().unwrap();
+        let planted = rust.with_modules_from(&naive, &["sphere_intersection"]);
+        assert_eq!(planted, naive);
+        assert_eq!(planted.to_string().parse::<ShaderSet>().unwrap(), naive);
+        assert!(!planted.same_module(&rust, "sphere_intersection"));
     }
 }

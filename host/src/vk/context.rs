@@ -36,6 +36,9 @@ pub struct DeviceInfo {
     pub cpu_threads: Option<u32>,
     /// Whether the device has (and twinray enabled) VK_KHR_pipeline_library.
     pub pipeline_library: bool,
+    /// Whether the device can build acceleration structures on the host
+    /// (`accelerationStructureHostCommands`); twinray builds them on the device either way.
+    pub host_acceleration_structure_commands: bool,
 }
 
 /// Options for [`Context::new`].
@@ -56,7 +59,7 @@ pub struct ContextOptions {
 }
 
 /// How ray tracing pipelines are made.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize, clap::ValueEnum)]
 #[serde(rename_all = "snake_case")]
 pub enum PipelineKind {
     /// Each pipeline compiled whole from its stages.
@@ -358,6 +361,11 @@ fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_fam
     // SAFETY: the chained structs live until the call returns.
     unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
     let props = props2.properties;
+    let mut accel_features = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default();
+    let mut features = vk::PhysicalDeviceFeatures2::default().push_next(&mut accel_features);
+    // SAFETY: the chained struct lives until the call returns; the device was chosen for having
+    // VK_KHR_acceleration_structure.
+    unsafe { instance.get_physical_device_features2(physical, &mut features) };
     // SAFETY: physical comes from this instance.
     let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
     let text = |c: Result<&std::ffi::CStr, _>| c.map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
@@ -366,6 +374,7 @@ fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_fam
         device_type: format!("{:?}", props.device_type),
         cpu_threads: (props.device_type == vk::PhysicalDeviceType::CPU).then(cpu_threads),
         pipeline_library: false,
+        host_acceleration_structure_commands: accel_features.acceleration_structure_host_commands == vk::TRUE,
         api_version: format!(
             "{}.{}.{}",
             vk::api_version_major(props.api_version),

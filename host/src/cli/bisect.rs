@@ -1,0 +1,43 @@
+//! `twinray bisect`: which stage makes two sets differ, in image (or probe results) and time.
+
+use crate::args::{BisectArgs, GlobalArgs};
+use crate::session::{context, render_options, COMPARE_TRACES};
+use anyhow::Result;
+use std::process::ExitCode;
+use twinray::compare::bisect::{bisect as run_bisect, BisectReport, ImageSubject, ProbeSubject};
+use twinray::probe::case::ProbeCase;
+use twinray::{Error, Scene};
+
+pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
+    let report = match &args.probe {
+        Some(path) => {
+            if args.frame.width.is_some() || args.frame.height.is_some() {
+                return Err(Error::Input("--width and --height do not apply to --probe".into()).into());
+            }
+            let case = ProbeCase::load(path)?;
+            let ctx = context(global)?;
+            let (warmup, runs) = COMPARE_TRACES;
+            let runs = args.frame.runs.unwrap_or(runs);
+            let mut subject =
+                ProbeSubject { ctx: &ctx, case: &case, warmup: args.frame.warmup.unwrap_or(warmup), runs };
+            run_bisect(&mut subject, &args.a, &args.b)?
+        }
+        None => {
+            let scene = Scene::load(args.scene.as_deref())?;
+            let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
+            let ctx = context(global)?;
+            run_bisect(&mut ImageSubject { ctx: &ctx, scene: &scene, opts }, &args.a, &args.b)?
+        }
+    };
+    print_report(&report, args.frame.json)?;
+    Ok(if report.pinned { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+fn print_report(report: &BisectReport, json: bool) -> Result<()> {
+    if json {
+        println!("{}", serde_json::to_string(report)?);
+    } else {
+        print!("{}", report.summary());
+    }
+    Ok(())
+}
