@@ -66,11 +66,14 @@ fn a_difference_only_in_the_miss_stage_is_pinned_on_miss() {
     assert_eq!(json["stages"].as_array().unwrap().len(), 1);
     assert!(json["modules"].as_array().unwrap().is_empty(), "one module differs: nothing to refine");
     let text = twinray(
-        &["bisect", "spheres", "--width", "64", "--height", "48", "--a", "glsl", "--b", &b, "--runs", "1"],
+        &["bisect", "spheres", "--width", "64", "--height", "48", "--a", "glsl", "--b", &b, "--runs", "3"],
         dir.path(),
     );
     let stdout = String::from_utf8_lossy(&text.stdout);
-    assert!(stdout.contains("image: explained by miss\n") && stdout.contains("PINNED"), "{stdout}");
+    // (Whether lavapipe's times differ beyond noise here is up to the machine: not asserted.)
+    assert!(stdout.contains("image: explained by miss\n"), "{stdout}");
+    // Built and timed in one order and then in reverse: 3 timed traces in each.
+    assert!(stdout.contains(", 6 runs)"), "{stdout}");
 }
 
 #[test]
