@@ -15,7 +15,7 @@
 mod report;
 mod subject;
 
-pub use subject::{Gap, ImageSubject, ProbeSubject, Run, Subject};
+pub use subject::{Gap, ImageSubject, ProbeSubject, Run, Subject, PROBE_T_TOLERANCE};
 
 use crate::error::Result;
 use crate::shaders::{ShaderSet, Stage, MODULES};
