@@ -245,3 +245,21 @@ fn a_scene_without_parity_or_name_renders() {
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
     assert_eq!(json["scene"], "bare");
 }
+
+/// `info` says what the device can do beyond what twinray requires, with the optional
+/// extensions enabled under the validation layer (a feature enabled wrongly fails it).
+#[test]
+fn info_lists_the_optional_capabilities() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = twinray(&["--validate", "--no-pipeline-cache", "info", "--json"], dir.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let info: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    for key in ["pipeline_library", "ray_query", "host_acceleration_structure_commands"] {
+        assert!(info[key].is_boolean(), "{key}: {info}");
+    }
+    let text = twinray(&["--no-pipeline-cache", "info"], dir.path());
+    let text = String::from_utf8_lossy(&text.stdout);
+    for line in ["libraries   VK_KHR_pipeline_library", "ray query   VK_KHR_ray_query", "host AS     "] {
+        assert!(text.contains(line), "{line:?} missing from {text}");
+    }
+}

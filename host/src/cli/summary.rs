@@ -41,6 +41,7 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             if i.pipeline_library { "yes" } else { "no" },
             ctx.pipeline_kind()
         );
+        println!("ray query   VK_KHR_ray_query {}", if i.ray_query { "yes" } else { "no" });
         println!(
             "host AS     accelerationStructureHostCommands {} (twinray builds acceleration structures on the device)",
             if i.host_acceleration_structure_commands { "yes" } else { "no" }

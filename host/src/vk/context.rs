@@ -36,6 +36,9 @@ pub struct DeviceInfo {
     pub cpu_threads: Option<u32>,
     /// Whether the device has (and twinray enabled) VK_KHR_pipeline_library.
     pub pipeline_library: bool,
+    /// Whether the device has (and twinray enabled) VK_KHR_ray_query with its `rayQuery`
+    /// feature.
+    pub ray_query: bool,
     /// Whether the device can build acceleration structures on the host
     /// (`accelerationStructureHostCommands`); twinray builds them on the device either way.
     pub host_acceleration_structure_commands: bool,
@@ -131,6 +134,7 @@ impl Context {
         };
         let mut info = device_info(&instance, candidate.physical, candidate.queue_family, candidate.name);
         info.pipeline_library = optional.contains(&ash::khr::pipeline_library::NAME);
+        info.ray_query = optional.contains(&ash::khr::ray_query::NAME);
         let pipelines = match options.pipelines {
             Some(PipelineKind::Libraries) if !info.pipeline_library => {
                 // SAFETY: nothing was made from the device yet.
@@ -342,12 +346,16 @@ fn create_device(instance: &ash::Instance, candidate: &Candidate, optional: &[&C
     let mut f12 = vk::PhysicalDeviceVulkan12Features::default().buffer_device_address(true).vulkan_memory_model(true);
     let mut accel = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
     let mut rt = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default().ray_tracing_pipeline(true);
-    let info = vk::DeviceCreateInfo::default()
+    let mut query = vk::PhysicalDeviceRayQueryFeaturesKHR::default().ray_query(true);
+    let mut info = vk::DeviceCreateInfo::default()
         .queue_create_infos(&queues)
         .enabled_extension_names(&extensions)
         .push_next(&mut f12)
         .push_next(&mut accel)
         .push_next(&mut rt);
+    if optional.contains(&ash::khr::ray_query::NAME) {
+        info = info.push_next(&mut query);
+    }
     // SAFETY: the candidate supports every extension and feature enabled here.
     unsafe { instance.create_device(candidate.physical, &info, None) }.call("vkCreateDevice")
 }
@@ -374,6 +382,7 @@ fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_fam
         device_type: format!("{:?}", props.device_type),
         cpu_threads: (props.device_type == vk::PhysicalDeviceType::CPU).then(cpu_threads),
         pipeline_library: false,
+        ray_query: false,
         host_acceleration_structure_commands: accel_features.acceleration_structure_host_commands == vk::TRUE,
         api_version: format!(
             "{}.{}.{}",

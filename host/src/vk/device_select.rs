@@ -61,8 +61,9 @@ pub fn pick(instance: &ash::Instance, filter: Option<&str>) -> Result<Candidate>
 }
 
 /// Extensions twinray enables where the device has them: pipeline libraries (`--pipeline
-/// libraries`).
-pub const OPTIONAL_EXTENSIONS: [&CStr; 1] = [ash::khr::pipeline_library::NAME];
+/// libraries`) and ray queries (tracing inline, without the pipeline's shader table; every
+/// device with the extension has its `rayQuery` feature).
+pub const OPTIONAL_EXTENSIONS: [&CStr; 2] = [ash::khr::pipeline_library::NAME, ash::khr::ray_query::NAME];
 
 /// The optional extensions `physical` has.
 pub fn optional_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<Vec<&'static CStr>> {
