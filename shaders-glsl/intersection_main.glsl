@@ -12,7 +12,11 @@ void main() {
     float t;
     vec3 n;
     if (SHAPE_INTERSECT(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, p, gl_RayTminEXT, gl_RayTmaxEXT, t, n)) {
+        // Put back what was there if the hit is not taken (see the Rust twin).
+        vec3 before = normal;
         normal = n;
-        reportIntersectionEXT(t, SHAPE_HIT_KIND);
+        if (!reportIntersectionEXT(t, SHAPE_HIT_KIND)) {
+            normal = before;
+        }
     }
 }

@@ -38,4 +38,21 @@ vec3 material_color(Material material, vec3 object_point, vec3 object_normal) {
     }
     return material.color_a.xyz;
 }
+
+// A cutout's alpha over object-space x and z (see twinray_shared::shading::cutout_alpha).
+float cutout_alpha(Material material, vec3 object_point) {
+    vec2 q = object_point.xz * material.cutout_scale;
+    vec2 cell = floor(q);
+    if (material.cutout_pattern == CUTOUT_CHECKER) {
+        int parity = int(cell.x + cell.y) & 1;
+        return parity == 0 ? 1.0 : 0.0;
+    } else if (material.cutout_pattern == CUTOUT_DISCS) {
+        return min(length((q - cell - vec2(0.5)) * 2.0), 1.0);
+    }
+    return 1.0;
+}
+
+bool cutout_solid(Material material, vec3 object_point) {
+    return cutout_alpha(material, object_point) >= material.cutout_threshold;
+}
 #endif

@@ -7,15 +7,52 @@
 #include "random.glsl"
 
 void trace_primary(vec3 origin, vec3 direction) {
-    traceRayEXT(tlas, gl_RayFlagsOpaqueEXT, 0xff, 0, 0, MISS_PRIMARY, origin, T_MIN, direction, T_MAX, 0);
+    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_PRIMARY, origin, T_MIN, direction, T_MAX, 0);
 }
 
+#ifdef SHADOW_QUERY
+#include "shading.glsl"
+#include "shape_dispatch.glsl"
+
+// Traced inline with a ray query: every candidate the traversal cannot decide alone is decided
+// here, as the pipeline's stages would: a procedural primitive by its shape's routine, and for
+// cutouts (the only instances not forced opaque) whether the hit is in a hole. Any hit ends it.
+bool visible(vec3 origin, vec3 direction, float distance) {
+    rayQueryEXT query;
+    rayQueryInitializeEXT(query, tlas, gl_RayFlagsTerminateOnFirstHitEXT, MASK_OCCLUDER, origin, 0.0, direction,
+                          distance);
+    bool occluded = false;
+    while (rayQueryProceedEXT(query)) {
+        ObjectData data = objects[rayQueryGetIntersectionInstanceIdEXT(query, false)];
+        vec3 o = rayQueryGetIntersectionObjectRayOriginEXT(query, false);
+        vec3 d = rayQueryGetIntersectionObjectRayDirectionEXT(query, false);
+        float t = -1.0;
+        if (rayQueryGetIntersectionTypeEXT(query, false) == gl_RayQueryCandidateIntersectionTriangleEXT) {
+            t = rayQueryGetIntersectionTEXT(query, false);
+        } else {
+            uint primitive = rayQueryGetIntersectionInstanceCustomIndexEXT(query, false) +
+                             rayQueryGetIntersectionPrimitiveIndexEXT(query, false);
+            float hit_t;
+            vec3 n;
+            if (shape_intersect(data.shape, o, d, primitives[primitive], 0.0, distance, hit_t, n)) {
+                t = hit_t;
+            }
+        }
+        if (t >= 0.0 && cutout_solid(materials[data.material], o + d * t)) {
+            occluded = true;
+            rayQueryTerminateEXT(query);
+        }
+    }
+    return !occluded && rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT;
+}
+#else
 bool visible(vec3 origin, vec3 direction, float distance) {
     shadow_payload.occluded = 1u;
-    uint flags = gl_RayFlagsOpaqueEXT | gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT;
+    uint flags = gl_RayFlagsTerminateOnFirstHitEXT | gl_RayFlagsSkipClosestHitShaderEXT;
     traceRayEXT(tlas, flags, MASK_OCCLUDER, 0, 0, MISS_SHADOW, origin, 0.0, direction, distance, 1);
     return shadow_payload.occluded == 0u;
 }
+#endif
 
 // shadows: whether any light casts shadows (a specialisation constant); stratified: rect lights'
 // shadow samples one per cell of an N x N grid, else independent. Adds the shadow rays it

@@ -28,10 +28,15 @@
 #define MATERIAL_DIFFUSE 0u
 #define MATERIAL_EMISSIVE 1u
 #define MATERIAL_CHECKER 2u
+#define MATERIAL_CUTOUT 3u
+#define CUTOUT_NONE 0u
+#define CUTOUT_CHECKER 1u
+#define CUTOUT_DISCS 2u
 #define LIGHT_DIRECTIONAL 0u
 #define LIGHT_POINT 1u
 #define LIGHT_RECT 2u
 #define NO_HIT 4294967295u
+#define SHAPE_NAIVE 128u
 #define HIT_KIND_SPHERE 1u
 #define HIT_KIND_PLANE 2u
 #define HIT_KIND_BOX 3u
@@ -69,7 +74,7 @@ struct ObjectData {
     uint material; // offset 0
     uint vertex_base; // offset 4
     uint index_base; // offset 8
-    uint _pad0; // offset 12
+    uint shape; // offset 12
 };
 
 // 32 bytes, as twinray_shared::layout::Vertex
@@ -88,9 +93,9 @@ struct Primitive {
 // 48 bytes, as twinray_shared::layout::Material
 struct Material {
     uint kind; // offset 0
-    uint _pad0; // offset 4
-    uint _pad1; // offset 8
-    uint _pad2; // offset 12
+    uint cutout_pattern; // offset 4
+    float cutout_scale; // offset 8
+    float cutout_threshold; // offset 12
     vec4 color_a; // offset 16
     vec4 color_b; // offset 32
 };

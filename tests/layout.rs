@@ -12,6 +12,17 @@ fn committed_glsl_layout_include_is_generated_from_twinray_shared() {
 }
 
 #[test]
+fn committed_shape_dispatch_is_generated_from_the_registry() {
+    let path = repo_root().join("shaders-glsl/shape_dispatch.glsl");
+    let have = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    assert!(
+        have == twinray_shared::glsl::shape_dispatch_include(),
+        "{} is stale: run `cargo xtask shaders`",
+        path.display()
+    );
+}
+
+#[test]
 fn glsl_sources_include_the_generated_layout() {
     use twinray_shared::catalog::GlslSource;
     let dir = repo_root().join("shaders-glsl");

@@ -259,7 +259,7 @@ fn info_lists_the_optional_capabilities() {
     }
     let text = twinray(&["--no-pipeline-cache", "info"], dir.path());
     let text = String::from_utf8_lossy(&text.stdout);
-    for line in ["libraries   VK_KHR_pipeline_library", "ray query   VK_KHR_ray_query", "host AS     "] {
+    for line in ["libraries   VK_KHR_pipeline_library", "ray query   VK_KHR_ray_query", "host AS     ", "any_hit"] {
         assert!(text.contains(line), "{line:?} missing from {text}");
     }
 }

@@ -12,6 +12,7 @@ use twinray_shared::catalog::{Language, ModuleSpec, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 
 const LAYOUT_INCLUDE: &str = "shaders-glsl/twinray_layout.glsl";
+const SHAPE_DISPATCH: &str = "shaders-glsl/shape_dispatch.glsl";
 const SCENE_FORMAT: &str = "docs/scene-format.md";
 
 pub fn run(check: bool) -> Result<()> {
@@ -127,6 +128,7 @@ fn unlisted_modules(root: &Path) -> Result<Vec<String>> {
 fn sync_generated(root: &Path, check: bool) -> Result<()> {
     let include = twinray_shared::glsl::layout_include().map_err(anyhow::Error::msg)?;
     sync_file(root, LAYOUT_INCLUDE, &include, check)?;
+    sync_file(root, SHAPE_DISPATCH, &twinray_shared::glsl::shape_dispatch_include(), check)?;
     let doc = std::fs::read_to_string(root.join(SCENE_FORMAT)).with_context(|| format!("reading {SCENE_FORMAT}"))?;
     let doc = twinray_shared::shapes::with_docs_table(&doc).map_err(|e| anyhow::anyhow!("{SCENE_FORMAT}: {e}"))?;
     sync_file(root, SCENE_FORMAT, &doc, check)
@@ -193,14 +195,21 @@ fn build_rust(root: &Path, out: &Path, output: Output) -> Result<()> {
 }
 
 /// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
-/// is off, so that the committed modules depend only on the code.
+/// is off, so that the committed modules depend only on the code, and the ray query capability
+/// from modules that trace no ray query.
 fn strip_debug_info(dir: &Path) -> Result<()> {
     for spec in MODULES {
         let path = dir.join(format!("{}.spv", spec.name));
         let stripped = dir.join(format!("{}.stripped", spec.name));
         process::run(Command::new("spirv-opt").arg("--strip-debug").arg(&path).arg("-o").arg(&stripped))
             .with_context(|| format!("stripping {}", path.display()))?;
-        std::fs::rename(&stripped, &path)?;
+        // rust-gpu declares every capability the builder names in every module: one that
+        // declares ray queries without using them would need VK_KHR_ray_query for nothing.
+        let bytes = std::fs::read(&stripped)?;
+        let trimmed =
+            spirv_info::without_unused_ray_query(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        std::fs::write(&path, trimmed)?;
+        std::fs::remove_file(&stripped)?;
     }
     Ok(())
 }

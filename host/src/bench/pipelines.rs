@@ -1,5 +1,5 @@
 //! `twinray pipeline-bench`: how long creating a scene's ray tracing pipelines takes, for the
-//! two whole sets and for all 16 per-stage mixes, made whole or linked from libraries, with
+//! two whole sets and for every per-stage mix of the stages the scene uses (16 for four), made whole or linked from libraries, with
 //! creation joined by one thread or by N, from a cold or a warm pipeline cache. Each
 //! configuration gets a fresh device, so nothing compiled by one reaches another except
 //! through the cache file it is given (and the driver's own disk cache: turn that off for
@@ -7,28 +7,25 @@
 
 use crate::error::Result;
 use crate::render::libraries::Libraries;
-use crate::render::pipeline::ScenePipeline;
+use crate::render::pipeline::{used_stages, ScenePipeline};
 use crate::scene::Scene;
-use crate::shaders::ShaderSet;
+use crate::shaders::{ShaderSet, Stage};
 use crate::util::stats::median;
 use crate::vk::context::{Context, ContextOptions, PipelineKind};
 use serde::Serialize;
 use std::path::Path;
 use std::time::Instant;
 
-/// Stages a per-stage mix takes from either language.
-const STAGES: [&str; 4] = ["raygen", "miss", "intersection", "closest_hit"];
-
-/// The 16 per-stage mixes: each stage from Rust or GLSL (the first is all Rust, the last all
-/// GLSL).
-pub fn all_mixes() -> Result<Vec<ShaderSet>> {
-    (0..16u32)
+/// The 2^n per-stage mixes of `stages`: each from Rust or GLSL (the first is all Rust, the last
+/// all GLSL).
+pub fn all_mixes(stages: &[Stage]) -> Result<Vec<ShaderSet>> {
+    (0..1u32 << stages.len())
         .map(|bits| {
-            let glsl: Vec<String> = STAGES
+            let glsl: Vec<String> = stages
                 .iter()
                 .enumerate()
                 .filter(|(i, _)| bits >> i & 1 == 1)
-                .map(|(_, s)| format!("{s}=glsl"))
+                .map(|(_, s)| format!("{}=glsl", s.name()))
                 .collect();
             std::iter::once("rust".to_string()).chain(glsl).collect::<Vec<_>>().join(",").parse()
         })
@@ -42,7 +39,7 @@ pub struct Config {
     pub threads: usize,
     /// From the cache file that a first, untimed run of the same configuration wrote.
     pub warm: bool,
-    /// All 16 mixes, else the two whole sets.
+    /// Every mix of the stages the scene uses, else the two whole sets.
     pub mixes: bool,
 }
 
@@ -67,12 +64,12 @@ impl Config {
 
     /// Its own cache folder under `root`.
     pub fn cache_dir(&self, root: &Path) -> std::path::PathBuf {
-        root.join(format!("{:?}-{}-{}", self.pipelines, self.threads, if self.mixes { 16 } else { 2 }))
+        root.join(format!("{:?}-{}-{}", self.pipelines, self.threads, if self.mixes { "mixes" } else { "sets" }))
     }
 
     fn describe(&self) -> String {
-        let sets = if self.mixes { 16 } else { 2 };
-        format!("{:?}, {} threads, {sets} sets, {}", self.pipelines, self.threads, self.cache())
+        let sets = if self.mixes { "every mix" } else { "2 sets" };
+        format!("{:?}, {} threads, {sets}, {}", self.pipelines, self.threads, self.cache())
     }
 
     fn cache(&self) -> &'static str {
@@ -91,7 +88,7 @@ pub struct CreationRow {
     pub threads: usize,
     /// "cold" (no pipeline cache) or "warm" (the cache file a first run wrote).
     pub cache: &'static str,
-    /// Pipelines made: 2 (rust, glsl) or 16 (every mix).
+    /// Pipelines made: 2 (rust, glsl) or every mix (16 of four stages).
     pub sets: usize,
     /// Median wall milliseconds of making them all, over the repeats.
     pub ms: f64,
@@ -105,6 +102,8 @@ pub struct CreationRow {
 pub struct Measured {
     pub ms: f64,
     pub libraries: usize,
+    /// Pipelines made.
+    pub sets: usize,
 }
 
 /// Makes `config`'s pipelines for `scene` once, on a fresh context from `base` (whose
@@ -117,24 +116,26 @@ pub fn measure(base: &ContextOptions, scene: &Scene, config: &Config, cache_root
         pipeline_cache: config.warm.then(|| config.cache_dir(cache_root)),
         ..base.clone()
     };
+    let plan = scene.build().plan;
     let sets = if config.mixes {
-        all_mixes()?
+        all_mixes(&used_stages(&plan, plan.render_raygen()))?
     } else {
         vec![ShaderSet::uniform(crate::shaders::Language::Rust), ShaderSet::uniform(crate::shaders::Language::Glsl)]
     };
     let ctx = Context::new(&options)?;
-    let plan = scene.build().plan;
     let libraries = Libraries::default();
     let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
     let start = Instant::now();
-    let pipelines =
-        sets.iter().map(|set| ScenePipeline::new(&ctx, set, &plan, "raygen", linking)).collect::<Result<Vec<_>>>()?;
+    let pipelines = sets
+        .iter()
+        .map(|set| ScenePipeline::new(&ctx, set, &plan, plan.render_raygen(), linking))
+        .collect::<Result<Vec<_>>>()?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let compiled = libraries.compiled();
     drop(pipelines);
     drop(libraries);
     ctx.close()?;
-    Ok(Measured { ms, libraries: compiled })
+    Ok(Measured { ms, libraries: compiled, sets: sets.len() })
 }
 
 /// Every configuration of `configs`, `repeats` times each, each time through `measure_one`
@@ -164,7 +165,7 @@ pub fn run(
             pipelines: config.pipelines,
             threads: config.threads,
             cache: config.cache(),
-            sets: if config.mixes { 16 } else { 2 },
+            sets: measured.last().map_or(0, |m| m.sets),
             ms: median(&times).unwrap_or(0.0),
             repeats: times,
             libraries: measured.last().map_or(0, |m| m.libraries),
@@ -205,7 +206,9 @@ pub fn table(rows: &[CreationRow]) -> String {
 mod tests {
     #[test]
     fn sixteen_distinct_mixes_from_all_rust_to_all_glsl() {
-        let mixes: Vec<String> = super::all_mixes().unwrap().iter().map(|s| s.to_string()).collect();
+        use crate::shaders::Stage::*;
+        let stages = [Raygen, Miss, Intersection, ClosestHit];
+        let mixes: Vec<String> = super::all_mixes(&stages).unwrap().iter().map(|s| s.to_string()).collect();
         assert_eq!(mixes.len(), 16);
         let mut unique = mixes.clone();
         unique.sort();

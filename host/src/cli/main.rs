@@ -69,7 +69,7 @@ enum Command {
     /// update) and of the trace as objects drift, at several instance counts; writes tables,
     /// plots and index.html.
     AnimateBench(AnimateBenchArgs),
-    /// Pipeline creation time: both sets and all 16 per-stage mixes, whole or linked from
+    /// Pipeline creation time: both sets and every per-stage mix, whole or linked from
     /// libraries, joined by 1 or N threads, from a cold or a warm pipeline cache.
     PipelineBench(PipelineBenchArgs),
 }

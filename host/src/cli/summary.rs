@@ -41,7 +41,16 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             if i.pipeline_library { "yes" } else { "no" },
             ctx.pipeline_kind()
         );
-        println!("ray query   VK_KHR_ray_query {}", if i.ray_query { "yes" } else { "no" });
+        let stages: Vec<&str> = twinray::shaders::Stage::ALL.iter().map(|s| s.name()).collect();
+        println!("stages      {} (VK_KHR_ray_tracing_pipeline)", stages.join(", "));
+        println!(
+            "ray query   VK_KHR_ray_query {}",
+            if i.ray_query {
+                "yes: shadow_method = \"query\" scenes render"
+            } else {
+                "no: shadow_method = \"query\" scenes are refused"
+            }
+        );
         println!(
             "host AS     accelerationStructureHostCommands {} (twinray builds acceleration structures on the device)",
             if i.host_acceleration_structure_commands { "yes" } else { "no" }

@@ -3,6 +3,7 @@
 //! ambiguous when any object's answer is, or when two objects' hits are within float noise
 //! of each other (which one is first is then rounding).
 
+use super::cutout::{Coverage, RefCutout};
 use super::shapes::{from_primitive, intersect, RefRay, RefShape, Verdict};
 use crate::scene::{BlasDesc, HitGroup, Scene, SceneData};
 use glam::{DMat4, DVec3, Vec4Swizzles};
@@ -12,6 +13,9 @@ pub struct RefObject {
     pub shapes: Vec<RefShape>,
     pub world_to_object: DMat4,
     pub object_to_world: DMat4,
+    /// Its material's holes, if it is a cutout: a shape's first hit in a hole is ignored (as
+    /// the any-hit stage ignores it, and the intersection stage reports no further root).
+    pub cutout: Option<RefCutout>,
 }
 
 /// The first hit over all objects, in world space.
@@ -52,10 +56,12 @@ impl SceneReference {
             .map(|instance| {
                 let object_to_world = instance.object_to_world.as_dmat4();
                 let group = data.plan.hit_groups[instance.hit_group as usize];
+                let material = &data.materials[data.objects[instance.object as usize].material as usize];
                 Ok(RefObject {
                     shapes: shapes(&data, group, instance.blas, instance.custom_index)?,
                     world_to_object: object_to_world.inverse(),
                     object_to_world,
+                    cutout: RefCutout::of(material),
                 })
             })
             .collect::<Result<_, String>>()?;
@@ -78,6 +84,13 @@ impl SceneReference {
                     Verdict::Ambiguous => return SceneVerdict::Ambiguous,
                     Verdict::Miss => {}
                     Verdict::Hit { t, normal } => {
+                        if let Some(cutout) = &object.cutout {
+                            match cutout.coverage(ray.at(t), ray.edge_band(t, normal)) {
+                                Coverage::Hole => continue,
+                                Coverage::Edge => return SceneVerdict::Ambiguous,
+                                Coverage::Solid => {}
+                            }
+                        }
                         // Normals go to world space by the inverse transpose.
                         let world = object.world_to_object.transpose().transform_vector3(normal).normalize();
                         let facing = if world.dot(direction) > 0.0 { -world } else { world };

@@ -1,10 +1,10 @@
 //! The ray tracing pipeline of a scene's plan with a shader set: ray generation, the primary
 //! miss shader, the shadow miss shader only if some light casts shadows, and one hit group per
-//! shape kind the scene uses. Specialisation constants carry the plan's sample count, shadow
+//! shape kind the scene uses (with the cutout any-hit stage for cutout objects). Specialisation constants carry the plan's sample count, shadow
 //! switch and shadow sampler into ray generation.
 
 use super::libraries::{Libraries, LibraryDesc};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::scene::PipelinePlan;
 use crate::shaders::{ShaderSet, Stage, StageModule};
 use crate::vk::context::Context;
@@ -49,6 +49,7 @@ pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
         Stage::Miss => vk::ShaderStageFlags::MISS_KHR,
         Stage::Intersection => vk::ShaderStageFlags::INTERSECTION_KHR,
         Stage::ClosestHit => vk::ShaderStageFlags::CLOSEST_HIT_KHR,
+        Stage::AnyHit => vk::ShaderStageFlags::ANY_HIT_KHR,
     }
 }
 
@@ -56,12 +57,13 @@ pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
 /// `raygen` ("raygen" renders, "probe" probes), misses, hit modules.
 pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static str> {
     let mut names = vec![raygen, "miss"];
-    if plan.shadows {
+    if plan.shadow_miss() {
         names.push("shadow_miss");
     }
     for group in &plan.hit_groups {
         names.extend(group.intersection_module());
         names.push(group.closest_hit_module());
+        names.extend(group.any_hit_module());
     }
     let mut seen = Vec::new();
     names.retain(|n| {
@@ -71,6 +73,15 @@ pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static s
         }
     });
     names
+}
+
+/// The stages of a plan's pipeline, in stage order.
+pub fn used_stages(plan: &PipelinePlan, raygen: &'static str) -> Vec<Stage> {
+    let names = plan_modules(plan, raygen);
+    Stage::ALL
+        .into_iter()
+        .filter(|stage| names.iter().any(|n| crate::shaders::MODULES.iter().any(|m| m.name == *n && m.stage == *stage)))
+        .collect()
 }
 
 impl ScenePipeline {
@@ -94,7 +105,8 @@ impl ScenePipeline {
         let spec_bytes: &[u8] = bytemuck::cast_slice(&spec_data);
         let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
         let groups = groups(plan, &names);
-        let misses = if plan.shadows { 2 } else { 1 };
+        require_device_features(ctx, &modules)?;
+        let misses = if plan.shadow_miss() { 2 } else { 1 };
         let bindings = descriptor_bindings();
         let stages: Vec<_> = modules
             .iter()
@@ -129,14 +141,45 @@ impl ScenePipeline {
     }
 }
 
+/// An error naming what the device lacks, if a module needs it: ray queries
+/// (`VK_KHR_ray_query`) for a module that declares them.
+fn require_device_features(ctx: &Context, modules: &[StageModule]) -> Result<()> {
+    for m in modules {
+        let info =
+            twinray_shared::spirv_info::parse(&m.spirv).map_err(|e| Error::Input(format!("{}: {e}", m.spec.name)))?;
+        if info.capabilities.contains(&twinray_shared::spirv_info::CAPABILITY_RAY_QUERY) && !ctx.info.ray_query {
+            return Err(Error::Unsupported(format!(
+                "the {} stage traces ray queries, which need VK_KHR_ray_query, and {} lacks it{}",
+                m.spec.name,
+                ctx.info.name,
+                if m.spec.name == "raygen_query" { " (the scene sets shadow_method = \"query\")" } else { "" }
+            )));
+        }
+    }
+    Ok(())
+}
+
 /// The library of one group: its stages, renumbered from 0 within it.
 fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8]) -> LibraryDesc<'a> {
-    let (own, group) = match group {
-        GroupDesc::General(i) => (vec![i], GroupDesc::General(0)),
-        GroupDesc::Triangles { closest_hit } => (vec![closest_hit], GroupDesc::Triangles { closest_hit: 0 }),
-        GroupDesc::Procedural { intersection, closest_hit } => {
-            (vec![intersection, closest_hit], GroupDesc::Procedural { intersection: 0, closest_hit: 1 })
+    // Each used stage in turn; the group's indices become positions in that list.
+    let mut own = Vec::new();
+    let mut renumber = |i: u32| {
+        if i == vk::SHADER_UNUSED_KHR {
+            return i;
         }
+        own.push(i);
+        own.len() as u32 - 1
+    };
+    let group = match group {
+        GroupDesc::General(i) => GroupDesc::General(renumber(i)),
+        GroupDesc::Triangles { closest_hit, any_hit } => {
+            GroupDesc::Triangles { closest_hit: renumber(closest_hit), any_hit: renumber(any_hit) }
+        }
+        GroupDesc::Procedural { intersection, closest_hit, any_hit } => GroupDesc::Procedural {
+            intersection: renumber(intersection),
+            closest_hit: renumber(closest_hit),
+            any_hit: renumber(any_hit),
+        },
     };
     let stages: Vec<StageDesc> = own.iter().map(|&i| stages[i as usize]).collect();
     let spec_bytes = if stages.iter().any(|s| s.specialization.is_some()) { spec_bytes } else { &[] };
@@ -148,14 +191,15 @@ fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8])
 fn groups(plan: &PipelinePlan, names: &[&'static str]) -> Vec<GroupDesc> {
     let index = |name: &str| names.iter().position(|n| *n == name).map_or(vk::SHADER_UNUSED_KHR, |i| i as u32);
     let mut groups = vec![GroupDesc::General(0), GroupDesc::General(index("miss"))];
-    if plan.shadows {
+    if plan.shadow_miss() {
         groups.push(GroupDesc::General(index("shadow_miss")));
     }
     for group in &plan.hit_groups {
         let closest_hit = index(group.closest_hit_module());
+        let any_hit = group.any_hit_module().map_or(vk::SHADER_UNUSED_KHR, index);
         groups.push(match group.intersection_module() {
-            Some(intersection) => GroupDesc::Procedural { intersection: index(intersection), closest_hit },
-            None => GroupDesc::Triangles { closest_hit },
+            Some(intersection) => GroupDesc::Procedural { intersection: index(intersection), closest_hit, any_hit },
+            None => GroupDesc::Triangles { closest_hit, any_hit },
         });
     }
     groups

@@ -171,7 +171,7 @@ impl SetRender {
         let readback =
             |name, bytes| Buffer::new(ctx, name, bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu);
         Ok(SetRender {
-            prepared: prepare_on(ctx, scene, set, "raygen", image, &outputs.extra())?,
+            prepared: prepare_on(ctx, scene, set, scene.data.plan.render_raygen(), image, &outputs.extra())?,
             timestamps: Timestamps::new(ctx, opts.runs)?,
             image_readback: readback("image readback", pixels * PIXEL_BYTES)?,
             ids_readback: readback("hit id readback", outputs.hit_ids.size)?,

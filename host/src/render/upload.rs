@@ -114,6 +114,7 @@ fn upload_scene(
             custom_index: i.custom_index,
             mask: i.mask,
             sbt_offset: i.hit_group,
+            opaque: !data.plan.hit_groups.get(i.hit_group as usize).is_some_and(|g| g.cutout),
             blas_address: blases[i.blas].address,
         })
         .collect();

@@ -2,9 +2,9 @@
 //! one TLAS instance per object, and the pipeline plan — only the hit groups, miss shaders and
 //! specialisation the scene uses.
 
-use super::file::{LightDesc, MaterialDesc, SceneFile, ShadowSampler};
+use super::file::{CutoutPattern, LightDesc, MaterialDesc, SceneFile, ShadowMethod, ShadowSampler};
 use super::mesh::MeshData;
-use super::plan::{HitGroup, PipelinePlan};
+use super::plan::{HitGeometry, HitGroup, PipelinePlan};
 use super::shape::{Formula, ShapeDesc};
 use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
@@ -101,7 +101,8 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         scene.materials.keys().enumerate().map(|(i, n)| (n.as_str(), i as u32)).collect();
     let mut slots: BTreeMap<&str, ShapeSlot> = BTreeMap::new();
     let mut geometry = Geometry::default();
-    let mut groups: Vec<HitGroup> = scene.objects.iter().map(|o| hit_group(&scene.shapes[&o.shape])).collect();
+    let group_of = |o: &super::file::ObjectDesc| hit_group(&scene.shapes[&o.shape], &scene.materials[&o.material]);
+    let mut groups: Vec<HitGroup> = scene.objects.iter().map(group_of).collect();
     groups.sort();
     groups.dedup();
     let mut objects = Vec::new();
@@ -115,7 +116,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
             material: material_index[material_name],
             vertex_base: slot.vertex_base,
             index_base: slot.index_base,
-            _pad0: 0,
+            shape: group_of(object).shape_routine(),
         });
         let emissive = matches!(scene.materials[material_name], MaterialDesc::Emissive { .. });
         instances.push(InstanceDesc {
@@ -124,7 +125,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
             object: i as u32,
             custom_index: slot.primitive_base,
             mask: if emissive { b::MASK_EMITTER } else { b::MASK_OCCLUDER },
-            hit_group: groups.iter().position(|g| *g == hit_group(shape)).unwrap_or(0) as u32,
+            hit_group: groups.iter().position(|g| *g == group_of(object)).unwrap_or(0) as u32,
         });
     }
     let lights = lights(scene);
@@ -136,6 +137,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
             ShadowSampler::Stratified => b::SHADOW_SAMPLER_STRATIFIED,
             ShadowSampler::Random => b::SHADOW_SAMPLER_RANDOM,
         },
+        shadow_query: scene.shadow_method == ShadowMethod::Query,
     };
     let materials = scene.materials.values().map(material).collect();
     let Geometry { blases, primitives, vertices, indices } = geometry;
@@ -180,14 +182,15 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
     }
 }
 
-fn hit_group(shape: &ShapeDesc) -> HitGroup {
-    match shape {
-        ShapeDesc::Procedural(p) => HitGroup::Procedural {
+fn hit_group(shape: &ShapeDesc, material: &MaterialDesc) -> HitGroup {
+    let geometry = match shape {
+        ShapeDesc::Procedural(p) => HitGeometry::Procedural {
             naive: p.formula == Formula::Naive && p.shape.naive_module.is_some(),
             shape: SHAPES.iter().position(|s| s.name == p.shape.name).unwrap_or(0),
         },
-        ShapeDesc::Mesh(_) => HitGroup::Triangles,
-    }
+        ShapeDesc::Mesh(_) => HitGeometry::Triangles,
+    };
+    HitGroup { geometry, cutout: matches!(material, MaterialDesc::Cutout { .. }) }
 }
 
 /// Scale, then rotation about x, y and z (degrees), then translation.
@@ -206,6 +209,7 @@ fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
 }
 
 fn material(m: &MaterialDesc) -> Material {
+    let mut cutout = (b::CUTOUT_NONE, 0.0, 0.0);
     let (kind, a, b) = match *m {
         MaterialDesc::Diffuse { color } => (b::MATERIAL_DIFFUSE, Vec3::from(color).extend(1.0), Vec4::ZERO),
         MaterialDesc::Emissive { color, intensity } => {
@@ -214,8 +218,17 @@ fn material(m: &MaterialDesc) -> Material {
         MaterialDesc::Checker { colors, scale } => {
             (b::MATERIAL_CHECKER, Vec3::from(colors[0]).extend(1.0), Vec3::from(colors[1]).extend(scale))
         }
+        MaterialDesc::Cutout { color, pattern, scale, threshold } => {
+            let pattern = match pattern {
+                CutoutPattern::Checker => b::CUTOUT_CHECKER,
+                CutoutPattern::Discs => b::CUTOUT_DISCS,
+            };
+            cutout = (pattern, scale, threshold);
+            (b::MATERIAL_CUTOUT, Vec3::from(color).extend(1.0), Vec4::ZERO)
+        }
     };
-    Material { kind, _pad0: 0, _pad1: 0, _pad2: 0, color_a: a, color_b: b }
+    let (cutout_pattern, cutout_scale, cutout_threshold) = cutout;
+    Material { kind, cutout_pattern, cutout_scale, cutout_threshold, color_a: a, color_b: b }
 }
 
 fn light(l: &LightDesc, default_samples: u32) -> Light {

@@ -156,6 +156,14 @@ fn check_material(m: &MaterialDesc) -> Checked {
             color("colors[1]", colors[1])?;
             positive("scale", *scale)
         }
+        MaterialDesc::Cutout { color: c, scale, threshold, .. } => {
+            color("color", *c)?;
+            positive("scale", *scale)?;
+            if !(*threshold > 0.0 && *threshold <= 1.0) {
+                return Err(format!("threshold must be in (0, 1] (got {threshold})"));
+            }
+            Ok(())
+        }
     }
 }
 

@@ -12,7 +12,7 @@ pub fn kinds() -> [(&'static str, Vec<&'static str>); 4] {
     [
         ("shapes", super::shape::kind_names()),
         ("meshes", vec!["box", "pyramid", "prism", "icosahedron", "(file = OBJ)"]),
-        ("materials", vec!["diffuse", "emissive", "checker"]),
+        ("materials", vec!["diffuse", "emissive", "checker", "cutout"]),
         ("lights", vec!["directional", "point", "rect"]),
     ]
 }
@@ -37,6 +37,9 @@ pub struct SceneFile {
     /// How rect lights' N x N shadow samples are placed.
     #[serde(default)]
     pub shadow_sampler: ShadowSampler,
+    /// How shadow rays are traced: `traceRay`, or inline ray queries.
+    #[serde(default)]
+    pub shadow_method: ShadowMethod,
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default)]
@@ -105,6 +108,20 @@ pub enum MaterialDesc {
     Emissive { color: [f32; 3], intensity: f32 },
     /// Alternating cubes of side `1 / scale` in object space.
     Checker { colors: [[f32; 3]; 2], scale: f32 },
+    /// Diffuse `color` with holes: where `pattern`'s alpha, over object-space x and z in cells
+    /// of side `1 / scale`, is below `threshold`, rays pass through (the any-hit stage).
+    Cutout { color: [f32; 3], pattern: CutoutPattern, scale: f32, threshold: f32 },
+}
+
+/// A cutout's alpha pattern.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum CutoutPattern {
+    /// Alpha 1 in even cells and 0 in odd ones: square holes.
+    Checker,
+    /// Alpha from 0 at each cell's centre to 1 half a cell away: round holes of radius
+    /// `threshold` half-cells.
+    Discs,
 }
 
 /// A light, by `kind`.
@@ -249,6 +266,17 @@ pub enum ShadowSampler {
     Stratified,
     /// N x N independent samples, each anywhere on the light.
     Random,
+}
+
+/// How ray generation traces shadow rays.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ShadowMethod {
+    /// `traceRay` with the shadow miss stage.
+    #[default]
+    Trace,
+    /// Inline ray queries (`VK_KHR_ray_query`) from the `raygen_query` stage.
+    Query,
 }
 
 impl ShadowSampler {

@@ -1,49 +1,78 @@
 //! What the ray tracing pipeline of a scene contains: its hit groups, in the order of the
 //! shader binding table, whether it traces shadow rays, and its specialisation.
 
-use twinray_shared::shapes::{Shape, SHAPES};
+use twinray_shared::shapes::{Shape, SHAPES, SHAPE_NAIVE};
 
-/// A hit group: the built-in triangle test, or a registered shape's intersection stage.
-/// Ordered as the SBT holds them: triangles, the robust shapes in registration order, then the
-/// naive variants.
+/// What a hit group intersects: triangles with the built-in test, or a registered shape with
+/// its intersection stage. Ordered as the SBT holds them: triangles, the robust shapes in
+/// registration order, then the naive variants.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
-pub enum HitGroup {
+pub enum HitGeometry {
     /// Meshes: the built-in triangle test.
     Triangles,
     /// `SHAPES[shape]`, with its naive variant's intersection stage when `naive`.
     Procedural { naive: bool, shape: usize },
 }
 
+/// A hit group: its geometry, and whether its objects are cutouts (an any-hit stage that
+/// ignores hits in their holes; other objects' instances are forced opaque and run none).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub struct HitGroup {
+    pub geometry: HitGeometry,
+    pub cutout: bool,
+}
+
+/// The any-hit module of cutout hit groups.
+pub const CUTOUT_ANY_HIT: &str = "cutout_any_hit";
+
 impl HitGroup {
-    /// "triangles", or the shape's name, with " (naive)" for a naive variant.
+    /// "triangles", or the shape's name, with " (naive)" for a naive variant and " (cutout)"
+    /// for cutouts.
     pub fn name(self) -> String {
-        match (self, self.shape()) {
-            (HitGroup::Procedural { naive: true, .. }, Some(s)) => format!("{} (naive)", s.name),
+        let base = match (self.geometry, self.shape()) {
+            (HitGeometry::Procedural { naive: true, .. }, Some(s)) => format!("{} (naive)", s.name),
             (_, Some(s)) => s.name.to_string(),
             _ => "triangles".into(),
+        };
+        if self.cutout {
+            format!("{base} (cutout)")
+        } else {
+            base
         }
     }
 
     /// The registered shape of a procedural group.
     pub fn shape(self) -> Option<&'static Shape> {
-        match self {
-            HitGroup::Triangles => None,
-            HitGroup::Procedural { shape, .. } => SHAPES.get(shape),
+        match self.geometry {
+            HitGeometry::Triangles => None,
+            HitGeometry::Procedural { shape, .. } => SHAPES.get(shape),
         }
     }
 
     /// The intersection module, for procedural groups (triangles use the built-in test).
     pub fn intersection_module(self) -> Option<&'static str> {
-        let naive = matches!(self, HitGroup::Procedural { naive: true, .. });
+        let naive = matches!(self.geometry, HitGeometry::Procedural { naive: true, .. });
         self.shape().and_then(|s| if naive { s.naive_module } else { Some(s.module) })
     }
 
     /// The closest-hit module of the group.
     pub fn closest_hit_module(self) -> &'static str {
-        match self {
-            HitGroup::Triangles => "triangle_closest_hit",
-            HitGroup::Procedural { .. } => "procedural_closest_hit",
+        match self.geometry {
+            HitGeometry::Triangles => "triangle_closest_hit",
+            HitGeometry::Procedural { .. } => "procedural_closest_hit",
         }
+    }
+
+    /// `ObjectData::shape` of its objects: the shape's hit kind, plus `SHAPE_NAIVE` for a
+    /// naive variant; 0 for triangles.
+    pub fn shape_routine(self) -> u32 {
+        let naive = matches!(self.geometry, HitGeometry::Procedural { naive: true, .. });
+        self.shape().map_or(0, |s| s.hit_kind + if naive { SHAPE_NAIVE } else { 0 })
+    }
+
+    /// The any-hit module, for cutout groups.
+    pub fn any_hit_module(self) -> Option<&'static str> {
+        self.cutout.then_some(CUTOUT_ANY_HIT)
     }
 }
 
@@ -58,4 +87,23 @@ pub struct PipelinePlan {
     pub samples_per_side: u32,
     /// `SHADOW_SAMPLER_STRATIFIED` or `SHADOW_SAMPLER_RANDOM`.
     pub shadow_sampler: u32,
+    /// Shadow rays traced inline by ray queries (`shadow_method = "query"`).
+    pub shadow_query: bool,
+}
+
+impl PipelinePlan {
+    /// The ray generation module that renders the scene: `raygen`, or `raygen_query` when
+    /// shadow rays are ray queries (then no shadow miss stage is needed).
+    pub fn render_raygen(&self) -> &'static str {
+        if self.shadow_query {
+            "raygen_query"
+        } else {
+            "raygen"
+        }
+    }
+
+    /// Whether the shadow miss stage is in the pipeline: shadow rays traced by `traceRay`.
+    pub fn shadow_miss(&self) -> bool {
+        self.shadows && !self.shadow_query
+    }
 }

@@ -34,6 +34,9 @@ pub struct InstanceRecord {
     pub mask: u32,
     /// The instance's SBT record offset (24 bits).
     pub sbt_offset: u32,
+    /// Forced opaque (no any-hit stage runs), or forced not opaque (its hit group's any-hit
+    /// stage runs for every candidate hit), whatever its BLAS's geometry says.
+    pub opaque: bool,
     pub blas_address: vk::DeviceAddress,
 }
 
@@ -312,13 +315,19 @@ fn aabb_bytes(b: &vk::AabbPositionsKHR) -> Vec<u8> {
 }
 
 /// VkAccelerationStructureInstanceKHR as bytes: the 3x4 row-major transform, custom index and
-/// mask, SBT offset and flags (culling off: procedural geometry has no facing), BLAS address.
+/// mask, SBT offset and flags (culling off: procedural geometry has no facing; forced opaque
+/// or not), BLAS address.
 fn instance_bytes(r: &InstanceRecord) -> Vec<u8> {
     let m = r.object_to_world;
     let rows = [m.row(0), m.row(1), m.row(2)];
     let mut bytes: Vec<u8> = rows.iter().flat_map(|row| row.to_array()).flat_map(f32::to_le_bytes).collect();
     let custom_index_and_mask = (r.custom_index & 0x00ff_ffff) | ((r.mask & 0xff) << 24);
-    let flags = vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE.as_raw();
+    let opacity = if r.opaque {
+        vk::GeometryInstanceFlagsKHR::FORCE_OPAQUE
+    } else {
+        vk::GeometryInstanceFlagsKHR::FORCE_NO_OPAQUE
+    };
+    let flags = (vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE | opacity).as_raw();
     let sbt_offset_and_flags = (r.sbt_offset & 0x00ff_ffff) | (flags << 24);
     bytes.extend_from_slice(&custom_index_and_mask.to_le_bytes());
     bytes.extend_from_slice(&sbt_offset_and_flags.to_le_bytes());
@@ -337,6 +346,7 @@ mod tests {
             custom_index: 5,
             mask: 2,
             sbt_offset: 7,
+            opaque: false,
             blas_address: 0x1234,
         };
         let bytes = instance_bytes(&record);
@@ -347,5 +357,10 @@ mod tests {
         assert_eq!(f32::from_bits(word(11)), 3.0);
         assert_eq!(word(12), 5 | (2 << 24));
         assert_eq!(word(13) & 0x00ff_ffff, 7);
+        let flags = vk::GeometryInstanceFlagsKHR::from_raw(word(13) >> 24);
+        assert!(flags.contains(vk::GeometryInstanceFlagsKHR::FORCE_NO_OPAQUE));
+        let opaque = instance_bytes(&InstanceRecord { opaque: true, ..record });
+        let flags = u32::from_le_bytes([opaque[52], opaque[53], opaque[54], opaque[55]]) >> 24;
+        assert!(vk::GeometryInstanceFlagsKHR::from_raw(flags).contains(vk::GeometryInstanceFlagsKHR::FORCE_OPAQUE));
     }
 }

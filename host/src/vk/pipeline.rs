@@ -25,10 +25,11 @@ pub struct StageDesc<'a> {
 pub enum GroupDesc {
     /// Ray generation, miss or callable.
     General(u32),
-    /// Built-in triangle test with a closest-hit stage.
-    Triangles { closest_hit: u32 },
-    /// An intersection stage for AABBs with a closest-hit stage.
-    Procedural { intersection: u32, closest_hit: u32 },
+    /// Built-in triangle test with a closest-hit stage and an any-hit stage
+    /// (`vk::SHADER_UNUSED_KHR` for none).
+    Triangles { closest_hit: u32, any_hit: u32 },
+    /// An intersection stage for AABBs with a closest-hit stage and an any-hit stage.
+    Procedural { intersection: u32, closest_hit: u32, any_hit: u32 },
 }
 
 /// Everything a pipeline is made of.
@@ -170,20 +171,21 @@ fn create_pipeline(
         .groups
         .iter()
         .map(|g| {
-            let (ty, general, intersection, closest_hit) = match *g {
-                GroupDesc::General(i) => (vk::RayTracingShaderGroupTypeKHR::GENERAL, i, unused, unused),
-                GroupDesc::Triangles { closest_hit } => {
-                    (vk::RayTracingShaderGroupTypeKHR::TRIANGLES_HIT_GROUP, unused, unused, closest_hit)
+            type Ty = vk::RayTracingShaderGroupTypeKHR;
+            let (ty, general, intersection, closest_hit, any_hit) = match *g {
+                GroupDesc::General(i) => (Ty::GENERAL, i, unused, unused, unused),
+                GroupDesc::Triangles { closest_hit, any_hit } => {
+                    (Ty::TRIANGLES_HIT_GROUP, unused, unused, closest_hit, any_hit)
                 }
-                GroupDesc::Procedural { intersection, closest_hit } => {
-                    (vk::RayTracingShaderGroupTypeKHR::PROCEDURAL_HIT_GROUP, unused, intersection, closest_hit)
+                GroupDesc::Procedural { intersection, closest_hit, any_hit } => {
+                    (Ty::PROCEDURAL_HIT_GROUP, unused, intersection, closest_hit, any_hit)
                 }
             };
             vk::RayTracingShaderGroupCreateInfoKHR::default()
                 .ty(ty)
                 .general_shader(general)
                 .closest_hit_shader(closest_hit)
-                .any_hit_shader(unused)
+                .any_hit_shader(any_hit)
                 .intersection_shader(intersection)
         })
         .collect();

@@ -30,6 +30,9 @@ fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf) -> Result
     let result = SpirvBuilder::new(crate_dir, TARGET)
         .capability(Capability::RayTracingKHR)
         .extension("SPV_KHR_ray_tracing")
+        // For `raygen_query`; rust-gpu declares a capability only in the modules that use it.
+        .capability(Capability::RayQueryKHR)
+        .extension("SPV_KHR_ray_query")
         .multimodule(true)
         // No spirv-opt performance passes: the driver optimises, as it does the GLSL set, which
         // glslang hands over unoptimised. On the H200 the passes cost the Rust ray generation

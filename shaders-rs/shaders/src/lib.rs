@@ -3,6 +3,8 @@
 //! Bindings are literals here because attributes need them; a test checks them against
 //! `twinray_shared::bindings`. Ray generation shades; the hit stages only describe the surface.
 #![cfg_attr(target_arch = "spirv", no_std)]
+// `spirv_std::ray_query!` declares its ray query object with inline assembly.
+#![cfg_attr(target_arch = "spirv", feature(asm_experimental_arch))]
 
 mod trace;
 
@@ -16,11 +18,15 @@ use twinray_shared::layout::{
 };
 use twinray_shared::{camera, random, shading};
 
-/// M x M primary samples per pixel; shades each and writes the mean colour and the ids of what
-/// the first sample hit.
+/// Defines a ray generation entry point `$name`: M x M primary samples per pixel; shades each
+/// with `$shade` (given the resources `$res`, declared by the entry as `$params`) and writes
+/// the mean colour and the ids of what the first sample hit.
+macro_rules! ray_generation {
+    ($(#[$doc:meta])* $name:ident, $shade:path, [$($params:tt)*], ($($res:ident),*)) => {
+$(#[$doc])*
 #[spirv(ray_generation)]
 #[allow(clippy::too_many_arguments)]
-pub fn raygen(
+pub fn $name(
     #[spirv(launch_id)] launch_id: UVec3,
     #[spirv(launch_size)] launch_size: UVec3,
     #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
@@ -32,7 +38,7 @@ pub fn raygen(
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
     #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
     #[spirv(ray_payload)] payload: &mut HitPayload,
-    #[spirv(ray_payload)] shadow: &mut ShadowPayload,
+    $($params)*
 ) {
     let pixel = launch_id.xy();
     let pixel_index = launch_id.y * launch_size.x + launch_id.x;
@@ -57,14 +63,14 @@ pub fn raygen(
             if sample == 0 {
                 first_hit = (payload.ids.x, payload.ids.y);
             }
-            sum += trace::shade(
+            sum += $shade(
                 tlas,
                 frame,
                 lights,
                 shadows != 0,
                 shadow_sampler == SHADOW_SAMPLER_STRATIFIED,
                 payload,
-                shadow,
+                $($res,)*
                 pixel_index,
                 sample,
                 &mut shadow_rays,
@@ -83,6 +89,26 @@ pub fn raygen(
     // SAFETY: launch_id lies inside the image, which the host sizes to the launch.
     unsafe { image.write(pixel, color.extend(1.0)) };
 }
+    };
+}
+
+ray_generation!(
+    /// Ray generation with shadow rays traced by `traceRay` (the shadow miss stage clears the
+    /// shadow payload).
+    raygen, trace::shade, [#[spirv(ray_payload)] shadow: &mut ShadowPayload,], (shadow)
+);
+ray_generation!(
+    /// Ray generation with shadow rays traced inline by ray queries (`VK_KHR_ray_query`): it
+    /// intersects procedural primitives and decides cutouts itself.
+    raygen_query,
+    trace::shade_query,
+    [
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+    ],
+    (objects, primitives, materials)
+);
 
 /// The probe: one ray per launch index from the ray buffer, traced through the same pipeline
 /// as renders (so it measures the very intersection and hit stages images use); writes what
@@ -100,7 +126,7 @@ pub fn probe(
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
         tlas.trace_ray(
-            RayFlags::OPAQUE,
+            RayFlags::NONE,
             0xff,
             0,
             0,
@@ -151,9 +177,16 @@ macro_rules! procedural_intersection {
         ) {
             let p = primitives[(primitive_base + primitive_id) as usize];
             if let Some(hit) = $intersect(origin, direction, &p, t_min, t_max) {
+                // Put back what was there if the hit is not taken (a cutout's any-hit stage
+                // ignored it): lavapipe 25.0.7 hands closest-hit the attribute last written,
+                // not the one reported with the committed hit (Vulkan-Docs #2681), so a hole
+                // in front of a shape gave it this normal. Elsewhere the store is dead.
+                let before = *normal;
                 *normal = hit.normal;
                 // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
-                unsafe { spirv_std::arch::report_intersection(hit.t, $hit_kind) };
+                if !unsafe { spirv_std::arch::report_intersection(hit.t, $hit_kind) } {
+                    *normal = before;
+                }
             }
         }
     };
@@ -199,6 +232,24 @@ pub fn procedural_closest_hit(
     let (geometric, shading_normal) = shading::surface_normals(world_to_object.to_mat3(), *normal, *normal, direction);
     let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
     describe(payload, origin + direction * t, t, geometric, shading_normal, color, ids);
+}
+
+/// Cutouts, for primary and shadow rays alike: a candidate hit in a hole of the object's
+/// alpha pattern is ignored, and the ray goes on.
+#[spirv(any_hit)]
+pub fn cutout_any_hit(
+    #[spirv(instance_id)] object: u32,
+    #[spirv(object_ray_origin)] object_origin: Vec3,
+    #[spirv(object_ray_direction)] object_direction: Vec3,
+    #[spirv(ray_tmax)] t: f32,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+) {
+    let material = materials[objects[object as usize].material as usize];
+    if !shading::cutout_solid(&material, object_origin + object_direction * t) {
+        // SAFETY: called from an any-hit stage, as OpIgnoreIntersectionKHR requires.
+        unsafe { spirv_std::arch::ignore_intersection() };
+    }
 }
 
 /// Triangle meshes: normals from the triangle's vertices (interpolated with the barycentrics).

@@ -1,22 +1,24 @@
-//! Tracing from ray generation: primary rays, and shading with shadow rays to every light.
+//! Tracing from ray generation: primary rays, and shading with shadow rays to every light,
+//! traced with `traceRay` or inline with ray queries.
 //! Free functions rather than a struct of references: rust-gpu cannot keep references in a
 //! struct (logical SPIR-V has no pointers to pointers).
 
 use spirv_std::glam::{Vec3, Vec4Swizzles};
-use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
+use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
 use twinray_shared::bindings::{
     LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MAX, T_MIN,
 };
 use twinray_shared::camera::Ray;
-use twinray_shared::layout::{FrameUniform, HitPayload, Light, ShadowPayload};
-use twinray_shared::{lighting, offset, random};
+use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
+use twinray_shared::{lighting, offset, random, shading, shapes};
 
-/// Traces a primary ray into `payload`.
+/// Traces a primary ray into `payload`. No ray is traced `OPAQUE`: instances say whether they
+/// are (cutouts are not, and their any-hit stage runs), so scenes without cutouts run none.
 pub fn primary(tlas: &AccelerationStructure, ray: Ray, payload: &mut HitPayload) {
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
         tlas.trace_ray(
-            RayFlags::OPAQUE,
+            RayFlags::NONE,
             0xff,
             0,
             0,
@@ -30,19 +32,25 @@ pub fn primary(tlas: &AccelerationStructure, ray: Ray, payload: &mut HitPayload)
     }
 }
 
-/// Colour seen along a primary ray: the background, an emitter's radiance, or the albedo times
-/// the light arriving from every light (with shadows where lights cast them, and `shadows`, a
-/// specialisation constant, is on). Rect lights' shadow samples are `stratified` (one per
-/// cell of an N x N grid) or independent. Adds the shadow rays it traces to `shadow_rays`.
+/// Defines `$name`, the colour seen along a primary ray: the background, an emitter's radiance,
+/// or the albedo times the light arriving from every light (with shadows where lights cast
+/// them, and `shadows`, a specialisation constant, is on). Rect lights' shadow samples are
+/// `stratified` (one per cell of an N x N grid) or independent. Adds the shadow rays it traces
+/// to `shadow_rays`. Shadow rays go to `$visible` with the resources `$res`: one body for
+/// `traceRay` and ray-query shadows (a closure would be a struct of references, which rust-gpu
+/// cannot build).
+macro_rules! shading {
+    ($(#[$doc:meta])* $name:ident, $visible:ident, $($res:ident: $ty:ty),*) => {
+$(#[$doc])*
 #[allow(clippy::too_many_arguments)]
-pub fn shade(
+pub fn $name(
     tlas: &AccelerationStructure,
     frame: &FrameUniform,
     lights: &[Light],
     shadows: bool,
     stratified: bool,
     hit: &HitPayload,
-    shadow: &mut ShadowPayload,
+    $($res: $ty,)*
     pixel: u32,
     sample: u32,
     shadow_rays: &mut u32,
@@ -96,7 +104,7 @@ pub fn shade(
             if cosine > 0.0 {
                 let lit = if casts {
                     *shadow_rays += 1;
-                    visible(tlas, origin, s.direction, s.distance, shadow)
+                    $visible(tlas, origin, s.direction, s.distance, $($res),*)
                 } else {
                     true
                 };
@@ -114,6 +122,17 @@ pub fn shade(
     }
     hit.color.xyz() * light_sum
 }
+    };
+}
+
+shading!(
+    /// Shading with `traceRay` shadows.
+    shade, visible, shadow: &mut ShadowPayload
+);
+shading!(
+    /// Shading with shadows traced inline by ray queries (`shadow_method = "query"`).
+    shade_query, visible_query, objects: &[ObjectData], primitives: &[Primitive], materials: &[Material]
+);
 
 /// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`.
 fn visible(
@@ -124,10 +143,58 @@ fn visible(
     shadow: &mut ShadowPayload,
 ) -> bool {
     shadow.occluded = 1;
-    let flags = RayFlags::OPAQUE | RayFlags::TERMINATE_ON_FIRST_HIT | RayFlags::SKIP_CLOSEST_HIT_SHADER;
+    let flags = RayFlags::TERMINATE_ON_FIRST_HIT | RayFlags::SKIP_CLOSEST_HIT_SHADER;
     // SAFETY: as in `primary`; the shadow miss shader is in the SBT whenever shadows are on.
     unsafe {
         tlas.trace_ray(flags, MASK_OCCLUDER as i32, 0, 0, MISS_SHADOW as i32, origin, 0.0, direction, distance, shadow);
     }
     shadow.occluded == 0
+}
+
+/// As [`visible`], traced inline with a ray query: no shader runs, so every candidate the
+/// traversal cannot decide alone is decided here, as the pipeline's stages would decide it:
+/// a procedural primitive by its shape's routine (`ObjectData::shape`), and for cutouts (the
+/// only instances not forced opaque) whether the hit is in a hole. Any hit ends the query.
+fn visible_query(
+    tlas: &AccelerationStructure,
+    origin: Vec3,
+    direction: Vec3,
+    distance: f32,
+    objects: &[ObjectData],
+    primitives: &[Primitive],
+    materials: &[Material],
+) -> bool {
+    spirv_std::ray_query!(let mut query);
+    let mut occluded = false;
+    // SAFETY: the TLAS is bound and built; `query` is this invocation's own ray query, and
+    // each candidate is read only after `proceed` returned true.
+    unsafe {
+        query.initialize(tlas, RayFlags::TERMINATE_ON_FIRST_HIT, MASK_OCCLUDER, origin, 0.0, direction, distance);
+        while query.proceed() {
+            // Indices are checked, not bounds-checked: no panic path inside a loop (see above).
+            let object = query.get_candidate_intersection_instance_id() as usize;
+            let primitive =
+                (query.get_candidate_intersection_instance_custom_index() + query.get_candidate_intersection_primitive_index()) as usize;
+            if object < objects.len() {
+                let data = *objects.get_unchecked(object);
+                let o = query.get_candidate_intersection_object_ray_origin();
+                let d = query.get_candidate_intersection_object_ray_direction();
+                let mut t = -1.0;
+                if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
+                    t = query.get_candidate_intersection_t();
+                } else if primitive < primitives.len() {
+                    let p = *primitives.get_unchecked(primitive);
+                    if let Some(hit) = shapes::intersect_shape(data.shape, o, d, &p, 0.0, distance) {
+                        t = hit.t;
+                    }
+                }
+                let material = data.material as usize;
+                if t >= 0.0 && material < materials.len() && shading::cutout_solid(materials.get_unchecked(material), o + d * t) {
+                    occluded = true;
+                    query.terminate();
+                }
+            }
+        }
+        !occluded && query.get_committed_intersection_type() == CommittedIntersection::None
+    }
 }

@@ -59,6 +59,17 @@ pub const SHADOW_SAMPLER_RANDOM: u32 = 1;
 pub const MATERIAL_DIFFUSE: u32 = 0;
 pub const MATERIAL_EMISSIVE: u32 = 1;
 pub const MATERIAL_CHECKER: u32 = 2;
+/// Diffuse with holes: hits where its alpha pattern is transparent are ignored by the any-hit
+/// stage, for primary and shadow rays alike.
+pub const MATERIAL_CUTOUT: u32 = 3;
+
+/// Cutout alpha patterns (`Material::cutout_pattern`), over object-space x and z.
+pub const CUTOUT_NONE: u32 = 0;
+/// Alpha 1 in even cells, 0 in odd ones: square holes.
+pub const CUTOUT_CHECKER: u32 = 1;
+/// Alpha rising from 0 at each cell's centre to 1 at half a cell from it: round holes of
+/// radius `threshold` half-cells.
+pub const CUTOUT_DISCS: u32 = 2;
 
 /// Light kinds (`Light::kind`).
 pub const LIGHT_DIRECTIONAL: u32 = 0;

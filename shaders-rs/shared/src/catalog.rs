@@ -18,10 +18,11 @@ pub enum Stage {
     Miss,
     Intersection,
     ClosestHit,
+    AnyHit,
 }
 
 impl Stage {
-    pub const ALL: [Stage; 4] = [Stage::Raygen, Stage::Miss, Stage::Intersection, Stage::ClosestHit];
+    pub const ALL: [Stage; 5] = [Stage::Raygen, Stage::Miss, Stage::Intersection, Stage::ClosestHit, Stage::AnyHit];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -29,6 +30,7 @@ impl Stage {
             Stage::Miss => "miss",
             Stage::Intersection => "intersection",
             Stage::ClosestHit => "closest_hit",
+            Stage::AnyHit => "any_hit",
         }
     }
 
@@ -37,6 +39,7 @@ impl Stage {
         match self {
             Stage::Raygen => 5313,
             Stage::Intersection => 5314,
+            Stage::AnyHit => 5315,
             Stage::ClosestHit => 5316,
             Stage::Miss => 5317,
         }
@@ -79,6 +82,7 @@ macro_rules! module_table {
         /// shape registry ([`crate::procedural_shapes`]).
         pub const MODULES: &[ModuleSpec] = &[
             ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl: GlslSource::File("raygen.rgen") },
+            ModuleSpec { name: "raygen_query", stage: Stage::Raygen, glsl: GlslSource::File("raygen_query.rgen") },
             ModuleSpec { name: "probe", stage: Stage::Raygen, glsl: GlslSource::File("probe.rgen") },
             ModuleSpec { name: "miss", stage: Stage::Miss, glsl: GlslSource::File("miss.rmiss") },
             ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl: GlslSource::File("shadow.rmiss") },
@@ -100,6 +104,7 @@ macro_rules! module_table {
                 glsl: GlslSource::File("procedural.rchit"),
             },
             ModuleSpec { name: "triangle_closest_hit", stage: Stage::ClosestHit, glsl: GlslSource::File("triangle.rchit") },
+            ModuleSpec { name: "cutout_any_hit", stage: Stage::AnyHit, glsl: GlslSource::File("cutout.rahit") },
         ];
     };
 }
@@ -176,8 +181,6 @@ pub struct BindingSpec {
     pub stages: &'static [Stage],
 }
 
-const HIT: &[Stage] = &[Stage::Intersection, Stage::ClosestHit];
-
 /// The descriptor set every pipeline shares (set `bindings::DESCRIPTOR_SET`): every binding a
 /// module may declare, and the stages allowed to use it.
 pub const LAYOUT: [BindingSpec; 12] = {
@@ -187,9 +190,13 @@ pub const LAYOUT: [BindingSpec; 12] = {
         BindingSpec { binding: b::BINDING_TLAS, kind: AccelerationStructure, stages: &[Raygen] },
         BindingSpec { binding: b::BINDING_IMAGE, kind: StorageImage, stages: &[Raygen] },
         BindingSpec { binding: b::BINDING_FRAME, kind: UniformBuffer, stages: &[Raygen, Miss] },
-        BindingSpec { binding: b::BINDING_OBJECTS, kind: StorageBuffer, stages: &[ClosestHit] },
-        BindingSpec { binding: b::BINDING_PRIMITIVES, kind: StorageBuffer, stages: HIT },
-        BindingSpec { binding: b::BINDING_MATERIALS, kind: StorageBuffer, stages: &[ClosestHit] },
+        BindingSpec { binding: b::BINDING_OBJECTS, kind: StorageBuffer, stages: &[Raygen, ClosestHit, AnyHit] },
+        BindingSpec {
+            binding: b::BINDING_PRIMITIVES,
+            kind: StorageBuffer,
+            stages: &[Raygen, Intersection, ClosestHit],
+        },
+        BindingSpec { binding: b::BINDING_MATERIALS, kind: StorageBuffer, stages: &[Raygen, ClosestHit, AnyHit] },
         BindingSpec { binding: b::BINDING_LIGHTS, kind: StorageBuffer, stages: &[Raygen] },
         BindingSpec { binding: b::BINDING_HIT_IDS, kind: StorageBuffer, stages: &[Raygen] },
         BindingSpec { binding: b::BINDING_VERTICES, kind: StorageBuffer, stages: &[ClosestHit] },

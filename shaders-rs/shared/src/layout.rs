@@ -37,7 +37,10 @@ pub struct ObjectData {
     pub vertex_base: u32,
     /// Index of this object's first index in the index buffer (meshes).
     pub index_base: u32,
-    pub _pad0: u32,
+    /// The intersection routine of its procedural shape: the shape's hit kind, plus
+    /// `shapes::SHAPE_NAIVE` for the naive variant; 0 for meshes. Read where primitives are
+    /// intersected without the pipeline's intersection stages (ray queries).
+    pub shape: u32,
 }
 const _: () = assert!(core::mem::size_of::<ObjectData>() == 16);
 
@@ -70,19 +73,40 @@ const _: () = assert!(core::mem::size_of::<Vertex>() == 32);
 
 /// A material. Diffuse: `color_a` is the albedo. Emissive: `color_a` is the emitted radiance.
 /// Checker: `color_a` and `color_b` alternate in cubes of side `1 / color_b.w` in object space.
+/// Cutout: albedo `color_a`, with holes where the alpha pattern `cutout_pattern` is below
+/// `cutout_threshold` (see [`crate::shading::cutout_alpha`]).
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
 #[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
 pub struct Material {
     pub kind: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
-    pub _pad2: u32,
+    /// `CUTOUT_NONE`, `CUTOUT_CHECKER` or `CUTOUT_DISCS`.
+    pub cutout_pattern: u32,
+    /// Pattern cells per object-space unit.
+    pub cutout_scale: f32,
+    /// The surface is a hole where the pattern's alpha is below this.
+    pub cutout_threshold: f32,
     pub color_a: Vec4,
     pub color_b: Vec4,
 }
 const _: () = assert!(core::mem::size_of::<Material>() == 48);
+
+#[cfg(not(target_arch = "spirv"))]
+impl Material {
+    /// A white cutout material with `pattern` (`CUTOUT_*`) in cells of side `1 / scale` and
+    /// holes where its alpha is below `threshold`.
+    pub fn cutout(pattern: u32, scale: f32, threshold: f32) -> Material {
+        Material {
+            kind: crate::bindings::MATERIAL_CUTOUT,
+            cutout_pattern: pattern,
+            cutout_scale: scale,
+            cutout_threshold: threshold,
+            color_a: Vec4::ONE,
+            color_b: Vec4::ZERO,
+        }
+    }
+}
 
 /// A light. Directional: `position` holds the unit direction towards the light. Point: the
 /// position. Rect: the centre, with edge vectors `u` and `v`, sampled `samples` x `samples`.

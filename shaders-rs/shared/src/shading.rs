@@ -1,8 +1,8 @@
 //! Surfaces: world-space normals of transformed objects, and material colours.
 
-use crate::bindings::MATERIAL_CHECKER;
+use crate::bindings::{CUTOUT_CHECKER, CUTOUT_DISCS, MATERIAL_CHECKER};
 use crate::layout::Material;
-use glam::{Mat3, Vec3, Vec4Swizzles};
+use glam::{Mat3, Vec2, Vec3, Vec4Swizzles};
 
 /// World-space unit normal from an object-space normal; `world_to_object` is the 3x3 part of
 /// the instance's inverse transform (normals transform by the inverse transpose).
@@ -60,6 +60,32 @@ pub fn material_color(material: &Material, object_point: Vec3, object_normal: Ve
     }
 }
 
+/// A cutout's alpha at an object-space point, from its pattern over x and z (extruded along
+/// y, so a plane or rectangle in its own space shows the pattern flat): 1 where solid.
+/// Checker: 1 in cells whose x and z indices add up even, else 0. Discs: the distance from
+/// the cell's centre in half-cells, clamped to 1. Materials without a cutout are solid.
+pub fn cutout_alpha(material: &Material, object_point: Vec3) -> f32 {
+    let q = Vec2::new(object_point.x, object_point.z) * material.cutout_scale;
+    let cell = q.floor();
+    if material.cutout_pattern == CUTOUT_CHECKER {
+        let parity = (cell.x + cell.y) as i32 & 1;
+        if parity == 0 {
+            1.0
+        } else {
+            0.0
+        }
+    } else if material.cutout_pattern == CUTOUT_DISCS {
+        ((q - cell - Vec2::splat(0.5)) * 2.0).length().min(1.0)
+    } else {
+        1.0
+    }
+}
+
+/// Whether a cutout's surface is there at an object-space point (not a hole).
+pub fn cutout_solid(material: &Material, object_point: Vec3) -> bool {
+    cutout_alpha(material, object_point) >= material.cutout_threshold
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -70,9 +96,9 @@ mod tests {
     fn checker_on_a_cell_boundary_is_stable() {
         let m = Material {
             kind: MATERIAL_CHECKER,
-            _pad0: 0,
-            _pad1: 0,
-            _pad2: 0,
+            cutout_pattern: 0,
+            cutout_scale: 0.0,
+            cutout_threshold: 0.0,
             color_a: Vec4::new(1.0, 1.0, 1.0, 1.0),
             color_b: Vec4::new(0.0, 0.0, 0.0, 2.0),
         };
@@ -84,5 +110,24 @@ mod tests {
             material_color(&m, Vec3::new(0.3, 0.0, 0.3), Vec3::Y),
             material_color(&m, Vec3::new(0.7, 0.0, 0.3), Vec3::Y)
         );
+    }
+
+    /// Checker holes alternate over x and z and ignore y; disc holes sit at cell centres with
+    /// the threshold as their radius in half-cells.
+    #[test]
+    fn cutout_patterns() {
+        let checker = Material::cutout(CUTOUT_CHECKER, 2.0, 0.5);
+        assert!(cutout_solid(&checker, Vec3::new(0.25, 0.0, 0.25)));
+        assert!(!cutout_solid(&checker, Vec3::new(0.75, 0.0, 0.25)));
+        assert!(cutout_solid(&checker, Vec3::new(0.75, 5.0, 0.75)));
+        assert!(!cutout_solid(&checker, Vec3::new(-0.25, 0.0, 0.25)), "cells below zero alternate too");
+        let discs = Material::cutout(CUTOUT_DISCS, 1.0, 0.5);
+        assert!(!cutout_solid(&discs, Vec3::new(0.5, 0.0, 0.5)), "a cell's centre is a hole");
+        assert!(!cutout_solid(&discs, Vec3::new(0.5 + 0.24, 0.0, 0.5)));
+        assert!(cutout_solid(&discs, Vec3::new(0.5 + 0.26, 0.0, 0.5)));
+        assert!(cutout_solid(&discs, Vec3::new(0.0, 0.0, 0.0)), "a cell's corner is solid");
+        let mut plain = discs;
+        plain.cutout_pattern = crate::bindings::CUTOUT_NONE;
+        assert!(cutout_solid(&plain, Vec3::new(0.5, 0.0, 0.5)));
     }
 }

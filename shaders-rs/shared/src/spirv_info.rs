@@ -7,6 +7,11 @@ const MAGIC: u32 = 0x0723_0203;
 const OP_CAPABILITY: u32 = 17;
 const OP_ENTRY_POINT: u32 = 15;
 const OP_DECORATE: u32 = 71;
+const OP_EXTENSION: u32 = 10;
+/// `OpTypeRayQueryKHR`, the type every ray query instruction works on.
+const OP_TYPE_RAY_QUERY: u32 = 4472;
+/// The `RayQueryKHR` capability (the same number as the opcode above).
+pub const CAPABILITY_RAY_QUERY: u32 = 4472;
 const DECORATION_BINDING: u32 = 33;
 const DECORATION_DESCRIPTOR_SET: u32 = 34;
 
@@ -63,6 +68,31 @@ pub fn parse(bytes: &[u8]) -> Result<ModuleInfo, String> {
     Ok(info)
 }
 
+/// `bytes` without the `RayQueryKHR` capability and the `SPV_KHR_ray_query` extension when the
+/// module has no ray query type (so uses no ray query instruction); unchanged otherwise.
+pub fn without_unused_ray_query(bytes: &[u8]) -> Result<Vec<u8>, String> {
+    parse(bytes)?;
+    let words: Vec<u32> = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let mut instructions = Vec::new();
+    let mut at = 5;
+    while at < words.len() {
+        let count = ((words[at] >> 16) as usize).max(1);
+        instructions.push(&words[at..(at + count).min(words.len())]);
+        at += count;
+    }
+    let opcode = |i: &[u32]| i[0] & 0xffff;
+    if instructions.iter().any(|i| opcode(i) == OP_TYPE_RAY_QUERY) {
+        return Ok(bytes.to_vec());
+    }
+    let unused = |i: &&[u32]| match (opcode(i), &i[1..]) {
+        (OP_CAPABILITY, [cap]) => *cap == CAPABILITY_RAY_QUERY,
+        (OP_EXTENSION, name) => literal_string(name) == "SPV_KHR_ray_query",
+        _ => false,
+    };
+    let kept = words[..5].iter().chain(instructions.iter().filter(|i| !unused(i)).flat_map(|i| i.iter()));
+    Ok(kept.flat_map(|w| w.to_le_bytes()).collect())
+}
+
 /// A nul-terminated UTF-8 string packed four bytes to a word.
 fn literal_string(words: &[u32]) -> String {
     let bytes: Vec<u8> = words.iter().flat_map(|w| w.to_le_bytes()).take_while(|&b| b != 0).collect();
@@ -107,6 +137,27 @@ mod tests {
         assert_eq!(info.capabilities, vec![4479]);
         assert_eq!(info.entry_points, vec![(5313, "main".to_string())]);
         assert_eq!(info.bindings, vec![(0, 3)]);
+    }
+
+    /// A module that declares ray queries without a ray query type loses the declaration;
+    /// one with the type keeps it.
+    #[test]
+    fn drops_an_unused_ray_query_capability() {
+        let ext = |name: &[u8; 20]| -> Vec<u32> {
+            let mut w = vec![(6 << 16) | OP_EXTENSION];
+            w.extend(name.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])));
+            w
+        };
+        let mut module = vec![MAGIC, 0x0001_0400, 0, 100, 0, (2 << 16) | OP_CAPABILITY, 4479];
+        module.extend([(2 << 16) | OP_CAPABILITY, CAPABILITY_RAY_QUERY]);
+        module.extend(ext(b"SPV_KHR_ray_query\0\0\0"));
+        module.extend(ext(b"SPV_KHR_ray_tracing\0"));
+        let trimmed = parse(&without_unused_ray_query(&words_to_bytes(&module)).unwrap()).unwrap();
+        assert_eq!(trimmed.capabilities, vec![4479]);
+        assert_eq!(trimmed.instruction_count, 2, "the ray tracing extension stays");
+        module.extend([(2 << 16) | OP_TYPE_RAY_QUERY, 9]);
+        let kept = without_unused_ray_query(&words_to_bytes(&module)).unwrap();
+        assert_eq!(kept, words_to_bytes(&module));
     }
 
     #[test]

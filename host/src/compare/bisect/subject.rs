@@ -80,7 +80,8 @@ impl Subject for ImageSubject<'_> {
     }
 
     fn modules(&self) -> Vec<&'static str> {
-        plan_modules(&self.scene.build().plan, "raygen")
+        let plan = self.scene.build().plan;
+        plan_modules(&plan, plan.render_raygen())
     }
 
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<RenderOutput>>> {

@@ -41,6 +41,41 @@ macro_rules! procedural_shapes {
     };
 }
 
+/// Added to a shape's hit kind in [`crate::layout::ObjectData::shape`] for its naive variant.
+pub const SHAPE_NAIVE: u32 = 0x80;
+
+macro_rules! dispatch {
+    ($($name:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
+        /// The first hit of `shape`'s routine (its hit kind, plus [`SHAPE_NAIVE`] for the naive
+        /// variant) with the primitive, as its intersection stage finds it; for stages that
+        /// meet procedural primitives themselves (ray queries). `None` for an unknown shape.
+        pub fn intersect_shape(
+            shape: u32,
+            origin: glam::Vec3,
+            direction: glam::Vec3,
+            primitive: &crate::layout::Primitive,
+            t_min: f32,
+            t_max: f32,
+        ) -> Option<crate::surface::SurfaceHit> {
+            $(
+                if shape == $kind {
+                    return $module::intersect(origin, direction, primitive, t_min, t_max);
+                }
+                $(
+                    // The naive variant `$naive`.
+                    if shape == $kind + SHAPE_NAIVE {
+                        let _ = stringify!($naive);
+                        return $module::naive_intersect(origin, direction, primitive, t_min, t_max);
+                    }
+                )?
+            )*
+            None
+        }
+    };
+}
+
+crate::procedural_shapes!(dispatch);
+
 /// A registered procedural shape.
 #[cfg(not(target_arch = "spirv"))]
 #[derive(Debug)]

@@ -1,0 +1,58 @@
+// The body of both ray generation stages (raygen.rgen, raygen_query.rgen), twin of the Rust
+// `ray_generation!` macro: M x M primary samples per pixel, shaded here; writes the mean colour
+// and the ids of what the first sample hit. With SHADOW_QUERY defined, shadow rays are traced
+// inline by ray queries (trace.glsl), which read the objects, primitives and materials.
+#include "twinray_layout.glsl"
+
+layout(set = DESCRIPTOR_SET, binding = BINDING_TLAS) uniform accelerationStructureEXT tlas;
+layout(set = DESCRIPTOR_SET, binding = BINDING_IMAGE, rgba32f) uniform writeonly image2D image;
+layout(set = DESCRIPTOR_SET, binding = BINDING_FRAME) uniform Frame { FrameUniform frame; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights { Light lights[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_HIT_IDS, std430) buffer HitIds { uint hit_ids[]; };
+
+layout(constant_id = SPEC_SHADOWS) const uint SHADOWS = 0u;
+layout(constant_id = SPEC_SAMPLES_PER_SIDE) const uint SAMPLES_PER_SIDE = 1u;
+layout(constant_id = SPEC_SHADOW_SAMPLER) const uint SHADOW_SAMPLER = SHADOW_SAMPLER_STRATIFIED;
+
+layout(location = 0) rayPayloadEXT HitPayload payload;
+#ifdef SHADOW_QUERY
+layout(set = DESCRIPTOR_SET, binding = BINDING_OBJECTS, std430) readonly buffer Objects { ObjectData objects[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { Primitive primitives[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials { Material materials[]; };
+#else
+layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;
+#endif
+
+#include "camera.glsl"
+#include "trace.glsl"
+
+void main() {
+    uvec2 pixel = gl_LaunchIDEXT.xy;
+    uint pixel_index = gl_LaunchIDEXT.y * gl_LaunchSizeEXT.x + gl_LaunchIDEXT.x;
+    vec3 sum = vec3(0.0);
+    uint shadow_rays = 0u;
+    for (uint sy = 0u; sy < SAMPLES_PER_SIDE; sy++) {
+        for (uint sx = 0u; sx < SAMPLES_PER_SIDE; sx++) {
+            uint sample_index = sy * SAMPLES_PER_SIDE + sx;
+            // Jitter only when there is more than one sample.
+            float r1 = 0.5, r2 = 0.5;
+            if (SAMPLES_PER_SIDE > 1u) {
+                r1 = random(frame.seed, pixel_index, sample_index, 0u);
+                r2 = random(frame.seed, pixel_index, sample_index, 1u);
+            }
+            vec2 offset = sample_offset(sx, sy, SAMPLES_PER_SIDE, r1, r2);
+            vec3 origin, direction;
+            primary_ray(frame, pixel, gl_LaunchSizeEXT.xy, offset, origin, direction);
+            trace_primary(origin, direction);
+            if (sample_index == 0u) {
+                hit_ids[HIT_IDS_PER_PIXEL * pixel_index] = payload.ids.x;
+                hit_ids[HIT_IDS_PER_PIXEL * pixel_index + 1u] = payload.ids.y;
+            }
+            sum += shade(SHADOWS != 0u, SHADOW_SAMPLER == SHADOW_SAMPLER_STRATIFIED, pixel_index, sample_index,
+                         shadow_rays);
+        }
+    }
+    hit_ids[HIT_IDS_PER_PIXEL * pixel_index + 2u] = shadow_rays;
+    vec3 color = sum / float(SAMPLES_PER_SIDE * SAMPLES_PER_SIDE);
+    imageStore(image, ivec2(pixel), vec4(color, 1.0));
+}
