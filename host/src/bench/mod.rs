@@ -10,6 +10,7 @@ pub mod metrics;
 pub mod pipelines;
 pub mod plots;
 pub mod samplers;
+pub mod stages;
 pub mod tables;
 
 pub use samplers::side_of;

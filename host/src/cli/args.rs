@@ -330,3 +330,27 @@ pub struct PipelineBenchArgs {
     #[arg(long, default_value = "bench/out-pipelines")]
     pub out: PathBuf,
 }
+
+#[derive(Args)]
+pub struct StageBenchArgs {
+    /// Built-in scene names or scene files [default: cutout and showcase].
+    #[arg(default_values_t = ["cutout".to_string(), "showcase".to_string()])]
+    pub scenes: Vec<String>,
+    /// Variants, comma-separated; each is timed against the first: as-is, opaque (cutouts made
+    /// diffuse), solid-cutouts (any-hit without holes), trace-shadows, query-shadows.
+    #[arg(long, default_value = "opaque,solid-cutouts,as-is")]
+    pub variants: String,
+    /// Shader sets, as for `bench --sets`; each variant is also timed against the first set.
+    #[arg(long, default_value = "rust,glsl")]
+    pub sets: String,
+    /// Rounds: every variant and set renders once per round, in an order rotated each round.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub rounds: u32,
+    /// Image size and trace counts per render [default: each scene's size, 10 timed traces
+    /// after 2 untimed].
+    #[command(flatten)]
+    pub frame: FrameArgs,
+    /// Output folder for table.md and results.json (created if missing).
+    #[arg(long, default_value = "bench/out-stages")]
+    pub out: PathBuf,
+}

@@ -14,7 +14,7 @@ mod summary;
 
 use args::{
     AnimateBenchArgs, BenchArgs, BisectArgs, CompareArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs, ReferenceArgs,
-    RenderArgs, StabilityArgs,
+    RenderArgs, StabilityArgs, StageBenchArgs,
 };
 use clap::{Parser, Subcommand};
 use std::process::ExitCode;
@@ -72,6 +72,10 @@ enum Command {
     /// Pipeline creation time: both sets and every per-stage mix, whole or linked from
     /// libraries, joined by 1 or N threads, from a cold or a warm pipeline cache.
     PipelineBench(PipelineBenchArgs),
+    /// What a stage kind or tracing method costs: scenes in variants (opaque, cutouts with
+    /// any-hit, shadows by traceRay or ray queries), timed against the first variant, with
+    /// each image against that variant's.
+    StageBench(StageBenchArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -112,6 +116,7 @@ fn main() -> ExitCode {
         Command::Bench(args) => bench::bench(&cli.global, args),
         Command::AnimateBench(args) => animate::animate_bench(&cli.global, args),
         Command::PipelineBench(args) => pipelines::pipeline_bench(&cli.global, args),
+        Command::StageBench(args) => pipelines::stage_bench(&cli.global, args),
     };
     match result {
         Ok(code) => code,

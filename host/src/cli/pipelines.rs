@@ -1,7 +1,8 @@
 //! `twinray pipeline-bench`: pipeline creation time per configuration, each measured in a
-//! process of its own, and the trace time of linked pipelines against whole ones.
+//! process of its own, and the trace time of linked pipelines against whole ones; and
+//! `twinray stage-bench`: what stage kinds and tracing methods cost.
 
-use crate::args::{GlobalArgs, PipelineBenchArgs};
+use crate::args::{GlobalArgs, PipelineBenchArgs, StageBenchArgs};
 use crate::session::{context, options, render_options, COMPARE_TRACES};
 use anyhow::Result;
 use std::process::{Command, ExitCode};
@@ -30,11 +31,7 @@ pub fn pipeline_bench(global: &GlobalArgs, args: PipelineBenchArgs) -> Result<Ex
     for scene in &trace_scenes {
         render_options(scene, &args.frame, COMPARE_TRACES)?;
     }
-    std::fs::create_dir_all(&args.out).map_err(|source| Error::Io {
-        what: "creating",
-        path: args.out.clone(),
-        source,
-    })?;
+    create_dir(&args.out)?;
     let _ = std::fs::remove_dir_all(&cache);
     let progress = |step: &str| eprintln!("pipeline-bench: {step}");
     let configs = Config::all(&threads);
@@ -63,6 +60,41 @@ pub fn pipeline_bench(global: &GlobalArgs, args: PipelineBenchArgs) -> Result<Ex
     print!("{text}");
     println!("report in {}", args.out.display());
     Ok(ExitCode::SUCCESS)
+}
+
+pub fn stage_bench(global: &GlobalArgs, args: StageBenchArgs) -> Result<ExitCode> {
+    use twinray::bench::stages::{run, table, StagePlan, Variant};
+    let scenes = args.scenes.iter().map(|name| Scene::load(Some(name))).collect::<Result<Vec<_>, _>>()?;
+    let variants = Variant::parse_list(&args.variants)?;
+    let sets = twinray::shaders::parse_sets(&args.sets)?;
+    for scene in &scenes {
+        render_options(scene, &args.frame, COMPARE_TRACES)?;
+    }
+    create_dir(&args.out)?;
+    let ctx = context(global)?;
+    let plan = StagePlan { scenes: &scenes, variants: &variants, sets: &sets, rounds: args.rounds };
+    let opts = |s: &Scene| render_options(s, &args.frame, COMPARE_TRACES).expect("checked above");
+    let (rows, skipped) = run(&ctx, &plan, opts, |step| eprintln!("stage-bench: {step}"))?;
+    let text = format!(
+        "{} on {}, {} rounds; times are medians of every timed trace of every round\n\n{}",
+        std::env::args().collect::<Vec<_>>().join(" "),
+        ctx.info.name,
+        args.rounds,
+        table(&rows, &skipped)
+    );
+    let json = serde_json::to_string_pretty(&serde_json::json!({
+        "device": ctx.info.name, "driver": ctx.info.driver_info, "rows": rows, "skipped": skipped,
+    }))?;
+    for (name, body) in [("table.md", &text), ("results.json", &json)] {
+        twinray::util::output::write_atomically(&args.out.join(name), body.as_bytes())?;
+    }
+    print!("{text}");
+    println!("report in {}", args.out.display());
+    Ok(ExitCode::SUCCESS)
+}
+
+fn create_dir(dir: &std::path::Path) -> Result<(), Error> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.to_path_buf(), source })
 }
 
 fn thread_counts(text: Option<&str>) -> Result<Vec<usize>, Error> {

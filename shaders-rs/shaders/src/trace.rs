@@ -173,8 +173,8 @@ fn visible_query(
         while query.proceed() {
             // Indices are checked, not bounds-checked: no panic path inside a loop (see above).
             let object = query.get_candidate_intersection_instance_id() as usize;
-            let primitive =
-                (query.get_candidate_intersection_instance_custom_index() + query.get_candidate_intersection_primitive_index()) as usize;
+            let primitive = (query.get_candidate_intersection_instance_custom_index()
+                + query.get_candidate_intersection_primitive_index()) as usize;
             if object < objects.len() {
                 let data = *objects.get_unchecked(object);
                 let o = query.get_candidate_intersection_object_ray_origin();
@@ -188,10 +188,15 @@ fn visible_query(
                         t = hit.t;
                     }
                 }
+                // Nested `if`s rather than `&&` inside a loop, as above.
                 let material = data.material as usize;
-                if t >= 0.0 && material < materials.len() && shading::cutout_solid(materials.get_unchecked(material), o + d * t) {
-                    occluded = true;
-                    query.terminate();
+                if t >= 0.0 {
+                    if material < materials.len() {
+                        if shading::cutout_solid(materials.get_unchecked(material), o + d * t) {
+                            occluded = true;
+                            query.terminate();
+                        }
+                    }
                 }
             }
         }

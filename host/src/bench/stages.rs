@@ -1,0 +1,257 @@
+//! `twinray stage-bench`: what a stage kind or tracing method costs, as GPU time against the
+//! image it gives. Each scene renders in variants (made opaque, cutouts without holes, shadows
+//! by `traceRay` or by ray queries, ...) with each shader set; every variant's time is set
+//! against the first variant's with the same set, and its image against that variant's image.
+//! Variants use different uploads, so they are timed in rounds: in each round every variant
+//! and set renders once (order rotated from round to round), and each median pools the timed
+//! traces of every round.
+
+use super::metrics::rmse;
+use crate::compare::diff;
+use crate::error::{Error, Result};
+use crate::render::{render, RenderOptions, RenderOutput};
+use crate::scene::file::{CutoutPattern, MaterialDesc};
+use crate::scene::{Scene, ShadowMethod};
+use crate::shaders::ShaderSet;
+use crate::util::stats::Spread;
+use crate::vk::context::Context;
+use serde::Serialize;
+use std::sync::Arc;
+
+/// A way to render a scene.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum Variant {
+    /// The scene as written.
+    AsIs,
+    /// Every cutout material made diffuse: no any-hit stage anywhere.
+    Opaque,
+    /// Cutouts keep their any-hit stage, with disc holes too small to hit: the image of
+    /// `Opaque`, at the cost of running any-hit for every candidate.
+    SolidCutouts,
+    /// Shadow rays traced by `traceRay` with the shadow miss stage.
+    TraceShadows,
+    /// Shadow rays traced inline by ray queries (`VK_KHR_ray_query`).
+    QueryShadows,
+}
+
+impl Variant {
+    pub const ALL: [Variant; 5] =
+        [Variant::AsIs, Variant::Opaque, Variant::SolidCutouts, Variant::TraceShadows, Variant::QueryShadows];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Variant::AsIs => "as-is",
+            Variant::Opaque => "opaque",
+            Variant::SolidCutouts => "solid-cutouts",
+            Variant::TraceShadows => "trace-shadows",
+            Variant::QueryShadows => "query-shadows",
+        }
+    }
+
+    /// Comma-separated variant names.
+    pub fn parse_list(text: &str) -> Result<Vec<Variant>> {
+        let variants = text
+            .split(',')
+            .map(str::trim)
+            .map(|word| {
+                Variant::ALL.into_iter().find(|v| v.name() == word).ok_or_else(|| {
+                    let names: Vec<_> = Variant::ALL.iter().map(|v| v.name()).collect();
+                    Error::Input(format!("unknown variant {word:?} (expected {})", names.join(", ")))
+                })
+            })
+            .collect::<Result<Vec<_>>>()?;
+        if variants.is_empty() {
+            return Err(Error::Input("no variants".into()));
+        }
+        Ok(variants)
+    }
+
+    /// `scene` as this variant renders it; `None` where the variant means nothing for it
+    /// (cutout variants of a scene without cutouts, shadow methods of one without shadows).
+    pub fn apply(self, scene: &Scene) -> Option<Scene> {
+        let mut out = scene.clone();
+        let cutouts = out.file.materials.values_mut().filter(|m| matches!(m, MaterialDesc::Cutout { .. }));
+        let shadows = scene.build().plan.shadows;
+        match self {
+            Variant::AsIs => {}
+            Variant::Opaque | Variant::SolidCutouts => {
+                let mut any = false;
+                for m in cutouts {
+                    any = true;
+                    if let MaterialDesc::Cutout { color, pattern, threshold, .. } = m {
+                        if self == Variant::Opaque {
+                            *m = MaterialDesc::Diffuse { color: *color };
+                        } else {
+                            (*pattern, *threshold) = (CutoutPattern::Discs, f32::MIN_POSITIVE);
+                        }
+                    }
+                }
+                if !any {
+                    return None;
+                }
+            }
+            Variant::TraceShadows if shadows => out.file.shadow_method = ShadowMethod::Trace,
+            Variant::QueryShadows if shadows => out.file.shadow_method = ShadowMethod::Query,
+            Variant::TraceShadows | Variant::QueryShadows => return None,
+        }
+        Some(out)
+    }
+
+    /// What the device must have for it, if it lacks it.
+    fn lacking(self, ctx: &Context) -> Option<&'static str> {
+        (self == Variant::QueryShadows && !ctx.info.ray_query).then_some("VK_KHR_ray_query")
+    }
+}
+
+/// One scene, variant and set.
+#[derive(Clone, Debug, Serialize)]
+pub struct StageRow {
+    pub scene: String,
+    pub variant: Variant,
+    pub set: String,
+    pub width: u32,
+    pub height: u32,
+    /// GPU time of every timed trace of every round.
+    pub gpu_ms: Spread,
+    /// Its median over the first variant's with the same set.
+    pub against_first: f64,
+    /// Its median over the same variant's with the first set.
+    pub against_first_set: f64,
+    /// RMSE of its image (display values) against the first variant's with the same set.
+    pub rmse: f64,
+    pub hit_mismatches: u64,
+    pub primary_rays: u64,
+    pub shadow_rays: u64,
+    pub raygen_stack_bytes: u64,
+}
+
+/// A variant that could not be measured, and why.
+#[derive(Clone, Debug, Serialize)]
+pub struct Skipped {
+    pub scene: String,
+    pub variant: Variant,
+    pub why: String,
+}
+
+/// What to measure: `variants` of `scenes`, each with `sets`, `rounds` times each with
+/// `opts.runs` timed traces, at the size `size` gives per scene.
+pub struct StagePlan<'a> {
+    pub scenes: &'a [Scene],
+    pub variants: &'a [Variant],
+    pub sets: &'a [ShaderSet],
+    pub rounds: u32,
+}
+
+/// Every measurement of `plan`, reporting each render to `progress`.
+pub fn run(
+    ctx: &Arc<Context>,
+    plan: &StagePlan,
+    opts: impl Fn(&Scene) -> RenderOptions,
+    mut progress: impl FnMut(&str),
+) -> Result<(Vec<StageRow>, Vec<Skipped>)> {
+    let (mut rows, mut skipped) = (Vec::new(), Vec::new());
+    for scene in plan.scenes {
+        let opts = opts(scene);
+        let mut runs: Vec<(Variant, Scene)> = Vec::new();
+        for &variant in plan.variants {
+            let why = match (variant.apply(scene), variant.lacking(ctx)) {
+                (None, _) => "means nothing for this scene".to_string(),
+                (Some(_), Some(lacking)) => format!("{} lacks {lacking}", ctx.info.name),
+                (Some(s), None) => {
+                    runs.push((variant, s));
+                    continue;
+                }
+            };
+            skipped.push(Skipped { scene: scene.name().to_string(), variant, why });
+        }
+        let cells: Vec<(usize, usize)> =
+            (0..runs.len()).flat_map(|v| (0..plan.sets.len()).map(move |s| (v, s))).collect();
+        let mut times = vec![Vec::new(); cells.len()];
+        let mut last: Vec<Option<RenderOutput>> = (0..cells.len()).map(|_| None).collect();
+        for round in 0..plan.rounds.max(1) as usize {
+            for k in 0..cells.len() {
+                let c = (k + round) % cells.len();
+                let (v, s) = cells[c];
+                progress(&format!("{} {} {} (round {})", scene.name(), runs[v].0.name(), plan.sets[s], round + 1));
+                let out = render(ctx, &runs[v].1, &plan.sets[s], &opts)?;
+                times[c].extend(&out.gpu_ms);
+                last[c] = Some(out);
+            }
+        }
+        rows.extend(rows_of(scene, &runs, plan.sets, &cells, &times, &last));
+    }
+    Ok((rows, skipped))
+}
+
+fn rows_of(
+    scene: &Scene,
+    runs: &[(Variant, Scene)],
+    sets: &[ShaderSet],
+    cells: &[(usize, usize)],
+    times: &[Vec<f64>],
+    last: &[Option<RenderOutput>],
+) -> Vec<StageRow> {
+    let median = |c: usize| Spread::of(&times[c]).map_or(f64::NAN, |s| s.median);
+    let cell = |v: usize, s: usize| cells.iter().position(|&x| x == (v, s)).unwrap_or(0);
+    let mut rows = Vec::new();
+    for (c, &(v, s)) in cells.iter().enumerate() {
+        let Some(out) = &last[c] else { continue };
+        let first = cell(0, s);
+        let base = last[first].as_ref().unwrap_or(out);
+        let d = diff(out, base, scene.file.parity.pixel_threshold);
+        rows.push(StageRow {
+            scene: scene.name().to_string(),
+            variant: runs[v].0,
+            set: sets[s].to_string(),
+            width: out.width,
+            height: out.height,
+            gpu_ms: Spread::of(&times[c]).unwrap_or(Spread {
+                median: f64::NAN,
+                q1: f64::NAN,
+                q3: f64::NAN,
+                samples: 0,
+            }),
+            against_first: median(c) / median(first),
+            against_first_set: median(c) / median(cell(v, 0)),
+            rmse: rmse(&out.linear, &base.linear),
+            hit_mismatches: d.hit_mismatches,
+            primary_rays: out.rays.primary,
+            shadow_rays: out.rays.shadow,
+            raygen_stack_bytes: out.raygen_stack_bytes,
+        });
+    }
+    rows
+}
+
+/// The rows as a Markdown table, and the skipped variants under it.
+pub fn table(rows: &[StageRow], skipped: &[Skipped]) -> String {
+    let mut s = String::from(
+        "| scene | variant | set | size | GPU ms (median) | IQR | against first variant | against first set | RMSE against first variant | hit mismatches | shadow rays | raygen stack |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+    );
+    for r in rows {
+        s += &format!(
+            "| {} | {} | {} | {}x{} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2e} | {} | {} | {} |\n",
+            r.scene,
+            r.variant.name(),
+            r.set,
+            r.width,
+            r.height,
+            r.gpu_ms.median,
+            r.gpu_ms.q3 - r.gpu_ms.q1,
+            r.against_first,
+            r.against_first_set,
+            r.rmse,
+            r.hit_mismatches,
+            r.shadow_rays,
+            r.raygen_stack_bytes
+        );
+    }
+    for k in skipped {
+        s += &format!("\n{} {}: not measured ({})", k.scene, k.variant.name(), k.why);
+    }
+    if !skipped.is_empty() {
+        s.push('\n');
+    }
+    s
+}

@@ -1,0 +1,73 @@
+//! `twinray stage-bench` on lavapipe: every variant of the cutout scene is measured against the
+//! first; cutouts without holes cost any-hit but give the opaque image, and ray-query shadows
+//! give the image `traceRay` shadows give; variants that mean nothing for a scene are
+//! reported, not measured; bad input exits 2.
+
+mod common;
+
+use common::twinray;
+
+#[test]
+fn stage_bench_measures_every_variant_against_the_first() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("report");
+    let args = [
+        "stage-bench",
+        "cutout",
+        "spheres",
+        "--variants",
+        "as-is,query-shadows,opaque,solid-cutouts",
+        "--sets",
+        "rust",
+        "--rounds",
+        "1",
+        "--runs",
+        "1",
+        "--warmup",
+        "0",
+        "--width",
+        "64",
+        "--height",
+        "48",
+        "--out",
+    ];
+    let mut args: Vec<&str> = args.to_vec();
+    let out_text = out.to_string_lossy().into_owned();
+    args.push(&out_text);
+    let run = twinray(&args, dir.path());
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    let row = |variant: &str| rows.iter().find(|r| r["scene"] == "cutout" && r["variant"] == variant).unwrap();
+    assert_eq!(rows.len(), 4 + 1, "four cutout variants and spheres as-is: {rows:#?}");
+    assert_eq!(row("as-is")["against_first"], 1.0);
+    assert_eq!(row("query-shadows")["rmse"], 0.0, "query shadows are traced shadows");
+    assert_eq!(row("query-shadows")["shadow_rays"], row("as-is")["shadow_rays"]);
+    assert!(row("opaque")["rmse"].as_f64().unwrap() > 0.01, "the holes are gone");
+    let solid = row("solid-cutouts");
+    assert_eq!(solid["rmse"], row("opaque")["rmse"], "no holes: the opaque image");
+    assert!(solid["gpu_ms"]["median"].as_f64().unwrap() > 0.0);
+    // Spheres has no cutouts and no shadows: those variants are skipped, with the reason.
+    let skipped = json["skipped"].as_array().unwrap();
+    assert_eq!(skipped.len(), 3, "{skipped:#?}");
+    assert!(skipped.iter().all(|s| s["scene"] == "spheres" && s["why"].as_str().unwrap().contains("nothing")));
+    let table = std::fs::read_to_string(out.join("table.md")).unwrap();
+    assert!(table.contains("| cutout | solid-cutouts | rust |") && table.contains("not measured"), "{table}");
+}
+
+#[test]
+fn stage_bench_refuses_bad_input() {
+    let dir = tempfile::tempdir().unwrap();
+    for (args, want) in [
+        (vec!["stage-bench", "--variants", "opaque,glowing"], "glowing"),
+        (vec!["stage-bench", "no-such-scene"], "no-such-scene"),
+        (vec!["stage-bench", "--sets", "rust,fortran"], "fortran"),
+        (vec!["stage-bench", "--rounds", "0"], "rounds"),
+    ] {
+        let out = twinray(&args, dir.path());
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(err.contains(want) && err.lines().count() == 1, "{args:?}: {err}");
+    }
+}
