@@ -1,7 +1,25 @@
-// Twin of twinray_shaders::describe: the payload of a hit. Included by the closest-hit stages
-// after they declare `payload`.
+// Twin of twinray_shaders::describe: the payload of a hit, and the material's colour. Included
+// by the closest-hit stages after they declare `payload`.
 #ifndef TWINRAY_CLOSEST_HIT_GLSL
 #define TWINRAY_CLOSEST_HIT_GLSL
+
+// SURFACE_COLOR(material, object point, object normal): the material's colour, computed here
+// or, compiled with CALLABLE_MATERIALS (material_shading = "callable"), by the callable the
+// material's kind selects in the SBT's callable region.
+#ifdef CALLABLE_MATERIALS
+layout(location = 0) callableDataEXT MaterialCall material_call;
+
+vec3 call_material(Material material, vec3 object_point, vec3 object_normal) {
+    material_call.material = material;
+    material_call.point = vec4(object_point, 1.0);
+    material_call.normal = vec4(object_normal, 0.0);
+    executeCallableEXT(material.kind, 0);
+    return material_call.color.xyz;
+}
+#define SURFACE_COLOR call_material
+#else
+#define SURFACE_COLOR material_color
+#endif
 
 void describe(vec3 point, float t, vec3 geometric, vec3 shading, vec3 color, uvec4 ids) {
     payload.position = vec4(point, t);

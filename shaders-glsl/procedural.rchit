@@ -1,5 +1,6 @@
 #version 460
-// Twin of twinray_shaders::procedural_closest_hit: every procedural shape, described from the
+// Twin of twinray_shaders::procedural_closest_hit (with CALLABLE_MATERIALS defined, of
+// procedural_closest_hit_callable): every procedural shape, described from the
 // reported object-space normal.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
@@ -20,7 +21,7 @@ void main() {
     Material material = materials[data.material];
     vec3 tint = primitives[gl_InstanceCustomIndexEXT + gl_PrimitiveID].tint.xyz;
     float t = gl_RayTmaxEXT;
-    vec3 color = material_color(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, normal) * tint;
+    vec3 color = SURFACE_COLOR(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, normal) * tint;
     vec3 geometric, shading;
     surface_normals(mat3(gl_WorldToObjectEXT), normal, normal, gl_WorldRayDirectionEXT, geometric, shading);
     uvec4 ids = uvec4(gl_InstanceID, gl_PrimitiveID, material.kind, gl_HitKindEXT);

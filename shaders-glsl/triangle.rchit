@@ -1,5 +1,6 @@
 #version 460
-// Twin of twinray_shaders::triangle_closest_hit: triangle meshes, normals from the vertices.
+// Twin of twinray_shaders::triangle_closest_hit (with CALLABLE_MATERIALS defined, of
+// triangle_closest_hit_callable): triangle meshes, normals from the vertices.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 #include "twinray_layout.glsl"
@@ -26,7 +27,7 @@ void main() {
     triangle_normals(v0.position.xyz, v1.position.xyz, v2.position.xyz, v0.normal.xyz, v1.normal.xyz, v2.normal.xyz,
                      barycentrics.x, barycentrics.y, object_geometric, object_shading);
     float t = gl_RayTmaxEXT;
-    vec3 color = material_color(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, object_geometric);
+    vec3 color = SURFACE_COLOR(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, object_geometric);
     vec3 geometric, shading;
     surface_normals(mat3(gl_WorldToObjectEXT), object_geometric, object_shading, gl_WorldRayDirectionEXT, geometric,
                     shading);

@@ -126,6 +126,14 @@ struct ShadowPayload {
     uint occluded; // offset 0
 };
 
+// 96 bytes, as twinray_shared::layout::MaterialCall
+struct MaterialCall {
+    Material material; // offset 0
+    vec4 point; // offset 48
+    vec4 normal; // offset 64
+    vec4 color; // offset 80
+};
+
 // 32 bytes, as twinray_shared::layout::ProbeRay
 struct ProbeRay {
     vec4 origin; // offset 0

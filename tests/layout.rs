@@ -28,7 +28,9 @@ fn glsl_sources_include_the_generated_layout() {
     let dir = repo_root().join("shaders-glsl");
     for spec in twinray_shared::catalog::MODULES {
         let (file, text) = match spec.glsl {
-            GlslSource::File(file) => (file.to_string(), std::fs::read_to_string(dir.join(file))),
+            GlslSource::File(file) | GlslSource::Variant { file, .. } => {
+                (file.to_string(), std::fs::read_to_string(dir.join(file)))
+            }
             // A shape's stage is generated around its file, which must include the layout itself.
             GlslSource::Shape { shape, .. } => {
                 let file = format!("shapes/{shape}.glsl");

@@ -8,7 +8,7 @@ use crate::setup::NIGHTLY;
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use twinray_shared::catalog::{Language, ModuleSpec, MODULES};
+use twinray_shared::catalog::{GlslSource, Language, ModuleSpec, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 
 const LAYOUT_INCLUDE: &str = "shaders-glsl/twinray_layout.glsl";
@@ -230,15 +230,13 @@ fn build_glsl(root: &Path, out: &Path, output: Output) -> Result<()> {
             }
             None => include.join(spec.glsl_file()),
         };
-        run_tool(
-            output,
-            Command::new("glslangValidator")
-                .args(["-V", "--target-env", "spirv1.4", "-o"])
-                .arg(out.join(format!("{}.spv", spec.name)))
-                .arg(format!("-I{}", include.display()))
-                .arg(&source),
-        )
-        .with_context(|| format!("compiling {}", source.display()))?;
+        let mut command = Command::new("glslangValidator");
+        command.args(["-V", "--target-env", "spirv1.4", "-o"]).arg(out.join(format!("{}.spv", spec.name)));
+        if let GlslSource::Variant { define, .. } = spec.glsl {
+            command.arg(format!("-D{define}"));
+        }
+        run_tool(output, command.arg(format!("-I{}", include.display())).arg(&source))
+            .with_context(|| format!("compiling {}", source.display()))?;
     }
     Ok(())
 }

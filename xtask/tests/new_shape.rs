@@ -119,8 +119,14 @@ fn new_shape_scaffolds_a_shape_that_builds_passes_parity_and_touches_four_files(
     );
     assert_eq!(
         changed,
-        ["docs/scene-format.md", "shaders-glsl/twinray_layout.glsl", "shaders-rs/shared/src/shapes/mod.rs"],
-        "files changed: the registry by hand, the docs' table and the GLSL include by cargo xtask shaders"
+        [
+            "docs/scene-format.md",
+            "shaders-glsl/shape_dispatch.glsl",
+            "shaders-glsl/twinray_layout.glsl",
+            "shaders-rs/shared/src/shapes/mod.rs"
+        ],
+        "files changed: the registry by hand; the docs' table, the GLSL shape dispatch (ray queries) and the GLSL \
+         include by cargo xtask shaders"
     );
     let registry = String::from_utf8_lossy(&after["shaders-rs/shared/src/shapes/mod.rs"]).into_owned();
     let kind = twinray_shared::shapes::SHAPES.iter().map(|s| s.hit_kind).max().unwrap_or(0) + 1;

@@ -1,6 +1,6 @@
 //! `twinray stage-bench`: what a stage kind or tracing method costs, as GPU time against the
 //! image it gives. Each scene renders in variants (made opaque, cutouts without holes, shadows
-//! by `traceRay` or by ray queries, ...) with each shader set; every variant's time is set
+//! by `traceRay` or by ray queries, materials inline or by callables) with each shader set; every variant's time is set
 //! against the first variant's with the same set, and its image against that variant's image.
 //! Variants use different uploads, so they are timed in rounds: in each round every variant
 //! and set renders once (order rotated from round to round), and each median pools the timed
@@ -11,7 +11,7 @@ use crate::compare::diff;
 use crate::error::{Error, Result};
 use crate::render::{render, RenderOptions, RenderOutput};
 use crate::scene::file::{CutoutPattern, MaterialDesc};
-use crate::scene::{Scene, ShadowMethod};
+use crate::scene::{MaterialShading, Scene, ShadowMethod};
 use crate::shaders::ShaderSet;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
@@ -33,11 +33,22 @@ pub enum Variant {
     TraceShadows,
     /// Shadow rays traced inline by ray queries (`VK_KHR_ray_query`).
     QueryShadows,
+    /// Materials' colours computed in the closest-hit stages.
+    InlineMaterials,
+    /// Materials' colours computed by callables chosen through the SBT.
+    CallableMaterials,
 }
 
 impl Variant {
-    pub const ALL: [Variant; 5] =
-        [Variant::AsIs, Variant::Opaque, Variant::SolidCutouts, Variant::TraceShadows, Variant::QueryShadows];
+    pub const ALL: [Variant; 7] = [
+        Variant::AsIs,
+        Variant::Opaque,
+        Variant::SolidCutouts,
+        Variant::TraceShadows,
+        Variant::QueryShadows,
+        Variant::InlineMaterials,
+        Variant::CallableMaterials,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -46,6 +57,8 @@ impl Variant {
             Variant::SolidCutouts => "solid-cutouts",
             Variant::TraceShadows => "trace-shadows",
             Variant::QueryShadows => "query-shadows",
+            Variant::InlineMaterials => "inline-materials",
+            Variant::CallableMaterials => "callable-materials",
         }
     }
 
@@ -94,6 +107,8 @@ impl Variant {
             Variant::TraceShadows if shadows => out.file.shadow_method = ShadowMethod::Trace,
             Variant::QueryShadows if shadows => out.file.shadow_method = ShadowMethod::Query,
             Variant::TraceShadows | Variant::QueryShadows => return None,
+            Variant::InlineMaterials => out.file.material_shading = MaterialShading::Inline,
+            Variant::CallableMaterials => out.file.material_shading = MaterialShading::Callable,
         }
         Some(out)
     }

@@ -337,7 +337,8 @@ pub struct StageBenchArgs {
     #[arg(default_values_t = ["cutout".to_string(), "showcase".to_string()])]
     pub scenes: Vec<String>,
     /// Variants, comma-separated; each is timed against the first: as-is, opaque (cutouts made
-    /// diffuse), solid-cutouts (any-hit without holes), trace-shadows, query-shadows.
+    /// diffuse), solid-cutouts (any-hit without holes), trace-shadows, query-shadows,
+    /// inline-materials, callable-materials.
     #[arg(long, default_value = "opaque,solid-cutouts,as-is")]
     pub variants: String,
     /// Shader sets, as for `bench --sets`; each variant is also timed against the first set.

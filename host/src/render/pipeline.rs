@@ -17,8 +17,10 @@ use twinray_shared::catalog::{DescriptorKind, LAYOUT};
 /// A scene's pipeline and what the SBT and reports need to know of it.
 pub struct ScenePipeline {
     pub rt: RtPipeline,
-    /// Groups per SBT region (raygen, miss, hit).
-    pub group_counts: [u32; 3],
+    /// The group of each record of each SBT region (raygen, miss, hit, callable).
+    pub sbt_records: [Vec<u32>; 4],
+    /// Groups in the pipeline.
+    pub group_count: u32,
     /// Names of the modules in the pipeline, in stage order (for tests and reports).
     pub modules: Vec<&'static str>,
     /// The libraries it was linked from (none when made whole), kept while it lives.
@@ -50,6 +52,7 @@ pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
         Stage::Intersection => vk::ShaderStageFlags::INTERSECTION_KHR,
         Stage::ClosestHit => vk::ShaderStageFlags::CLOSEST_HIT_KHR,
         Stage::AnyHit => vk::ShaderStageFlags::ANY_HIT_KHR,
+        Stage::Callable => vk::ShaderStageFlags::CALLABLE_KHR,
     }
 }
 
@@ -65,14 +68,8 @@ pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static s
         names.push(group.closest_hit_module());
         names.extend(group.any_hit_module());
     }
-    let mut seen = Vec::new();
-    names.retain(|n| {
-        !seen.contains(n) && {
-            seen.push(*n);
-            true
-        }
-    });
-    names
+    names.extend(plan.callables());
+    crate::scene::each_once(names)
 }
 
 /// The stages of a plan's pipeline, in stage order.
@@ -106,7 +103,6 @@ impl ScenePipeline {
         let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
         let groups = groups(plan, &names);
         require_device_features(ctx, &modules)?;
-        let misses = if plan.shadow_miss() { 2 } else { 1 };
         let bindings = descriptor_bindings();
         let stages: Vec<_> = modules
             .iter()
@@ -127,7 +123,8 @@ impl ScenePipeline {
         };
         Ok(ScenePipeline {
             rt,
-            group_counts: [1, misses, plan.hit_groups.len() as u32],
+            sbt_records: sbt_records(plan),
+            group_count: groups.len() as u32,
             modules: names,
             _libraries: held,
         })
@@ -186,8 +183,30 @@ fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8])
     LibraryDesc { stages, group, spec_bytes }
 }
 
-/// SBT order: raygen, miss (`MISS_PRIMARY`), shadow miss (`MISS_SHADOW`), then the hit groups
-/// in the plan's order (an instance's SBT offset is its group's index there).
+/// The group of each SBT record, by region: raygen, the misses, the hit groups (an instance's
+/// SBT offset is its group's index in the plan), and for callable materials one record per
+/// material kind (the kind is the index `executeCallable` is given), each the group of its
+/// kind's callable, or of the first callable for a kind no material uses.
+fn sbt_records(plan: &PipelinePlan) -> [Vec<u32>; 4] {
+    let misses = if plan.shadow_miss() { 2 } else { 1 };
+    let hits = 1 + misses;
+    let first_callable = hits + plan.hit_groups.len() as u32;
+    let callables = plan.callables();
+    let callable_records = if callables.is_empty() {
+        Vec::new()
+    } else {
+        (0..b::MATERIAL_KINDS)
+            .map(|kind| {
+                let name = crate::scene::material_callable(kind);
+                first_callable + callables.iter().position(|c| *c == name).unwrap_or(0) as u32
+            })
+            .collect()
+    };
+    [vec![0], (1..hits).collect(), (hits..first_callable).collect(), callable_records]
+}
+
+/// SBT order: raygen, miss (`MISS_PRIMARY`), shadow miss (`MISS_SHADOW`), the hit groups in the
+/// plan's order, then the material callables.
 fn groups(plan: &PipelinePlan, names: &[&'static str]) -> Vec<GroupDesc> {
     let index = |name: &str| names.iter().position(|n| *n == name).map_or(vk::SHADER_UNUSED_KHR, |i| i as u32);
     let mut groups = vec![GroupDesc::General(0), GroupDesc::General(index("miss"))];
@@ -202,5 +221,6 @@ fn groups(plan: &PipelinePlan, names: &[&'static str]) -> Vec<GroupDesc> {
             None => GroupDesc::Triangles { closest_hit, any_hit },
         });
     }
+    groups.extend(plan.callables().iter().map(|c| GroupDesc::General(index(c))));
     groups
 }

@@ -119,7 +119,7 @@ pub(crate) fn prepare_on(
         buffers,
     };
     let descriptors = DescriptorSet::new(ctx, pipeline.rt.set_layout, &pool_sizes(&descriptor_bindings()), &targets)?;
-    let sbt = ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_counts)?;
+    let sbt = ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_count, &pipeline.sbt_records)?;
     Ok(Prepared { one_shot: OneShot::new(ctx)?, image, pipeline, descriptors, sbt, _resources: resources })
 }
 

@@ -64,7 +64,7 @@ impl Trace<'_> {
                 &self.sbt.raygen,
                 &self.sbt.miss,
                 &self.sbt.hit,
-                &Default::default(),
+                &self.sbt.callable,
                 self.launch.0,
                 self.launch.1,
                 1,

@@ -2,7 +2,7 @@
 //! one TLAS instance per object, and the pipeline plan — only the hit groups, miss shaders and
 //! specialisation the scene uses.
 
-use super::file::{CutoutPattern, LightDesc, MaterialDesc, SceneFile, ShadowMethod, ShadowSampler};
+use super::file::{CutoutPattern, LightDesc, MaterialDesc, MaterialShading, SceneFile, ShadowMethod, ShadowSampler};
 use super::mesh::MeshData;
 use super::plan::{HitGeometry, HitGroup, PipelinePlan};
 use super::shape::{Formula, ShapeDesc};
@@ -101,7 +101,9 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         scene.materials.keys().enumerate().map(|(i, n)| (n.as_str(), i as u32)).collect();
     let mut slots: BTreeMap<&str, ShapeSlot> = BTreeMap::new();
     let mut geometry = Geometry::default();
-    let group_of = |o: &super::file::ObjectDesc| hit_group(&scene.shapes[&o.shape], &scene.materials[&o.material]);
+    let callable = scene.material_shading == MaterialShading::Callable;
+    let group_of =
+        |o: &super::file::ObjectDesc| hit_group(&scene.shapes[&o.shape], &scene.materials[&o.material], callable);
     let mut groups: Vec<HitGroup> = scene.objects.iter().map(group_of).collect();
     groups.sort();
     groups.dedup();
@@ -129,6 +131,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         });
     }
     let lights = lights(scene);
+    let materials: Vec<Material> = scene.materials.values().map(material).collect();
     let plan = PipelinePlan {
         hit_groups: groups,
         shadows: lights.iter().any(|l| l.shadows != 0),
@@ -138,10 +141,18 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
             ShadowSampler::Random => b::SHADOW_SAMPLER_RANDOM,
         },
         shadow_query: scene.shadow_method == ShadowMethod::Query,
+        callable_kinds: if callable { material_kinds(&materials) } else { Vec::new() },
     };
-    let materials = scene.materials.values().map(material).collect();
     let Geometry { blases, primitives, vertices, indices } = geometry;
     SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights }
+}
+
+/// The kinds of `materials`, each once, in kind order.
+fn material_kinds(materials: &[Material]) -> Vec<u32> {
+    let mut kinds: Vec<u32> = materials.iter().map(|m| m.kind).collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    kinds
 }
 
 /// What a frame of a moving scene rewrites on the GPU, from the scene posed at that frame.
@@ -182,7 +193,7 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
     }
 }
 
-fn hit_group(shape: &ShapeDesc, material: &MaterialDesc) -> HitGroup {
+fn hit_group(shape: &ShapeDesc, material: &MaterialDesc, callable: bool) -> HitGroup {
     let geometry = match shape {
         ShapeDesc::Procedural(p) => HitGeometry::Procedural {
             naive: p.formula == Formula::Naive && p.shape.naive_module.is_some(),
@@ -190,7 +201,7 @@ fn hit_group(shape: &ShapeDesc, material: &MaterialDesc) -> HitGroup {
         },
         ShapeDesc::Mesh(_) => HitGeometry::Triangles,
     };
-    HitGroup { geometry, cutout: matches!(material, MaterialDesc::Cutout { .. }) }
+    HitGroup { geometry, cutout: matches!(material, MaterialDesc::Cutout { .. }), callable }
 }
 
 /// Scale, then rotation about x, y and z (degrees), then translation.

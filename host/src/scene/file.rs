@@ -40,6 +40,9 @@ pub struct SceneFile {
     /// How shadow rays are traced: `traceRay`, or inline ray queries.
     #[serde(default)]
     pub shadow_method: ShadowMethod,
+    /// Where materials' colours are computed: in the closest-hit stages, or by callables.
+    #[serde(default)]
+    pub material_shading: MaterialShading,
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default)]
@@ -277,6 +280,17 @@ pub enum ShadowMethod {
     Trace,
     /// Inline ray queries (`VK_KHR_ray_query`) from the `raygen_query` stage.
     Query,
+}
+
+/// Where the closest-hit stages get a material's colour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum MaterialShading {
+    /// Computed in the closest-hit stage.
+    #[default]
+    Inline,
+    /// Computed by the callable shader that the material's kind selects in the SBT.
+    Callable,
 }
 
 impl ShadowSampler {

@@ -1,6 +1,7 @@
 //! What the ray tracing pipeline of a scene contains: its hit groups, in the order of the
 //! shader binding table, whether it traces shadow rays, and its specialisation.
 
+use twinray_shared::bindings::MATERIAL_CHECKER;
 use twinray_shared::shapes::{Shape, SHAPES, SHAPE_NAIVE};
 
 /// What a hit group intersects: triangles with the built-in test, or a registered shape with
@@ -20,6 +21,8 @@ pub enum HitGeometry {
 pub struct HitGroup {
     pub geometry: HitGeometry,
     pub cutout: bool,
+    /// Its closest-hit stage has material callables compute the colour.
+    pub callable: bool,
 }
 
 /// The any-hit module of cutout hit groups.
@@ -57,9 +60,11 @@ impl HitGroup {
 
     /// The closest-hit module of the group.
     pub fn closest_hit_module(self) -> &'static str {
-        match self.geometry {
-            HitGeometry::Triangles => "triangle_closest_hit",
-            HitGeometry::Procedural { .. } => "procedural_closest_hit",
+        match (self.geometry, self.callable) {
+            (HitGeometry::Triangles, false) => "triangle_closest_hit",
+            (HitGeometry::Triangles, true) => "triangle_closest_hit_callable",
+            (HitGeometry::Procedural { .. }, false) => "procedural_closest_hit",
+            (HitGeometry::Procedural { .. }, true) => "procedural_closest_hit_callable",
         }
     }
 
@@ -89,6 +94,29 @@ pub struct PipelinePlan {
     pub shadow_sampler: u32,
     /// Shadow rays traced inline by ray queries (`shadow_method = "query"`).
     pub shadow_query: bool,
+    /// Material kinds the scene's materials use, when material callables compute colours
+    /// (`material_shading = "callable"`); empty when closest-hit stages compute them.
+    pub callable_kinds: Vec<u32>,
+}
+
+/// `names` without repeats, each where it first appears.
+pub fn each_once(names: impl IntoIterator<Item = &'static str>) -> Vec<&'static str> {
+    let mut out: Vec<&'static str> = Vec::new();
+    for name in names {
+        if !out.contains(&name) {
+            out.push(name);
+        }
+    }
+    out
+}
+
+/// The callable module that computes the colour of material kind `kind`.
+pub fn material_callable(kind: u32) -> &'static str {
+    if kind == MATERIAL_CHECKER {
+        "checker_material"
+    } else {
+        "flat_material"
+    }
 }
 
 impl PipelinePlan {
@@ -100,6 +128,11 @@ impl PipelinePlan {
         } else {
             "raygen"
         }
+    }
+
+    /// The callable modules of the scene's material kinds, each once, in kind order.
+    pub fn callables(&self) -> Vec<&'static str> {
+        each_once(self.callable_kinds.iter().map(|&k| material_callable(k)))
     }
 
     /// Whether the shadow miss stage is in the pipeline: shadow rays traced by `traceRay`.

@@ -3,9 +3,12 @@
 //! Bindings are literals here because attributes need them; a test checks them against
 //! `twinray_shared::bindings`. Ray generation shades; the hit stages only describe the surface.
 #![cfg_attr(target_arch = "spirv", no_std)]
-// `spirv_std::ray_query!` declares its ray query object with inline assembly.
+// `spirv_std::ray_query!` declares its ray query object with inline assembly, and material
+// callables are called by an index known only at run time (hit.rs).
 #![cfg_attr(target_arch = "spirv", feature(asm_experimental_arch))]
 
+#[macro_use]
+mod hit;
 mod trace;
 
 use spirv_std::glam::{UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4Swizzles};
@@ -14,7 +17,8 @@ use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
 use twinray_shared::bindings::{HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, SHADOW_SAMPLER_STRATIFIED};
 use twinray_shared::layout::{
-    FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
+    FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive, ProbeRay, ProbeResult,
+    ShadowPayload, Vertex,
 };
 use twinray_shared::{camera, random, shading};
 
@@ -205,33 +209,38 @@ macro_rules! intersection_stages {
 
 twinray_shared::procedural_shapes!(intersection_stages);
 
-/// Every procedural shape: the surface from the reported object-space normal.
-#[spirv(closest_hit)]
-#[allow(clippy::too_many_arguments)]
-pub fn procedural_closest_hit(
-    #[spirv(instance_id)] object: u32,
-    #[spirv(instance_custom_index)] primitive_base: u32,
-    #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(hit_kind)] hit_kind: u32,
-    #[spirv(world_ray_origin)] origin: Vec3,
-    #[spirv(world_ray_direction)] direction: Vec3,
-    #[spirv(object_ray_origin)] object_origin: Vec3,
-    #[spirv(object_ray_direction)] object_direction: Vec3,
-    #[spirv(ray_tmax)] t: f32,
-    #[spirv(world_to_object)] world_to_object: Matrix4x3,
-    #[spirv(hit_attribute)] normal: &Vec3,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
-    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-) {
-    let data = objects[object as usize];
-    let material = materials[data.material as usize];
-    let tint = primitives[(primitive_base + primitive_id) as usize].tint.xyz();
-    let color = shading::material_color(&material, object_origin + object_direction * t, *normal) * tint;
-    let (geometric, shading_normal) = shading::surface_normals(world_to_object.to_mat3(), *normal, *normal, direction);
-    let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
-    describe(payload, origin + direction * t, t, geometric, shading_normal, color, ids);
+procedural_closest_hit!(
+    /// Every procedural shape, the material's colour computed here.
+    procedural_closest_hit, [], |m, p, n| shading::material_color(m, p, n)
+);
+procedural_closest_hit!(
+    /// Every procedural shape, the material's colour from its callable.
+    procedural_closest_hit_callable,
+    [#[spirv(callable_data)] call: &mut MaterialCall,],
+    |m, p, n| hit::call_material(call, m, p, n)
+);
+
+triangle_closest_hit!(
+    /// Triangle meshes, the material's colour computed here.
+    triangle_closest_hit, [], |m, p, n| shading::material_color(m, p, n)
+);
+triangle_closest_hit!(
+    /// Triangle meshes, the material's colour from its callable.
+    triangle_closest_hit_callable,
+    [#[spirv(callable_data)] call: &mut MaterialCall,],
+    |m, p, n| hit::call_material(call, m, p, n)
+);
+
+/// Diffuse, emissive and cutout materials: their one colour.
+#[spirv(callable)]
+pub fn flat_material(#[spirv(incoming_callable_data)] call: &mut MaterialCall) {
+    call.color = call.material.color_a;
+}
+
+/// Checker materials: the pattern at the point.
+#[spirv(callable)]
+pub fn checker_material(#[spirv(incoming_callable_data)] call: &mut MaterialCall) {
+    call.color = shading::material_color(&call.material, call.point.xyz(), call.normal.xyz()).extend(1.0);
 }
 
 /// Cutouts, for primary and shadow rays alike: a candidate hit in a hole of the object's
@@ -250,49 +259,4 @@ pub fn cutout_any_hit(
         // SAFETY: called from an any-hit stage, as OpIgnoreIntersectionKHR requires.
         unsafe { spirv_std::arch::ignore_intersection() };
     }
-}
-
-/// Triangle meshes: normals from the triangle's vertices (interpolated with the barycentrics).
-#[spirv(closest_hit)]
-#[allow(clippy::too_many_arguments)]
-pub fn triangle_closest_hit(
-    #[spirv(instance_id)] object: u32,
-    #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(hit_kind)] hit_kind: u32,
-    #[spirv(world_ray_origin)] origin: Vec3,
-    #[spirv(world_ray_direction)] direction: Vec3,
-    #[spirv(object_ray_origin)] object_origin: Vec3,
-    #[spirv(object_ray_direction)] object_direction: Vec3,
-    #[spirv(ray_tmax)] t: f32,
-    #[spirv(world_to_object)] world_to_object: Matrix4x3,
-    #[spirv(hit_attribute)] barycentrics: &Vec2,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
-    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-) {
-    let data = objects[object as usize];
-    let material = materials[data.material as usize];
-    let first = (data.index_base + 3 * primitive_id) as usize;
-    let v0 = vertices[(data.vertex_base + indices[first]) as usize];
-    let v1 = vertices[(data.vertex_base + indices[first + 1]) as usize];
-    let v2 = vertices[(data.vertex_base + indices[first + 2]) as usize];
-    let p = [v0.position.xyz(), v1.position.xyz(), v2.position.xyz()];
-    let n = [v0.normal.xyz(), v1.normal.xyz(), v2.normal.xyz()];
-    let (object_geometric, object_shading) = shading::triangle_normals(p, n, barycentrics.x, barycentrics.y);
-    let color = shading::material_color(&material, object_origin + object_direction * t, object_geometric);
-    let (geometric, shading_normal) =
-        shading::surface_normals(world_to_object.to_mat3(), object_geometric, object_shading, direction);
-    let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
-    describe(payload, origin + direction * t, t, geometric, shading_normal, color, ids);
-}
-
-/// The payload of a hit at world point `point`, ray parameter `t`.
-fn describe(payload: &mut HitPayload, point: Vec3, t: f32, geometric: Vec3, shading: Vec3, color: Vec3, ids: UVec4) {
-    payload.position = point.extend(t);
-    payload.shading_normal = shading.extend(0.0);
-    payload.geometric_normal = geometric.extend(0.0);
-    payload.color = color.extend(1.0);
-    payload.ids = ids;
 }

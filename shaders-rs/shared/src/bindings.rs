@@ -62,6 +62,9 @@ pub const MATERIAL_CHECKER: u32 = 2;
 /// Diffuse with holes: hits where its alpha pattern is transparent are ignored by the any-hit
 /// stage, for primary and shadow rays alike.
 pub const MATERIAL_CUTOUT: u32 = 3;
+/// How many material kinds there are: the SBT's callable region has a record for each
+/// (`material_shading = "callable"`), the kind being the record's index.
+pub const MATERIAL_KINDS: u32 = 4;
 
 /// Cutout alpha patterns (`Material::cutout_pattern`), over object-space x and z.
 pub const CUTOUT_NONE: u32 = 0;

@@ -19,10 +19,12 @@ pub enum Stage {
     Intersection,
     ClosestHit,
     AnyHit,
+    Callable,
 }
 
 impl Stage {
-    pub const ALL: [Stage; 5] = [Stage::Raygen, Stage::Miss, Stage::Intersection, Stage::ClosestHit, Stage::AnyHit];
+    pub const ALL: [Stage; 6] =
+        [Stage::Raygen, Stage::Miss, Stage::Intersection, Stage::ClosestHit, Stage::AnyHit, Stage::Callable];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -31,6 +33,7 @@ impl Stage {
             Stage::Intersection => "intersection",
             Stage::ClosestHit => "closest_hit",
             Stage::AnyHit => "any_hit",
+            Stage::Callable => "callable",
         }
     }
 
@@ -42,6 +45,7 @@ impl Stage {
             Stage::AnyHit => 5315,
             Stage::ClosestHit => 5316,
             Stage::Miss => 5317,
+            Stage::Callable => 5318,
         }
     }
 }
@@ -60,6 +64,8 @@ impl Language {
 pub enum GlslSource {
     /// A stage file of `shaders-glsl/`.
     File(&'static str),
+    /// A stage file of `shaders-glsl/` compiled with a preprocessor macro defined (`-D`).
+    Variant { file: &'static str, define: &'static str },
     /// The intersection stage of a registered shape: `shaders-glsl/shapes/SHAPE.glsl` with
     /// `intersection_main.glsl` around its `SHAPE_intersect` (or `SHAPE_naive_intersect`);
     /// `cargo xtask shaders` writes the few lines that join them ([`ModuleSpec::glsl_wrapper`]).
@@ -104,6 +110,18 @@ macro_rules! module_table {
                 glsl: GlslSource::File("procedural.rchit"),
             },
             ModuleSpec { name: "triangle_closest_hit", stage: Stage::ClosestHit, glsl: GlslSource::File("triangle.rchit") },
+            ModuleSpec {
+                name: "procedural_closest_hit_callable",
+                stage: Stage::ClosestHit,
+                glsl: GlslSource::Variant { file: "procedural.rchit", define: "CALLABLE_MATERIALS" },
+            },
+            ModuleSpec {
+                name: "triangle_closest_hit_callable",
+                stage: Stage::ClosestHit,
+                glsl: GlslSource::Variant { file: "triangle.rchit", define: "CALLABLE_MATERIALS" },
+            },
+            ModuleSpec { name: "flat_material", stage: Stage::Callable, glsl: GlslSource::File("flat_material.rcall") },
+            ModuleSpec { name: "checker_material", stage: Stage::Callable, glsl: GlslSource::File("checker_material.rcall") },
             ModuleSpec { name: "cutout_any_hit", stage: Stage::AnyHit, glsl: GlslSource::File("cutout.rahit") },
         ];
     };
@@ -134,7 +152,7 @@ impl ModuleSpec {
     /// stage file, or for a shape the wrapper `cargo xtask shaders` writes.
     pub fn glsl_file(&self) -> String {
         match self.glsl {
-            GlslSource::File(file) => file.to_string(),
+            GlslSource::File(file) | GlslSource::Variant { file, .. } => file.to_string(),
             GlslSource::Shape { .. } => format!("{}.rint", self.name),
         }
     }

@@ -7,7 +7,8 @@
 
 use crate::bindings::*;
 use crate::layout::{
-    FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ProbeRay, ProbeResult, ShadowPayload, Vertex,
+    FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive, ProbeRay, ProbeResult,
+    ShadowPayload, Vertex,
 };
 use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
 use crate::shading::CHECKER_DEPTH;
@@ -84,6 +85,7 @@ pub fn structs() -> Vec<GlslStruct> {
             ids: "uvec4",
         }),
         glsl_struct!(ShadowPayload { occluded: "uint" }),
+        glsl_struct!(MaterialCall { material: "Material", point: "vec4", normal: "vec4", color: "vec4" }),
         glsl_struct!(ProbeRay { origin: "vec4", direction: "vec4" }),
         glsl_struct!(ProbeResult { normal_t: "vec4", ids: "uvec4" }),
     ]
@@ -95,6 +97,8 @@ fn glsl_size_align(glsl_type: &str) -> Option<(usize, usize)> {
         "float" | "uint" | "int" => Some((4, 4)),
         "vec4" | "uvec4" | "ivec4" => Some((16, 16)),
         "mat4" => Some((64, 16)),
+        // A struct member: Material is 16-aligned (its vec4s) and a multiple of 16 long.
+        "Material" => Some((size_of::<Material>(), 16)),
         _ => None,
     }
 }

@@ -147,6 +147,22 @@ pub struct HitPayload {
     pub ids: UVec4,
 }
 
+/// The callable data of material callables (`material_shading = "callable"`): the closest-hit
+/// stage fills in the material and the object-space point and normal, and the callable
+/// chosen by the material's kind writes `color`.
+#[repr(C)]
+#[derive(Clone, Copy)]
+pub struct MaterialCall {
+    pub material: Material,
+    /// xyz: object-space point; w: 1.
+    pub point: Vec4,
+    /// xyz: object-space normal (any length); w: 0.
+    pub normal: Vec4,
+    /// rgb: the albedo (or emitted radiance) the callable computed.
+    pub color: Vec4,
+}
+const _: () = assert!(core::mem::size_of::<MaterialCall>() == 96);
+
 /// The payload of shadow rays: 1 until the shadow miss stage clears it.
 #[repr(C)]
 #[derive(Clone, Copy)]
