@@ -76,6 +76,32 @@ fn a_difference_only_in_the_miss_stage_is_pinned_on_miss() {
     assert!(stdout.contains(", 6 runs)"), "{stdout}");
 }
 
+/// The new stage kinds are set members like the others: a user's any-hit stage that fills the
+/// holes (it never ignores a hit) is pinned on `any_hit`.
+#[test]
+fn a_difference_only_in_the_any_hit_stage_is_pinned_on_any_hit() {
+    let dir = tempfile::tempdir().unwrap();
+    let source = std::fs::read_to_string(repo().join("shaders-glsl/cutout.rahit")).unwrap();
+    let filled = source.replace("ignoreIntersectionEXT;", "");
+    assert_ne!(filled, source, "the planted edit must apply");
+    let (rahit, spv) = (dir.path().join("filled.rahit"), dir.path().join("filled.spv"));
+    std::fs::write(&rahit, filled).unwrap();
+    let status = Command::new("glslangValidator")
+        .args(["-V", "--target-env", "spirv1.4"])
+        .arg(format!("-I{}", repo().join("shaders-glsl").display()))
+        .arg("-o")
+        .args([&spv, &rahit])
+        .output()
+        .expect("glslangValidator (cargo xtask setup installs it)");
+    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stdout));
+    let b = format!("glsl,cutout_any_hit={}", spv.display());
+    let (json, code) = bisect(&["cutout", "--width", "64", "--height", "48", "--a", "glsl", "--b", &b], dir.path());
+    assert_eq!(code, 0, "{json}");
+    assert!(json["whole"]["mismatches"].as_u64().unwrap() > 10, "the holes are gone: {json}");
+    assert_eq!(explained(&json, "image"), ["any_hit"], "{json}");
+    assert_eq!(json["stages"].as_array().unwrap().len(), 1);
+}
+
 #[test]
 fn probe_cases_bisect_false_hits_to_the_stage_that_makes_them() {
     let dir = tempfile::tempdir().unwrap();
