@@ -25,6 +25,25 @@ fn naive_sphere() -> String {
     format!("rust,sphere_intersection={}", repo().join("spirv/rust/sphere_naive_intersection.spv").display())
 }
 
+/// A user's stage: the GLSL stage file `file` of `shaders-glsl/` with `edit.0` replaced by
+/// `edit.1`, compiled by glslang into `dir`; the SPIR-V file.
+fn planted_glsl(file: &str, edit: (&str, &str), dir: &Path) -> std::path::PathBuf {
+    let source = std::fs::read_to_string(repo().join("shaders-glsl").join(file)).unwrap();
+    let planted = source.replace(edit.0, edit.1);
+    assert_ne!(planted, source, "the planted edit must apply to {file}");
+    let (glsl, spv) = (dir.join(format!("planted-{file}")), dir.join(format!("planted-{file}.spv")));
+    std::fs::write(&glsl, planted).unwrap();
+    let out = Command::new("glslangValidator")
+        .args(["-V", "--target-env", "spirv1.4"])
+        .arg(format!("-I{}", repo().join("shaders-glsl").display()))
+        .arg("-o")
+        .args([&spv, &glsl])
+        .output()
+        .expect("glslangValidator (cargo xtask setup installs it)");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
+    spv
+}
+
 #[test]
 fn the_naive_sphere_formula_is_pinned_on_the_intersection_stage() {
     let dir = tempfile::tempdir().unwrap();
@@ -45,19 +64,8 @@ fn the_naive_sphere_formula_is_pinned_on_the_intersection_stage() {
 fn a_difference_only_in_the_miss_stage_is_pinned_on_miss() {
     let dir = tempfile::tempdir().unwrap();
     // A user's miss stage: the GLSL one with the background dimmed.
-    let source = std::fs::read_to_string(repo().join("shaders-glsl/miss.rmiss")).unwrap();
-    let dimmed = source.replace("payload.color = frame.background;", "payload.color = frame.background * 0.5;");
-    assert_ne!(dimmed, source, "the planted edit must apply");
-    let (rmiss, spv) = (dir.path().join("dim.rmiss"), dir.path().join("dim.spv"));
-    std::fs::write(&rmiss, dimmed).unwrap();
-    let status = Command::new("glslangValidator")
-        .args(["-V", "--target-env", "spirv1.4"])
-        .arg(format!("-I{}", repo().join("shaders-glsl").display()))
-        .arg("-o")
-        .args([&spv, &rmiss])
-        .output()
-        .expect("glslangValidator (cargo xtask setup installs it)");
-    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stdout));
+    let edit = ("payload.color = frame.background;", "payload.color = frame.background * 0.5;");
+    let spv = planted_glsl("miss.rmiss", edit, dir.path());
     let b = format!("glsl,miss={}", spv.display());
     // Only the miss module differs: raygen and everything else are the same GLSL code.
     let (json, code) = bisect(&["spheres", "--width", "64", "--height", "48", "--a", "glsl", "--b", &b], dir.path());
@@ -81,19 +89,7 @@ fn a_difference_only_in_the_miss_stage_is_pinned_on_miss() {
 #[test]
 fn a_difference_only_in_the_any_hit_stage_is_pinned_on_any_hit() {
     let dir = tempfile::tempdir().unwrap();
-    let source = std::fs::read_to_string(repo().join("shaders-glsl/cutout.rahit")).unwrap();
-    let filled = source.replace("ignoreIntersectionEXT;", "");
-    assert_ne!(filled, source, "the planted edit must apply");
-    let (rahit, spv) = (dir.path().join("filled.rahit"), dir.path().join("filled.spv"));
-    std::fs::write(&rahit, filled).unwrap();
-    let status = Command::new("glslangValidator")
-        .args(["-V", "--target-env", "spirv1.4"])
-        .arg(format!("-I{}", repo().join("shaders-glsl").display()))
-        .arg("-o")
-        .args([&spv, &rahit])
-        .output()
-        .expect("glslangValidator (cargo xtask setup installs it)");
-    assert!(status.status.success(), "{}", String::from_utf8_lossy(&status.stdout));
+    let spv = planted_glsl("cutout.rahit", ("ignoreIntersectionEXT;", ""), dir.path());
     let b = format!("glsl,cutout_any_hit={}", spv.display());
     let (json, code) = bisect(&["cutout", "--width", "64", "--height", "48", "--a", "glsl", "--b", &b], dir.path());
     assert_eq!(code, 0, "{json}");
