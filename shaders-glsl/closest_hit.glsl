@@ -3,9 +3,9 @@
 #ifndef TWINRAY_CLOSEST_HIT_GLSL
 #define TWINRAY_CLOSEST_HIT_GLSL
 
-// SURFACE_COLOR(material, object point, object normal): the material's colour, computed here
-// or, compiled with CALLABLE_MATERIALS (material_shading = "callable"), by the callable the
-// material's kind selects in the SBT's callable region.
+// SURFACE_COLOR(material, object point, object normal): the material's colour, computed here;
+// compiled with CALLABLE_MATERIALS (material_shading = "callable"), by the callable the
+// material's kind selects in the SBT's callable region; with FLAT_MATERIAL, its one colour.
 #ifdef CALLABLE_MATERIALS
 layout(location = 0) callableDataEXT MaterialCall material_call;
 
@@ -17,6 +17,12 @@ vec3 call_material(Material material, vec3 object_point, vec3 object_normal) {
     return material_call.color.xyz;
 }
 #define SURFACE_COLOR call_material
+#elif defined(FLAT_MATERIAL)
+// Hit groups of diffuse, emissive and cutout materials (hit_groups = "per-material").
+vec3 flat_color(Material material, vec3 object_point, vec3 object_normal) {
+    return material.color_a.xyz;
+}
+#define SURFACE_COLOR flat_color
 #else
 #define SURFACE_COLOR material_color
 #endif

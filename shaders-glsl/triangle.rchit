@@ -1,6 +1,7 @@
 #version 460
 // Twin of twinray_shaders::triangle_closest_hit (with CALLABLE_MATERIALS defined, of
-// triangle_closest_hit_callable): triangle meshes, normals from the vertices.
+// triangle_closest_hit_callable; with FLAT_MATERIAL, of triangle_closest_hit_flat): triangle
+// meshes, normals from the vertices.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 #include "twinray_layout.glsl"

@@ -1,6 +1,7 @@
 //! `twinray stage-bench`: what a stage kind or tracing method costs, as GPU time against the
 //! image it gives. Each scene renders in variants (made opaque, cutouts without holes, shadows
-//! by `traceRay` or by ray queries, materials inline or by callables) with each shader set; every variant's time is set
+//! by `traceRay` or by ray queries, materials inline or by callables, hit groups per shape or
+//! per material) with each shader set; every variant's time is set
 //! against the first variant's with the same set, and its image against that variant's image.
 //! Variants use different uploads, so they are timed in rounds: in each round every variant
 //! and set renders once (order rotated from round to round), and each median pools the timed
@@ -11,7 +12,7 @@ use crate::compare::diff;
 use crate::error::{Error, Result};
 use crate::render::{render, RenderOptions, RenderOutput};
 use crate::scene::file::{CutoutPattern, MaterialDesc};
-use crate::scene::{MaterialShading, Scene, ShadowMethod};
+use crate::scene::{HitGroups, MaterialShading, Scene, ShadowMethod};
 use crate::shaders::ShaderSet;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
@@ -37,10 +38,14 @@ pub enum Variant {
     InlineMaterials,
     /// Materials' colours computed by callables chosen through the SBT.
     CallableMaterials,
+    /// One hit group per shape kind, its closest-hit stage branching on the material's kind.
+    PerShapeHits,
+    /// Hit groups per shape kind and material kind, chosen by each instance's SBT offset.
+    PerMaterialHits,
 }
 
 impl Variant {
-    pub const ALL: [Variant; 7] = [
+    pub const ALL: [Variant; 9] = [
         Variant::AsIs,
         Variant::Opaque,
         Variant::SolidCutouts,
@@ -48,6 +53,8 @@ impl Variant {
         Variant::QueryShadows,
         Variant::InlineMaterials,
         Variant::CallableMaterials,
+        Variant::PerShapeHits,
+        Variant::PerMaterialHits,
     ];
 
     pub fn name(self) -> &'static str {
@@ -59,6 +66,8 @@ impl Variant {
             Variant::QueryShadows => "query-shadows",
             Variant::InlineMaterials => "inline-materials",
             Variant::CallableMaterials => "callable-materials",
+            Variant::PerShapeHits => "per-shape-hits",
+            Variant::PerMaterialHits => "per-material-hits",
         }
     }
 
@@ -109,6 +118,8 @@ impl Variant {
             Variant::TraceShadows | Variant::QueryShadows => return None,
             Variant::InlineMaterials => out.file.material_shading = MaterialShading::Inline,
             Variant::CallableMaterials => out.file.material_shading = MaterialShading::Callable,
+            Variant::PerShapeHits => out.file.hit_groups = HitGroups::PerShape,
+            Variant::PerMaterialHits => out.file.hit_groups = HitGroups::PerMaterial,
         }
         Some(out)
     }

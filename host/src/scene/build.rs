@@ -2,9 +2,11 @@
 //! one TLAS instance per object, and the pipeline plan — only the hit groups, miss shaders and
 //! specialisation the scene uses.
 
-use super::file::{CutoutPattern, LightDesc, MaterialDesc, MaterialShading, SceneFile, ShadowMethod, ShadowSampler};
+use super::file::{
+    CutoutPattern, HitGroups, LightDesc, MaterialDesc, MaterialShading, SceneFile, ShadowMethod, ShadowSampler,
+};
 use super::mesh::MeshData;
-use super::plan::{HitGeometry, HitGroup, PipelinePlan};
+use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
 use super::shape::{Formula, ShapeDesc};
 use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
@@ -103,7 +105,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
     let mut geometry = Geometry::default();
     let callable = scene.material_shading == MaterialShading::Callable;
     let group_of =
-        |o: &super::file::ObjectDesc| hit_group(&scene.shapes[&o.shape], &scene.materials[&o.material], callable);
+        |o: &super::file::ObjectDesc| hit_group(scene, &scene.shapes[&o.shape], &scene.materials[&o.material]);
     let mut groups: Vec<HitGroup> = scene.objects.iter().map(group_of).collect();
     groups.sort();
     groups.dedup();
@@ -193,7 +195,8 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
     }
 }
 
-fn hit_group(shape: &ShapeDesc, material: &MaterialDesc, callable: bool) -> HitGroup {
+/// The hit group of an object of `shape` and `material` in `scene`.
+fn hit_group(scene: &SceneFile, shape: &ShapeDesc, material: &MaterialDesc) -> HitGroup {
     let geometry = match shape {
         ShapeDesc::Procedural(p) => HitGeometry::Procedural {
             naive: p.formula == Formula::Naive && p.shape.naive_module.is_some(),
@@ -201,7 +204,13 @@ fn hit_group(shape: &ShapeDesc, material: &MaterialDesc, callable: bool) -> HitG
         },
         ShapeDesc::Mesh(_) => HitGeometry::Triangles,
     };
-    HitGroup { geometry, cutout: matches!(material, MaterialDesc::Cutout { .. }), callable }
+    let flat = !matches!(material, MaterialDesc::Checker { .. });
+    let colour = match (scene.material_shading, scene.hit_groups) {
+        (MaterialShading::Callable, _) => Colour::Callable,
+        (MaterialShading::Inline, HitGroups::PerMaterial) if flat => Colour::Flat,
+        (MaterialShading::Inline, _) => Colour::Inline,
+    };
+    HitGroup { geometry, cutout: matches!(material, MaterialDesc::Cutout { .. }), colour }
 }
 
 /// Scale, then rotation about x, y and z (degrees), then translation.

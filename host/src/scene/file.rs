@@ -43,6 +43,9 @@ pub struct SceneFile {
     /// Where materials' colours are computed: in the closest-hit stages, or by callables.
     #[serde(default)]
     pub material_shading: MaterialShading,
+    /// One hit group per shape kind, or per shape kind and material kind.
+    #[serde(default)]
+    pub hit_groups: HitGroups,
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default)]
@@ -291,6 +294,18 @@ pub enum MaterialShading {
     Inline,
     /// Computed by the callable shader that the material's kind selects in the SBT.
     Callable,
+}
+
+/// How objects are divided among hit groups (and so among closest-hit shaders).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "kebab-case")]
+pub enum HitGroups {
+    /// One per shape kind: its closest-hit stage branches on the material's kind.
+    #[default]
+    PerShape,
+    /// One per shape kind and material kind, each instance's SBT offset choosing it: diffuse,
+    /// emissive and cutout materials get a closest-hit stage without the branch.
+    PerMaterial,
 }
 
 impl ShadowSampler {

@@ -21,22 +21,35 @@ pub enum HitGeometry {
 pub struct HitGroup {
     pub geometry: HitGeometry,
     pub cutout: bool,
-    /// Its closest-hit stage has material callables compute the colour.
-    pub callable: bool,
+    /// Where its closest-hit stage gets the material's colour.
+    pub colour: Colour,
+}
+
+/// Where a hit group's closest-hit stage gets the material's colour.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
+pub enum Colour {
+    /// Computed for any material kind (a branch on the kind).
+    Inline,
+    /// From the material callable its kind selects (`material_shading = "callable"`).
+    Callable,
+    /// The material's one colour, with no branch: the group serves only diffuse, emissive and
+    /// cutout materials (`hit_groups = "per-material"`; checkers keep `Inline`).
+    Flat,
 }
 
 /// The any-hit module of cutout hit groups.
 pub const CUTOUT_ANY_HIT: &str = "cutout_any_hit";
 
 impl HitGroup {
-    /// "triangles", or the shape's name, with " (naive)" for a naive variant and " (cutout)"
-    /// for cutouts.
+    /// "triangles", or the shape's name, with " (naive)" for a naive variant, " (flat)" for a
+    /// group of flat-coloured materials and " (cutout)" for cutouts.
     pub fn name(self) -> String {
         let base = match (self.geometry, self.shape()) {
             (HitGeometry::Procedural { naive: true, .. }, Some(s)) => format!("{} (naive)", s.name),
             (_, Some(s)) => s.name.to_string(),
             _ => "triangles".into(),
         };
+        let base = if self.colour == Colour::Flat { format!("{base} (flat)") } else { base };
         if self.cutout {
             format!("{base} (cutout)")
         } else {
@@ -60,11 +73,14 @@ impl HitGroup {
 
     /// The closest-hit module of the group.
     pub fn closest_hit_module(self) -> &'static str {
-        match (self.geometry, self.callable) {
-            (HitGeometry::Triangles, false) => "triangle_closest_hit",
-            (HitGeometry::Triangles, true) => "triangle_closest_hit_callable",
-            (HitGeometry::Procedural { .. }, false) => "procedural_closest_hit",
-            (HitGeometry::Procedural { .. }, true) => "procedural_closest_hit_callable",
+        let triangles = self.geometry == HitGeometry::Triangles;
+        match (triangles, self.colour) {
+            (true, Colour::Inline) => "triangle_closest_hit",
+            (true, Colour::Callable) => "triangle_closest_hit_callable",
+            (true, Colour::Flat) => "triangle_closest_hit_flat",
+            (false, Colour::Inline) => "procedural_closest_hit",
+            (false, Colour::Callable) => "procedural_closest_hit_callable",
+            (false, Colour::Flat) => "procedural_closest_hit_flat",
         }
     }
 

@@ -214,6 +214,11 @@ procedural_closest_hit!(
     procedural_closest_hit, [], |m, p, n| shading::material_color(m, p, n)
 );
 procedural_closest_hit!(
+    /// Every procedural shape of diffuse, emissive and cutout materials: their one colour, no branch on the
+    /// kind (`hit_groups = "per-material"`).
+    procedural_closest_hit_flat, [], |m, _p, _n| m.color_a.xyz()
+);
+procedural_closest_hit!(
     /// Every procedural shape, the material's colour from its callable.
     procedural_closest_hit_callable,
     [#[spirv(callable_data)] call: &mut MaterialCall,],
@@ -223,6 +228,11 @@ procedural_closest_hit!(
 triangle_closest_hit!(
     /// Triangle meshes, the material's colour computed here.
     triangle_closest_hit, [], |m, p, n| shading::material_color(m, p, n)
+);
+triangle_closest_hit!(
+    /// Triangle meshes of diffuse, emissive and cutout materials: their one colour, no branch on the
+    /// kind (`hit_groups = "per-material"`).
+    triangle_closest_hit_flat, [], |m, _p, _n| m.color_a.xyz()
 );
 triangle_closest_hit!(
     /// Triangle meshes, the material's colour from its callable.

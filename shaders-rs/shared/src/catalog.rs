@@ -120,6 +120,16 @@ macro_rules! module_table {
                 stage: Stage::ClosestHit,
                 glsl: GlslSource::Variant { file: "triangle.rchit", define: "CALLABLE_MATERIALS" },
             },
+            ModuleSpec {
+                name: "procedural_closest_hit_flat",
+                stage: Stage::ClosestHit,
+                glsl: GlslSource::Variant { file: "procedural.rchit", define: "FLAT_MATERIAL" },
+            },
+            ModuleSpec {
+                name: "triangle_closest_hit_flat",
+                stage: Stage::ClosestHit,
+                glsl: GlslSource::Variant { file: "triangle.rchit", define: "FLAT_MATERIAL" },
+            },
             ModuleSpec { name: "flat_material", stage: Stage::Callable, glsl: GlslSource::File("flat_material.rcall") },
             ModuleSpec { name: "checker_material", stage: Stage::Callable, glsl: GlslSource::File("checker_material.rcall") },
             ModuleSpec { name: "cutout_any_hit", stage: Stage::AnyHit, glsl: GlslSource::File("cutout.rahit") },
