@@ -14,16 +14,10 @@ layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffe
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec3 normal;
 
-#include "closest_hit.glsl"
+#include "procedural_hit.glsl"
 
 void main() {
-    ObjectData data = objects[gl_InstanceID];
-    Material material = materials[data.material];
-    vec3 tint = primitives[gl_InstanceCustomIndexEXT + gl_PrimitiveID].tint.xyz;
-    float t = gl_RayTmaxEXT;
-    vec3 color = SURFACE_COLOR(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, normal) * tint;
-    vec3 geometric, shading;
-    surface_normals(mat3(gl_WorldToObjectEXT), normal, normal, gl_WorldRayDirectionEXT, geometric, shading);
-    uvec4 ids = uvec4(gl_InstanceID, gl_PrimitiveID, material.kind, gl_HitKindEXT);
-    describe(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t, geometric, shading, color, ids);
+    procedural_hit(gl_InstanceID, gl_InstanceCustomIndexEXT + gl_PrimitiveID, gl_PrimitiveID, gl_HitKindEXT,
+                   gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT, gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT,
+                   gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal);
 }

@@ -1,7 +1,9 @@
-// The body of both ray generation stages (raygen.rgen, raygen_query.rgen), twin of the Rust
-// `ray_generation!` macro: M x M primary samples per pixel, shaded here; writes the mean colour
-// and the ids of what the first sample hit. With SHADOW_QUERY defined, shadow rays are traced
-// inline by ray queries (trace.glsl), which read the objects, primitives and materials.
+// The body of both ray generation stages (raygen.rgen, raygen_query.rgen) and of the compute
+// renderer (render.comp), twin of the Rust `renderer!` macro: M x M primary samples per pixel,
+// shaded here; writes the mean colour and the ids of what the first sample hit. With
+// SHADOW_QUERY defined, shadow rays are traced inline by ray queries (trace.glsl), which read the
+// objects, primitives and materials; with RENDER_COMPUTE too, primary rays are, and the payload
+// is a plain variable that trace.glsl describes hits into as the closest-hit stages would.
 #include "twinray_layout.glsl"
 
 layout(set = DESCRIPTOR_SET, binding = BINDING_TLAS) uniform accelerationStructureEXT tlas;
@@ -14,7 +16,18 @@ layout(constant_id = SPEC_SHADOWS) const uint SHADOWS = 0u;
 layout(constant_id = SPEC_SAMPLES_PER_SIDE) const uint SAMPLES_PER_SIDE = 1u;
 layout(constant_id = SPEC_SHADOW_SAMPLER) const uint SHADOW_SAMPLER = SHADOW_SAMPLER_STRATIFIED;
 
+#ifdef RENDER_COMPUTE
+HitPayload payload;
+layout(set = DESCRIPTOR_SET, binding = BINDING_VERTICES, std430) readonly buffer Vertices { Vertex vertices[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+// Compute has no launch size: the image's, from the frame constants.
+#define LAUNCH_ID gl_GlobalInvocationID.xy
+#define LAUNCH_SIZE uvec2(frame.width, frame.height)
+#else
 layout(location = 0) rayPayloadEXT HitPayload payload;
+#define LAUNCH_ID gl_LaunchIDEXT.xy
+#define LAUNCH_SIZE gl_LaunchSizeEXT.xy
+#endif
 #ifdef SHADOW_QUERY
 layout(set = DESCRIPTOR_SET, binding = BINDING_OBJECTS, std430) readonly buffer Objects { ObjectData objects[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { Primitive primitives[]; };
@@ -27,8 +40,14 @@ layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;
 #include "trace.glsl"
 
 void main() {
-    uvec2 pixel = gl_LaunchIDEXT.xy;
-    uint pixel_index = gl_LaunchIDEXT.y * gl_LaunchSizeEXT.x + gl_LaunchIDEXT.x;
+    uvec2 pixel = LAUNCH_ID;
+#ifdef RENDER_COMPUTE
+    // Whole workgroups cover the image.
+    if (pixel.x >= LAUNCH_SIZE.x || pixel.y >= LAUNCH_SIZE.y) {
+        return;
+    }
+#endif
+    uint pixel_index = pixel.y * LAUNCH_SIZE.x + pixel.x;
     vec3 sum = vec3(0.0);
     uint shadow_rays = 0u;
     for (uint sy = 0u; sy < SAMPLES_PER_SIDE; sy++) {
@@ -42,7 +61,7 @@ void main() {
             }
             vec2 offset = sample_offset(sx, sy, SAMPLES_PER_SIDE, r1, r2);
             vec3 origin, direction;
-            primary_ray(frame, pixel, gl_LaunchSizeEXT.xy, offset, origin, direction);
+            primary_ray(frame, pixel, LAUNCH_SIZE, offset, origin, direction);
             trace_primary(origin, direction);
             if (sample_index == 0u) {
                 hit_ids[HIT_IDS_PER_PIXEL * pixel_index] = payload.ids.x;

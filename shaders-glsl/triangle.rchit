@@ -15,23 +15,10 @@ layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec2 barycentrics;
 
-#include "closest_hit.glsl"
+#include "triangle_hit.glsl"
 
 void main() {
-    ObjectData data = objects[gl_InstanceID];
-    Material material = materials[data.material];
-    uint first = data.index_base + 3u * gl_PrimitiveID;
-    Vertex v0 = vertices[data.vertex_base + indices[first]];
-    Vertex v1 = vertices[data.vertex_base + indices[first + 1u]];
-    Vertex v2 = vertices[data.vertex_base + indices[first + 2u]];
-    vec3 object_geometric, object_shading;
-    triangle_normals(v0.position.xyz, v1.position.xyz, v2.position.xyz, v0.normal.xyz, v1.normal.xyz, v2.normal.xyz,
-                     barycentrics.x, barycentrics.y, object_geometric, object_shading);
-    float t = gl_RayTmaxEXT;
-    vec3 color = SURFACE_COLOR(material, gl_ObjectRayOriginEXT + gl_ObjectRayDirectionEXT * t, object_geometric);
-    vec3 geometric, shading;
-    surface_normals(mat3(gl_WorldToObjectEXT), object_geometric, object_shading, gl_WorldRayDirectionEXT, geometric,
-                    shading);
-    uvec4 ids = uvec4(gl_InstanceID, gl_PrimitiveID, material.kind, gl_HitKindEXT);
-    describe(gl_WorldRayOriginEXT + gl_WorldRayDirectionEXT * t, t, geometric, shading, color, ids);
+    triangle_hit(gl_InstanceID, gl_PrimitiveID, gl_HitKindEXT, gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT,
+                 gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT),
+                 barycentrics);
 }

@@ -16,6 +16,9 @@
 #define BINDING_INDICES 9u
 #define BINDING_PROBE_RAYS 10u
 #define BINDING_PROBE_RESULTS 11u
+#define RENDER_GROUP_SIZE 8u
+#define HIT_KIND_TRIANGLE_FRONT 254u
+#define HIT_KIND_TRIANGLE_BACK 255u
 #define MISS_PRIMARY 0u
 #define MISS_SHADOW 1u
 #define MASK_OCCLUDER 1u
@@ -65,8 +68,8 @@ struct FrameUniform {
     vec4 background; // offset 128
     uint light_count; // offset 144
     uint seed; // offset 148
-    uint _pad0; // offset 152
-    uint _pad1; // offset 156
+    uint width; // offset 152
+    uint height; // offset 156
 };
 
 // 16 bytes, as twinray_shared::layout::ObjectData

@@ -53,3 +53,29 @@ fn every_stage_has_a_module() {
         assert!(MODULES.iter().any(|m| m.stage == stage), "no module for {}", stage.name());
     }
 }
+
+/// The compute renderer's workgroup size, in both languages, is the one the host dispatches
+/// for (`RENDER_GROUP_SIZE`): the Rust attribute and the GLSL layout spell it separately.
+#[test]
+fn compute_modules_run_the_workgroups_the_host_dispatches() {
+    const OP_EXECUTION_MODE: u32 = 16;
+    const LOCAL_SIZE: u32 = 17;
+    let group = twinray_shared::bindings::RENDER_GROUP_SIZE;
+    for spec in MODULES.iter().filter(|m| m.stage == Stage::Compute) {
+        for language in Language::ALL {
+            let path = repo_root().join(spec.spirv_path(language));
+            let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+            let words: Vec<u32> = bytes.chunks_exact(4).map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]])).collect();
+            let mut sizes = Vec::new();
+            let mut i = 5;
+            while i < words.len() {
+                let (count, opcode) = ((words[i] >> 16) as usize, words[i] & 0xffff);
+                if opcode == OP_EXECUTION_MODE && words[i + 2] == LOCAL_SIZE {
+                    sizes.push(words[i + 3..i + 6].to_vec());
+                }
+                i += count.max(1);
+            }
+            assert_eq!(sizes, [vec![group, group, 1]], "{} {}", language.name(), spec.name);
+        }
+    }
+}

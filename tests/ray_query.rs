@@ -2,28 +2,14 @@
 //! from ray generation (`shadow_method = "query"`) give the image `traceRay` shadows give, on
 //! scenes with every shape, meshes, rect lights and cutouts, in both sets and mixed.
 
-use twinray::compare::{diff, verdict};
 use twinray::scene::Scene;
-use twinray::RenderOutput;
-use twinray_tests::{render_scene, set, validated_context, SCENE_TEST_SIZE};
+use twinray_tests::{assert_same_render, render_scene, set, validated_context};
 
 /// `scene` with its shadow rays traced by ray queries.
 fn with_queries(scene: &Scene) -> Scene {
     let mut query = scene.clone();
     query.file.shadow_method = twinray::scene::ShadowMethod::Query;
     query
-}
-
-fn check(name: &str, label: &str, a: &RenderOutput, b: &RenderOutput, scene: &Scene) {
-    let parity = scene.file.parity;
-    let d = diff(a, b, parity.pixel_threshold);
-    let f = verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
-    eprintln!(
-        "{name} {label}: rmse {:.6}, {} over, {} hit mismatches, shadow rays {} / {}",
-        d.color.rmse, d.color.pixels_over_threshold, d.hit_mismatches, a.rays.shadow, b.rays.shadow
-    );
-    assert!(f.is_empty(), "{name} {label}: {f:?}");
-    assert_eq!(a.rays.shadow, b.rays.shadow, "{name} {label}: the same shadow rays are traced");
 }
 
 /// Query shadows against traced shadows, each set against itself, and the query renders of
@@ -43,12 +29,12 @@ fn query_shadows_match_traced_shadows() {
             let traced = render_scene(&ctx, &scene, set_text);
             let inline = render_scene(&ctx, &query, set_text);
             assert!(inline.rays.shadow > 0, "{name}: no shadow rays");
-            check(name, &format!("{set_text} query vs trace"), &inline, &traced, &scene);
+            assert_same_render(&format!("{set_text} query vs trace"), &inline, &traced, &scene);
             queried.push(inline);
         }
-        check(name, "rust vs glsl query", &queried[0], &queried[1], &scene);
+        assert_same_render("rust vs glsl query", &queried[0], &queried[1], &scene);
         let mixed = render_scene(&ctx, &query, "glsl,raygen=rust");
-        check(name, "mix vs glsl query", &mixed, &queried[1], &scene);
+        assert_same_render("mix vs glsl query", &mixed, &queried[1], &scene);
     }
     ctx.close().expect("validation errors or leaked objects at teardown");
 }

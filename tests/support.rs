@@ -56,6 +56,23 @@ pub fn render_scene(ctx: &Arc<Context>, scene: &Scene, set_text: &str) -> Render
     }
 }
 
+/// Asserts that two renders of `scene` at `SCENE_TEST_SIZE` (`label` says which) hit the same
+/// object and primitive in every pixel, trace the same shadow rays, and give images within the
+/// scene's parity.
+pub fn assert_same_render(label: &str, a: &RenderOutput, b: &RenderOutput, scene: &Scene) {
+    let name = scene.name();
+    let parity = scene.file.parity;
+    let d = twinray::compare::diff(a, b, parity.pixel_threshold);
+    let f = twinray::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
+    eprintln!(
+        "{name} {label}: rmse {:.6}, {} over, {} hit mismatches, shadow rays {} / {}",
+        d.color.rmse, d.color.pixels_over_threshold, d.hit_mismatches, a.rays.shadow, b.rays.shadow
+    );
+    assert_eq!(d.hit_mismatches, 0, "{name} {label}: different objects or primitives hit");
+    assert!(f.is_empty(), "{name} {label}: {f:?}");
+    assert_eq!(a.rays.shadow, b.rays.shadow, "{name} {label}: the same shadow rays are traced");
+}
+
 /// Every built-in scene, loaded.
 pub fn builtin_scenes() -> Vec<Scene> {
     twinray::scene::BUILTIN

@@ -1,6 +1,6 @@
 //! `twinray stage-bench` on lavapipe: every variant of the cutout scene is measured against the
 //! first; cutouts without holes cost any-hit but give the opaque image, and ray-query shadows
-//! give the image `traceRay` shadows give; variants that mean nothing for a scene are
+//! give the image `traceRay` shadows give, as the compute renderer gives the pipeline's; variants that mean nothing for a scene are
 //! reported, not measured; bad input exits 2.
 
 mod common;
@@ -16,7 +16,7 @@ fn stage_bench_measures_every_variant_against_the_first() {
         "cutout",
         "spheres",
         "--variants",
-        "as-is,query-shadows,opaque,solid-cutouts",
+        "as-is,query-shadows,opaque,solid-cutouts,compute",
         "--sets",
         "rust",
         "--rounds",
@@ -40,10 +40,15 @@ fn stage_bench_measures_every_variant_against_the_first() {
         serde_json::from_str(&std::fs::read_to_string(out.join("results.json")).unwrap()).unwrap();
     let rows = json["rows"].as_array().unwrap();
     let row = |variant: &str| rows.iter().find(|r| r["scene"] == "cutout" && r["variant"] == variant).unwrap();
-    assert_eq!(rows.len(), 4 + 1, "four cutout variants and spheres as-is: {rows:#?}");
+    assert_eq!(rows.len(), 5 + 2, "five cutout variants, spheres as-is and compute: {rows:#?}");
     assert_eq!(row("as-is")["against_first"], 1.0);
     assert_eq!(row("query-shadows")["rmse"], 0.0, "query shadows are traced shadows");
     assert_eq!(row("query-shadows")["shadow_rays"], row("as-is")["shadow_rays"]);
+    for compute in rows.iter().filter(|r| r["variant"] == "compute") {
+        assert_eq!(compute["rmse"], 0.0, "the compute renderer gives the pipeline's image: {compute}");
+        assert_eq!(compute["hit_mismatches"], 0, "{compute}");
+        assert_eq!(compute["raygen_stack_bytes"], 0, "{compute}");
+    }
     assert!(row("opaque")["rmse"].as_f64().unwrap() > 0.01, "the holes are gone");
     let solid = row("solid-cutouts");
     assert_eq!(solid["rmse"], row("opaque")["rmse"], "no holes: the opaque image");

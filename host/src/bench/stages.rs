@@ -1,7 +1,7 @@
 //! `twinray stage-bench`: what a stage kind or tracing method costs, as GPU time against the
 //! image it gives. Each scene renders in variants (made opaque, cutouts without holes, shadows
 //! by `traceRay` or by ray queries, materials inline or by callables, hit groups per shape or
-//! per material) with each shader set; every variant's time is set
+//! per material, the pipeline or the compute renderer) with each shader set; every variant's time is set
 //! against the first variant's with the same set, and its image against that variant's image.
 //! Variants use different uploads, so they are timed in rounds: in each round every variant
 //! and set renders once (order rotated from round to round), and each median pools the timed
@@ -12,7 +12,7 @@ use crate::compare::diff;
 use crate::error::{Error, Result};
 use crate::render::{render, RenderOptions, RenderOutput};
 use crate::scene::file::{CutoutPattern, MaterialDesc};
-use crate::scene::{HitGroups, MaterialShading, Scene, ShadowMethod};
+use crate::scene::{HitGroups, MaterialShading, Renderer, Scene, ShadowMethod};
 use crate::shaders::ShaderSet;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
@@ -42,10 +42,15 @@ pub enum Variant {
     PerShapeHits,
     /// Hit groups per shape kind and material kind, chosen by each instance's SBT offset.
     PerMaterialHits,
+    /// Rendered by the ray tracing pipeline.
+    Pipeline,
+    /// Rendered by the compute renderer, primary and shadow rays traced by ray queries (with
+    /// materials inline and no hit groups to choose, as it has no SBT).
+    Compute,
 }
 
 impl Variant {
-    pub const ALL: [Variant; 9] = [
+    pub const ALL: [Variant; 11] = [
         Variant::AsIs,
         Variant::Opaque,
         Variant::SolidCutouts,
@@ -55,6 +60,8 @@ impl Variant {
         Variant::CallableMaterials,
         Variant::PerShapeHits,
         Variant::PerMaterialHits,
+        Variant::Pipeline,
+        Variant::Compute,
     ];
 
     pub fn name(self) -> &'static str {
@@ -68,6 +75,8 @@ impl Variant {
             Variant::CallableMaterials => "callable-materials",
             Variant::PerShapeHits => "per-shape-hits",
             Variant::PerMaterialHits => "per-material-hits",
+            Variant::Pipeline => "pipeline",
+            Variant::Compute => "compute",
         }
     }
 
@@ -120,13 +129,19 @@ impl Variant {
             Variant::CallableMaterials => out.file.material_shading = MaterialShading::Callable,
             Variant::PerShapeHits => out.file.hit_groups = HitGroups::PerShape,
             Variant::PerMaterialHits => out.file.hit_groups = HitGroups::PerMaterial,
+            Variant::Pipeline => out.file.renderer = Renderer::Pipeline,
+            Variant::Compute => {
+                out.file.renderer = Renderer::Compute;
+                (out.file.material_shading, out.file.hit_groups) = (MaterialShading::Inline, HitGroups::PerShape);
+            }
         }
         Some(out)
     }
 
     /// What the device must have for it, if it lacks it.
     fn lacking(self, ctx: &Context) -> Option<&'static str> {
-        (self == Variant::QueryShadows && !ctx.info.ray_query).then_some("VK_KHR_ray_query")
+        let queries = matches!(self, Variant::QueryShadows | Variant::Compute);
+        (queries && !ctx.info.ray_query).then_some("VK_KHR_ray_query")
     }
 }
 

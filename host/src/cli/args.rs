@@ -338,7 +338,8 @@ pub struct StageBenchArgs {
     pub scenes: Vec<String>,
     /// Variants, comma-separated; each is timed against the first: as-is, opaque (cutouts made
     /// diffuse), solid-cutouts (any-hit without holes), trace-shadows, query-shadows,
-    /// inline-materials, callable-materials, per-shape-hits, per-material-hits.
+    /// inline-materials, callable-materials, per-shape-hits, per-material-hits, pipeline,
+    /// compute (the compute renderer with ray queries).
     #[arg(long, default_value = "opaque,solid-cutouts,as-is")]
     pub variants: String,
     /// Shader sets, as for `bench --sets`; each variant is also timed against the first set.

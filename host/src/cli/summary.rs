@@ -42,13 +42,13 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
             ctx.pipeline_kind()
         );
         let stages: Vec<&str> = twinray::shaders::Stage::ALL.iter().map(|s| s.name()).collect();
-        println!("stages      {} (VK_KHR_ray_tracing_pipeline)", stages.join(", "));
+        println!("stages      {} (compute: the ray query renderer)", stages.join(", "));
         println!(
             "ray query   VK_KHR_ray_query {}",
             if i.ray_query {
-                "yes: shadow_method = \"query\" scenes render"
+                "yes: shadow_method = \"query\" and renderer = \"compute\" scenes render"
             } else {
-                "no: shadow_method = \"query\" scenes are refused"
+                "no: shadow_method = \"query\" and renderer = \"compute\" scenes are refused"
             }
         );
         println!(

@@ -7,7 +7,7 @@ use crate::render::{prepare, storage_buffer, submit, transition, STORAGE_IMAGE, 
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::vk::buffer::Buffer;
-use crate::vk::commands::memory_barrier;
+use crate::vk::commands::{memory_barrier, TRACING_STAGES};
 use crate::vk::context::Context;
 use crate::vk::timing::Timestamps;
 use ash::vk;
@@ -72,7 +72,7 @@ fn probe_and_release(
     let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
     let before = |device: &ash::Device, cmd| transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
     submit(ctx, &p.one_shot, &[trace], before, |device, cmd| {
-        let written = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+        let written = (TRACING_STAGES, vk::AccessFlags::SHADER_WRITE);
         memory_barrier(device, cmd, written, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));
         let region = [vk::BufferCopy::default().size(bytes)];
         // SAFETY: cmd is recording; both buffers hold `bytes`.

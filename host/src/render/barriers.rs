@@ -1,5 +1,6 @@
 //! Layouts of the output image through a render, and the barriers between them.
 
+use crate::vk::commands::TRACING_STAGES;
 use crate::vk::image::COLOR_RANGE;
 use ash::vk;
 
@@ -7,7 +8,7 @@ use ash::vk;
 pub(crate) const UNUSED_IMAGE: (vk::ImageLayout, vk::PipelineStageFlags, vk::AccessFlags) =
     (vk::ImageLayout::UNDEFINED, vk::PipelineStageFlags::TOP_OF_PIPE, vk::AccessFlags::empty());
 pub(crate) const STORAGE_IMAGE: (vk::ImageLayout, vk::PipelineStageFlags, vk::AccessFlags) =
-    (vk::ImageLayout::GENERAL, vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+    (vk::ImageLayout::GENERAL, TRACING_STAGES, vk::AccessFlags::SHADER_WRITE);
 
 /// The output image's layout while it is copied out.
 pub(crate) const COPY_SOURCE: (vk::ImageLayout, vk::PipelineStageFlags, vk::AccessFlags) =

@@ -1,11 +1,13 @@
 //! The ray tracing pipeline of a scene's plan with a shader set: ray generation, the primary
-//! miss shader, the shadow miss shader only if some light casts shadows, and one hit group per
-//! shape kind the scene uses (with the cutout any-hit stage for cutout objects). Specialisation constants carry the plan's sample count, shadow
-//! switch and shadow sampler into ray generation.
+//! miss shader, the shadow miss shader only if some light casts shadows, and the hit groups
+//! of the plan (with the cutout any-hit stage for cutout objects); or, for `renderer =
+//! "compute"`, the compute pipeline of the ray query renderer alone. Specialisation constants
+//! carry the plan's sample count, shadow switch and shadow sampler into ray generation (or the
+//! compute stage).
 
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
-use crate::scene::PipelinePlan;
+use crate::scene::{PipelinePlan, RENDER_COMPUTE};
 use crate::shaders::{ShaderSet, Stage, StageModule};
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
@@ -53,12 +55,17 @@ pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
         Stage::ClosestHit => vk::ShaderStageFlags::CLOSEST_HIT_KHR,
         Stage::AnyHit => vk::ShaderStageFlags::ANY_HIT_KHR,
         Stage::Callable => vk::ShaderStageFlags::CALLABLE_KHR,
+        Stage::Compute => vk::ShaderStageFlags::COMPUTE,
     }
 }
 
 /// Module names of a plan's pipeline, each once, in stage order: the ray generation module
-/// `raygen` ("raygen" renders, "probe" probes), misses, hit modules.
+/// `raygen` ("raygen" renders, "probe" probes), misses, hit modules; or the compute renderer
+/// alone.
 pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static str> {
+    if raygen == RENDER_COMPUTE {
+        return vec![raygen];
+    }
     let mut names = vec![raygen, "miss"];
     if plan.shadow_miss() {
         names.push("shadow_miss");
@@ -101,7 +108,9 @@ impl ScenePipeline {
             .collect();
         let spec_bytes: &[u8] = bytemuck::cast_slice(&spec_data);
         let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
-        let groups = groups(plan, &names);
+        // The compute renderer has no groups and no SBT.
+        let compute = raygen == RENDER_COMPUTE;
+        let groups = if compute { Vec::new() } else { groups(plan, &names) };
         require_device_features(ctx, &modules)?;
         let bindings = descriptor_bindings();
         let stages: Vec<_> = modules
@@ -111,10 +120,13 @@ impl ScenePipeline {
                 stage: stage_flag(m.spec.stage),
                 spirv: &m.spirv[..],
                 entry: &m.entry,
-                specialization: (m.spec.stage == Stage::Raygen).then_some(&spec),
+                specialization: matches!(m.spec.stage, Stage::Raygen | Stage::Compute).then_some(&spec),
             })
             .collect();
-        let (rt, held) = if let Some(libraries) = libraries {
+        let (rt, held) = if compute {
+            // One stage, no groups, no SBT, nothing to link.
+            (RtPipeline::compute(ctx, &bindings, &stages[0])?, Vec::new())
+        } else if let Some(libraries) = libraries {
             let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, spec_bytes)).collect();
             libraries.link(ctx, &bindings, &descs)?
         } else {
@@ -123,7 +135,7 @@ impl ScenePipeline {
         };
         Ok(ScenePipeline {
             rt,
-            sbt_records: sbt_records(plan),
+            sbt_records: if compute { Default::default() } else { sbt_records(plan) },
             group_count: groups.len() as u32,
             modules: names,
             _libraries: held,
@@ -149,7 +161,11 @@ fn require_device_features(ctx: &Context, modules: &[StageModule]) -> Result<()>
                 "the {} stage traces ray queries, which need VK_KHR_ray_query, and {} lacks it{}",
                 m.spec.name,
                 ctx.info.name,
-                if m.spec.name == "raygen_query" { " (the scene sets shadow_method = \"query\")" } else { "" }
+                match m.spec.name {
+                    "raygen_query" => " (the scene sets shadow_method = \"query\")",
+                    RENDER_COMPUTE => " (the scene sets renderer = \"compute\")",
+                    _ => "",
+                }
             )));
         }
     }

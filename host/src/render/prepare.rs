@@ -30,7 +30,8 @@ pub(crate) struct Prepared {
     pub image: Rc<StorageImage>,
     pub pipeline: ScenePipeline,
     pub descriptors: DescriptorSet,
-    pub sbt: ShaderBindingTable,
+    /// None for the compute renderer.
+    pub sbt: Option<ShaderBindingTable>,
     _resources: Rc<SceneResources>,
 }
 
@@ -55,7 +56,7 @@ impl Prepared {
         let trace = Trace {
             pipeline: &self.pipeline.rt,
             descriptors: &self.descriptors,
-            sbt: &self.sbt,
+            sbt: self.sbt.as_ref(),
             timestamps,
             launch,
             warmup,
@@ -119,7 +120,11 @@ pub(crate) fn prepare_on(
         buffers,
     };
     let descriptors = DescriptorSet::new(ctx, pipeline.rt.set_layout, &pool_sizes(&descriptor_bindings()), &targets)?;
-    let sbt = ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_count, &pipeline.sbt_records)?;
+    let sbt = if pipeline.group_count == 0 {
+        None
+    } else {
+        Some(ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_count, &pipeline.sbt_records)?)
+    };
     Ok(Prepared { one_shot: OneShot::new(ctx)?, image, pipeline, descriptors, sbt, _resources: resources })
 }
 

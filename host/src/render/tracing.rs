@@ -5,7 +5,7 @@
 
 use crate::error::Result;
 use crate::util::progress;
-use crate::vk::commands::{memory_barrier, OneShot};
+use crate::vk::commands::{memory_barrier, OneShot, TRACING_STAGES};
 use crate::vk::context::Context;
 use crate::vk::descriptors::DescriptorSet;
 use crate::vk::pipeline::RtPipeline;
@@ -19,7 +19,8 @@ use twinray_shared::bindings as b;
 pub(crate) struct Trace<'a> {
     pub pipeline: &'a RtPipeline,
     pub descriptors: &'a DescriptorSet,
-    pub sbt: &'a ShaderBindingTable,
+    /// The SBT of a ray tracing pipeline; none for the compute renderer, which is dispatched.
+    pub sbt: Option<&'a ShaderBindingTable>,
     pub timestamps: Option<&'a Timestamps>,
     /// Launch width and height.
     pub launch: (u32, u32),
@@ -40,7 +41,7 @@ impl Trace<'_> {
     }
 
     fn bind(&self, ctx: &Context, cmd: vk::CommandBuffer) {
-        let bind = vk::PipelineBindPoint::RAY_TRACING_KHR;
+        let bind = self.pipeline.bind_point;
         let set = [self.descriptors.raw];
         // SAFETY: cmd is recording; pipeline and set are alive until the submit completes.
         unsafe {
@@ -51,25 +52,31 @@ impl Trace<'_> {
 
     /// One trace after all earlier traces' writes, between timestamps `timed` when given.
     fn trace(&self, ctx: &Context, cmd: vk::CommandBuffer, timed: Option<u32>) {
-        let rt = (vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR, vk::AccessFlags::SHADER_WRITE);
+        let rt = (TRACING_STAGES, vk::AccessFlags::SHADER_WRITE);
         memory_barrier(&ctx.device, cmd, rt, (rt.0, vk::AccessFlags::SHADER_WRITE | vk::AccessFlags::SHADER_READ));
         let timed = timed.and_then(|k| self.timestamps.map(|t| (t, k)));
         if let Some((t, k)) = timed {
             t.begin(cmd, k);
         }
-        // SAFETY: the SBT regions point into a live buffer laid out for this pipeline.
-        unsafe {
-            ctx.rt.cmd_trace_rays(
-                cmd,
-                &self.sbt.raygen,
-                &self.sbt.miss,
-                &self.sbt.hit,
-                &self.sbt.callable,
-                self.launch.0,
-                self.launch.1,
-                1,
-            )
-        };
+        if let Some(sbt) = self.sbt {
+            // SAFETY: the SBT regions point into a live buffer laid out for this pipeline.
+            unsafe {
+                ctx.rt.cmd_trace_rays(
+                    cmd,
+                    &sbt.raygen,
+                    &sbt.miss,
+                    &sbt.hit,
+                    &sbt.callable,
+                    self.launch.0,
+                    self.launch.1,
+                    1,
+                )
+            };
+        } else {
+            let groups = |pixels: u32| pixels.div_ceil(b::RENDER_GROUP_SIZE);
+            // SAFETY: a compute pipeline is bound, with its descriptor set.
+            unsafe { ctx.device.cmd_dispatch(cmd, groups(self.launch.0), groups(self.launch.1), 1) };
+        }
         if let Some((t, k)) = timed {
             t.end(cmd, k);
         }

@@ -3,7 +3,8 @@
 //! specialisation the scene uses.
 
 use super::file::{
-    CutoutPattern, HitGroups, LightDesc, MaterialDesc, MaterialShading, SceneFile, ShadowMethod, ShadowSampler,
+    CutoutPattern, HitGroups, LightDesc, MaterialDesc, MaterialShading, Renderer, SceneFile, ShadowMethod,
+    ShadowSampler,
 };
 use super::mesh::MeshData;
 use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
@@ -143,6 +144,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
             ShadowSampler::Random => b::SHADOW_SAMPLER_RANDOM,
         },
         shadow_query: scene.shadow_method == ShadowMethod::Query,
+        compute: scene.renderer == Renderer::Compute,
         callable_kinds: if callable { material_kinds(&materials) } else { Vec::new() },
     };
     let Geometry { blases, primitives, vertices, indices } = geometry;
@@ -190,8 +192,8 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
         background: Vec3::from(scene.background).extend(1.0),
         light_count: scene.lights.len() as u32,
         seed: scene.image.seed,
-        _pad0: 0,
-        _pad1: 0,
+        width,
+        height,
     }
 }
 

@@ -1,6 +1,8 @@
 //! Rejects well-formed scene files with impossible values, naming the field or object.
 
-use super::file::{CameraDesc, GridDesc, LightDesc, MaterialDesc, ObjectDesc, Parity, SceneFile};
+use super::file::{
+    CameraDesc, GridDesc, HitGroups, LightDesc, MaterialDesc, MaterialShading, ObjectDesc, Parity, Renderer, SceneFile,
+};
 use super::shape::ShapeDesc;
 use glam::Vec3;
 use twinray_shared::shapes::spec::{MAX_LENGTH, MIN_LENGTH};
@@ -85,6 +87,7 @@ pub fn check(scene: &SceneFile) -> Checked {
     samples("image.samples", scene.image.samples)?;
     samples("shadow_samples", scene.shadow_samples)?;
     check_camera(&scene.camera)?;
+    check_renderer(scene)?;
     color("background", scene.background)?;
     for (name, m) in &scene.materials {
         check_material(m).map_err(|e| format!("material {name:?}: {e}"))?;
@@ -125,6 +128,24 @@ pub fn check(scene: &SceneFile) -> Checked {
         check_object(scene, object).map_err(|e| format!("objects[{i}] (shape {:?}): {e}", object.shape))?;
     }
     check_parity(&scene.parity)
+}
+
+/// The compute renderer has no SBT: no callables, and no hit groups to divide objects among.
+fn check_renderer(scene: &SceneFile) -> Checked {
+    if scene.renderer != Renderer::Compute {
+        return Ok(());
+    }
+    if scene.material_shading == MaterialShading::Callable {
+        return Err("renderer = \"compute\" computes material colours inline: it has no callables \
+                    (material_shading = \"callable\" needs renderer = \"pipeline\")"
+            .into());
+    }
+    if scene.hit_groups == HitGroups::PerMaterial {
+        return Err("renderer = \"compute\" has no hit groups (hit_groups = \"per-material\" needs \
+                    renderer = \"pipeline\")"
+            .into());
+    }
+    Ok(())
 }
 
 pub(super) fn check_camera(c: &CameraDesc) -> Checked {

@@ -46,6 +46,9 @@ pub struct SceneFile {
     /// One hit group per shape kind, or per shape kind and material kind.
     #[serde(default)]
     pub hit_groups: HitGroups,
+    /// What renders the image: the ray tracing pipeline, or a compute shader with ray queries.
+    #[serde(default)]
+    pub renderer: Renderer,
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default)]
@@ -306,6 +309,18 @@ pub enum HitGroups {
     /// One per shape kind and material kind, each instance's SBT offset choosing it: diffuse,
     /// emissive and cutout materials get a closest-hit stage without the branch.
     PerMaterial,
+}
+
+/// What renders the image.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Renderer {
+    /// The ray tracing pipeline: ray generation, miss and hit stages through the SBT.
+    #[default]
+    Pipeline,
+    /// One compute stage (`render_compute`) that traces primary and shadow rays with ray
+    /// queries (`VK_KHR_ray_query`), deciding candidates with the same shared code.
+    Compute,
 }
 
 impl ShadowSampler {

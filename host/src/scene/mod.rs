@@ -16,9 +16,11 @@ pub use animation::Animation;
 pub use build::{frame_data, object_transform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
 pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
 pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE, MAX_SIDE};
-pub use file::{HitGroups, MaterialShading, Parity, SceneFile, ShadowMethod};
+pub use file::{HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMethod};
 pub use mesh::MeshData;
-pub use plan::{each_once, material_callable, Colour, HitGeometry, HitGroup, PipelinePlan, CUTOUT_ANY_HIT};
+pub use plan::{
+    each_once, material_callable, Colour, HitGeometry, HitGroup, PipelinePlan, CUTOUT_ANY_HIT, RENDER_COMPUTE,
+};
 pub use shape::{Formula, ShapeDesc};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

@@ -37,6 +37,9 @@ pub enum Colour {
     Flat,
 }
 
+/// The compute renderer's module (`renderer = "compute"`).
+pub const RENDER_COMPUTE: &str = "render_compute";
+
 /// The any-hit module of cutout hit groups.
 pub const CUTOUT_ANY_HIT: &str = "cutout_any_hit";
 
@@ -110,6 +113,9 @@ pub struct PipelinePlan {
     pub shadow_sampler: u32,
     /// Shadow rays traced inline by ray queries (`shadow_method = "query"`).
     pub shadow_query: bool,
+    /// Rendered by the compute stage `render_compute` with ray queries (`renderer =
+    /// "compute"`): the hit groups are then what its queries decide as their stages would.
+    pub compute: bool,
     /// Material kinds the scene's materials use, when material callables compute colours
     /// (`material_shading = "callable"`); empty when closest-hit stages compute them.
     pub callable_kinds: Vec<u32>,
@@ -136,10 +142,13 @@ pub fn material_callable(kind: u32) -> &'static str {
 }
 
 impl PipelinePlan {
-    /// The ray generation module that renders the scene: `raygen`, or `raygen_query` when
-    /// shadow rays are ray queries (then no shadow miss stage is needed).
+    /// The module that renders the scene: the ray generation stage `raygen`, or `raygen_query`
+    /// when shadow rays are ray queries (then no shadow miss stage is needed); or the compute
+    /// renderer `render_compute`, alone in its pipeline.
     pub fn render_raygen(&self) -> &'static str {
-        if self.shadow_query {
+        if self.compute {
+            RENDER_COMPUTE
+        } else if self.shadow_query {
             "raygen_query"
         } else {
             "raygen"
@@ -153,6 +162,6 @@ impl PipelinePlan {
 
     /// Whether the shadow miss stage is in the pipeline: shadow rays traced by `traceRay`.
     pub fn shadow_miss(&self) -> bool {
-        self.shadows && !self.shadow_query
+        self.shadows && !self.shadow_query && !self.compute
     }
 }

@@ -2,7 +2,7 @@
 //! and a TLAS of instances that can be rebuilt or updated in place frame after frame.
 
 use super::buffer::Buffer;
-use super::commands::{memory_barrier, OneShot};
+use super::commands::{memory_barrier, OneShot, TRACING_STAGES};
 use super::context::Context;
 use crate::error::{Result, VkContext};
 use ash::vk;
@@ -172,7 +172,7 @@ impl Tlas {
         }
         // Earlier traces read the structure and earlier builds wrote it and the scratch.
         let earlier = (
-            vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR | vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
+            TRACING_STAGES | vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
             vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR | vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
         );
         let build = (
@@ -221,7 +221,7 @@ fn build_info<'a>(
 /// What reads a built structure: later builds (a TLAS over a BLAS) and traces.
 fn built_for_reading() -> (vk::PipelineStageFlags, vk::AccessFlags) {
     (
-        vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR | vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR,
+        vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR | TRACING_STAGES,
         vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR,
     )
 }

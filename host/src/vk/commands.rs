@@ -62,6 +62,12 @@ impl Drop for OneShot {
     }
 }
 
+/// The stages that trace rays: the ray tracing shaders, and the compute renderer's shader, which
+/// traces with ray queries. Barriers around traces and builds name both.
+pub const TRACING_STAGES: vk::PipelineStageFlags = vk::PipelineStageFlags::from_raw(
+    vk::PipelineStageFlags::RAY_TRACING_SHADER_KHR.as_raw() | vk::PipelineStageFlags::COMPUTE_SHADER.as_raw(),
+);
+
 /// A global memory barrier between two pipeline stages.
 pub fn memory_barrier(
     device: &ash::Device,

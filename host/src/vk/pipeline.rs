@@ -1,6 +1,7 @@
 //! A ray tracing pipeline from plain Vulkan-shaped inputs: the descriptor bindings of its one
 //! set, its shader stages (SPIR-V, entry point, specialisation) and its shader groups, in
-//! shader binding table order. What goes in it is decided above this layer (`render::pipeline`).
+//! shader binding table order; or a compute pipeline of one stage over the same set (the ray
+//! query renderer). What goes in it is decided above this layer (`render::pipeline`).
 
 use super::context::Context;
 use crate::error::{Error, Result, VkContext};
@@ -62,12 +63,14 @@ enum Making<'a> {
     Linked(Interface, &'a [vk::Pipeline]),
 }
 
-/// A ray tracing pipeline with its set and pipeline layouts.
+/// A ray tracing pipeline (or a compute one) with its set and pipeline layouts.
 pub struct RtPipeline {
     ctx: Arc<Context>,
     pub set_layout: vk::DescriptorSetLayout,
     pub layout: vk::PipelineLayout,
     pub raw: vk::Pipeline,
+    /// `RAY_TRACING_KHR`, or `COMPUTE` for [`RtPipeline::compute`].
+    pub bind_point: vk::PipelineBindPoint,
 }
 
 impl RtPipeline {
@@ -96,9 +99,37 @@ impl RtPipeline {
         Self::make(ctx, &desc, Making::Linked(interface, &raw))
     }
 
+    /// A compute pipeline of `stage` over a set with `bindings`.
+    pub fn compute(
+        ctx: &Arc<Context>,
+        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        stage: &StageDesc,
+    ) -> Result<Self> {
+        let mut pipeline = Self::layouts(ctx, bindings, vk::PipelineBindPoint::COMPUTE)?;
+        let mut made = Modules { ctx, raw: Vec::new() };
+        let info =
+            [vk::ComputePipelineCreateInfo::default().stage(stage_info(&mut made, stage)?).layout(pipeline.layout)];
+        // SAFETY: valid create info; the module lives until the call returns.
+        let raw = unsafe { ctx.device.create_compute_pipelines(ctx.pipeline_cache(), &info, None) }
+            .map_err(|(_, e)| e)
+            .call("vkCreateComputePipelines")?;
+        pipeline.raw = raw[0];
+        Ok(pipeline)
+    }
+
     fn make(ctx: &Arc<Context>, desc: &PipelineDesc, making: Making) -> Result<Self> {
-        let bindings: Vec<_> = desc
-            .bindings
+        let mut pipeline = Self::layouts(ctx, desc.bindings, vk::PipelineBindPoint::RAY_TRACING_KHR)?;
+        pipeline.raw = create_pipeline(ctx, pipeline.layout, desc, making)?;
+        Ok(pipeline)
+    }
+
+    /// The set and pipeline layouts over `bindings`, and no pipeline yet.
+    fn layouts(
+        ctx: &Arc<Context>,
+        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        bind_point: vk::PipelineBindPoint,
+    ) -> Result<Self> {
+        let bindings: Vec<_> = bindings
             .iter()
             .map(|&(binding, ty, stages)| {
                 vk::DescriptorSetLayoutBinding::default()
@@ -112,19 +143,27 @@ impl RtPipeline {
         // SAFETY: valid create info; destroyed in Drop.
         let set_layout =
             unsafe { ctx.device.create_descriptor_set_layout(&info, None) }.call("vkCreateDescriptorSetLayout")?;
-        let mut pipeline =
-            RtPipeline { ctx: ctx.clone(), set_layout, layout: vk::PipelineLayout::null(), raw: vk::Pipeline::null() };
+        let mut pipeline = RtPipeline {
+            ctx: ctx.clone(),
+            set_layout,
+            layout: vk::PipelineLayout::null(),
+            raw: vk::Pipeline::null(),
+            bind_point,
+        };
         let layouts = [set_layout];
         let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts);
         // SAFETY: valid create info; destroyed in Drop.
         pipeline.layout = unsafe { ctx.device.create_pipeline_layout(&info, None) }.call("vkCreatePipelineLayout")?;
-        pipeline.raw = create_pipeline(ctx, pipeline.layout, desc, making)?;
         Ok(pipeline)
     }
 
     /// Bytes of stack the ray generation stage (group 0) needs: the state it keeps across each
-    /// trace call (the driver's figure; lavapipe reports a constant).
+    /// trace call (the driver's figure; lavapipe reports a constant); 0 for a compute pipeline,
+    /// which keeps none.
     pub fn raygen_stack_bytes(&self) -> u64 {
+        if self.bind_point != vk::PipelineBindPoint::RAY_TRACING_KHR {
+            return 0;
+        }
         // SAFETY: group 0 is the raygen group, a general group, of this live pipeline.
         unsafe { self.ctx.rt.get_ray_tracing_shader_group_stack_size(self.raw, 0, vk::ShaderGroupShaderKHR::GENERAL) }
     }
@@ -145,6 +184,21 @@ impl Drop for Modules<'_> {
     }
 }
 
+/// The create info of stage `s`, its module made and kept in `made`.
+fn stage_info<'a>(made: &mut Modules, s: &StageDesc<'a>) -> Result<vk::PipelineShaderStageCreateInfo<'a>> {
+    let code = ash::util::read_spv(&mut std::io::Cursor::new(s.spirv))
+        .map_err(|e| Error::Unsupported(format!("module {} is not SPIR-V: {e}", s.name)))?;
+    let info = vk::ShaderModuleCreateInfo::default().code(&code);
+    // SAFETY: the code was checked before (SPIR-V header, entry points, bindings).
+    let module = unsafe { made.ctx.device.create_shader_module(&info, None) }.call("vkCreateShaderModule")?;
+    made.raw.push(module);
+    let mut stage = vk::PipelineShaderStageCreateInfo::default().stage(s.stage).module(module).name(s.entry);
+    if let Some(spec) = s.specialization {
+        stage = stage.specialization_info(spec);
+    }
+    Ok(stage)
+}
+
 fn create_pipeline(
     ctx: &Context,
     layout: vk::PipelineLayout,
@@ -152,20 +206,7 @@ fn create_pipeline(
     making: Making,
 ) -> Result<vk::Pipeline> {
     let mut made = Modules { ctx, raw: Vec::new() };
-    let mut stages = Vec::new();
-    for s in desc.stages {
-        let code = ash::util::read_spv(&mut std::io::Cursor::new(s.spirv))
-            .map_err(|e| Error::Unsupported(format!("module {} is not SPIR-V: {e}", s.name)))?;
-        let info = vk::ShaderModuleCreateInfo::default().code(&code);
-        // SAFETY: the code was checked before (SPIR-V header, entry points, bindings).
-        let module = unsafe { ctx.device.create_shader_module(&info, None) }.call("vkCreateShaderModule")?;
-        made.raw.push(module);
-        let mut stage = vk::PipelineShaderStageCreateInfo::default().stage(s.stage).module(module).name(s.entry);
-        if let Some(spec) = s.specialization {
-            stage = stage.specialization_info(spec);
-        }
-        stages.push(stage);
-    }
+    let stages = desc.stages.iter().map(|s| stage_info(&mut made, s)).collect::<Result<Vec<_>>>()?;
     let unused = vk::SHADER_UNUSED_KHR;
     let groups: Vec<_> = desc
         .groups

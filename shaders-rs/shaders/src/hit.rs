@@ -5,8 +5,9 @@
 //! "callable"`).
 
 use core::arch::asm;
-use spirv_std::glam::{UVec4, Vec3, Vec4Swizzles};
-use twinray_shared::layout::{HitPayload, Material, MaterialCall};
+use spirv_std::glam::{Mat3, UVec4, Vec2, Vec3, Vec4Swizzles};
+use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Vertex};
+use twinray_shared::shading;
 
 /// Defines a closest-hit entry point for every procedural shape, `$name`: the surface from the
 /// reported object-space normal, its colour `$color` of the material `$m`, object-space point
@@ -34,14 +35,13 @@ pub fn $name(
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
     $($params)*
 ) {
-    let data = objects[object as usize];
-    let material = materials[data.material as usize];
+    let rays = ((origin, direction), (object_origin, object_direction));
+    let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
+    let material = materials[objects[object as usize].material as usize];
     let tint = primitives[(primitive_base + primitive_id) as usize].tint.xyz();
-    let ($m, $p, $n) = (&material, object_origin + object_direction * t, *normal);
+    let ($m, $p, $n) = (&material, surface.object_point(), *normal);
     let color = $color * tint;
-    let (geometric, shading_normal) = shading::surface_normals(world_to_object.to_mat3(), *normal, *normal, direction);
-    let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
-    hit::describe(payload, origin + direction * t, t, geometric, shading_normal, color, ids);
+    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, color);
 }
     };
 }
@@ -71,21 +71,14 @@ pub fn $name(
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
     $($params)*
 ) {
+    let rays = ((origin, direction), (object_origin, object_direction));
+    let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let data = objects[object as usize];
     let material = materials[data.material as usize];
-    let first = (data.index_base + 3 * primitive_id) as usize;
-    let v0 = vertices[(data.vertex_base + indices[first]) as usize];
-    let v1 = vertices[(data.vertex_base + indices[first + 1]) as usize];
-    let v2 = vertices[(data.vertex_base + indices[first + 2]) as usize];
-    let p = [v0.position.xyz(), v1.position.xyz(), v2.position.xyz()];
-    let n = [v0.normal.xyz(), v1.normal.xyz(), v2.normal.xyz()];
-    let (object_geometric, object_shading) = shading::triangle_normals(p, n, barycentrics.x, barycentrics.y);
-    let ($m, $p, $n) = (&material, object_origin + object_direction * t, object_geometric);
+    let (geometric, shading_normal) = hit::triangle_normals(&data, primitive_id, *barycentrics, vertices, indices);
+    let ($m, $p, $n) = (&material, surface.object_point(), geometric);
     let color = $color;
-    let (geometric, shading_normal) =
-        shading::surface_normals(world_to_object.to_mat3(), object_geometric, object_shading, direction);
-    let ids = UVec4::new(object, primitive_id, material.kind, hit_kind);
-    hit::describe(payload, origin + direction * t, t, geometric, shading_normal, color, ids);
+    hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, color);
 }
     };
 }
@@ -104,16 +97,89 @@ pub fn call_material(call: &mut MaterialCall, material: &Material, point: Vec3, 
     call.color.xyz()
 }
 
-/// The payload of a hit at world point `point`, ray parameter `t`.
-pub fn describe(
+/// Where a ray met a surface: what a closest-hit stage reads from its built-ins, and the
+/// compute renderer from its ray query's committed intersection.
+#[derive(Clone, Copy)]
+pub struct SurfaceHit {
+    /// The instance id (the object's index).
+    pub object: u32,
+    pub primitive_id: u32,
+    pub hit_kind: u32,
+    /// The world-space ray.
+    pub origin: Vec3,
+    pub direction: Vec3,
+    /// The object-space ray.
+    pub object_origin: Vec3,
+    pub object_direction: Vec3,
+    pub t: f32,
+    pub world_to_object: Mat3,
+}
+
+impl SurfaceHit {
+    /// The hit at `t` along `rays`: (world origin, direction) and (object origin, direction).
+    pub fn new(
+        object: u32,
+        primitive_id: u32,
+        hit_kind: u32,
+        ((origin, direction), (object_origin, object_direction)): ((Vec3, Vec3), (Vec3, Vec3)),
+        t: f32,
+        world_to_object: Mat3,
+    ) -> Self {
+        SurfaceHit {
+            object,
+            primitive_id,
+            hit_kind,
+            origin,
+            direction,
+            object_origin,
+            object_direction,
+            t,
+            world_to_object,
+        }
+    }
+
+    /// The hit point in object space.
+    pub fn object_point(&self) -> Vec3 {
+        self.object_origin + self.object_direction * self.t
+    }
+}
+
+/// Object-space geometric and shading normals of triangle `primitive_id` of a mesh object at
+/// `barycentrics`, from its vertices.
+pub fn triangle_normals(
+    data: &ObjectData,
+    primitive_id: u32,
+    barycentrics: Vec2,
+    vertices: &[Vertex],
+    indices: &[u32],
+) -> (Vec3, Vec3) {
+    let first = (data.index_base + 3 * primitive_id) as usize;
+    let v0 = vertices[(data.vertex_base + indices[first]) as usize];
+    let v1 = vertices[(data.vertex_base + indices[first + 1]) as usize];
+    let v2 = vertices[(data.vertex_base + indices[first + 2]) as usize];
+    let p = [v0.position.xyz(), v1.position.xyz(), v2.position.xyz()];
+    let n = [v0.normal.xyz(), v1.normal.xyz(), v2.normal.xyz()];
+    shading::triangle_normals(p, n, barycentrics.x, barycentrics.y)
+}
+
+/// The payload of `hit` on a material of kind `kind`: world normals from the object-space
+/// `geometric` and `shading` normals, and the surface's `color`.
+pub fn describe_surface(
     payload: &mut HitPayload,
-    point: Vec3,
-    t: f32,
+    hit: &SurfaceHit,
+    kind: u32,
     geometric: Vec3,
     shading: Vec3,
     color: Vec3,
-    ids: UVec4,
 ) {
+    let (world_geometric, world_shading) =
+        shading::surface_normals(hit.world_to_object, geometric, shading, hit.direction);
+    let ids = UVec4::new(hit.object, hit.primitive_id, kind, hit.hit_kind);
+    describe(payload, hit.origin + hit.direction * hit.t, hit.t, world_geometric, world_shading, color, ids);
+}
+
+/// The payload of a hit at world point `point`, ray parameter `t`.
+fn describe(payload: &mut HitPayload, point: Vec3, t: f32, geometric: Vec3, shading: Vec3, color: Vec3, ids: UVec4) {
     payload.position = point.extend(t);
     payload.shading_normal = shading.extend(0.0);
     payload.geometric_normal = geometric.extend(0.0);

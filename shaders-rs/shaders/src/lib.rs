@@ -9,9 +9,10 @@
 
 #[macro_use]
 mod hit;
+mod query;
 mod trace;
 
-use spirv_std::glam::{UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4Swizzles};
+use spirv_std::glam::{UVec2, UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
@@ -22,30 +23,37 @@ use twinray_shared::layout::{
 };
 use twinray_shared::{camera, random, shading};
 
-/// Defines a ray generation entry point `$name`: M x M primary samples per pixel; shades each
-/// with `$shade` (given the resources `$res`, declared by the entry as `$params`) and writes
-/// the mean colour and the ids of what the first sample hit.
-macro_rules! ray_generation {
-    ($(#[$doc:meta])* $name:ident, $shade:path, [$($params:tt)*], ($($res:ident),*)) => {
+/// Defines a renderer's entry point `$name`, of stage `$stage` with built-ins `$builtins`: M x M
+/// primary samples for pixel `$pixel` of an image of `$size`; each traced by `$primary` (given
+/// `$payload` and the resources `$pres`) and shaded by `$shade` (given the resources `$sres`);
+/// writes the mean colour and the ids of what the first sample hit. The entry also declares
+/// `$params`, and runs `$setup` first. Names the caller's expressions use (`$frame`,
+/// `$payload`) come from the caller, as macro hygiene asks.
+macro_rules! renderer {
+    (
+        $(#[$doc:meta])* $name:ident, #[spirv($($stage:tt)*)], [$($builtins:tt)*], $frame:ident,
+        [$($params:tt)*], [$($setup:tt)*], ($pixel:expr, $size:expr),
+        $primary:path, $payload:ident, ($($pres:ident),*), $shade:path, ($($sres:ident),*)
+    ) => {
 $(#[$doc])*
-#[spirv(ray_generation)]
+#[spirv($($stage)*)]
 #[allow(clippy::too_many_arguments)]
 pub fn $name(
-    #[spirv(launch_id)] launch_id: UVec3,
-    #[spirv(launch_size)] launch_size: UVec3,
+    $($builtins)*
     #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
     #[spirv(descriptor_set = 0, binding = 1)] image: &Image!(2D, format = rgba32f, sampled = false),
-    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] $frame: &FrameUniform,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &[Light],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] hit_ids: &mut [u32],
     #[spirv(spec_constant(id = 0, default = 0))] shadows: u32,
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
     #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
-    #[spirv(ray_payload)] payload: &mut HitPayload,
     $($params)*
 ) {
-    let pixel = launch_id.xy();
-    let pixel_index = launch_id.y * launch_size.x + launch_id.x;
+    $($setup)*
+    let pixel: UVec2 = $pixel;
+    let size: UVec2 = $size;
+    let pixel_index = pixel.y * size.x + pixel.x;
     let mut sum = Vec3::ZERO;
     let mut first_hit = (NO_HIT, NO_HIT);
     let mut shadow_rays = 0;
@@ -57,24 +65,24 @@ pub fn $name(
             let sample = sy * samples_per_side + sx;
             // Jitter only when there is more than one sample: the spine's pipeline paid nothing.
             let (r1, r2) = if samples_per_side > 1 {
-                (random::random(frame.seed, pixel_index, sample, 0), random::random(frame.seed, pixel_index, sample, 1))
+                (random::random($frame.seed, pixel_index, sample, 0), random::random($frame.seed, pixel_index, sample, 1))
             } else {
                 (0.5, 0.5)
             };
             let offset = camera::sample_offset(sx, sy, samples_per_side, r1, r2);
-            let ray = camera::primary_ray(frame, pixel, launch_size.xy(), offset);
-            trace::primary(tlas, ray, payload);
+            let ray = camera::primary_ray($frame, pixel, size, offset);
+            $primary(tlas, ray, $payload, $($pres),*);
             if sample == 0 {
-                first_hit = (payload.ids.x, payload.ids.y);
+                first_hit = ($payload.ids.x, $payload.ids.y);
             }
             sum += $shade(
                 tlas,
-                frame,
+                $frame,
                 lights,
                 shadows != 0,
                 shadow_sampler == SHADOW_SAMPLER_STRATIFIED,
-                payload,
-                $($res,)*
+                $payload,
+                $($sres,)*
                 pixel_index,
                 sample,
                 &mut shadow_rays,
@@ -90,28 +98,76 @@ pub fn $name(
     hit_ids[base + 1] = first_hit.1;
     hit_ids[base + 2] = shadow_rays;
     let color = sum / (samples_per_side * samples_per_side) as f32;
-    // SAFETY: launch_id lies inside the image, which the host sizes to the launch.
+    // SAFETY: the pixel lies inside the image, which the host sizes to the launch.
     unsafe { image.write(pixel, color.extend(1.0)) };
 }
     };
 }
 
-ray_generation!(
+renderer!(
     /// Ray generation with shadow rays traced by `traceRay` (the shadow miss stage clears the
     /// shadow payload).
-    raygen, trace::shade, [#[spirv(ray_payload)] shadow: &mut ShadowPayload,], (shadow)
+    raygen,
+    #[spirv(ray_generation)],
+    [#[spirv(launch_id)] launch_id: UVec3, #[spirv(launch_size)] launch_size: UVec3,],
+    frame,
+    [
+        #[spirv(ray_payload)] payload: &mut HitPayload,
+        #[spirv(ray_payload)] shadow: &mut ShadowPayload,
+    ],
+    [],
+    (launch_id.xy(), launch_size.xy()),
+    trace::primary, payload, (), trace::shade, (shadow)
 );
-ray_generation!(
+renderer!(
     /// Ray generation with shadow rays traced inline by ray queries (`VK_KHR_ray_query`): it
     /// intersects procedural primitives and decides cutouts itself.
     raygen_query,
-    trace::shade_query,
+    #[spirv(ray_generation)],
+    [#[spirv(launch_id)] launch_id: UVec3, #[spirv(launch_size)] launch_size: UVec3,],
+    frame,
     [
+        #[spirv(ray_payload)] payload: &mut HitPayload,
         #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
         #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
         #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     ],
-    (objects, primitives, materials)
+    [],
+    (launch_id.xy(), launch_size.xy()),
+    trace::primary, payload, (), trace::shade_query, (objects, primitives, materials)
+);
+renderer!(
+    /// The compute renderer (`renderer = "compute"`): primary and shadow rays traced inline by
+    /// ray queries, with no pipeline stages or SBT; one invocation per pixel, in workgroups of
+    /// `RENDER_GROUP_SIZE` x `RENDER_GROUP_SIZE` (the literal is the attribute's).
+    render_compute,
+    #[spirv(compute(threads(8, 8)))],
+    [#[spirv(global_invocation_id)] id: UVec3,],
+    frame,
+    [
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    ],
+    [
+        // Whole workgroups cover the image; compute has no launch size, so the frame says it.
+        if id.x >= frame.width || id.y >= frame.height {
+            return;
+        }
+        let mut hit = HitPayload {
+            position: Vec4::ZERO,
+            shading_normal: Vec4::ZERO,
+            geometric_normal: Vec4::ZERO,
+            color: Vec4::ZERO,
+            ids: UVec4::ZERO,
+        };
+        let payload = &mut hit;
+    ],
+    (id.xy(), UVec2::new(frame.width, frame.height)),
+    query::primary_query, payload, (frame, objects, primitives, materials, vertices, indices),
+    trace::shade_query, (objects, primitives, materials)
 );
 
 /// The probe: one ray per launch index from the ray buffer, traced through the same pipeline

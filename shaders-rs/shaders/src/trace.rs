@@ -3,14 +3,15 @@
 //! Free functions rather than a struct of references: rust-gpu cannot keep references in a
 //! struct (logical SPIR-V has no pointers to pointers).
 
+use crate::query::visible_query;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
-use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
+use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use twinray_shared::bindings::{
     LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MAX, T_MIN,
 };
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
-use twinray_shared::{lighting, offset, random, shading, shapes};
+use twinray_shared::{lighting, offset, random};
 
 /// Traces a primary ray into `payload`. No ray is traced `OPAQUE`: instances say whether they
 /// are (cutouts are not, and their any-hit stage runs), so scenes without cutouts run none.
@@ -149,57 +150,4 @@ fn visible(
         tlas.trace_ray(flags, MASK_OCCLUDER as i32, 0, 0, MISS_SHADOW as i32, origin, 0.0, direction, distance, shadow);
     }
     shadow.occluded == 0
-}
-
-/// As [`visible`], traced inline with a ray query: no shader runs, so every candidate the
-/// traversal cannot decide alone is decided here, as the pipeline's stages would decide it:
-/// a procedural primitive by its shape's routine (`ObjectData::shape`), and for cutouts (the
-/// only instances not forced opaque) whether the hit is in a hole. Any hit ends the query.
-fn visible_query(
-    tlas: &AccelerationStructure,
-    origin: Vec3,
-    direction: Vec3,
-    distance: f32,
-    objects: &[ObjectData],
-    primitives: &[Primitive],
-    materials: &[Material],
-) -> bool {
-    spirv_std::ray_query!(let mut query);
-    let mut occluded = false;
-    // SAFETY: the TLAS is bound and built; `query` is this invocation's own ray query, and
-    // each candidate is read only after `proceed` returned true.
-    unsafe {
-        query.initialize(tlas, RayFlags::TERMINATE_ON_FIRST_HIT, MASK_OCCLUDER, origin, 0.0, direction, distance);
-        while query.proceed() {
-            // Indices are checked, not bounds-checked: no panic path inside a loop (see above).
-            let object = query.get_candidate_intersection_instance_id() as usize;
-            let primitive = (query.get_candidate_intersection_instance_custom_index()
-                + query.get_candidate_intersection_primitive_index()) as usize;
-            if object < objects.len() {
-                let data = *objects.get_unchecked(object);
-                let o = query.get_candidate_intersection_object_ray_origin();
-                let d = query.get_candidate_intersection_object_ray_direction();
-                let mut t = -1.0;
-                if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
-                    t = query.get_candidate_intersection_t();
-                } else if primitive < primitives.len() {
-                    let p = *primitives.get_unchecked(primitive);
-                    if let Some(hit) = shapes::intersect_shape(data.shape, o, d, &p, 0.0, distance) {
-                        t = hit.t;
-                    }
-                }
-                // Nested `if`s rather than `&&` inside a loop, as above.
-                let material = data.material as usize;
-                if t >= 0.0 {
-                    if material < materials.len() {
-                        if shading::cutout_solid(materials.get_unchecked(material), o + d * t) {
-                            occluded = true;
-                            query.terminate();
-                        }
-                    }
-                }
-            }
-        }
-        !occluded && query.get_committed_intersection_type() == CommittedIntersection::None
-    }
 }

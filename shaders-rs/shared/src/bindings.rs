@@ -36,6 +36,13 @@ pub const BINDING_PROBE_RAYS: u32 = 10;
 /// `[ProbeResult]` written by the probe stage.
 pub const BINDING_PROBE_RESULTS: u32 = 11;
 
+/// The compute renderer (`renderer = "compute"`) runs workgroups of N x N pixels.
+pub const RENDER_GROUP_SIZE: u32 = 8;
+/// Hit kinds of triangles, as the pipeline reports them (`HitKindFrontFacingTriangleKHR` and
+/// `HitKindBackFacingTriangleKHR`); the compute renderer derives them from its ray query.
+pub const HIT_KIND_TRIANGLE_FRONT: u32 = 0xfe;
+pub const HIT_KIND_TRIANGLE_BACK: u32 = 0xff;
+
 /// Miss shader indices in the shader binding table.
 pub const MISS_PRIMARY: u32 = 0;
 pub const MISS_SHADOW: u32 = 1;

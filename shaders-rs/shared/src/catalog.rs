@@ -11,7 +11,8 @@ pub enum Language {
     Glsl,
 }
 
-/// The ray tracing stages twinray's pipelines use, in pipeline stage order.
+/// The stages twinray's pipelines use: the ray tracing stages, in pipeline stage order, and
+/// the compute stage of the renderer that traces with ray queries alone (`renderer = "compute"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Stage {
     Raygen,
@@ -20,11 +21,19 @@ pub enum Stage {
     ClosestHit,
     AnyHit,
     Callable,
+    Compute,
 }
 
 impl Stage {
-    pub const ALL: [Stage; 6] =
-        [Stage::Raygen, Stage::Miss, Stage::Intersection, Stage::ClosestHit, Stage::AnyHit, Stage::Callable];
+    pub const ALL: [Stage; 7] = [
+        Stage::Raygen,
+        Stage::Miss,
+        Stage::Intersection,
+        Stage::ClosestHit,
+        Stage::AnyHit,
+        Stage::Callable,
+        Stage::Compute,
+    ];
 
     pub fn name(self) -> &'static str {
         match self {
@@ -34,6 +43,7 @@ impl Stage {
             Stage::ClosestHit => "closest_hit",
             Stage::AnyHit => "any_hit",
             Stage::Callable => "callable",
+            Stage::Compute => "compute",
         }
     }
 
@@ -46,6 +56,7 @@ impl Stage {
             Stage::ClosestHit => 5316,
             Stage::Miss => 5317,
             Stage::Callable => 5318,
+            Stage::Compute => 5,
         }
     }
 }
@@ -90,6 +101,7 @@ macro_rules! module_table {
             ModuleSpec { name: "raygen", stage: Stage::Raygen, glsl: GlslSource::File("raygen.rgen") },
             ModuleSpec { name: "raygen_query", stage: Stage::Raygen, glsl: GlslSource::File("raygen_query.rgen") },
             ModuleSpec { name: "probe", stage: Stage::Raygen, glsl: GlslSource::File("probe.rgen") },
+            ModuleSpec { name: "render_compute", stage: Stage::Compute, glsl: GlslSource::File("render.comp") },
             ModuleSpec { name: "miss", stage: Stage::Miss, glsl: GlslSource::File("miss.rmiss") },
             ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl: GlslSource::File("shadow.rmiss") },
             $(
@@ -215,20 +227,28 @@ pub const LAYOUT: [BindingSpec; 12] = {
     use DescriptorKind::*;
     use Stage::*;
     [
-        BindingSpec { binding: b::BINDING_TLAS, kind: AccelerationStructure, stages: &[Raygen] },
-        BindingSpec { binding: b::BINDING_IMAGE, kind: StorageImage, stages: &[Raygen] },
-        BindingSpec { binding: b::BINDING_FRAME, kind: UniformBuffer, stages: &[Raygen, Miss] },
-        BindingSpec { binding: b::BINDING_OBJECTS, kind: StorageBuffer, stages: &[Raygen, ClosestHit, AnyHit] },
+        BindingSpec { binding: b::BINDING_TLAS, kind: AccelerationStructure, stages: &[Raygen, Compute] },
+        BindingSpec { binding: b::BINDING_IMAGE, kind: StorageImage, stages: &[Raygen, Compute] },
+        BindingSpec { binding: b::BINDING_FRAME, kind: UniformBuffer, stages: &[Raygen, Miss, Compute] },
+        BindingSpec {
+            binding: b::BINDING_OBJECTS,
+            kind: StorageBuffer,
+            stages: &[Raygen, ClosestHit, AnyHit, Compute],
+        },
         BindingSpec {
             binding: b::BINDING_PRIMITIVES,
             kind: StorageBuffer,
-            stages: &[Raygen, Intersection, ClosestHit],
+            stages: &[Raygen, Intersection, ClosestHit, Compute],
         },
-        BindingSpec { binding: b::BINDING_MATERIALS, kind: StorageBuffer, stages: &[Raygen, ClosestHit, AnyHit] },
-        BindingSpec { binding: b::BINDING_LIGHTS, kind: StorageBuffer, stages: &[Raygen] },
-        BindingSpec { binding: b::BINDING_HIT_IDS, kind: StorageBuffer, stages: &[Raygen] },
-        BindingSpec { binding: b::BINDING_VERTICES, kind: StorageBuffer, stages: &[ClosestHit] },
-        BindingSpec { binding: b::BINDING_INDICES, kind: StorageBuffer, stages: &[ClosestHit] },
+        BindingSpec {
+            binding: b::BINDING_MATERIALS,
+            kind: StorageBuffer,
+            stages: &[Raygen, ClosestHit, AnyHit, Compute],
+        },
+        BindingSpec { binding: b::BINDING_LIGHTS, kind: StorageBuffer, stages: &[Raygen, Compute] },
+        BindingSpec { binding: b::BINDING_HIT_IDS, kind: StorageBuffer, stages: &[Raygen, Compute] },
+        BindingSpec { binding: b::BINDING_VERTICES, kind: StorageBuffer, stages: &[ClosestHit, Compute] },
+        BindingSpec { binding: b::BINDING_INDICES, kind: StorageBuffer, stages: &[ClosestHit, Compute] },
         BindingSpec { binding: b::BINDING_PROBE_RAYS, kind: StorageBuffer, stages: &[Raygen] },
         BindingSpec { binding: b::BINDING_PROBE_RESULTS, kind: StorageBuffer, stages: &[Raygen] },
     ]

@@ -20,8 +20,10 @@ pub struct FrameUniform {
     pub light_count: u32,
     /// Seed of the per-pixel, per-sample random sequence.
     pub seed: u32,
-    pub _pad0: u32,
-    pub _pad1: u32,
+    /// Image width and height in pixels: the compute renderer's launch size, which compute
+    /// stages have no built-in for (ray generation reads `launch_size`).
+    pub width: u32,
+    pub height: u32,
 }
 const _: () = assert!(core::mem::size_of::<FrameUniform>() == 160);
 

@@ -1,0 +1,194 @@
+//! Tracing inline with ray queries (`VK_KHR_ray_query`): shadow rays from ray generation
+//! (`shadow_method = "query"`), and primary rays of the compute renderer (`renderer =
+//! "compute"`). No shader of the pipeline runs, so what its stages would decide is decided
+//! here, with the same shared code: a procedural candidate by its shape's routine, a cutout's
+//! holes by its pattern, and the committed hit described as its closest-hit stage would.
+//! Loops follow the NVIDIA rules of trace.rs: nested `if`s, indices checked rather than
+//! bounds-checked.
+
+use crate::hit::{self, SurfaceHit};
+use core::arch::asm;
+use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4Swizzles};
+use spirv_std::matrix::Matrix4x3;
+use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
+use twinray_shared::bindings::{HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT, T_MAX, T_MIN};
+use twinray_shared::camera::Ray;
+use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
+use twinray_shared::shading;
+use twinray_shared::shapes::{self, SHAPE_NAIVE};
+
+/// The ray parameter of the query's candidate if it is a hit, decided as the pipeline's stages
+/// would, else -1: a triangle at its t (up to `t_max`), a procedural primitive by its shape's
+/// routine between `t_min` and `t_max`, and for cutouts (the only instances not forced opaque)
+/// not in a hole. With it, a procedural hit's object-space normal.
+///
+/// # Safety
+/// `query` has a current candidate: `proceed` returned true.
+unsafe fn candidate_hit(
+    query: &RayQuery,
+    objects: &[ObjectData],
+    primitives: &[Primitive],
+    materials: &[Material],
+    t_min: f32,
+    t_max: f32,
+) -> (f32, Vec3) {
+    let object = query.get_candidate_intersection_instance_id() as usize;
+    let primitive = (query.get_candidate_intersection_instance_custom_index()
+        + query.get_candidate_intersection_primitive_index()) as usize;
+    let (mut t, mut normal) = (-1.0, Vec3::ZERO);
+    if object < objects.len() {
+        let data = *objects.get_unchecked(object);
+        let o = query.get_candidate_intersection_object_ray_origin();
+        let d = query.get_candidate_intersection_object_ray_direction();
+        if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
+            let candidate = query.get_candidate_intersection_t();
+            if candidate <= t_max {
+                t = candidate;
+            }
+        } else if primitive < primitives.len() {
+            let p = *primitives.get_unchecked(primitive);
+            if let Some(hit) = shapes::intersect_shape(data.shape, o, d, &p, t_min, t_max) {
+                (t, normal) = (hit.t, hit.normal);
+            }
+        }
+        let material = data.material as usize;
+        if t >= 0.0 {
+            if material < materials.len() {
+                if !shading::cutout_solid(materials.get_unchecked(material), o + d * t) {
+                    t = -1.0;
+                }
+            }
+        }
+    }
+    (t, normal)
+}
+
+/// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`
+/// (as `trace::visible`), traced inline: any hit `candidate_hit` takes ends the query.
+pub fn visible_query(
+    tlas: &AccelerationStructure,
+    origin: Vec3,
+    direction: Vec3,
+    distance: f32,
+    objects: &[ObjectData],
+    primitives: &[Primitive],
+    materials: &[Material],
+) -> bool {
+    spirv_std::ray_query!(let mut query);
+    let mut occluded = false;
+    // SAFETY: the TLAS is bound and built; `query` is this invocation's own ray query, and
+    // each candidate is read only after `proceed` returned true.
+    unsafe {
+        query.initialize(tlas, RayFlags::TERMINATE_ON_FIRST_HIT, MASK_OCCLUDER, origin, 0.0, direction, distance);
+        while query.proceed() {
+            if candidate_hit(query, objects, primitives, materials, 0.0, distance).0 >= 0.0 {
+                occluded = true;
+                query.terminate();
+            }
+        }
+        !occluded && query.get_committed_intersection_type() == CommittedIntersection::None
+    }
+}
+
+/// The compute renderer's primary ray, traced inline: each candidate decided by
+/// `candidate_hit` and committed if no farther than the closest so far; the committed hit
+/// described into `payload` as the closest-hit stage of its hit group would, or the background
+/// as the miss stage would.
+#[allow(clippy::too_many_arguments)]
+pub fn primary_query(
+    tlas: &AccelerationStructure,
+    ray: Ray,
+    payload: &mut HitPayload,
+    frame: &FrameUniform,
+    objects: &[ObjectData],
+    primitives: &[Primitive],
+    materials: &[Material],
+    vertices: &[Vertex],
+    indices: &[u32],
+) {
+    spirv_std::ray_query!(let mut query);
+    // The committed procedural hit's normal: each commit is no farther than the one before.
+    let mut normal = Vec3::ZERO;
+    // SAFETY: as in `visible_query`; the committed intersection is read only when there is one.
+    unsafe {
+        query.initialize(tlas, RayFlags::NONE, 0xff, ray.origin, T_MIN, ray.direction, T_MAX);
+        while query.proceed() {
+            let closest = if query.get_committed_intersection_type() == CommittedIntersection::None {
+                T_MAX
+            } else {
+                query.get_committed_intersection_t()
+            };
+            let (t, n) = candidate_hit(query, objects, primitives, materials, T_MIN, closest);
+            if t >= 0.0 {
+                if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
+                    query.confirm_intersection();
+                } else {
+                    normal = n;
+                    generate_intersection(query, t);
+                }
+            }
+        }
+        let committed = query.get_committed_intersection_type();
+        if committed == CommittedIntersection::None {
+            payload.color = frame.background;
+            payload.ids = UVec4::splat(NO_HIT);
+            return;
+        }
+        let rays = (
+            (ray.origin, ray.direction),
+            (
+                query.get_committed_intersection_object_ray_origin(),
+                query.get_committed_intersection_object_ray_direction(),
+            ),
+        );
+        let object = query.get_committed_intersection_instance_id();
+        let primitive_id = query.get_committed_intersection_primitive_index();
+        let t = query.get_committed_intersection_t();
+        let world_to_object = committed_world_to_object(query).to_mat3();
+        let data = objects[object as usize];
+        let material = materials[data.material as usize];
+        if committed == CommittedIntersection::Triangle {
+            let front = query.get_committed_intersection_front_face();
+            let kind = if front { HIT_KIND_TRIANGLE_FRONT } else { HIT_KIND_TRIANGLE_BACK };
+            let surface = SurfaceHit::new(object, primitive_id, kind, rays, t, world_to_object);
+            let barycentrics: Vec2 = query.get_committed_intersection_barycentrics();
+            let (geometric, shading_normal) =
+                hit::triangle_normals(&data, primitive_id, barycentrics, vertices, indices);
+            let color = shading::material_color(&material, surface.object_point(), geometric);
+            hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, color);
+        } else {
+            let surface = SurfaceHit::new(object, primitive_id, data.shape & !SHAPE_NAIVE, rays, t, world_to_object);
+            let primitive = query.get_committed_intersection_instance_custom_index() + primitive_id;
+            let tint = primitives[primitive as usize].tint.xyz();
+            let color = shading::material_color(&material, surface.object_point(), normal) * tint;
+            hit::describe_surface(payload, &surface, material.kind, normal, normal, color);
+        }
+    }
+}
+
+/// Commits a procedural candidate at `t` (`OpRayQueryGenerateIntersectionKHR`, which
+/// spirv-std 0.11 lacks).
+///
+/// # Safety
+/// The current candidate is an AABB, and `t` lies between the ray's t_min and the committed t.
+unsafe fn generate_intersection(query: &RayQuery, t: f32) {
+    asm!("OpRayQueryGenerateIntersectionKHR {query} {t}", query = in(reg) query, t = in(reg) t);
+}
+
+/// The committed intersection's world-to-object transform
+/// (`OpRayQueryGetIntersectionWorldToObjectKHR`, which spirv-std 0.11 lacks).
+///
+/// # Safety
+/// There is a committed intersection.
+unsafe fn committed_world_to_object(query: &RayQuery) -> Matrix4x3 {
+    let mut result = Matrix4x3::default();
+    asm! {
+        "%u32 = OpTypeInt 32 0",
+        "%committed = OpConstant %u32 1",
+        "%result = OpRayQueryGetIntersectionWorldToObjectKHR typeof*{result} {query} %committed",
+        "OpStore {result} %result",
+        query = in(reg) query,
+        result = in(reg) &mut result,
+    }
+    result
+}
