@@ -30,7 +30,8 @@ fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf) -> Result
     let result = SpirvBuilder::new(crate_dir, TARGET)
         .capability(Capability::RayTracingKHR)
         .extension("SPV_KHR_ray_tracing")
-        // For `raygen_query`; rust-gpu declares a capability only in the modules that use it.
+        // For `raygen_query` and `render_compute`. rust-gpu declares it in every module, so
+        // `cargo xtask shaders` drops it from the modules without a ray query.
         .capability(Capability::RayQueryKHR)
         .extension("SPV_KHR_ray_query")
         .multimodule(true)
