@@ -80,3 +80,30 @@ fn a_device_without_ray_queries_refuses_compute_scenes_by_name() {
     assert!(message.contains("VK_KHR_ray_query") && message.contains("renderer"), "{message}");
     assert_eq!(message.lines().count(), 1, "{message}");
 }
+
+/// A compute scene is probed by `probe_query`, which traces each ray as the compute renderer
+/// traces primary rays: on every shipped probe case (every shape, meshes, cutouts, far and
+/// grazing rays, each ray's own t range), in both sets, it reports exactly what the pipeline's
+/// probe reports, ray by ray.
+#[test]
+fn compute_scenes_are_probed_as_the_compute_renderer_traces() {
+    let ctx = validated_context();
+    let cases = twinray::probe::stability::case_files(&repo_root().join("probes")).expect("probe cases");
+    for path in cases {
+        let case = twinray::probe::case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        for set_text in ["rust", "glsl"] {
+            let pipeline = twinray::probe::probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+            let compute = with_compute(&case.scene);
+            let queried = twinray::probe::probe(&ctx, &compute, &set(set_text), &case.rays, 0, 1).expect("probe");
+            assert_eq!(queried.raygen_stack_bytes, 0, "{}: the compute probe ran", path.display());
+            let differ = pipeline.results.iter().zip(&queried.results).filter(|(p, q)| p.ids != q.ids).count();
+            assert_eq!(differ, 0, "{} with {set_text}: {differ} rays hit something else", path.display());
+            for (p, q) in pipeline.results.iter().zip(&queried.results) {
+                if p.ids.w != twinray_shared::bindings::NO_HIT {
+                    assert_eq!(p.normal_t, q.normal_t, "{} with {set_text}", path.display());
+                }
+            }
+        }
+    }
+    ctx.close().expect("validation errors or leaked objects at teardown");
+}

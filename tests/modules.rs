@@ -54,14 +54,15 @@ fn every_stage_has_a_module() {
     }
 }
 
-/// The compute renderer's workgroup size, in both languages, is the one the host dispatches
-/// for (`RENDER_GROUP_SIZE`): the Rust attribute and the GLSL layout spell it separately.
+/// Each compute module's workgroup size, in both languages, is the one the host dispatches for
+/// (`RENDER_GROUP_SIZE`, `PROBE_GROUP_SIZE`): the Rust attribute and the GLSL layout spell it
+/// separately.
 #[test]
 fn compute_modules_run_the_workgroups_the_host_dispatches() {
     const OP_EXECUTION_MODE: u32 = 16;
     const LOCAL_SIZE: u32 = 17;
-    let group = twinray_shared::bindings::RENDER_GROUP_SIZE;
     for spec in MODULES.iter().filter(|m| m.stage == Stage::Compute) {
+        let (x, y) = twinray::render::pipeline::workgroup(spec.name).expect("a compute module has a workgroup");
         for language in Language::ALL {
             let path = repo_root().join(spec.spirv_path(language));
             let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
@@ -75,7 +76,7 @@ fn compute_modules_run_the_workgroups_the_host_dispatches() {
                 }
                 i += count.max(1);
             }
-            assert_eq!(sizes, [vec![group, group, 1]], "{} {}", language.name(), spec.name);
+            assert_eq!(sizes, [vec![x, y, 1]], "{} {}", language.name(), spec.name);
         }
     }
 }

@@ -5,10 +5,12 @@ OUT (default target/twinray-bench/i15), with the 16-spp scenes they were timed o
     python3 bench/reports/rust-raygen/variants.py [OUT] [--no-rust]
 
 Needs spirv-cross, glslangValidator and spirv-as/spirv-dis/spirv-val (Debian spirv-cross,
-glslang-tools, spirv-tools). The Rust variants patch shaders-rs, run `cargo xtask shaders`,
-copy spirv/rust/raygen.spv and restore the tree with git; every patch asserts that the text it
-replaces is there (written against commit 6ad90f5). Run from the repository root with a
-clean tree."""
+glslang-tools, spirv-tools). The decompiled variants start from the ray generation modules
+committed at 6ad90f5 (the ones timed; the ids of SPIRV-Cross's names depend on them). The
+Rust variants patch shaders-rs, run `cargo xtask shaders`, copy spirv/rust/raygen.spv and
+restore the tree with git; every patch asserts that the text it replaces is there (written
+against 6ad90f5, where they rebuild byte for byte). Run from the repository root with a clean
+tree."""
 import os
 import re
 import subprocess
@@ -76,14 +78,26 @@ def scenes():
         write(os.path.join(OUT, f"{s}-16.toml"), "\n".join(lines))
 
 
+TIMED = "6ad90f5"
+
+
+def timed_module(language):
+    """The ray generation module of `language` as committed at TIMED, in WORK."""
+    path = os.path.join(WORK, f"{language}-raygen.spv")
+    with open(path, "wb") as f:
+        f.write(subprocess.run(["git", "show", f"{TIMED}:spirv/{language}/raygen.spv"], check=True,
+                               capture_output=True).stdout)
+    return path
+
+
 def decompiled():
     """The Rust ray generation through SPIRV-Cross and glslang (x), and the GLSL one (glsl_x,
     the control), and the Rust one under the GLSL450 memory model."""
-    for src, name in [("spirv/rust/raygen.spv", "x"), ("spirv/glsl/raygen.spv", "glsl_x")]:
+    for language, name in [("rust", "x"), ("glsl", "glsl_x")]:
         rgen = os.path.join(WORK, f"raygen_{name}.rgen")
-        run("spirv-cross", src, "--vulkan-semantics", "--version", "460", "--output", rgen)
+        run("spirv-cross", timed_module(language), "--vulkan-semantics", "--version", "460", "--output", rgen)
         glslang(rgen, name)
-    memory_model_glsl450("spirv/rust/raygen.spv", "glsl450")
+    memory_model_glsl450(timed_module("rust"), "glsl450")
 
 
 def glsl_edits():

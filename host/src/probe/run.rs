@@ -1,10 +1,11 @@
 //! Probing: trace a list of rays through a scene's ordinary pipeline, with the probe ray
 //! generation stage in place of the image one, and read back what each ray hit. The
-//! intersection and hit stages are the very ones that render images.
+//! intersection and hit stages are the very ones that render images. A scene rendered by the
+//! compute renderer is probed by `probe_query`, which traces as it does.
 
 use crate::error::{Error, Result};
 use crate::render::{prepare, storage_buffer, submit, transition, STORAGE_IMAGE, UNUSED_IMAGE};
-use crate::scene::Scene;
+use crate::scene::{Renderer, Scene, PROBE_QUERY};
 use crate::shaders::ShaderSet;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::{memory_barrier, TRACING_STAGES};
@@ -24,6 +25,16 @@ pub struct ProbeOutput {
     pub gpu_ms: Vec<f64>,
     /// Stack bytes the probe ray generation stage needs, as the driver reports it.
     pub raygen_stack_bytes: u64,
+}
+
+/// The module that probes `scene`: `probe`, through the pipeline's stages; or for a scene the
+/// compute renderer renders, `probe_query`, which traces as it does.
+pub fn probe_module(scene: &Scene) -> &'static str {
+    if scene.file.renderer == Renderer::Compute {
+        PROBE_QUERY
+    } else {
+        "probe"
+    }
 }
 
 /// Traces `rays` through `scene` with `set`: `warmup` untimed passes, then `runs` timed ones.
@@ -50,13 +61,15 @@ fn probe_and_release(
     runs: u32,
 ) -> Result<ProbeOutput> {
     let count = u32::try_from(rays.len()).unwrap_or(u32::MAX);
-    if rays.is_empty() || count > ctx.info.max_ray_dispatch_invocation_count {
-        return Err(Error::Input(format!(
-            "a probe needs 1..={} rays on {} (got {})",
-            ctx.info.max_ray_dispatch_invocation_count,
-            ctx.info.name,
-            rays.len()
-        )));
+    let module = probe_module(scene);
+    // A compute probe runs in workgroups of PROBE_GROUP_SIZE rays, at most 65535 of them in a
+    // dispatch (Vulkan's guaranteed maxComputeWorkGroupCount).
+    let most = match module {
+        PROBE_QUERY => b::PROBE_GROUP_SIZE * 65535,
+        _ => ctx.info.max_ray_dispatch_invocation_count,
+    };
+    if rays.is_empty() || count > most {
+        return Err(Error::Input(format!("a probe needs 1..={most} rays on {} (got {})", ctx.info.name, rays.len())));
     }
     let bytes = u64::from(count) * size_of::<ProbeResult>() as u64;
     let ray_buffer =
@@ -65,7 +78,7 @@ fn probe_and_release(
     let unused = storage_buffer(ctx, "unused hit ids", 64)?;
     let extra =
         [(b::BINDING_HIT_IDS, &unused), (b::BINDING_PROBE_RAYS, &ray_buffer), (b::BINDING_PROBE_RESULTS, &results)];
-    let p = prepare(ctx, scene, set, "probe", ((1, 1), (1, 1)), &extra)?;
+    let p = prepare(ctx, scene, set, module, ((1, 1), (1, 1)), &extra)?;
     let timestamps = Timestamps::new(ctx, runs)?;
     let readback =
         Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;

@@ -7,7 +7,7 @@
 
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
-use crate::scene::{PipelinePlan, RENDER_COMPUTE};
+use crate::scene::{PipelinePlan, PROBE_QUERY, RENDER_COMPUTE};
 use crate::shaders::{ShaderSet, Stage, StageModule};
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
@@ -25,6 +25,8 @@ pub struct ScenePipeline {
     pub group_count: u32,
     /// Names of the modules in the pipeline, in stage order (for tests and reports).
     pub modules: Vec<&'static str>,
+    /// The workgroup size a compute pipeline is dispatched in; `None` for ray tracing.
+    pub workgroup: Option<(u32, u32)>,
     /// The libraries it was linked from (none when made whole), kept while it lives.
     _libraries: Vec<std::rc::Rc<RtPipeline>>,
 }
@@ -59,11 +61,21 @@ pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
     }
 }
 
+/// The workgroup size of a compute module (`render_compute` or `probe_query`), which the
+/// host dispatches over its launch; `None` for the ray tracing stages.
+pub fn workgroup(module: &str) -> Option<(u32, u32)> {
+    match module {
+        RENDER_COMPUTE => Some((b::RENDER_GROUP_SIZE, b::RENDER_GROUP_SIZE)),
+        PROBE_QUERY => Some((b::PROBE_GROUP_SIZE, 1)),
+        _ => None,
+    }
+}
+
 /// Module names of a plan's pipeline, each once, in stage order: the ray generation module
-/// `raygen` ("raygen" renders, "probe" probes), misses, hit modules; or the compute renderer
-/// alone.
+/// `raygen` ("raygen" renders, "probe" probes), misses, hit modules; or a compute module
+/// (`render_compute` renders, `probe_query` probes) alone.
 pub fn plan_modules(plan: &PipelinePlan, raygen: &'static str) -> Vec<&'static str> {
-    if raygen == RENDER_COMPUTE {
+    if workgroup(raygen).is_some() {
         return vec![raygen];
     }
     let mut names = vec![raygen, "miss"];
@@ -108,8 +120,8 @@ impl ScenePipeline {
             .collect();
         let spec_bytes: &[u8] = bytemuck::cast_slice(&spec_data);
         let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
-        // The compute renderer has no groups and no SBT.
-        let compute = raygen == RENDER_COMPUTE;
+        // A compute pipeline has no groups and no SBT.
+        let compute = workgroup(raygen).is_some();
         let groups = if compute { Vec::new() } else { groups(plan, &names) };
         require_device_features(ctx, &modules)?;
         let bindings = descriptor_bindings();
@@ -138,6 +150,7 @@ impl ScenePipeline {
             sbt_records: if compute { Default::default() } else { sbt_records(plan) },
             group_count: groups.len() as u32,
             modules: names,
+            workgroup: workgroup(raygen),
             _libraries: held,
         })
     }
@@ -163,7 +176,7 @@ fn require_device_features(ctx: &Context, modules: &[StageModule]) -> Result<()>
                 ctx.info.name,
                 match m.spec.name {
                     "raygen_query" => " (the scene sets shadow_method = \"query\")",
-                    RENDER_COMPUTE => " (the scene sets renderer = \"compute\")",
+                    RENDER_COMPUTE | PROBE_QUERY => " (the scene sets renderer = \"compute\")",
                     _ => "",
                 }
             )));

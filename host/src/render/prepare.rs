@@ -57,6 +57,7 @@ impl Prepared {
             pipeline: &self.pipeline.rt,
             descriptors: &self.descriptors,
             sbt: self.sbt.as_ref(),
+            workgroup: self.pipeline.workgroup.unwrap_or((1, 1)),
             timestamps,
             launch,
             warmup,

@@ -19,8 +19,10 @@ use twinray_shared::bindings as b;
 pub(crate) struct Trace<'a> {
     pub pipeline: &'a RtPipeline,
     pub descriptors: &'a DescriptorSet,
-    /// The SBT of a ray tracing pipeline; none for the compute renderer, which is dispatched.
+    /// The SBT of a ray tracing pipeline; none for a compute pipeline, which is dispatched in
+    /// workgroups of `workgroup` over the launch.
     pub sbt: Option<&'a ShaderBindingTable>,
+    pub workgroup: (u32, u32),
     pub timestamps: Option<&'a Timestamps>,
     /// Launch width and height.
     pub launch: (u32, u32),
@@ -73,9 +75,9 @@ impl Trace<'_> {
                 )
             };
         } else {
-            let groups = |pixels: u32| pixels.div_ceil(b::RENDER_GROUP_SIZE);
+            let (x, y) = (self.launch.0.div_ceil(self.workgroup.0), self.launch.1.div_ceil(self.workgroup.1));
             // SAFETY: a compute pipeline is bound, with its descriptor set.
-            unsafe { ctx.device.cmd_dispatch(cmd, groups(self.launch.0), groups(self.launch.1), 1) };
+            unsafe { ctx.device.cmd_dispatch(cmd, x, y, 1) };
         }
         if let Some((t, k)) = timed {
             t.end(cmd, k);

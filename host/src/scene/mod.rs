@@ -19,7 +19,8 @@ pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES
 pub use file::{HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMethod};
 pub use mesh::MeshData;
 pub use plan::{
-    each_once, material_callable, Colour, HitGeometry, HitGroup, PipelinePlan, CUTOUT_ANY_HIT, RENDER_COMPUTE,
+    each_once, material_callable, Colour, HitGeometry, HitGroup, PipelinePlan, CUTOUT_ANY_HIT, PROBE_QUERY,
+    RENDER_COMPUTE,
 };
 pub use shape::{Formula, ShapeDesc};
 use std::collections::BTreeMap;

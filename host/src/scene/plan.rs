@@ -39,6 +39,8 @@ pub enum Colour {
 
 /// The compute renderer's module (`renderer = "compute"`).
 pub const RENDER_COMPUTE: &str = "render_compute";
+/// The module that probes a compute scene: its rays traced as the compute renderer traces.
+pub const PROBE_QUERY: &str = "probe_query";
 
 /// The any-hit module of cutout hit groups.
 pub const CUTOUT_ANY_HIT: &str = "cutout_any_hit";

@@ -156,13 +156,7 @@ renderer!(
         if id.x >= frame.width || id.y >= frame.height {
             return;
         }
-        let mut hit = HitPayload {
-            position: Vec4::ZERO,
-            shading_normal: Vec4::ZERO,
-            geometric_normal: Vec4::ZERO,
-            color: Vec4::ZERO,
-            ids: UVec4::ZERO,
-        };
+        let mut hit = HitPayload::NONE;
         let payload = &mut hit;
     ],
     (id.xy(), UVec2::new(frame.width, frame.height)),
@@ -199,6 +193,37 @@ pub fn probe(
         );
     }
     results[i] = ProbeResult { normal_t: payload.shading_normal.xyz().extend(payload.position.w), ids: payload.ids };
+}
+
+/// The compute renderer's probe (a probe of a `renderer = "compute"` scene): one ray per
+/// invocation, traced inline by the code that traces the renderer's primary rays, in
+/// workgroups of `PROBE_GROUP_SIZE` (the literal is the attribute's); writes what it described,
+/// or NO_HIT.
+#[spirv(compute(threads(64)))]
+#[allow(clippy::too_many_arguments)]
+pub fn probe_query(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ProbeRay],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ProbeResult],
+) {
+    let i = id.x as usize;
+    // Whole workgroups cover the rays.
+    if i >= rays.len() {
+        return;
+    }
+    let probe = rays[i];
+    let mut hit = HitPayload::NONE;
+    let range = (probe.origin.w, probe.direction.w);
+    let ray = twinray_shared::camera::Ray { origin: probe.origin.xyz(), direction: probe.direction.xyz() };
+    let hit_buffers = (objects, primitives, materials);
+    query::trace_query(tlas, ray, range, &mut hit, Vec4::ZERO, hit_buffers, vertices, indices);
+    results[i] = ProbeResult { normal_t: hit.shading_normal.xyz().extend(hit.position.w), ids: hit.ids };
 }
 
 /// Primary rays that hit nothing see the background.

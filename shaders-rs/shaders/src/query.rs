@@ -8,7 +8,7 @@
 
 use crate::hit::{self, SurfaceHit};
 use core::arch::asm;
-use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4Swizzles};
+use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
 use twinray_shared::bindings::{HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT, T_MAX, T_MIN};
@@ -90,10 +90,8 @@ pub fn visible_query(
     }
 }
 
-/// The compute renderer's primary ray, traced inline: each candidate decided by
-/// `candidate_hit` and committed if no farther than the closest so far; the committed hit
-/// described into `payload` as the closest-hit stage of its hit group would, or the background
-/// as the miss stage would.
+/// The compute renderer's primary ray (see [`trace_query`]), over the pipeline's primary ray
+/// interval.
 #[allow(clippy::too_many_arguments)]
 pub fn primary_query(
     tlas: &AccelerationStructure,
@@ -106,19 +104,37 @@ pub fn primary_query(
     vertices: &[Vertex],
     indices: &[u32],
 ) {
+    let hit_buffers = (objects, primitives, materials);
+    trace_query(tlas, ray, (T_MIN, T_MAX), payload, frame.background, hit_buffers, vertices, indices);
+}
+
+/// `ray` over `(t_min, t_max)`, traced inline: each candidate decided by `candidate_hit` and
+/// committed if no farther than the closest so far; the committed hit described into `payload`
+/// as the closest-hit stage of its hit group would, or `background` as the miss stage would.
+#[allow(clippy::too_many_arguments)]
+pub fn trace_query(
+    tlas: &AccelerationStructure,
+    ray: Ray,
+    (t_min, t_max): (f32, f32),
+    payload: &mut HitPayload,
+    background: Vec4,
+    (objects, primitives, materials): (&[ObjectData], &[Primitive], &[Material]),
+    vertices: &[Vertex],
+    indices: &[u32],
+) {
     spirv_std::ray_query!(let mut query);
     // The committed procedural hit's normal: each commit is no farther than the one before.
     let mut normal = Vec3::ZERO;
     // SAFETY: as in `visible_query`; the committed intersection is read only when there is one.
     unsafe {
-        query.initialize(tlas, RayFlags::NONE, 0xff, ray.origin, T_MIN, ray.direction, T_MAX);
+        query.initialize(tlas, RayFlags::NONE, 0xff, ray.origin, t_min, ray.direction, t_max);
         while query.proceed() {
             let closest = if query.get_committed_intersection_type() == CommittedIntersection::None {
-                T_MAX
+                t_max
             } else {
                 query.get_committed_intersection_t()
             };
-            let (t, n) = candidate_hit(query, objects, primitives, materials, T_MIN, closest);
+            let (t, n) = candidate_hit(query, objects, primitives, materials, t_min, closest);
             if t >= 0.0 {
                 if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
                     query.confirm_intersection();
@@ -130,7 +146,7 @@ pub fn primary_query(
         }
         let committed = query.get_committed_intersection_type();
         if committed == CommittedIntersection::None {
-            payload.color = frame.background;
+            payload.color = background;
             payload.ids = UVec4::splat(NO_HIT);
             return;
         }

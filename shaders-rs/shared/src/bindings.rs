@@ -38,6 +38,8 @@ pub const BINDING_PROBE_RESULTS: u32 = 11;
 
 /// The compute renderer (`renderer = "compute"`) runs workgroups of N x N pixels.
 pub const RENDER_GROUP_SIZE: u32 = 8;
+/// Its probe (`probe_query`) runs workgroups of N rays.
+pub const PROBE_GROUP_SIZE: u32 = 64;
 /// Hit kinds of triangles, as the pipeline reports them (`HitKindFrontFacingTriangleKHR` and
 /// `HitKindBackFacingTriangleKHR`); the compute renderer derives them from its ray query.
 pub const HIT_KIND_TRIANGLE_FRONT: u32 = 0xfe;

@@ -102,6 +102,7 @@ macro_rules! module_table {
             ModuleSpec { name: "raygen_query", stage: Stage::Raygen, glsl: GlslSource::File("raygen_query.rgen") },
             ModuleSpec { name: "probe", stage: Stage::Raygen, glsl: GlslSource::File("probe.rgen") },
             ModuleSpec { name: "render_compute", stage: Stage::Compute, glsl: GlslSource::File("render.comp") },
+            ModuleSpec { name: "probe_query", stage: Stage::Compute, glsl: GlslSource::File("probe_query.comp") },
             ModuleSpec { name: "miss", stage: Stage::Miss, glsl: GlslSource::File("miss.rmiss") },
             ModuleSpec { name: "shadow_miss", stage: Stage::Miss, glsl: GlslSource::File("shadow.rmiss") },
             $(
@@ -249,8 +250,8 @@ pub const LAYOUT: [BindingSpec; 12] = {
         BindingSpec { binding: b::BINDING_HIT_IDS, kind: StorageBuffer, stages: &[Raygen, Compute] },
         BindingSpec { binding: b::BINDING_VERTICES, kind: StorageBuffer, stages: &[ClosestHit, Compute] },
         BindingSpec { binding: b::BINDING_INDICES, kind: StorageBuffer, stages: &[ClosestHit, Compute] },
-        BindingSpec { binding: b::BINDING_PROBE_RAYS, kind: StorageBuffer, stages: &[Raygen] },
-        BindingSpec { binding: b::BINDING_PROBE_RESULTS, kind: StorageBuffer, stages: &[Raygen] },
+        BindingSpec { binding: b::BINDING_PROBE_RAYS, kind: StorageBuffer, stages: &[Raygen, Compute] },
+        BindingSpec { binding: b::BINDING_PROBE_RESULTS, kind: StorageBuffer, stages: &[Raygen, Compute] },
     ]
 };
 

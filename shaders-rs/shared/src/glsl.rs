@@ -147,6 +147,7 @@ pub fn layout_include() -> Result<String, String> {
         ("BINDING_PROBE_RAYS", BINDING_PROBE_RAYS),
         ("BINDING_PROBE_RESULTS", BINDING_PROBE_RESULTS),
         ("RENDER_GROUP_SIZE", crate::bindings::RENDER_GROUP_SIZE),
+        ("PROBE_GROUP_SIZE", crate::bindings::PROBE_GROUP_SIZE),
         ("HIT_KIND_TRIANGLE_FRONT", crate::bindings::HIT_KIND_TRIANGLE_FRONT),
         ("HIT_KIND_TRIANGLE_BACK", crate::bindings::HIT_KIND_TRIANGLE_BACK),
         ("MISS_PRIMARY", MISS_PRIMARY),

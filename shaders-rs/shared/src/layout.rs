@@ -149,6 +149,17 @@ pub struct HitPayload {
     pub ids: UVec4,
 }
 
+impl HitPayload {
+    /// All zeros: the compute stages' payload before their ray query describes a hit into it.
+    pub const NONE: HitPayload = HitPayload {
+        position: Vec4::ZERO,
+        shading_normal: Vec4::ZERO,
+        geometric_normal: Vec4::ZERO,
+        color: Vec4::ZERO,
+        ids: UVec4::ZERO,
+    };
+}
+
 /// The callable data of material callables (`material_shading = "callable"`): the closest-hit
 /// stage fills in the material and the object-space point and normal, and the callable
 /// chosen by the material's kind writes `color`.

@@ -125,7 +125,7 @@ impl Subject for ProbeSubject<'_> {
     }
 
     fn modules(&self) -> Vec<&'static str> {
-        plan_modules(&self.case.scene.build().plan, "probe")
+        plan_modules(&self.case.scene.build().plan, crate::probe::run::probe_module(&self.case.scene))
     }
 
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<Vec<ProbeResult>>>> {
