@@ -5,7 +5,11 @@
 # the NVIDIA driver itself must be there. Everything lands in one folder (default: report/
 # beside this script); the references are cached in cache/ beside it.
 #
-#   sh run.sh [REPORT_DIR] [extra twinray bench arguments...]
+#   [WIDTH=W HEIGHT=H] [SPP=LIST] [IMAGES=all|last|none] sh run.sh [REPORT_DIR] [extra twinray bench arguments...]
+#
+# Every scene renders at 1920x1080 unless WIDTH and HEIGHT say otherwise: on a GPU a smaller
+# trace is mostly launch overhead. SPP (default 1,4,16,64) is the pixel sample counts, IMAGES
+# (default last) which renders are kept as PNG files.
 set -eu
 here=$(cd "$(dirname "$0")" && pwd)
 report=${1:-"$here/report"}
@@ -14,8 +18,8 @@ export LD_LIBRARY_PATH="$here/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 bin="$here/bin/twinray"
 mkdir -p "$report"
 
-bench="$bin bench --runs 10 --warmup 3 --spp 1,4,16,64 --reference-spp 1024 --shadow-spp 1,4,16,64,256 \
---probes $here/probes/stability --timing-rays 4194304 --images last --cache $here/cache --out $report $*"
+bench="$bin bench --width ${WIDTH:-1920} --height ${HEIGHT:-1080} --runs 10 --warmup 3 --spp ${SPP:-1,4,16,64} --reference-spp 1024 --shadow-spp 1,4,16,64,256 \
+--probes $here/probes/stability --timing-rays 4194304 --images ${IMAGES:-last} --cache $here/cache --out $report $*"
 stability="$bin stability --dir $here/probes/stability --runs 10 --warmup 2 --timing-rays 4194304"
 
 "$bin" info > "$report/device.txt"

@@ -2,7 +2,7 @@
 """Builds the ray generation variants of bench/reports/rust-raygen/README.md (issue 15) into
 OUT (default target/twinray-bench/i15), with the 16-spp scenes they were timed on.
 
-    python3 bench/reports/rust-raygen/variants.py [OUT] [--no-rust]
+    python3 bench/reports/rust-raygen/variants.py [OUT] [--no-rust] [--only=NAME,...]
 
 Needs spirv-cross, glslangValidator and spirv-as/spirv-dis/spirv-val (Debian spirv-cross,
 glslang-tools, spirv-tools). The decompiled variants start from the ray generation modules
@@ -15,6 +15,7 @@ import os
 import re
 import subprocess
 import sys
+import time
 
 ROOT = os.getcwd()
 GLSL = os.path.join(ROOT, "shaders-glsl")
@@ -62,8 +63,8 @@ def memory_model_glsl450(spv, name):
 
 
 def scenes():
-    """showcase, cone and cylinder at 4 x 4 samples per pixel."""
-    for s in ["showcase", "cone", "cylinder"]:
+    """The scenes timed at 4 x 4 samples per pixel."""
+    for s in ["showcase", "cone", "cylinder", "torus", "sphere", "spheres", "plane"]:
         lines, in_image = [], False
         for line in read(f"scenes/{s}.toml").split("\n"):
             if line.startswith("["):
@@ -335,10 +336,64 @@ def one_sample_loop(files):
     }""")
 
 
+SHADE_CALL_END = """                &mut shadow_rays,
+            );
+"""
+
+
+def primary_only(files):
+    """The pixel's samples shaded by the payload's colour alone: no lights, no shadow rays."""
+    s = files[LIB]
+    start = s.index("            sum += $shade(")
+    end = s.index(SHADE_CALL_END, start) + len(SHADE_CALL_END)
+    # The lights, spec constants and shading helpers it no longer uses stay declared.
+    files[LIB] = "#![allow(unused)]\n" + s[:start] + "            sum += $payload.color.xyz();\n" + s[end:]
+
+
+def do_while_loops(files):
+    """The pixel's sample loops tested at the bottom (`loop { ...; if done { break; } }`):
+    there is at least one sample per side, so the test at the top is not needed."""
+    s = replace(files[LIB], """    let mut sy = 0;
+    while sy < samples_per_side {
+        let mut sx = 0;
+        while sx < samples_per_side {""", """    let mut sy = 0;
+    loop {
+        let mut sx = 0;
+        loop {""")
+    files[LIB] = replace(s, """            sx += 1;
+        }
+        sy += 1;
+    }""", """            sx += 1;
+            if sx >= samples_per_side {
+                break;
+            }
+        }
+        sy += 1;
+        if sy >= samples_per_side {
+            break;
+        }
+    }""")
+
+
+def glsl_primary_only():
+    """The GLSL twin of `primary_only` (m_glsl)."""
+    d = os.path.join(WORK, "m_glsl")
+    os.makedirs(d, exist_ok=True)
+    write(os.path.join(d, "raygen.rgen"), read(os.path.join(GLSL, "raygen.rgen")))
+    s = read(os.path.join(GLSL, "raygen_main.glsl"))
+    s = replace(s, """            sum += shade(SHADOWS != 0u, SHADOW_SAMPLER == SHADOW_SAMPLER_STRATIFIED, pixel_index, sample_index,
+                         shadow_rays);""", "            sum += payload.color.xyz;")
+    write(os.path.join(d, "raygen_main.glsl"), s)
+    glslang(os.path.join(d, "raygen.rgen"), "m_glsl")
+
+
 def rust_variants():
     """Rust ray generation variants: the Light by reference (l1), the albedo read before the
     shadow rays (r_copy), the first hit's ids written in the loop (r_ids), one loop over the
-    samples (r_single), and combinations."""
+    samples (r_single), the sample loops tested at the bottom (r_dowhile), and combinations;
+    m_*: the primary-only ray generation (no shading, no shadow rays) with the same loop
+    variants, the pair for the upstream report beside m_glsl. `--only=a,b` builds those alone."""
+    only = [a.split("=", 1)[1].split(",") for a in sys.argv[1:] if a.startswith("--only=")]
     variants = {
         "l1": [light_by_reference],
         "r_copy": [albedo_copied],
@@ -346,21 +401,55 @@ def rust_variants():
         "r_copy_ids": [albedo_copied, ids_in_loop],
         "r_single": [one_sample_loop],
         "r_single_ids": [one_sample_loop, ids_in_loop],
+        "r_dowhile": [do_while_loops],
+        "r_dowhile_ids": [do_while_loops, ids_in_loop],
+        "m_rust": [primary_only],
+        "m_rust_ids": [primary_only, ids_in_loop],
+        "m_rust_dowhile": [primary_only, do_while_loops],
     }
     for name, patches in variants.items():
+        if only and name not in only[0]:
+            continue
         files = {p: read(p) for p in [TRACE, LIB]}
         try:
             for patch in patches:
                 patch(files)
             for p, text in files.items():
                 write(p, text)
-            run("cargo", "xtask", "shaders")
-            write_bytes = open("spirv/rust/raygen.spv", "rb").read()
+            built = "spirv/rust/raygen.spv"
+            if name.startswith("m_"):
+                # The primary-only stage no longer binds the lights, so the shader build's
+                # check against the GLSL set's bindings fails after building it: take it
+                # from the build folder.
+                built = "target/xtask-shaders/rust/raygen.spv"
+                started = time.time()
+                subprocess.run(["cargo", "xtask", "shaders"])
+                assert os.path.getmtime(built) >= started, f"{name}: not built"
+            else:
+                run("cargo", "xtask", "shaders")
+            write_bytes = open(built, "rb").read()
             with open(os.path.join(OUT, f"raygen_{name}.spv"), "wb") as f:
                 f.write(write_bytes)
         finally:
             run("git", "checkout", "-q", "--", "shaders-rs", "spirv")
-    memory_model_glsl450(os.path.join(OUT, "raygen_l1.spv"), "l1_glsl450")
+    if not only or "l1" in only[0]:
+        memory_model_glsl450(os.path.join(OUT, "raygen_l1.spv"), "l1_glsl450")
+
+
+def spirv_opt_sets():
+    """Every module of both committed sets through spirv-opt -O (O_rust, O_glsl), and the
+    Rust set through inlining and block merging alone (inl_rust), as sets from disk in
+    OUT/opt: what a SPIR-V transform in `cargo xtask shaders` could do (not yet timed)."""
+    passes = {"O": ["-O"], "inl": ["--inline-entry-points-exhaustive", "--eliminate-dead-functions",
+                                   "--ssa-rewrite", "--merge-blocks", "--cfg-cleanup",
+                                   "--eliminate-dead-code-aggressive"]}
+    for name, flags in passes.items():
+        for language in ["rust", "glsl"] if name == "O" else ["rust"]:
+            d = os.path.join(OUT, "opt", f"{name}_{language}")
+            os.makedirs(d, exist_ok=True)
+            for module in sorted(os.listdir(f"spirv/{language}")):
+                run("spirv-opt", "--target-env=vulkan1.2", *flags, f"spirv/{language}/{module}",
+                    "-o", os.path.join(d, module))
 
 
 if __name__ == "__main__":
@@ -368,6 +457,8 @@ if __name__ == "__main__":
     decompiled()
     glsl_edits()
     decompiled_edits()
+    glsl_primary_only()
+    spirv_opt_sets()
     if "--no-rust" not in sys.argv:
         rust_variants()
     print(f"variants in {OUT}")
