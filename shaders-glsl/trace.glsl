@@ -39,7 +39,7 @@ vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout u
     }
     vec3 point = payload.position.xyz;
     vec3 normal = payload.shading_normal.xyz;
-    vec3 origin = offset_ray(point, payload.geometric_normal.xyz);
+    vec3 origin = offset_hit(point, payload.geometric_normal.xyz, payload.position.w);
     vec3 light_sum = vec3(0.0);
     for (uint l = 0u; l < frame.light_count; l++) {
         Light light = lights[l];

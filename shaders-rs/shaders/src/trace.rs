@@ -61,7 +61,7 @@ pub fn $name(
     }
     let point = hit.position.xyz();
     let normal = hit.shading_normal.xyz();
-    let origin = offset::offset_ray(point, hit.geometric_normal.xyz());
+    let origin = offset::offset_hit(point, hit.geometric_normal.xyz(), hit.position.w);
     let mut light_sum = Vec3::ZERO;
     // Counted `while` loops and nested `if`s, not `for` over ranges and `&&`: rust-gpu lowers
     // range iterators to struct and Option phis with undefined values, and NVIDIA's driver

@@ -10,7 +10,7 @@ use crate::layout::{
     FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive, ProbeRay, ProbeResult,
     ShadowPayload, Vertex,
 };
-use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN};
+use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN, OFFSET_REACH_SCALE};
 use crate::shading::CHECKER_DEPTH;
 use crate::shapes::SHAPES;
 use std::fmt::Write;
@@ -185,6 +185,7 @@ pub fn layout_include() -> Result<String, String> {
         ("OFFSET_ORIGIN", OFFSET_ORIGIN),
         ("OFFSET_FLOAT_SCALE", OFFSET_FLOAT_SCALE),
         ("OFFSET_INT_SCALE", OFFSET_INT_SCALE),
+        ("OFFSET_REACH_SCALE", OFFSET_REACH_SCALE),
         ("CHECKER_DEPTH", CHECKER_DEPTH),
         ("SELF_ROOT_REACH", crate::surface::SELF_ROOT_REACH),
     ];
