@@ -14,6 +14,7 @@
 //! - [`probe`](mod@probe): probe cases, their generators, judging rays, and the hard-case suite;
 //! - [`compare`](mod@compare): image differences, verdicts and the report of two sets;
 //! - [`bench`](mod@bench): speed against error, with tables, plots and HTML;
+//! - [`crosscheck`](mod@crosscheck): twinray's references against Mitsuba 3's renders;
 //! - [`fuzz`](mod@fuzz): what the fuzz targets feed arbitrary bytes.
 
 pub mod error;
@@ -34,6 +35,8 @@ pub mod probe;
 pub mod compare;
 
 pub mod bench;
+
+pub mod crosscheck;
 
 pub mod fuzz;
 

@@ -7,8 +7,20 @@ use std::path::{Path, PathBuf};
 
 /// The library's top-level modules from the bottom up; a module may import from its own layer
 /// and the layers before it. The Vulkan layer is third: it sees only the error type and util.
-const LAYERS: &[&str] =
-    &["error", "util", "vk", "shaders", "scene", "render", "reference", "probe", "compare", "bench", "fuzz"];
+const LAYERS: &[&str] = &[
+    "error",
+    "util",
+    "vk",
+    "shaders",
+    "scene",
+    "render",
+    "reference",
+    "probe",
+    "compare",
+    "bench",
+    "crosscheck",
+    "fuzz",
+];
 
 /// Longest source file, in lines.
 const MAX_LINES: usize = 500;

@@ -1,6 +1,7 @@
 //! `cargo xtask <task>`: set-up, shader builds, golden images, the demo and CI.
 
 mod bundle;
+mod crosscheck;
 mod new_shape;
 mod process;
 mod setup;
@@ -73,6 +74,21 @@ enum Task {
     /// What CI runs: setup, fmt check, clippy and rustdoc (warnings denied), shaders --check,
     /// all tests.
     Ci,
+    /// twinray's references against Mitsuba 3 renders of the same scenes (docs/shading-model.md):
+    /// makes, once, a Python virtual environment in target/crosscheck/venv with Mitsuba pinned,
+    /// and runs `twinray crosscheck` with it (default scenes: every analytic shape and meshes
+    /// under directional, point and rect lights). --refresh rewrites the Mitsuba data the tests
+    /// compare against (tests/crosscheck/). Arguments after `--` go to `twinray crosscheck`.
+    Crosscheck {
+        /// Scene files or built-in names.
+        scenes: Vec<String>,
+        /// Rewrite the Mitsuba data of tests/crosscheck/ instead.
+        #[arg(long)]
+        refresh: bool,
+        /// Passed on to `twinray crosscheck`.
+        #[arg(last = true)]
+        twinray_args: Vec<String>,
+    },
     /// One folder (and .tar.gz) that runs the whole bench on an NVIDIA machine without
     /// network: the release build, the Vulkan loader and GL dispatch libraries, run.sh.
     Bundle {
@@ -96,6 +112,7 @@ fn main() -> Result<()> {
         }),
         Task::Demo { animated } => demo(animated),
         Task::Ci => ci(),
+        Task::Crosscheck { scenes, refresh, twinray_args } => crosscheck::run(&scenes, refresh, &twinray_args),
         Task::Bundle { out } => bundle::run_bundle(&repo_root().join(out)),
     }
 }

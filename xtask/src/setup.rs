@@ -30,15 +30,21 @@ pub fn run(scope: Scope) -> Result<()> {
     if scope == Scope::Full {
         packages.extend(["glslang-tools", "spirv-tools", "vulkan-validationlayers"]);
     }
-    let missing: Vec<&str> = packages.into_iter().filter(|p| dpkg_version(p).is_none()).collect();
-    if !missing.is_empty() {
-        apt_install(&missing, None)?;
-    }
+    ensure_packages(&packages)?;
     if scope == Scope::Full {
         ensure_nightly()?;
         ensure_stable_components()?;
     }
     Ok(())
+}
+
+/// Installs the Debian packages of `packages` that are missing.
+pub fn ensure_packages(packages: &[&str]) -> Result<()> {
+    let missing: Vec<&str> = packages.iter().copied().filter(|p| dpkg_version(p).is_none()).collect();
+    if missing.is_empty() {
+        return Ok(());
+    }
+    apt_install(&missing, None)
 }
 
 /// The installed version of a Debian package, if any.

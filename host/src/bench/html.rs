@@ -8,7 +8,8 @@ use crate::error::{Error, Result};
 use std::fmt::Write;
 use std::path::Path;
 
-fn escape(text: &str) -> String {
+/// `text` safe inside HTML text and attribute values.
+pub fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
 }
 

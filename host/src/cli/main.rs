@@ -5,6 +5,7 @@ mod animate;
 mod args;
 mod bench;
 mod bisect;
+mod crosscheck;
 mod frames;
 mod pipelines;
 mod probe;
@@ -76,6 +77,9 @@ enum Command {
     /// any-hit, shadows by traceRay or ray queries), timed against the first variant, with
     /// each image against that variant's.
     StageBench(StageBenchArgs),
+    /// twinray's converged references against Mitsuba 3's renders of the same scenes, in linear
+    /// radiance (docs/shading-model.md); `cargo xtask crosscheck` sets up Mitsuba and runs it.
+    Crosscheck(crosscheck::CrosscheckArgs),
 }
 
 /// Image size and timing options shared by `render` and `compare`.
@@ -117,6 +121,7 @@ fn main() -> ExitCode {
         Command::AnimateBench(args) => animate::animate_bench(&cli.global, args),
         Command::PipelineBench(args) => pipelines::pipeline_bench(&cli.global, args),
         Command::StageBench(args) => pipelines::stage_bench(&cli.global, args),
+        Command::Crosscheck(args) => crosscheck::crosscheck(&cli.global, args),
     };
     match result {
         Ok(code) => code,

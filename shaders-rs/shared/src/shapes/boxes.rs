@@ -77,6 +77,7 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
             let half = Vec3::from(v.triple("size")) / 2.0;
             super::spec::single(half.extend(0.0), half)
         },
+        mitsuba: |v| super::mitsuba::cube(Vec3::from(v.triple("size")) / 2.0),
     }],
     glsl_constants: &[("BOX_GAMMA_3", GAMMA_3)],
 };

@@ -112,6 +112,7 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
         relations: "",
         count: super::spec::one,
         primitives: super::spec::radius_and_half_height,
+        mitsuba: |v| super::mitsuba::cone(v.number("radius"), v.number("height") / 2.0),
     }],
     glsl_constants: &[("CONE_POLISH_LIMIT", POLISH_LIMIT)],
 };

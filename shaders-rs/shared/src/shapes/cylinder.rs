@@ -114,6 +114,7 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
         relations: "",
         count: super::spec::one,
         primitives: super::spec::radius_and_half_height,
+        mitsuba: |v| super::mitsuba::capped_cylinder(v.number("radius"), v.number("height") / 2.0),
     }],
     glsl_constants: &[],
 };

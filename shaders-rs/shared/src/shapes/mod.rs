@@ -6,6 +6,8 @@
 pub mod boxes;
 pub mod cone;
 pub mod cylinder;
+#[cfg(not(target_arch = "spirv"))]
+pub mod mitsuba;
 pub mod plane;
 #[cfg(not(target_arch = "spirv"))]
 pub mod spec;

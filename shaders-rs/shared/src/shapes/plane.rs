@@ -44,6 +44,10 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
                 let [x, z] = v.pair("size");
                 bounded(glam::Vec4::new(x / 2.0, z / 2.0, 0.0, 0.0), 0.0)
             },
+            mitsuba: |v| {
+                let [x, z] = v.pair("size");
+                super::mitsuba::plane(super::mitsuba::MitsubaKind::Rectangle, x / 2.0, z / 2.0)
+            },
         },
         super::spec::ShapeKind {
             name: "disk",
@@ -55,6 +59,10 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
             primitives: |v| {
                 let r = v.number("radius");
                 bounded(glam::Vec4::new(r, r, 0.0, 0.0), DISK)
+            },
+            mitsuba: |v| {
+                let r = v.number("radius");
+                super::mitsuba::plane(super::mitsuba::MitsubaKind::Disk, r, r)
             },
         },
     ],

@@ -127,6 +127,7 @@ mod scene {
         relations: "",
         count: one,
         primitives: |v| vec![sphere(Vec3::ZERO, v.number("radius"), Vec3::ONE)],
+        mitsuba: |v| super::super::mitsuba::spheres(&[sphere(Vec3::ZERO, v.number("radius"), Vec3::ONE)]),
     };
 
     pub const SPHERE_FIELD: ShapeKind = ShapeKind {
@@ -146,6 +147,7 @@ mod scene {
         relations: "`center_min` <= `center_max`, `radius_max` >= `radius_min`",
         count: |v| u64::from(v.count("count")),
         primitives: field,
+        mitsuba: |v| super::super::mitsuba::spheres(&field(v)),
     };
 
     fn field_check(v: &Values) -> Result<(), String> {

@@ -329,6 +329,7 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
             let outer = major + minor;
             super::spec::single(glam::Vec4::new(major, minor, 0.0, 0.0), Vec3::new(outer, minor, outer))
         },
+        mitsuba: |v| super::mitsuba::torus(v.number("major_radius"), v.number("minor_radius")),
     }],
     glsl_constants: &[
         ("TORUS_ON_SURFACE", ON_SURFACE),
