@@ -10,13 +10,14 @@ use twinray_tests::{repo_root, set, validated_context};
 const SPP: u32 = 1024;
 
 /// Relative RMSE in linear radiance allowed between the two, per scene. Measured here with
-/// the committed data: plate 0.0003, sphere 0.0007, meshes 0.0089. Before
+/// the committed data: plate 0.0003, sphere 0.0007, meshes 0.0089, emitters 0.0023. Before
 /// `offset::offset_hit`, the plate's band of self-shadowed samples read 0.0091. `meshes` is
 /// allowed more: its smooth normals follow another convention than Mitsuba's near
 /// silhouettes (docs/shading-model.md; with flat normals it agrees within noise), and its
 /// soft shadows are the noisiest (Mitsuba's own noise is 0.0038 of its mean). The limits
 /// leave room for another driver's rounding and no more.
-const MAX_RELATIVE_RMSE: [(&str, f64); 3] = [("plate", 0.002), ("sphere", 0.004), ("meshes", 0.02)];
+const MAX_RELATIVE_RMSE: [(&str, f64); 4] =
+    [("plate", 0.002), ("sphere", 0.004), ("meshes", 0.02), ("emitters", 0.006)];
 
 fn crosscheck(name: &str) -> SceneCheck {
     let dir = repo_root().join("tests/crosscheck");
@@ -33,31 +34,42 @@ fn crosscheck(name: &str) -> SceneCheck {
     c
 }
 
-fn assert_agrees(name: &str) {
+/// Asserts that `name` agrees with Mitsuba within its limit, with `masked` pixels seeing an
+/// emitter (none, or some but under a tenth of the image).
+fn assert_agrees(name: &str, masked: bool) {
     let c = crosscheck(name);
     let limit = MAX_RELATIVE_RMSE.iter().find(|(n, _)| *n == name).map(|(_, l)| *l).unwrap();
     let f = &c.figures;
     assert!(f.relative_rmse <= limit, "{name}: relative RMSE {} > {limit} ({f:?})", f.relative_rmse);
-    // No pixel sees an emitter, and the shapes cover the same pixels: a coverage mismatch is a
-    // pixel where one renderer sees a surface for more than half the pixel and the other not.
-    assert_eq!((f.masked, f.coverage_mismatches), (0, 0), "{name}: {f:?}");
+    assert_eq!(f.masked > 0, masked, "{name}: {f:?}");
+    assert!(f.masked < f.pixels / 10, "{name}: {f:?}");
+    // The shapes cover the same pixels: a coverage mismatch is a pixel where one renderer sees
+    // a surface for more than half the pixel and the other not.
+    assert_eq!(f.coverage_mismatches, 0, "{name}: {f:?}");
     assert!(f.mean_coverage_diff < 2e-3, "{name}: {f:?}");
 }
 
 /// The disk whose shadow-ray origins were below its surface in a band (offset::offset_hit).
 #[test]
 fn a_disk_far_from_the_eye_is_lit_as_mitsuba_lights_it() {
-    assert_agrees("plate");
+    assert_agrees("plate", false);
 }
 
 /// Spheres and ellipsoids (Mitsuba draws these as meshes) under a directional and a point light.
 #[test]
 fn spheres_and_ellipsoids_under_two_lights_agree_with_mitsuba() {
-    assert_agrees("sphere");
+    assert_agrees("sphere", false);
 }
 
 /// Meshes with flat and smooth normals under a rect light's soft shadows.
 #[test]
 fn meshes_under_a_rect_light_agree_with_mitsuba() {
-    assert_agrees("meshes");
+    assert_agrees("meshes", false);
+}
+
+/// An emissive sphere and a rect light in view: the pixels that see them are masked, the
+/// rest (the floor under both, with no shadow from the emissive sphere) agrees.
+#[test]
+fn what_sees_an_emitter_is_masked_and_the_rest_agrees_with_mitsuba() {
+    assert_agrees("emitters", true);
 }
