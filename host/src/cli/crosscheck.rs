@@ -54,6 +54,7 @@ pub const DEFAULT_SCENES: &[&str] = &["sphere", "plane", "box", "cylinder", "con
 
 pub fn crosscheck(global: &GlobalArgs, args: CrosscheckArgs) -> Result<ExitCode> {
     frames(args.spp)?;
+    run::check_mitsuba_spp(args.mitsuba_spp)?;
     let names: Vec<String> = if args.scenes.is_empty() {
         DEFAULT_SCENES.iter().map(|s| s.to_string()).collect()
     } else {
@@ -66,14 +67,29 @@ pub fn crosscheck(global: &GlobalArgs, args: CrosscheckArgs) -> Result<ExitCode>
         let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
         check_size(size.0, size.1).map_err(Error::Input)?;
         twinray::crosscheck::convert::convert(&scene, size, 1)?;
+        if args.python.is_none() {
+            let dir = mitsuba_dir(&args, &scene);
+            let manifest = run::read_mitsuba(&dir)?.0;
+            if (manifest.width, manifest.height) != size {
+                return Err(Error::Input(format!(
+                    "{}: Mitsuba rendered {}x{}, not {}x{} (pass --width and --height, or --python to render again)",
+                    dir.display(),
+                    manifest.width,
+                    manifest.height,
+                    size.0,
+                    size.1
+                ))
+                .into());
+            }
+        }
         scenes.push((scene, size));
     }
     let ctx = context(global)?;
     let cache = args.cache.clone().unwrap_or_else(default_cache);
     let mut checks = Vec::new();
     for (scene, size) in &scenes {
-        let dir = args.out.join(twinray::util::output::file_safe(scene.name()));
-        let mitsuba = dir.join("mitsuba");
+        let mitsuba = mitsuba_dir(&args, scene);
+        let dir = mitsuba.parent().unwrap_or(&args.out).to_path_buf();
         if let Some(python) = &args.python {
             eprintln!("crosscheck {}: Mitsuba passes ({} spp each)", scene.name(), args.mitsuba_spp);
             run::write_mitsuba(scene, &mitsuba, *size, args.mitsuba_spp, &args.variant)?;
@@ -102,4 +118,9 @@ pub fn crosscheck(global: &GlobalArgs, args: CrosscheckArgs) -> Result<ExitCode>
     write("index.html", html(&checks, &command.join(" ")))?;
     println!("{summary}\nreport in {}", args.out.display());
     Ok(ExitCode::SUCCESS)
+}
+
+/// Where a scene's Mitsuba passes are written and read: OUT/SCENE/mitsuba.
+fn mitsuba_dir(args: &CrosscheckArgs, scene: &Scene) -> PathBuf {
+    args.out.join(twinray::util::output::file_safe(scene.name())).join("mitsuba")
 }

@@ -33,11 +33,7 @@ pub struct Manifest {
 
 /// Writes `scene`'s Mitsuba passes, meshes, manifest and `render.py` into `dir`.
 pub fn write_mitsuba(scene: &Scene, dir: &Path, size: (u32, u32), spp: u32, variant: &str) -> Result<Manifest> {
-    if spp < 2 || !is_square(spp / 2) || !spp.is_multiple_of(2) {
-        return Err(Error::Input(format!(
-            "Mitsuba samples per pixel must be twice a square (2, 8, 32, 128, 512, 2048, ...), not {spp}"
-        )));
-    }
+    check_mitsuba_spp(spp)?;
     let MitsubaScene { passes, meshes, background, notes } = convert(scene, size, spp / 2)?;
     std::fs::create_dir_all(dir.join("meshes")).map_err(|source| Error::Io {
         what: "creating",
@@ -69,6 +65,17 @@ fn write(path: &Path, bytes: impl AsRef<[u8]>) -> Result<()> {
     std::fs::write(path, bytes).map_err(|source| Error::Io { what: "writing", path: path.into(), source })
 }
 
+/// Mitsuba's samples per pixel must be twice a square: two halves for the noise estimate, each
+/// a square for the stratified sampler.
+pub fn check_mitsuba_spp(spp: u32) -> Result<()> {
+    if spp < 2 || !spp.is_multiple_of(2) || !is_square(spp / 2) {
+        return Err(Error::Input(format!(
+            "Mitsuba samples per pixel must be twice a square (2, 8, 32, 128, 512, 2048, ...), not {spp}"
+        )));
+    }
+    Ok(())
+}
+
 fn is_square(n: u32) -> bool {
     let r = f64::from(n).sqrt().round() as u32;
     r * r == n
@@ -94,6 +101,12 @@ pub fn render_mitsuba(python: &Path, dir: &Path) -> Result<()> {
 /// The manifest and every pass of `dir`, the `emitters` pass last.
 pub fn read_mitsuba(dir: &Path) -> Result<(Manifest, Vec<PassRender>, PassRender)> {
     let path = dir.join("manifest.json");
+    if !path.exists() {
+        return Err(Error::Input(format!(
+            "{}: no Mitsuba renders here; run with --python PY (or `cargo xtask crosscheck`) to make them",
+            dir.display()
+        )));
+    }
     let text =
         std::fs::read_to_string(&path).map_err(|source| Error::Io { what: "reading", path: path.clone(), source })?;
     let manifest: Manifest =
