@@ -5,28 +5,42 @@ use super::SceneCheck;
 use crate::bench::html::escape;
 use std::fmt::Write;
 
-/// The report's table: one row per scene.
+/// The columns of the report's table.
+const HEADERS: [&str; 10] = [
+    "scene",
+    "size",
+    "twinray spp",
+    "Mitsuba spp",
+    "relative RMSE",
+    "RMSE",
+    "Mitsuba noise",
+    "max abs",
+    "masked",
+    "coverage mismatches",
+];
+
+/// One scene's row of the table.
+fn cells(c: &SceneCheck) -> [String; 10] {
+    let f = &c.figures;
+    [
+        c.scene.clone(),
+        format!("{}x{}", c.width, c.height),
+        c.twinray_spp.to_string(),
+        c.mitsuba_spp.to_string(),
+        format!("{:.4}", f.relative_rmse),
+        format!("{:.5}", f.rmse),
+        format!("{:.5}", f.mitsuba_noise),
+        format!("{:.4}", f.max_abs_diff),
+        f.masked.to_string(),
+        f.coverage_mismatches.to_string(),
+    ]
+}
+
+/// The report's table in Markdown: one row per scene.
 pub fn table(checks: &[SceneCheck]) -> String {
-    let mut s = String::from(
-        "| scene | size | twinray spp | Mitsuba spp | relative RMSE | RMSE | Mitsuba noise | max abs | masked | coverage mismatches |\n\
-         |---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
-    );
+    let mut s = format!("| {} |\n|---|---|{}\n", HEADERS.join(" | "), "---:|".repeat(HEADERS.len() - 2));
     for c in checks {
-        let f = &c.figures;
-        s += &format!(
-            "| {} | {}x{} | {} | {} | {:.4} | {:.5} | {:.5} | {:.4} | {} | {} |\n",
-            c.scene,
-            c.width,
-            c.height,
-            c.twinray_spp,
-            c.mitsuba_spp,
-            f.relative_rmse,
-            f.rmse,
-            f.mitsuba_noise,
-            f.max_abs_diff,
-            f.masked,
-            f.coverage_mismatches
-        );
+        s += &format!("| {} |\n", cells(c).join(" | "));
     }
     s
 }
@@ -48,24 +62,14 @@ pub fn html(checks: &[SceneCheck], command: &str) -> String {
          <p>Command: <code>{}</code></p>",
         escape(command)
     );
-    s += "<table><tr><th>scene</th><th>size</th><th>relative RMSE</th><th>RMSE</th><th>Mitsuba noise</th>\
-          <th>max abs</th><th>masked</th><th>coverage mismatches</th></tr>\n";
+    let row = |tag: &str, cells: &[String]| {
+        let cells: String = cells.iter().map(|c| format!("<{tag}>{}</{tag}>", escape(c))).collect();
+        format!("<tr>{cells}</tr>\n")
+    };
+    s += "<table>";
+    s += &row("th", &HEADERS.map(String::from));
     for c in checks {
-        let f = &c.figures;
-        let _ = writeln!(
-            s,
-            "<tr><td class=\"l\">{}</td><td>{}x{}</td><td>{:.4}</td><td>{:.5}</td><td>{:.5}</td><td>{:.4}</td>\
-             <td>{}</td><td>{}</td></tr>",
-            escape(&c.scene),
-            c.width,
-            c.height,
-            f.relative_rmse,
-            f.rmse,
-            f.mitsuba_noise,
-            f.max_abs_diff,
-            f.masked,
-            f.coverage_mismatches
-        );
+        s += &row("td", &cells(c));
     }
     s += "</table>\n";
     for c in checks {
@@ -83,4 +87,49 @@ pub fn html(checks: &[SceneCheck], command: &str) -> String {
     }
     s += "</body></html>\n";
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::crosscheck::compare::Figures;
+
+    fn check(scene: &str) -> SceneCheck {
+        let figures = Figures {
+            pixels: 12,
+            masked: 1,
+            rmse: 0.001,
+            mean: 0.5,
+            relative_rmse: 0.002,
+            max_abs_diff: 0.01,
+            mitsuba_noise: 0.0005,
+            coverage_mismatches: 0,
+            mean_coverage_diff: 0.0,
+        };
+        SceneCheck {
+            scene: scene.into(),
+            width: 4,
+            height: 3,
+            twinray_spp: 16,
+            mitsuba_spp: 32,
+            figures,
+            notes: vec!["cone shapes are drawn in Mitsuba as fine meshes".into()],
+        }
+    }
+
+    /// One Markdown row per scene under the header, and in the HTML each scene's three
+    /// images and notes, with names escaped.
+    #[test]
+    fn table_and_page_show_every_scene() {
+        let checks = [check("a"), check("b<c")];
+        let table = table(&checks);
+        assert_eq!(table.lines().count(), 4, "{table}");
+        assert!(table.lines().nth(2).unwrap().starts_with("| a | 4x3 | 16 | 32 | 0.0020 |"), "{table}");
+        let page = html(&checks, "twinray crosscheck a");
+        for image in ["a/twinray.png", "a/mitsuba.png", "a/diff.png"] {
+            assert!(page.contains(image), "{image}");
+        }
+        assert!(page.contains("b&lt;c") && !page.contains("b<c"));
+        assert!(page.contains("fine meshes"));
+    }
 }
