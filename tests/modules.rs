@@ -33,6 +33,36 @@ fn both_languages_bind_the_same_descriptors() {
     }
 }
 
+/// What each module passes between stages (twinray_shared::interface) is read in full from
+/// both languages, and is the same: the payloads, attributes and callable data of every
+/// variable, each traced ray's miss index and payload, each callable call's data.
+#[test]
+fn both_languages_pass_the_same_payloads_attributes_and_callable_data() {
+    let mut traced = 0;
+    for spec in MODULES {
+        let [rust, glsl] = Language::ALL.map(|l| read(&spec.spirv_path(l)).interface);
+        let sorted = |i: &spirv_info::Interface| {
+            let (mut v, mut t, mut c) = (i.variables.clone(), i.traces.clone(), i.calls.clone());
+            v.sort_unstable();
+            t.sort_unstable();
+            t.dedup();
+            c.sort_unstable();
+            c.dedup();
+            (v, t, c)
+        };
+        assert_eq!(sorted(&rust), sorted(&glsl), "{}", spec.name);
+        let all_sized = rust.variables.iter().all(|(_, b)| b.is_some())
+            && rust.traces.iter().all(|(m, p)| m.is_some() && p.is_some());
+        assert!(all_sized, "{}: every size and miss index is read: {rust:?}", spec.name);
+        traced += rust.traces.len();
+        if matches!(spec.stage, Stage::Miss | Stage::ClosestHit | Stage::Callable) {
+            assert_eq!(rust.variables.len(), glsl.variables.len());
+            assert!(!rust.variables.is_empty(), "{} reads what its caller passes", spec.name);
+        }
+    }
+    assert!(traced > 0, "the ray generation stages' traces are read");
+}
+
 #[test]
 fn descriptor_layout_exposes_each_binding_to_the_stages_that_use_it() {
     let layout = descriptor_bindings();

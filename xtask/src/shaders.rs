@@ -91,7 +91,7 @@ pub fn build_set(root: &Path, language: Language, dir: &Path, output: Output) ->
     for spec in MODULES {
         let path = dir.join(format!("{}.spv", spec.name));
         let label = format!("{} {}", language.name(), spec.name);
-        process::output(Command::new("spirv-val").args(["--target-env", "vulkan1.1spv1.4"]).arg(&path))
+        process::output(Command::new("spirv-val").args(twinray_shared::catalog::SPIRV_VAL_ARGS).arg(&path))
             .with_context(|| format!("spirv-val rejected {label}"))?;
         let (info, _) = read_module(dir, spec)?;
         spec.check_declarations(&info, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;

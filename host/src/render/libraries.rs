@@ -13,13 +13,14 @@ use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::rc::Rc;
 use std::sync::Arc;
+use twinray_shared::interface;
 
 /// What every library and linked pipeline agree on: the payloads' and hit attributes' largest
 /// sizes (the primary payload; a procedural hit's object-space normal) and recursion depth 1.
 pub const INTERFACE: Interface = Interface {
-    max_payload_bytes: size_of::<twinray_shared::layout::HitPayload>() as u32,
-    max_hit_attribute_bytes: 3 * size_of::<f32>() as u32,
-    max_recursion_depth: 1,
+    max_payload_bytes: interface::HIT_PAYLOAD_BYTES,
+    max_hit_attribute_bytes: interface::PROCEDURAL_ATTRIBUTE_BYTES,
+    max_recursion_depth: interface::MAX_RECURSION_DEPTH,
 };
 
 /// One library: its stages and its one group, indices into those stages.

@@ -1,11 +1,13 @@
 //! Shader sets: which module each stage uses. A module comes from the built-in Rust or GLSL
-//! set (the committed SPIR-V, embedded), or from a SPIR-V file on disk, checked before use.
+//! set (the committed SPIR-V, embedded), or from a SPIR-V file on disk, validated and checked
+//! before use.
 //! The pipeline code never branches on where a module came from, so any per-stage mix, and a
 //! user's freshly built modules, are just other sets.
 
 mod builtin;
 mod module;
 mod set;
+mod validate;
 
 pub use module::StageModule;
 pub use set::{parse_sets, ShaderSet};

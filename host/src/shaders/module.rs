@@ -1,6 +1,7 @@
 //! One module of a set, resolved for the pipeline, and modules read from disk: each checked as
-//! `cargo xtask shaders` checks the ones it builds (a SPIR-V 1.4 module, an entry point with
-//! the stage's execution model, only bindings of the shared layout that the stage can see).
+//! `cargo xtask shaders` checks the ones it builds (valid SPIR-V 1.4 for Vulkan by SPIRV-Tools'
+//! validator, an entry point with the stage's execution model, only bindings of the shared
+//! layout that the stage can see, and the payloads and attributes of `twinray_shared::interface`).
 
 use std::ffi::CString;
 use std::path::{Path, PathBuf};
@@ -39,6 +40,7 @@ pub(crate) struct DiskModule {
 pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String> {
     let file = path.display();
     let bytes = std::fs::read(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
+    super::validate::validate(&bytes).map_err(|e| format!("{file}: {e}"))?;
     let info = spirv_info::parse(&bytes).map_err(|e| format!("{file}: not a SPIR-V module ({e})"))?;
     let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
     spec.check_module(&info, &entry).map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;

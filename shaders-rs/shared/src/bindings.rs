@@ -90,6 +90,11 @@ pub const LIGHT_RECT: u32 = 2;
 
 /// Written to the hit-id buffer (and `HitPayload::ids.w`) when a ray hits nothing.
 pub const NO_HIT: u32 = 0xffff_ffff;
+/// What the host fills every output word with before a set's stages write them (the image's
+/// channels, the hit ids, the probe records), so that what is left of it counts as never
+/// written. As an f32 it is a signalling NaN with a payload, which no arithmetic produces; as
+/// a u32 it is no object, primitive or kind index and no shadow-ray count a scene reaches.
+pub const UNWRITTEN: u32 = 0x7fa5_dead;
 /// Primary ray interval.
 pub const T_MIN: f32 = 0.1;
 pub const T_MAX: f32 = 1000.0;

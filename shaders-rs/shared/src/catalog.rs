@@ -152,6 +152,11 @@ macro_rules! module_table {
 
 crate::procedural_shapes!(module_table);
 
+/// The arguments of SPIRV-Tools' `spirv-val` for the environment twinray's modules target:
+/// Vulkan 1.1 with SPIR-V 1.4 (what `cargo xtask shaders` builds, and every module from disk
+/// must pass before a driver sees it).
+pub const SPIRV_VAL_ARGS: [&str; 2] = ["--target-env", "vulkan1.1spv1.4"];
+
 /// The module called `name`.
 pub fn module(name: &str) -> Option<ModuleSpec> {
     MODULES.iter().copied().find(|m| m.name == name)
@@ -257,8 +262,9 @@ pub const LAYOUT: [BindingSpec; 12] = {
 
 impl ModuleSpec {
     /// Checks what a compiled module of this spec in `language` declares: SPIR-V 1.4, the
-    /// language's entry point with the stage's execution model, and only bindings of [`LAYOUT`]
-    /// that the stage can see.
+    /// language's entry point with the stage's execution model, only bindings of [`LAYOUT`]
+    /// that the stage can see, and the payloads, attributes and callable data of
+    /// [`crate::interface`].
     pub fn check_declarations(&self, info: &ModuleInfo, language: Language) -> Result<(), String> {
         self.check_module(info, self.entry_point(language))
     }
@@ -286,7 +292,7 @@ impl ModuleSpec {
                 Some(_) => {}
             }
         }
-        Ok(())
+        crate::interface::check(self, info)
     }
 
     /// The entry point a module built elsewhere offers for this spec: the only one with the

@@ -17,6 +17,8 @@ pub mod catalog;
 #[cfg(not(target_arch = "spirv"))]
 pub mod glsl;
 #[cfg(not(target_arch = "spirv"))]
+pub mod interface;
+#[cfg(not(target_arch = "spirv"))]
 pub mod spirv_info;
 
 pub use glam;

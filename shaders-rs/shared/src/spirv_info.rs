@@ -1,5 +1,7 @@
-//! A minimal SPIR-V reader: version, capabilities, entry points and descriptor bindings.
-//! Enough to check that every committed module declares what the host expects.
+//! A minimal SPIR-V reader: version, capabilities, entry points, descriptor bindings, and what a
+//! module passes between stages (payloads, hit attributes, callable data, the rays it traces).
+//! Enough to check that every module, committed or from disk, declares what the host expects.
+//! It reads hostile bytes too (modules from disk, the fuzz target): nothing in it panics.
 
 use std::collections::BTreeMap;
 
@@ -14,6 +16,153 @@ const OP_TYPE_RAY_QUERY: u32 = 4472;
 pub const CAPABILITY_RAY_QUERY: u32 = 4472;
 const DECORATION_BINDING: u32 = 33;
 const DECORATION_DESCRIPTOR_SET: u32 = 34;
+const OP_TYPE_BOOL: u32 = 20;
+const OP_TYPE_INT: u32 = 21;
+const OP_TYPE_FLOAT: u32 = 22;
+const OP_TYPE_VECTOR: u32 = 23;
+const OP_TYPE_MATRIX: u32 = 24;
+const OP_TYPE_ARRAY: u32 = 28;
+const OP_TYPE_STRUCT: u32 = 30;
+const OP_TYPE_POINTER: u32 = 32;
+const OP_CONSTANT: u32 = 43;
+const OP_VARIABLE: u32 = 59;
+const OP_BITCAST: u32 = 124;
+const OP_TRACE_RAY: u32 = 4445;
+const OP_EXECUTE_CALLABLE: u32 = 4446;
+
+/// Storage classes of what stages pass each other (SPV_KHR_ray_tracing).
+pub const STORAGE_CALLABLE_DATA: u32 = 5328;
+pub const STORAGE_INCOMING_CALLABLE_DATA: u32 = 5329;
+pub const STORAGE_RAY_PAYLOAD: u32 = 5338;
+pub const STORAGE_HIT_ATTRIBUTE: u32 = 5339;
+pub const STORAGE_INCOMING_RAY_PAYLOAD: u32 = 5342;
+const INTERFACE_STORAGE: [u32; 5] = [
+    STORAGE_CALLABLE_DATA,
+    STORAGE_INCOMING_CALLABLE_DATA,
+    STORAGE_RAY_PAYLOAD,
+    STORAGE_HIT_ATTRIBUTE,
+    STORAGE_INCOMING_RAY_PAYLOAD,
+];
+
+/// What a module passes between stages. Sizes are the bytes of a type's scalars (no padding:
+/// these storage classes have no explicit layout), `None` where the reader cannot tell.
+#[derive(Debug, Default, PartialEq, Eq)]
+pub struct Interface {
+    /// (storage class, bytes) of every variable in a payload, attribute or callable class.
+    pub variables: Vec<(u32, Option<u32>)>,
+    /// Per `OpTraceRayKHR`: its miss index when a constant, and its payload's bytes.
+    pub traces: Vec<(Option<u32>, Option<u32>)>,
+    /// Per `OpExecuteCallableKHR`: its callable data's bytes.
+    pub calls: Vec<Option<u32>>,
+}
+
+/// A type, as far as its size goes.
+#[derive(Clone)]
+enum Type {
+    Scalar(u32),
+    /// Element type and count (vectors, matrices and arrays; an array's count is a constant's
+    /// id, resolved later).
+    Repeat(u32, u32),
+    ArrayOf(u32, u32),
+    Struct(Vec<u32>),
+    Pointer(u32),
+}
+
+/// Ids the interface needs, gathered in one pass.
+#[derive(Default)]
+struct Ids {
+    types: BTreeMap<u32, Type>,
+    constants: BTreeMap<u32, u32>,
+    /// Bitcasts: result id to operand id (rust-gpu passes `MISS_PRIMARY as i32` that way).
+    bitcasts: BTreeMap<u32, u32>,
+    /// Variable id: (pointer type, storage class).
+    variables: BTreeMap<u32, (u32, u32)>,
+    /// (miss index id, payload id) of each trace; callable data id of each call.
+    traces: Vec<(u32, u32)>,
+    calls: Vec<u32>,
+}
+
+impl Ids {
+    fn read(&mut self, opcode: u32, operands: &[u32]) {
+        match (opcode, operands) {
+            (OP_TYPE_BOOL, [id]) => self.type_(*id, Type::Scalar(4)),
+            (OP_TYPE_INT | OP_TYPE_FLOAT, [id, width, ..]) => self.type_(*id, Type::Scalar(width / 8)),
+            (OP_TYPE_VECTOR | OP_TYPE_MATRIX, [id, element, count]) => self.type_(*id, Type::Repeat(*element, *count)),
+            (OP_TYPE_ARRAY, [id, element, length]) => self.type_(*id, Type::ArrayOf(*element, *length)),
+            (OP_TYPE_STRUCT, [id, members @ ..]) => self.type_(*id, Type::Struct(members.to_vec())),
+            (OP_TYPE_POINTER, [id, _, pointee]) => self.type_(*id, Type::Pointer(*pointee)),
+            (OP_CONSTANT, [_, id, value, ..]) => {
+                self.constants.insert(*id, *value);
+            }
+            (OP_BITCAST, [_, id, operand]) => {
+                self.bitcasts.insert(*id, *operand);
+            }
+            (OP_VARIABLE, [pointer, id, class, ..]) if INTERFACE_STORAGE.contains(class) => {
+                self.variables.insert(*id, (*pointer, *class));
+            }
+            (OP_TRACE_RAY, [_, _, _, _, _, miss, _, _, _, _, payload, ..]) => self.traces.push((*miss, *payload)),
+            (OP_EXECUTE_CALLABLE, [_, data, ..]) => self.calls.push(*data),
+            _ => {}
+        }
+    }
+
+    fn type_(&mut self, id: u32, ty: Type) {
+        self.types.insert(id, ty);
+    }
+
+    /// Bytes of type `id`'s scalars; `None` for what is not a sized type (or nests too deep,
+    /// as a damaged module's cycle would).
+    fn bytes(&self, id: u32, depth: u32) -> Option<u32> {
+        if depth > 16 {
+            return None;
+        }
+        match self.types.get(&id)? {
+            Type::Scalar(bytes) => Some(*bytes),
+            Type::Repeat(element, count) => self.bytes(*element, depth + 1)?.checked_mul(*count),
+            Type::ArrayOf(element, length) => {
+                self.bytes(*element, depth + 1)?.checked_mul(*self.constants.get(length)?)
+            }
+            Type::Struct(members) => {
+                members.iter().try_fold(0u32, |sum, m| sum.checked_add(self.bytes(*m, depth + 1)?))
+            }
+            Type::Pointer(_) => None,
+        }
+    }
+
+    /// The value of constant `id`, through bitcasts of it.
+    fn constant(&self, id: u32) -> Option<u32> {
+        let mut id = id;
+        for _ in 0..4 {
+            match (self.constants.get(&id), self.bitcasts.get(&id)) {
+                (Some(value), _) => return Some(*value),
+                (None, Some(operand)) => id = *operand,
+                (None, None) => return None,
+            }
+        }
+        None
+    }
+
+    /// Bytes of what variable `id` holds.
+    fn variable_bytes(&self, id: u32) -> Option<u32> {
+        let (pointer, _) = self.variables.get(&id)?;
+        match self.types.get(pointer)? {
+            Type::Pointer(pointee) => self.bytes(*pointee, 0),
+            _ => None,
+        }
+    }
+
+    fn interface(&self) -> Interface {
+        Interface {
+            variables: self.variables.iter().map(|(id, (_, class))| (*class, self.variable_bytes(*id))).collect(),
+            traces: self
+                .traces
+                .iter()
+                .map(|(miss, payload)| (self.constant(*miss), self.variable_bytes(*payload)))
+                .collect(),
+            calls: self.calls.iter().map(|data| self.variable_bytes(*data)).collect(),
+        }
+    }
+}
 
 #[derive(Debug, Default, PartialEq, Eq)]
 pub struct ModuleInfo {
@@ -27,6 +176,8 @@ pub struct ModuleInfo {
     pub bindings: Vec<(u32, u32)>,
     /// Number of instructions in the module.
     pub instruction_count: usize,
+    /// What it passes between stages.
+    pub interface: Interface,
 }
 
 /// Reads `bytes` as a little-endian SPIR-V module.
@@ -41,6 +192,7 @@ pub fn parse(bytes: &[u8]) -> Result<ModuleInfo, String> {
     let mut info = ModuleInfo { version: ((words[1] >> 16) & 0xff, (words[1] >> 8) & 0xff), ..Default::default() };
     let mut sets = BTreeMap::new();
     let mut bindings = BTreeMap::new();
+    let mut ids = Ids::default();
     let mut at = 5;
     while at < words.len() {
         let count = (words[at] >> 16) as usize;
@@ -58,13 +210,14 @@ pub fn parse(bytes: &[u8]) -> Result<ModuleInfo, String> {
             (OP_DECORATE, [target, DECORATION_BINDING, value, ..]) => {
                 bindings.insert(*target, *value);
             }
-            _ => {}
+            _ => ids.read(opcode, operands),
         }
         info.instruction_count += 1;
         at += count;
     }
     info.bindings = bindings.iter().map(|(id, b)| (sets.get(id).copied().unwrap_or(0), *b)).collect();
     info.bindings.sort_unstable();
+    info.interface = ids.interface();
     Ok(info)
 }
 
