@@ -60,18 +60,13 @@ fn each_library_is_compiled_once() {
 /// creates pipelines directly (see `Context::pipeline_threads`).
 #[test]
 fn deferred_creation_renders_the_same_bits() {
-    use twinray::{ContextOptions, Validation};
+    use twinray::ContextOptions;
     let scene = Scene::load(Some("showcase")).unwrap();
     let reference = render_scene(&context(PipelineKind::Monolithic), &scene, "rust");
     for kind in [PipelineKind::Monolithic, PipelineKind::Libraries] {
         for threads in [1, 4] {
-            let options = ContextOptions {
-                validation: Validation::Off,
-                device_filter: None,
-                pipeline_cache: None,
-                pipelines: Some(kind),
-                pipeline_threads: Some(threads),
-            };
+            let options =
+                ContextOptions { pipelines: Some(kind), pipeline_threads: Some(threads), ..ContextOptions::default() };
             let ctx = Context::new(&options).unwrap();
             assert_eq!(ctx.pipeline_threads(), threads);
             let out = render_scene(&ctx, &scene, "rust");

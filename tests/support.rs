@@ -29,7 +29,7 @@ pub fn validated_context_making(pipelines: Option<twinray::vk::context::Pipeline
         device_filter: None,
         pipeline_cache: None,
         pipelines,
-        pipeline_threads: None,
+        ..ContextOptions::default()
     };
     match Context::new(&options) {
         Ok(ctx) => ctx,

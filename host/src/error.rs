@@ -46,6 +46,29 @@ pub enum Error {
         #[source]
         source: std::io::Error,
     },
+    /// A set's stages left outputs unwritten, or wrote them non-finite, where a measurement
+    /// needs them (a reference, a bench row): the text names the set and the counts.
+    #[error("{0}")]
+    Output(String),
+    /// GPU work did not finish within the deadline (`--gpu-timeout`): a stage may never
+    /// return. The device is abandoned: nothing made from it is destroyed, since the GPU (or
+    /// a lavapipe thread) is still running the work; end the process, with `libc::_exit` on
+    /// lavapipe, whose exit handlers would wait for that thread.
+    #[error(
+        "{doing} did not finish in {seconds} s: a stage may never return (if it is only slow, raise --gpu-timeout)"
+    )]
+    GpuTimeout { doing: String, seconds: String },
+    /// The device was lost while doing GPU work (a fault in a stage, or the driver's watchdog).
+    #[error(
+        "{doing}: the device was lost (VK_ERROR_DEVICE_LOST): a stage faulted or ran past the driver's own time limit"
+    )]
+    DeviceLost { doing: String },
+    /// An error while doing something named in words ("creating the pipeline of SET (its
+    /// modules)").
+    /// (Its cause is in its text, and not a `source`, so that a chain printed with `{:#}`
+    /// says it once.)
+    #[error("{doing}: {cause}")]
+    While { doing: String, cause: Box<Error> },
     /// A PNG could not be written.
     #[error("writing PNG {}: {source}", path.display())]
     Png {
@@ -58,7 +81,24 @@ pub enum Error {
 impl Error {
     /// True when the error comes from what the user asked for, not from the machine.
     pub fn is_input(&self) -> bool {
-        matches!(self, Error::Input(_) | Error::Scene { .. })
+        match self {
+            Error::While { cause, .. } => cause.is_input(),
+            other => matches!(other, Error::Input(_) | Error::Scene { .. }),
+        }
+    }
+
+    /// True when GPU work did not finish: past the deadline, or the device was lost. The
+    /// process should end now (see [`Error::GpuTimeout`]).
+    pub fn is_stalled(&self) -> bool {
+        match self {
+            Error::While { cause, .. } => cause.is_stalled(),
+            other => matches!(other, Error::GpuTimeout { .. } | Error::DeviceLost { .. }),
+        }
+    }
+
+    /// This error, said to have happened while doing `doing`.
+    pub fn during(self, doing: impl Into<String>) -> Error {
+        Error::While { doing: doing.into(), cause: Box::new(self) }
     }
 }
 

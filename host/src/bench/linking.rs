@@ -48,6 +48,9 @@ pub fn trace_linking(
             let [whole, linked]: [_; 2] = render_made(ctx, scene, &made, &opts)?
                 .try_into()
                 .map_err(|_| Error::Unsupported("a render of two pipelines returned another count".into()))?;
+            for out in [&whole, &linked] {
+                out.written.require(&set.to_string(), "pixels", &format!("{} linked against whole", scene.name()))?;
+            }
             let (w, l) = (whole.spread(), linked.spread());
             rows.push(LinkingRow {
                 scene: scene.name().to_string(),

@@ -174,6 +174,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
                 Images::None => false,
             };
             for (set, out) in config.sets.iter().zip(&outputs) {
+                out.written.require(&set.to_string(), "pixels", &format!("{} at {spp} spp", scene.name()))?;
                 let first = outputs.first().filter(|f| !std::ptr::eq(*f, out));
                 let row = row(scene, set, spp, out, &truth, first, keep.then_some(config.out.as_path()))?;
                 report.rows.push(row);

@@ -55,6 +55,11 @@ pub fn study(ctx: &Arc<Context>, scene: &Scene, s: &Study, progress: &dyn Fn(&st
             variant.set_shadow_samples(side_of(count)?);
             let opts = RenderOptions { width: s.size.0, height: s.size.1, warmup: s.warmup, runs: s.runs };
             let out = render(ctx, &variant, s.set, &opts)?;
+            out.written.require(
+                &s.set.to_string(),
+                "pixels",
+                &format!("{} with {} shadows", scene.name(), sampler.name()),
+            )?;
             let errors = metrics::errors(&out.linear, &truth.linear, s.size);
             rows.push(SamplerRow {
                 scene: scene.name().to_string(),

@@ -216,6 +216,8 @@ pub fn run(
                 let (v, s) = cells[c];
                 progress(&format!("{} {} {} (round {})", scene.name(), runs[v].0.name(), plan.sets[s], round + 1));
                 let out = render(ctx, &runs[v].1, &plan.sets[s], &opts)?;
+                let set = plan.sets[s].to_string();
+                out.written.require(&set, "pixels", &format!("{} {}", scene.name(), runs[v].0.name()))?;
                 times[c].extend(&out.gpu_ms);
                 last[c] = Some(out);
             }

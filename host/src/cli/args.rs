@@ -36,9 +36,23 @@ pub struct GlobalArgs {
     /// $XDG_CACHE_HOME/twinray/pipelines or ~/.cache/twinray/pipelines].
     #[arg(long, global = true, value_name = "DIR")]
     pub pipeline_cache: Option<PathBuf>,
+    /// Seconds one unit of GPU work (a trace, an acceleration structure build) or one
+    /// pipeline creation may take; past it the command ends with exit code 3 and a line naming
+    /// what did not finish [default: 120].
+    #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_timeout)]
+    pub gpu_timeout: Option<std::time::Duration>,
     /// More log output (-v info, -vv debug); RUST_LOG overrides.
     #[arg(short, long, global = true, action = clap::ArgAction::Count)]
     pub verbose: u8,
+}
+
+/// A GPU timeout: seconds, more than 0 and at most a day.
+fn parse_timeout(text: &str) -> Result<std::time::Duration, String> {
+    let seconds: f64 = text.trim().parse().map_err(|_| format!("{text:?} is not a number of seconds"))?;
+    if !(seconds > 0.0 && seconds <= 86_400.0) {
+        return Err(format!("{seconds} s is not in (0, 86400]"));
+    }
+    Ok(std::time::Duration::from_secs_f64(seconds))
 }
 
 #[derive(Args, Clone)]

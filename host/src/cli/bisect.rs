@@ -30,7 +30,7 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
         }
     };
     print_report(&report, args.frame.json)?;
-    Ok(if report.pinned { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+    Ok(if report.pinned && report.failures.is_empty() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
 fn print_report(report: &BisectReport, json: bool) -> Result<()> {

@@ -31,8 +31,12 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
     let mode = args.animation.mode();
     let mut movie = AnimatedPng::create(&args.out, (opts.width, opts.height), frames.len() as u32, fps(&scene))?;
     let mut rows = Vec::new();
+    let set = args.shaders.to_string();
+    let mut problems = Vec::new();
     render_frames(&ctx, &scene, std::slice::from_ref(&args.shaders), &opts, frames, mode, |frame| {
         let out = &frame.outputs[0];
+        problems
+            .extend(out.written.problems(&set, "pixels").into_iter().map(|p| format!("frame {}: {p}", frame.index)));
         let png = numbered(&args.out, frame.index);
         write_png(&png, out.width, out.height, &out.rgba)?;
         movie.add(&out.rgba)?;
@@ -43,6 +47,7 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
             "as_ms": frame.as_ms,
             "trace_ms": out.median_ms(),
             "rays": out.rays,
+            "written": out.written,
             "png": png,
         }));
         Ok(())
@@ -58,9 +63,11 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
             "tlas": mode.name(),
             "out": args.out,
             "frames": rows,
+            "pass": problems.is_empty(),
+            "failures": problems,
         });
         println!("{value}");
-        return Ok(ExitCode::SUCCESS);
+        return Ok(if problems.is_empty() { ExitCode::SUCCESS } else { ExitCode::FAILURE });
     }
     println!(
         "{} {}x{} with {} on {}, TLAS {}: {} frames",
@@ -87,8 +94,11 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
     let medians = |key: &str| median(&rows.iter().filter_map(|r| r[key].as_f64()).collect::<Vec<_>>());
     let show = |m: Option<f64>| m.map_or("n/a".into(), |m| format!("{m:.3} ms"));
     println!("median AS {}, median trace {}", show(medians("as_ms")), show(medians("trace_ms")));
+    for problem in &problems {
+        println!("FAIL: {problem}");
+    }
     println!("wrote {} (animated) and {}", args.out.display(), numbered(&args.out, 0).display());
-    Ok(ExitCode::SUCCESS)
+    Ok(if problems.is_empty() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
 pub fn compare(global: &GlobalArgs, args: CompareArgs, range: FrameRange) -> Result<ExitCode> {

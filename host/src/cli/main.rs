@@ -1,5 +1,6 @@
 //! The `twinray` command: `info`, `render` and `compare`. Bad input exits with code 2 and a
-//! one-line error; a failed comparison exits with 1.
+//! one-line error; a failed comparison exits with 1; GPU work that did not finish in time (or
+//! a lost device) with 3; a crash (a fatal signal, usually in the driver) with 4.
 
 mod animate;
 mod args;
@@ -17,8 +18,9 @@ use args::{
     AnimateBenchArgs, BenchArgs, BisectArgs, CompareArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs, ReferenceArgs,
     RenderArgs, StabilityArgs, StageBenchArgs,
 };
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
+use twinray::util::{activity, crash, watchdog};
 
 #[derive(Parser)]
 #[command(
@@ -87,8 +89,9 @@ enum Command {
 const MAX_ERROR_CHARS: usize = 2000;
 
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
-        Ok(cli) => cli,
+    let parsed = Cli::command().try_get_matches().and_then(|m| Ok((Cli::from_arg_matches(&m)?, m)));
+    let (cli, matches) = match parsed {
+        Ok(parsed) => parsed,
         Err(e) if !e.use_stderr() => {
             // --help and --version: clap's own output, exit 0.
             let _ = e.print();
@@ -108,6 +111,8 @@ fn main() -> ExitCode {
     };
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
     session::show_progress();
+    crash::report_crashes();
+    let _command = activity::doing(format!("twinray {}", matches.subcommand_name().unwrap_or_default()));
     let result = match cli.command {
         Command::Info { json } => summary::info(&cli.global, json),
         Command::Scenes { json } => summary::scenes(json),
@@ -131,8 +136,16 @@ fn main() -> ExitCode {
             let short: String = text.chars().take(MAX_ERROR_CHARS).collect();
             let more = if short.len() < text.len() { "..." } else { "" };
             eprintln!("error: {short}{more}");
-            let input = e.downcast_ref::<twinray::Error>().is_some_and(twinray::Error::is_input);
-            ExitCode::from(if input { 2 } else { 1 })
+            let error = e.downcast_ref::<twinray::Error>();
+            if error.is_some_and(twinray::Error::is_stalled) {
+                // The GPU (or a lavapipe thread) may still be running the stage: exit's
+                // handlers would wait for it, so end at once.
+                use std::io::Write;
+                let _ = std::io::stdout().flush();
+                // SAFETY: _exit ends the process; nothing after it runs.
+                unsafe { libc::_exit(watchdog::EXIT_STALLED) }
+            }
+            ExitCode::from(if error.is_some_and(twinray::Error::is_input) { 2 } else { 1 })
         }
     }
 }

@@ -33,7 +33,7 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
     } else {
         print!("{}", report.summary());
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(if report.pass { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
 pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {

@@ -20,6 +20,8 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     let out = twinray::render(&ctx, &scene, &args.shaders, &opts)?;
     write_png(&args.out, out.width, out.height, &out.rgba)?;
     let median = out.median_ms();
+    let set = args.shaders.to_string();
+    let problems = out.written.problems(&set, "pixels");
     if args.frame.json {
         let value = serde_json::json!({
             "scene": scene.name(),
@@ -36,6 +38,9 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             "mrays_per_s": out.mrays_per_s(),
             "cpu_threads": ctx.info.cpu_threads,
             "hit_pixels": hit_count(&out),
+            "written": out.written,
+            "pass": problems.is_empty(),
+            "failures": problems,
         });
         println!("{value}");
     } else {
@@ -43,10 +48,20 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             let rate = out.mrays_per_s().map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
             format!("{:.3} ms (median of {}, IQR {:.3}){rate}", s.median, s.samples, s.iqr())
         });
-        println!("{} {}x{} with {} on {}: GPU {ms}", scene.name(), out.width, out.height, args.shaders, ctx.info.name);
+        println!(
+            "{} {}x{} with {set} on {}: GPU {ms} of {}",
+            scene.name(),
+            out.width,
+            out.height,
+            ctx.info.name,
+            out.rays
+        );
+        for problem in &problems {
+            println!("FAIL: {problem} (magenta in {})", args.out.display());
+        }
         println!("wrote {}", args.out.display());
     }
-    Ok(ExitCode::SUCCESS)
+    Ok(if problems.is_empty() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
 pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {

@@ -24,6 +24,7 @@ pub fn options(global: &GlobalArgs) -> ContextOptions {
         },
         pipelines: global.pipeline,
         pipeline_threads: global.threads.map(|n| n as usize),
+        gpu_timeout: global.gpu_timeout.unwrap_or(twinray::vk::context::DEFAULT_GPU_TIMEOUT),
     }
 }
 

@@ -1,7 +1,7 @@
 //! Comparing two renders of one scene: image error, hit/miss agreement, a difference image a
 //! person can read at a glance, and the verdict against the scene's parity tolerance.
 
-use crate::render::{RenderOutput, NO_HIT_ID};
+use crate::render::{RenderOutput, Written, NOT_A_NUMBER_RGB, NO_HIT_ID};
 use crate::scene::Parity;
 use serde::Serialize;
 
@@ -27,12 +27,16 @@ pub struct ImageDiff {
     pub hit_mismatches: u64,
     /// Of those, pixels not on a silhouette in either image: these should never happen.
     pub hit_mismatches_off_silhouette: u64,
+    /// What each set left unwritten or wrote non-finite; anything fails the comparison.
+    pub written_a: Written,
+    pub written_b: Written,
 }
 
 /// `ImageDiff` judged against a scene's tolerance.
 pub fn verdict(diff: &ImageDiff, parity: &Parity, pixels: u64) -> Vec<String> {
     let fraction = |n: u64| n as f64 / pixels.max(1) as f64;
-    let mut failures = Vec::new();
+    let mut failures = diff.written_a.problems("set a", "pixels");
+    failures.extend(diff.written_b.problems("set b", "pixels"));
     failures.extend(color_verdict(&diff.color, parity, pixels));
     if fraction(diff.hit_mismatches) > parity.max_hit_mismatches {
         failures.push(format!("{} hit mismatches (> {} of all)", diff.hit_mismatches, parity.max_hit_mismatches));
@@ -61,7 +65,13 @@ pub fn color_verdict(diff: &ColorDiff, parity: &Parity, pixels: u64) -> Vec<Stri
 /// Colour and hit-id differences of two renders of one size.
 pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDiff {
     let (hit_mismatches, hit_mismatches_off_silhouette) = hit_mismatches(a, b);
-    ImageDiff { color: color_diff(&a.rgba, &b.rgba, pixel_threshold), hit_mismatches, hit_mismatches_off_silhouette }
+    ImageDiff {
+        color: color_diff(&a.rgba, &b.rgba, pixel_threshold),
+        hit_mismatches,
+        hit_mismatches_off_silhouette,
+        written_a: a.written,
+        written_b: b.written,
+    }
 }
 
 /// Colour error of RGBA8 image `b` against `a`.
@@ -119,16 +129,21 @@ fn on_silhouette(ids: &[u64], w: usize, h: usize, x: usize, y: usize) -> bool {
 }
 
 /// Legend of [`diff_image`], printed beside it.
-pub const DIFF_LEGEND: &str = "dim grey = equal, red = 1 step, yellow = 8, white = 16+, cyan = hit mismatch";
+pub const DIFF_LEGEND: &str =
+    "dim grey = equal, red = 1 step, yellow = 8, white = 16+, cyan = hit mismatch, magenta = not written or not finite";
 
 /// RGBA8 difference image: image A in dim grey for context; differing pixels as a heat map
 /// (bright red for one 8-bit step, through yellow at 8, to white at 16 or more); hit/miss or
-/// primitive mismatches in cyan. Even a one-step difference stands out against the grey.
+/// primitive mismatches in cyan; pixels either set left unwritten or wrote as NaN or infinity
+/// in magenta. Even a one-step difference stands out against the grey.
 pub fn diff_image(a: &RenderOutput, b: &RenderOutput) -> Vec<u8> {
+    let finite = |o: &RenderOutput, i: usize| o.linear.get(i).is_none_or(|p| p.iter().all(|v| v.is_finite()));
     let mut out = Vec::with_capacity(a.rgba.len());
     for (i, (pa, pb)) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)).enumerate() {
         let d = channel_diff(pa, pb);
-        let rgb = if a.hit_ids[i] != b.hit_ids[i] {
+        let rgb = if !finite(a, i) || !finite(b, i) {
+            NOT_A_NUMBER_RGB
+        } else if a.hit_ids[i] != b.hit_ids[i] {
             [0, 255, 255]
         } else if d > 0 {
             heat((f32::from(d) / 16.0).min(1.0))
@@ -169,6 +184,7 @@ mod tests {
             rays: Default::default(),
             warmup_traces: 0,
             raygen_stack_bytes: 0,
+            written: Written::default(),
         }
     }
 
@@ -214,11 +230,22 @@ mod tests {
         let parity =
             Parity { max_rmse: 0.01, pixel_threshold: 2, max_pixels_over_threshold: 0.0, max_hit_mismatches: 0.5 };
         let color = ColorDiff { rmse: 0.02, psnr: 34.0, max_abs_diff: 9, pixels_over_threshold: 1 };
-        let d = ImageDiff { color, hit_mismatches: 1, hit_mismatches_off_silhouette: 1 };
+        let clean = Written::default();
+        let d = ImageDiff {
+            color,
+            hit_mismatches: 1,
+            hit_mismatches_off_silhouette: 1,
+            written_a: clean,
+            written_b: clean,
+        };
         let f = verdict(&d, &parity, 4);
         assert_eq!(f.len(), 3, "{f:?}");
         let good = ColorDiff { rmse: 0.0, pixels_over_threshold: 0, ..color };
-        let ok = ImageDiff { color: good, hit_mismatches: 1, hit_mismatches_off_silhouette: 0 };
+        let ok = ImageDiff { color: good, hit_mismatches: 1, hit_mismatches_off_silhouette: 0, ..d.clone() };
         assert!(verdict(&ok, &parity, 4).is_empty());
+        let half = Written { unwritten: 2, unwritten_color: 2, unwritten_ids: 0, non_finite: 1 };
+        let broken = ImageDiff { written_b: half, ..ok };
+        let f = verdict(&broken, &parity, 4);
+        assert_eq!(f, ["2 pixels not written by set b (colour 2, hit ids 0)", "1 pixels non-finite in set b"]);
     }
 }

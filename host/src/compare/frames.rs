@@ -51,10 +51,10 @@ pub struct FramesReport {
 }
 
 /// How far a frame's differences go towards the tolerance: the largest of each measured
-/// fraction over its limit (1 is at the limit). A hit mismatch away from every silhouette,
-/// which fails any frame, counts as infinitely bad.
+/// fraction over its limit (1 is at the limit). A hit mismatch away from every silhouette, or
+/// a pixel not written or not finite, which fail any frame, count as infinitely bad.
 pub fn badness(d: &ImageDiff, parity: &Parity, pixels: u64) -> f64 {
-    if d.hit_mismatches_off_silhouette > 0 {
+    if d.hit_mismatches_off_silhouette > 0 || !d.written_a.is_clean() || !d.written_b.is_clean() {
         return f64::INFINITY;
     }
     let fraction = |n: u64| n as f64 / pixels.max(1) as f64;
@@ -196,7 +196,14 @@ mod tests {
 
     fn diff(rmse: f64, over: u64, hits: u64, off: u64) -> ImageDiff {
         let color = ColorDiff { rmse, psnr: 0.0, max_abs_diff: 0, pixels_over_threshold: over };
-        ImageDiff { color, hit_mismatches: hits, hit_mismatches_off_silhouette: off }
+        let clean = crate::render::Written::default();
+        ImageDiff {
+            color,
+            hit_mismatches: hits,
+            hit_mismatches_off_silhouette: off,
+            written_a: clean,
+            written_b: clean,
+        }
     }
 
     #[test]

@@ -126,7 +126,7 @@ impl CompareReport {
         let timing = |spread: Option<Spread>, rate: Option<f64>, rays: RayCounts| {
             let ms = spread.map_or("n/a".to_string(), |s| format!("{:.3} ms (IQR {:.3})", s.median, s.iqr()));
             let rate = rate.map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
-            format!("GPU {ms}{rate}; {} primary + {} shadow rays", rays.primary, rays.shadow)
+            format!("GPU {ms}{rate} of {rays}")
         };
         let pixels = (u64::from(self.width) * u64::from(self.height)).max(1) as f64;
         let pct = |n: u64| 100.0 * n as f64 / pixels;
@@ -149,6 +149,11 @@ impl CompareReport {
             self.raygen_stack_bytes_a,
             self.raygen_stack_bytes_b,
         );
+        for (set, written) in [(&self.set_a, &self.diff.written_a), (&self.set_b, &self.diff.written_b)] {
+            for problem in written.problems(set, "pixels") {
+                s += &format!("  {problem} (magenta in diff.png)\n");
+            }
+        }
         s += &format!(
             "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette\n",
             d.rmse,

@@ -3,7 +3,9 @@
 
 use super::case::Generated;
 use super::case::ProbeCase;
+use super::run::{count_written, record_written};
 use crate::reference::scene::SceneVerdict;
+use crate::render::Written;
 use serde::Serialize;
 use twinray_shared::bindings::NO_HIT;
 use twinray_shared::layout::{ProbeRay, ProbeResult};
@@ -53,6 +55,13 @@ pub struct ProbeReport {
     pub gpu_ms_per_million_rays: Option<f64>,
     /// Per generator of the case: the rays it made, and how many of them the set hit.
     pub generators: Vec<Generated>,
+    /// Rays whose record the set never wrote (still the sentinel; judged as nothing else), and
+    /// hits it wrote with a NaN or infinite t or normal.
+    pub written: Written,
+    /// False when the set left records unwritten or non-finite.
+    pub pass: bool,
+    /// Why `pass` is false.
+    pub failures: Vec<String>,
 }
 
 fn ulp(x: f32) -> f64 {
@@ -70,6 +79,8 @@ pub enum Outcome {
     FalseHit,
     FalseMiss,
     WrongObject,
+    /// The set never wrote this ray's record.
+    Unwritten,
 }
 
 impl Outcome {
@@ -81,6 +92,7 @@ impl Outcome {
             Outcome::FalseHit => "false_hit",
             Outcome::FalseMiss => "false_miss",
             Outcome::WrongObject => "wrong_object",
+            Outcome::Unwritten => "unwritten",
         }
     }
 }
@@ -103,6 +115,7 @@ pub fn judge(case: &ProbeCase, results: &[ProbeResult]) -> Vec<Judged> {
             let verdict = case.reference.trace(o, d, f64::from(ray.origin.w), f64::from(ray.direction.w));
             let got_hit = result.ids.w != NO_HIT;
             let outcome = match verdict {
+                _ if !record_written(result) => Outcome::Unwritten,
                 SceneVerdict::Ambiguous => Outcome::Ambiguous,
                 SceneVerdict::Miss if got_hit => Outcome::FalseHit,
                 SceneVerdict::Miss => Outcome::Agrees,
@@ -139,7 +152,12 @@ pub fn evaluate(
         gpu_ms,
         gpu_ms_per_million_rays: gpu_ms.map(|ms| ms * 1e6 / case.rays.len().max(1) as f64),
         generators: case.generated.clone(),
+        written: count_written(results),
+        pass: true,
+        failures: Vec::new(),
     };
+    report.failures = report.written.problems(set, "rays");
+    report.pass = report.failures.is_empty();
     let (mut rel, mut ulps, mut angles) = (Vec::new(), Vec::new(), Vec::new());
     for (judged, result) in judge(case, results).iter().zip(results) {
         match judged.outcome {
@@ -147,6 +165,7 @@ pub fn evaluate(
             Outcome::FalseHit => report.false_hits += 1,
             Outcome::FalseMiss => report.false_misses += 1,
             Outcome::WrongObject => report.wrong_object += 1,
+            Outcome::Unwritten => {}
             Outcome::Agrees => {
                 if let SceneVerdict::Hit { t, normal, .. } = judged.verdict {
                     let got_t = f64::from(result.normal_t.w);
@@ -158,10 +177,10 @@ pub fn evaluate(
             }
         }
     }
-    report.decided = report.rays - report.ambiguous;
+    report.decided = report.rays - report.ambiguous - report.written.unwritten as usize;
     for (generated, judged) in report.generators.iter_mut().zip(generator_spans(case)) {
         let hits = |range: std::ops::Range<usize>, results: &[ProbeResult]| {
-            results[range].iter().filter(|r| r.ids.w != NO_HIT).count()
+            results[range].iter().filter(|r| record_written(r) && r.ids.w != NO_HIT).count()
         };
         generated.hit = Some(hits(judged, results));
     }
@@ -208,7 +227,7 @@ pub fn write_rays_csv(
         };
         for ((_, results), judged) in sets.iter().zip(&judged) {
             let r = results[i];
-            row += &if r.ids.w == NO_HIT {
+            row += &if r.ids.w == NO_HIT || !record_written(&r) {
                 ",0,,,,,".into()
             } else {
                 let n = r.normal_t;
@@ -234,7 +253,8 @@ impl ProbeReport {
             (Some(ms), Some(per)) => format!("GPU {ms:.3} ms ({per:.3} ms per million rays)"),
             _ => "GPU time n/a".into(),
         };
-        format!(
+        let failures: String = self.failures.iter().map(|f| format!("  FAIL: {f}\n")).collect();
+        failures + &format!(
             "case {} with {} on {}: {} rays, {} decided, {} ambiguous\n  false hits {}, false misses {}, wrong object {}\n  relative t error: median {:.2e}, p99 {:.2e}, max {:.2e}; ULP error p99 {:.1}\n  normal angle error p99 {:.2e} rad\n  {ms}\n",
             self.case, self.set, self.device, self.rays, self.decided, self.ambiguous, self.false_hits,
             self.false_misses, self.wrong_object, t.median, t.p99, t.max, self.ulp_error_p99, self.normal_angle_error_p99

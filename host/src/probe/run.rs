@@ -4,9 +4,10 @@
 //! compute renderer is probed by `probe_query`, which traces as it does.
 
 use crate::error::{Error, Result};
-use crate::render::{prepare, storage_buffer, submit, transition, STORAGE_IMAGE, UNUSED_IMAGE};
+use crate::render::{prepare, sentinel, storage_buffer, submit, transition, Written, STORAGE_IMAGE, UNUSED_IMAGE};
 use crate::scene::{Renderer, Scene, PROBE_QUERY};
 use crate::shaders::ShaderSet;
+use crate::util::activity;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::{memory_barrier, TRACING_STAGES};
 use crate::vk::context::Context;
@@ -25,6 +26,20 @@ pub struct ProbeOutput {
     pub gpu_ms: Vec<f64>,
     /// Stack bytes the probe ray generation stage needs, as the driver reports it.
     pub raygen_stack_bytes: u64,
+}
+
+/// Whether the probe stage wrote this record: no word of it still holds the sentinel.
+pub fn record_written(r: &ProbeResult) -> bool {
+    let words: &[u32] = bytemuck::cast_slice(std::slice::from_ref(r));
+    !words.iter().any(|&w| sentinel::unwritten(w))
+}
+
+/// Records never written, and hits written with a NaN or infinite t or normal.
+pub fn count_written(results: &[ProbeResult]) -> Written {
+    let unwritten = results.iter().filter(|r| !record_written(r)).count() as u64;
+    let non_finite =
+        results.iter().filter(|r| record_written(r) && r.ids.w != b::NO_HIT && !r.normal_t.is_finite()).count() as u64;
+    Written { unwritten, non_finite, ..Written::default() }
 }
 
 /// The module that probes `scene`: `probe`, through the pipeline's stages; or for a scene the
@@ -82,8 +97,15 @@ fn probe_and_release(
     let timestamps = Timestamps::new(ctx, runs)?;
     let readback =
         Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
+    let label = format!("the probe trace of {set} ({})", p.pipeline.modules.join(", "));
+    let _doing = activity::doing(label);
     let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
-    let before = |device: &ash::Device, cmd| transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
+    // Every trace writes the same records: poisoned once before the first, what the stage
+    // never writes still holds the sentinel after the last.
+    let before = |device: &ash::Device, cmd| {
+        transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
+        sentinel::poison_buffers(device, cmd, &[&results]);
+    };
     submit(ctx, &p.one_shot, &[trace], before, |device, cmd| {
         let written = (TRACING_STAGES, vk::AccessFlags::SHADER_WRITE);
         memory_barrier(device, cmd, written, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));

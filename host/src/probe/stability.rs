@@ -71,7 +71,11 @@ pub fn run(
             for set in sets {
                 let (results, gpu_ms) = measure(ctx, &case, set, timing)?;
                 let report = evaluate(&case, &results, &set.to_string(), &ctx.info.name, gpu_ms);
-                let failures = if formula == Formula::Robust { failures(&case, &report) } else { Vec::new() };
+                // A set that leaves records unwritten fails with either formula.
+                let mut failures = report.failures.clone();
+                if formula == Formula::Robust {
+                    failures.extend(self::failures(&case, &report));
+                }
                 let formula = if formula == Formula::Robust { "robust" } else { "naive" };
                 rows.push(StabilityRow { formula, variant: variant.clone(), report, failures });
             }

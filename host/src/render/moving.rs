@@ -3,10 +3,9 @@
 //! work between timestamps and the sets' traces. Several renderers (one per TLAS mode) can
 //! take turns frame by frame, so that a drift of the GPU's clocks reaches every mode alike.
 
-use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
 use super::frames::{check_frames, AsWork, Frame, TlasMode};
 use super::output::RenderOptions;
-use super::sets::{check_device_limits, copy_outputs, made_as_context_says, SetRender, SharedOutputs};
+use super::sets::{check_device_limits, made_as_context_says, SetRender, SharedOutputs};
 use super::tracing::{self, Trace};
 use super::upload::{upload_moving, UploadedScene};
 use crate::error::{Error, Result};
@@ -14,6 +13,7 @@ use crate::scene::animation::Moves;
 use crate::scene::file::SceneFile;
 use crate::scene::{check_size, frame_data, Scene};
 use crate::shaders::ShaderSet;
+use crate::util::activity;
 use crate::vk::accel::InstanceRecord;
 use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
@@ -86,35 +86,33 @@ impl<'a> FrameRenderer<'a> {
         let work = if i == 0 || self.moves.objects { self.mode.work(i) } else { AsWork::None };
         self.rewrite(frame, i, work)?;
         let ctx = &self.ctx;
+        let _doing = activity::doing(format!("frame {frame}"));
         let size = (self.opts.width, self.opts.height);
         let runs = self.opts.runs;
         let (as_ms, traces) = if i == 0 {
             let as_ms = self.tlas_work(work, &[])?;
+            self.trace_outputs()?;
             // Warm-up (and its GPU-clock calibration) over the first frame's structures.
             let traces = self
                 .renders
                 .iter()
-                .map(|r| timed(ctx, r, size, (self.opts.warmup, runs)))
+                .map(|r| r.timed_trace(ctx, size, (self.opts.warmup, runs)))
                 .collect::<Result<Vec<_>>>()?;
             self.warm = traces.iter().map(|t| t.warmup).collect();
             (as_ms, traces)
         } else {
-            let cold = self.renders.iter().map(|r| timed(ctx, r, size, (0, runs))).collect::<Result<Vec<_>>>()?;
+            let cold = self.renders.iter().map(|r| r.timed_trace(ctx, size, (0, runs))).collect::<Result<Vec<_>>>()?;
             let warm: Vec<Trace> = if warm_each {
                 cold.iter().zip(&self.warm).map(|(t, &warmup)| Trace { warmup, ..*t }).collect()
             } else {
                 Vec::new()
             };
-            (self.tlas_work(work, &warm)?, cold)
+            let as_ms = self.tlas_work(work, &warm)?;
+            self.trace_outputs()?;
+            (as_ms, cold)
         };
-        let image = self.outputs.image.raw;
-        let before = |device: &ash::Device, cmd| {
-            if i == 0 {
-                transition(device, cmd, image, UNUSED_IMAGE, STORAGE_IMAGE);
-            }
-        };
-        let after = |device: &ash::Device, cmd| copy_outputs(ctx, device, cmd, &self.outputs, &self.renders, &traces);
-        tracing::submit(ctx, &self.one_shot, &traces, before, after)?;
+        let _timed = activity::doing("the timed traces");
+        tracing::submit(ctx, &self.one_shot, &traces, |_, _| {}, |_, _| {})?;
         let outputs = self
             .renders
             .iter()
@@ -123,6 +121,12 @@ impl<'a> FrameRenderer<'a> {
             .collect::<Result<_>>()?;
         let time = self.scene.animation.as_ref().map_or(0.0, |a| a.time(frame));
         Ok(Frame { index: frame, time, as_work: work, as_ms, outputs })
+    }
+
+    /// Each set's output of this frame, poisoned first (see `SetRender::trace_output`).
+    fn trace_outputs(&self) -> Result<()> {
+        let size = (self.opts.width, self.opts.height);
+        self.renders.iter().try_for_each(|r| r.trace_output(&self.ctx, &self.outputs, size))
     }
 
     /// Poses frame `frame` (the `i`-th) and rewrites what moved: the TLAS instances when the
@@ -173,12 +177,6 @@ impl<'a> FrameRenderer<'a> {
         })?;
         Ok(timer.map(|t| t.read_ms()).transpose()?.and_then(|ms| ms.first().copied()))
     }
-}
-
-/// A set's traces of a frame: `warmup` warm-up traces (calibrated to fill `MIN_WARM_MS` when
-/// above 0), then `runs` timed ones.
-fn timed<'r>(ctx: &Arc<Context>, r: &'r SetRender, size: (u32, u32), counts: (u32, u32)) -> Result<Trace<'r>> {
-    r.prepared.trace(ctx, r.timestamps.as_ref(), size, counts)
 }
 
 /// Renders frames `frames` of `scene` with each of `sets` over one upload, handing each frame

@@ -1,5 +1,6 @@
 //! What a render produces, and reading it back from the GPU's bytes.
 
+use super::sentinel;
 use crate::util::stats::{median, Spread};
 use twinray_shared::bindings as b;
 
@@ -36,14 +37,97 @@ pub struct RenderOutput {
     pub warmup_traces: u32,
     /// Stack bytes the ray generation stage needs (see `RtPipeline::raygen_stack_bytes`).
     pub raygen_stack_bytes: u64,
+    /// What the set left unwritten, or wrote as NaN or infinity.
+    pub written: Written,
 }
 
-/// Rays traced by one trace of an image, by kind: primary rays are pixels times samples,
-/// shadow rays are counted by ray generation as it traces them.
+/// What a set left of the sentinel its outputs started as (see `render::sentinel`), and
+/// what it wrote that is not a finite number. Anything but zeros fails a render.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct Written {
+    /// Pixels (or probe rays) with any output word still holding the sentinel.
+    pub unwritten: u64,
+    /// Of the pixels: those whose colour was never written, and those whose hit ids (first hit,
+    /// shadow-ray count) were not.
+    pub unwritten_color: u64,
+    pub unwritten_ids: u64,
+    /// Pixels (or probe rays that hit) written with a NaN or an infinity.
+    pub non_finite: u64,
+}
+
+impl Written {
+    /// Whether every output was written, with finite numbers.
+    pub fn is_clean(&self) -> bool {
+        self.unwritten == 0 && self.non_finite == 0
+    }
+
+    /// An error naming `doing` and the set when anything was left unwritten or non-finite:
+    /// for measurements that cannot go on without the output (references, bench rows).
+    pub fn require(&self, set: &str, items: &str, doing: &str) -> crate::error::Result<()> {
+        let problems = self.problems(set, items);
+        if problems.is_empty() {
+            Ok(())
+        } else {
+            Err(crate::error::Error::Output(format!("{doing}: {}", problems.join("; "))))
+        }
+    }
+
+    /// One line per problem, naming the set: "3072 pixels not written by glsl,raygen=noop.spv
+    /// (colour 3072, hit ids 3072)", "12 pixels non-finite in rust". `items` is "pixels" or
+    /// "rays".
+    pub fn problems(&self, set: &str, items: &str) -> Vec<String> {
+        let mut lines = Vec::new();
+        if self.unwritten > 0 {
+            let detail = if items == "pixels" {
+                format!(" (colour {}, hit ids {})", self.unwritten_color, self.unwritten_ids)
+            } else {
+                String::new()
+            };
+            lines.push(format!("{} {items} not written by {set}{detail}", self.unwritten));
+        }
+        if self.non_finite > 0 {
+            lines.push(format!("{} {items} non-finite in {set}", self.non_finite));
+        }
+        lines
+    }
+}
+
+/// Rays of one trace of an image, by kind. Neither is measured by twinray: primary rays are
+/// the scene's count (pixels times samples, what a correct ray generation stage traces), and
+/// shadow rays are what the ray generation stage counted itself as it traced them (pixels
+/// whose count it never wrote add none). JSON carries where each comes from.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct RayCounts {
     pub primary: u64,
     pub shadow: u64,
+}
+
+/// Where [`RayCounts::primary`] comes from, in reports.
+pub const PRIMARY_FROM: &str = "the scene: pixels x samples";
+/// Where [`RayCounts::shadow`] comes from, in reports.
+pub const SHADOW_FROM: &str = "ray generation's own count";
+
+impl serde::Serialize for RayCounts {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeStruct;
+        let mut s = serializer.serialize_struct("RayCounts", 4)?;
+        s.serialize_field("primary", &self.primary)?;
+        s.serialize_field("shadow", &self.shadow)?;
+        s.serialize_field("primary_from", PRIMARY_FROM)?;
+        s.serialize_field("shadow_from", SHADOW_FROM)?;
+        s.end()
+    }
+}
+
+impl std::fmt::Display for RayCounts {
+    /// "3072 primary rays (the scene's) + 904 shadow rays (as ray generation counted them)".
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(
+            f,
+            "{} primary rays (the scene's) + {} shadow (as ray generation counted them)",
+            self.primary, self.shadow
+        )
+    }
 }
 
 impl RayCounts {
@@ -64,29 +148,59 @@ impl RenderOutput {
         Spread::of(&self.gpu_ms)
     }
 
-    /// Millions of rays per second at the median GPU time.
+    /// Millions of rays per second at the median GPU time, of the rays [`RayCounts`] counts;
+    /// none when the set left pixels unwritten, since it did not trace the scene's rays.
     pub fn mrays_per_s(&self) -> Option<f64> {
-        self.median_ms().filter(|&ms| ms > 0.0).map(|ms| self.rays.total() as f64 / (ms * 1e3))
+        let traced = self.written.unwritten == 0;
+        self.median_ms().filter(|&ms| ms > 0.0 && traced).map(|ms| self.rays.total() as f64 / (ms * 1e3))
     }
 }
 
-/// RGB of each rgba32f pixel.
-pub(crate) fn read_linear(bytes: &[u8]) -> Vec<[f32; 3]> {
-    let floats: &[f32] = bytemuck::cast_slice(bytes);
-    floats.chunks_exact(4).map(|p| [p[0], p[1], p[2]]).collect()
+/// What one set's render left in the image and hit-id readbacks.
+pub(crate) struct ReadBack {
+    pub linear: Vec<[f32; 3]>,
+    pub hit_ids: Vec<u64>,
+    /// Shadow rays the pixels counted (pixels whose count is unwritten add none).
+    pub shadow: u64,
+    pub written: Written,
 }
 
-/// 8-bit RGBA of linear RGB: clamped to [0, 1], rounded to nearest (NaN becomes 0), alpha 255.
+/// Reads an rgba32f image and the hit-id words of the same pixels ([`b::HIT_IDS_PER_PIXEL`]
+/// each: object, primitive, shadow-ray count), counting what still holds the sentinel.
+pub(crate) fn read_back(image: &[u8], ids: &[u8]) -> ReadBack {
+    let floats: &[u32] = bytemuck::cast_slice(image);
+    let words: &[u32] = bytemuck::cast_slice(ids);
+    let per_pixel = b::HIT_IDS_PER_PIXEL as usize;
+    let mut out = ReadBack { linear: Vec::new(), hit_ids: Vec::new(), shadow: 0, written: Written::default() };
+    for (p, w) in floats.chunks_exact(4).zip(words.chunks_exact(per_pixel)) {
+        let color_unwritten = p.iter().any(|&x| sentinel::unwritten(x));
+        let ids_unwritten = w.iter().any(|&x| sentinel::unwritten(x));
+        let rgba = [p[0], p[1], p[2], p[3]].map(f32::from_bits);
+        let written = &mut out.written;
+        written.unwritten += u64::from(color_unwritten || ids_unwritten);
+        written.unwritten_color += u64::from(color_unwritten);
+        written.unwritten_ids += u64::from(ids_unwritten);
+        written.non_finite += u64::from(!color_unwritten && !rgba.iter().all(|x| x.is_finite()));
+        out.linear.push([rgba[0], rgba[1], rgba[2]]);
+        out.hit_ids.push(u64::from(w[0]) << 32 | u64::from(w[1]));
+        out.shadow += if sentinel::unwritten(w[2]) { 0 } else { u64::from(w[2]) };
+    }
+    out
+}
+
+/// Colour of pixels that are not a finite number (never written, or NaN or infinite) in the
+/// PNGs twinray writes: magenta, which no scene's lighting makes by itself so plainly.
+pub const NOT_A_NUMBER_RGB: [u8; 3] = [255, 0, 255];
+
+/// 8-bit RGBA of linear RGB: clamped to [0, 1], rounded to nearest, alpha 255; a pixel with a
+/// NaN or an infinity is [`NOT_A_NUMBER_RGB`].
 pub fn to_rgba8(linear: &[[f32; 3]]) -> Vec<u8> {
     let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
-    linear.iter().flat_map(|p| [byte(p[0]), byte(p[1]), byte(p[2]), 255]).collect()
-}
-
-/// Per pixel the first hit (object << 32 | primitive), and the sum of the pixels' shadow rays.
-pub(crate) fn read_ids(bytes: &[u8]) -> (Vec<u64>, u64) {
-    let word = |p: &[u8], i: usize| u32::from_le_bytes([p[4 * i], p[4 * i + 1], p[4 * i + 2], p[4 * i + 3]]);
-    let per_pixel = 4 * b::HIT_IDS_PER_PIXEL as usize;
-    let ids = bytes.chunks_exact(per_pixel).map(|p| u64::from(word(p, 0)) << 32 | u64::from(word(p, 1))).collect();
-    let shadow = bytes.chunks_exact(per_pixel).map(|p| u64::from(word(p, 2))).sum();
-    (ids, shadow)
+    linear
+        .iter()
+        .flat_map(|p| {
+            let [r, g, b] = if p.iter().all(|v| v.is_finite()) { p.map(byte) } else { NOT_A_NUMBER_RGB };
+            [r, g, b, 255]
+        })
+        .collect()
 }

@@ -9,6 +9,7 @@ use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
 use crate::scene::{PipelinePlan, PROBE_QUERY, RENDER_COMPUTE};
 use crate::shaders::{ShaderSet, Stage, StageModule};
+use crate::util::activity;
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
 use ash::vk;
@@ -112,6 +113,24 @@ impl ScenePipeline {
     ) -> Result<Self> {
         let names = plan_modules(plan, raygen);
         let modules = names.iter().map(|name| set.module(name)).collect::<Result<Vec<StageModule>>>()?;
+        let origins: Vec<String> = modules.iter().map(|m| format!("{}={}", m.spec.name, m.origin)).collect();
+        let doing = format!("creating the pipeline of {set} ({})", origins.join(", "));
+        let _doing = activity::doing(doing.clone());
+        Self::from_modules(ctx, plan, (raygen, names, &modules), libraries).map_err(|e| {
+            if e.is_stalled() {
+                e
+            } else {
+                e.during(doing)
+            }
+        })
+    }
+
+    fn from_modules(
+        ctx: &Arc<Context>,
+        plan: &PipelinePlan,
+        (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
+        libraries: Option<&Libraries>,
+    ) -> Result<Self> {
         let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler];
         let spec_entries: Vec<_> = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER]
             .iter()
@@ -123,7 +142,7 @@ impl ScenePipeline {
         // A compute pipeline has no groups and no SBT.
         let compute = workgroup(raygen).is_some();
         let groups = if compute { Vec::new() } else { groups(plan, &names) };
-        require_device_features(ctx, &modules)?;
+        require_device_features(ctx, modules)?;
         let bindings = descriptor_bindings();
         let stages: Vec<_> = modules
             .iter()
@@ -142,7 +161,9 @@ impl ScenePipeline {
             let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, spec_bytes)).collect();
             libraries.link(ctx, &bindings, &descs)?
         } else {
-            let desc = PipelineDesc { bindings: &bindings, stages: &stages, groups: &groups, max_recursion_depth: 1 };
+            let depth = twinray_shared::interface::MAX_RECURSION_DEPTH;
+            let desc =
+                PipelineDesc { bindings: &bindings, stages: &stages, groups: &groups, max_recursion_depth: depth };
             (RtPipeline::new(ctx, &desc)?, Vec::new())
         };
         Ok(ScenePipeline {

@@ -68,7 +68,7 @@ impl Prepared {
         };
         // The second trace is the one timed: the first may include lazy compilation (lavapipe).
         let first = Trace { timestamps: Some(&one), warmup: 1, runs: 1, ..trace };
-        self.one_shot.run(|device, cmd| {
+        self.one_shot.run_units(2, |device, cmd| {
             transition(device, cmd, self.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
             first.record(ctx, cmd);
             Ok(())
@@ -129,8 +129,10 @@ pub(crate) fn prepare_on(
     Ok(Prepared { one_shot: OneShot::new(ctx)?, image, pipeline, descriptors, sbt, _resources: resources })
 }
 
-/// A device-local storage buffer of `size` bytes that can be copied out.
+/// A device-local storage buffer of `size` bytes that can be copied out and filled (with the
+/// sentinel, before a set writes it).
 pub(crate) fn storage_buffer(ctx: &Arc<Context>, name: &str, size: u64) -> Result<Buffer> {
-    let usage = vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC;
+    let usage =
+        vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::TRANSFER_SRC | vk::BufferUsageFlags::TRANSFER_DST;
     Buffer::new(ctx, name, size, usage, MemoryLocation::GpuOnly)
 }

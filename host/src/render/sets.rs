@@ -1,15 +1,17 @@
 //! Rendering a scene with one or more shader sets over one upload of the scene and one output
 //! image, their traces interleaved (see `tracing`), in every build order when timed.
 
-use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE, UNUSED_IMAGE};
+use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE};
 use super::libraries::Libraries;
-use super::output::{read_ids, read_linear, to_rgba8, RayCounts, RenderOptions, RenderOutput};
+use super::output::{read_back, to_rgba8, RayCounts, RenderOptions, RenderOutput};
 use super::prepare::{prepare_on, storage_buffer, Prepared};
-use super::tracing;
+use super::sentinel;
+use super::tracing::{self, Trace};
 use super::upload::{upload_shared, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::{check_size, Scene};
 use crate::shaders::ShaderSet;
+use crate::util::activity;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::memory_barrier;
 use crate::vk::context::{Context, PipelineKind};
@@ -136,6 +138,9 @@ impl SharedOutputs {
 pub(super) struct SetRender {
     pub prepared: Prepared,
     pub timestamps: Option<Timestamps>,
+    /// The set and the stages of its pipeline, for what a deadline or a crash names.
+    pub label: String,
+    /// Where the set's image is copied out; it also carries the sentinel in (see `sentinel`).
     image_readback: Buffer,
     ids_readback: Buffer,
 }
@@ -168,32 +173,64 @@ impl SetRender {
     ) -> Result<Self> {
         let image = outputs.image.clone();
         let pixels = u64::from(opts.width) * u64::from(opts.height);
-        let readback =
-            |name, bytes| Buffer::new(ctx, name, bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu);
+        let readback = |name, bytes, usage| Buffer::new(ctx, name, bytes, usage, MemoryLocation::GpuToCpu);
+        let both_ways = vk::BufferUsageFlags::TRANSFER_DST | vk::BufferUsageFlags::TRANSFER_SRC;
+        let prepared = prepare_on(ctx, scene, set, scene.data.plan.render_raygen(), image, &outputs.extra())?;
         Ok(SetRender {
-            prepared: prepare_on(ctx, scene, set, scene.data.plan.render_raygen(), image, &outputs.extra())?,
+            label: format!("{} ({})", set.0, prepared.pipeline.modules.join(", ")),
+            prepared,
             timestamps: Timestamps::new(ctx, opts.runs)?,
-            image_readback: readback("image readback", pixels * PIXEL_BYTES)?,
-            ids_readback: readback("hit id readback", outputs.hit_ids.size)?,
+            image_readback: readback("image readback", pixels * PIXEL_BYTES, both_ways)?,
+            ids_readback: readback("hit id readback", outputs.hit_ids.size, vk::BufferUsageFlags::TRANSFER_DST)?,
         })
+    }
+
+    /// The set's output, in a submission of its own: the image and hit ids filled with the
+    /// sentinel, one trace of this set alone, both copied out. A stage that never returns is
+    /// then named with its set; what the set did not write still holds the sentinel.
+    pub fn trace_output(&self, ctx: &Arc<Context>, outputs: &SharedOutputs, size: (u32, u32)) -> Result<()> {
+        let _doing = activity::doing(format!("the trace of {}", self.label));
+        let trace = self.prepared.trace(ctx, None, size, (0, 1))?;
+        self.prepared.one_shot.run(|device, cmd| {
+            sentinel::poison_image(device, cmd, &outputs.image, &self.image_readback);
+            sentinel::poison_buffers(device, cmd, &[&outputs.hit_ids]);
+            trace.once(ctx, cmd);
+            let written = (STORAGE_IMAGE.1, STORAGE_IMAGE.2);
+            memory_barrier(device, cmd, written, (COPY_SOURCE.1, COPY_SOURCE.2));
+            transition(device, cmd, outputs.image.raw, STORAGE_IMAGE, COPY_SOURCE);
+            copy_out(device, cmd, &outputs.image, &self.image_readback, &outputs.hit_ids, &self.ids_readback);
+            // Later traces write the image in its storage layout.
+            transition(device, cmd, outputs.image.raw, COPY_SOURCE, STORAGE_IMAGE);
+            let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
+            memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
+            Ok(())
+        })
+    }
+
+    /// This set's timed traces: `runs` after at least `warmup` warm-up ones (see
+    /// `Prepared::trace`, whose calibration trace runs here, naming the set).
+    pub fn timed_trace(&self, ctx: &Arc<Context>, size: (u32, u32), (warmup, runs): (u32, u32)) -> Result<Trace<'_>> {
+        let _doing = activity::doing(format!("warming up {}", self.label));
+        self.prepared.trace(ctx, self.timestamps.as_ref(), size, (warmup, runs))
     }
 
     pub fn output(&self, scene: &Scene, opts: &RenderOptions, warmup_traces: u32) -> Result<RenderOutput> {
         let gpu_ms = self.timestamps.as_ref().map(|t| t.read_ms()).transpose()?.unwrap_or_default();
-        let (hit_ids, shadow) = read_ids(&self.ids_readback.mapped()?[..self.ids_readback.size as usize]);
-        let linear = read_linear(&self.image_readback.mapped()?[..self.image_readback.size as usize]);
         let pixels = u64::from(opts.width) * u64::from(opts.height);
+        let image = &self.image_readback.mapped()?[..(pixels * PIXEL_BYTES) as usize];
+        let read = read_back(image, &self.ids_readback.mapped()?[..self.ids_readback.size as usize]);
         let samples = u64::from(scene.file.image.samples).pow(2);
         Ok(RenderOutput {
             width: opts.width,
             height: opts.height,
-            rgba: to_rgba8(&linear),
-            linear,
-            hit_ids,
+            rgba: to_rgba8(&read.linear),
+            linear: read.linear,
+            hit_ids: read.hit_ids,
             gpu_ms,
-            rays: RayCounts { primary: pixels * samples, shadow },
+            rays: RayCounts { primary: pixels * samples, shadow: read.shadow },
             warmup_traces,
             raygen_stack_bytes: self.prepared.pipeline.raygen_stack_bytes(),
+            written: read.written,
         })
     }
 }
@@ -210,37 +247,16 @@ fn render_and_release(
     let uploaded = upload_shared(ctx, scene, size)?;
     let outputs = SharedOutputs::new(ctx, opts)?;
     let renders = SetRender::each(ctx, &uploaded, &outputs, sets, opts)?;
-    let traces = renders
-        .iter()
-        .map(|r| r.prepared.trace(ctx, r.timestamps.as_ref(), size, (opts.warmup, opts.runs)))
-        .collect::<Result<Vec<_>>>()?;
     let Some(first) = renders.first() else { return Ok(Vec::new()) };
-    let before = |device: &ash::Device, cmd| transition(device, cmd, outputs.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
-    let after = |device: &ash::Device, cmd| copy_outputs(ctx, device, cmd, &outputs, &renders, &traces);
-    tracing::submit(ctx, &first.prepared.one_shot, &traces, before, after)?;
-    renders.iter().zip(&traces).map(|(r, t)| r.output(scene, opts, t.warmup)).collect()
-}
-
-/// Each set's output: one more trace of it, copied out before the next set's overwrites it,
-/// then made visible to the host.
-pub(super) fn copy_outputs(
-    ctx: &Context,
-    device: &ash::Device,
-    cmd: vk::CommandBuffer,
-    outputs: &SharedOutputs,
-    renders: &[SetRender],
-    traces: &[tracing::Trace],
-) {
-    for (r, trace) in renders.iter().zip(traces) {
-        trace.once(ctx, cmd);
-        let written = (STORAGE_IMAGE.1, STORAGE_IMAGE.2);
-        memory_barrier(device, cmd, written, (COPY_SOURCE.1, COPY_SOURCE.2));
-        transition(device, cmd, outputs.image.raw, STORAGE_IMAGE, COPY_SOURCE);
-        copy_out(device, cmd, &outputs.image, &r.image_readback, &outputs.hit_ids, &r.ids_readback);
-        transition(device, cmd, outputs.image.raw, COPY_SOURCE, STORAGE_IMAGE);
+    for r in &renders {
+        r.trace_output(ctx, &outputs, size)?;
     }
-    let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
-    memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
+    let traces =
+        renders.iter().map(|r| r.timed_trace(ctx, size, (opts.warmup, opts.runs))).collect::<Result<Vec<_>>>()?;
+    let labels: Vec<&str> = renders.iter().map(|r| r.label.as_str()).collect();
+    let _doing = activity::doing(format!("the timed traces of {}", labels.join(" and ")));
+    tracing::submit(ctx, &first.prepared.one_shot, &traces, |_, _| {}, |_, _| {})?;
+    renders.iter().zip(&traces).map(|(r, t)| r.output(scene, opts, t.warmup)).collect()
 }
 
 pub(super) fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {

@@ -131,7 +131,7 @@ fn record_rounds(ctx: &Context, cmd: vk::CommandBuffer, traces: &[Trace], range:
 
 /// Records and submits `before`, the traces (as `record` orders them) and `after`: in one
 /// submission up to `ROUNDS_PER_SUBMIT` timed rounds, else the rounds in batches of that many,
-/// reporting progress after each.
+/// reporting progress after each. Each submission may take the GPU timeout once per trace in it.
 pub(crate) fn submit(
     ctx: &Context,
     one_shot: &OneShot,
@@ -140,15 +140,19 @@ pub(crate) fn submit(
     after: impl FnOnce(&ash::Device, vk::CommandBuffer),
 ) -> Result<()> {
     let rounds = rounds(traces);
+    let warmups: u32 = traces.iter().map(|t| t.warmup).fold(0, u32::saturating_add);
+    let timed = |range: std::ops::Range<u32>| {
+        traces.iter().map(|t| range.clone().filter(|&k| k < t.runs.max(1)).count() as u32).fold(0, u32::saturating_add)
+    };
     if rounds <= ROUNDS_PER_SUBMIT {
-        return one_shot.run(|device, cmd| {
+        return one_shot.run_units(warmups.saturating_add(timed(0..rounds)), |device, cmd| {
             before(device, cmd);
             record(ctx, cmd, traces);
             after(device, cmd);
             Ok(())
         });
     }
-    one_shot.run(|device, cmd| {
+    one_shot.run_units(warmups, |device, cmd| {
         before(device, cmd);
         record_warmup(ctx, cmd, traces);
         Ok(())
@@ -156,7 +160,7 @@ pub(crate) fn submit(
     let mut done = 0;
     while done < rounds {
         let end = (done + ROUNDS_PER_SUBMIT).min(rounds);
-        one_shot.run(|_, cmd| {
+        one_shot.run_units(timed(done..end), |_, cmd| {
             record_rounds(ctx, cmd, traces, done..end);
             Ok(())
         })?;

@@ -20,6 +20,9 @@ pub struct AccelStruct {
 
 impl Drop for AccelStruct {
     fn drop(&mut self) {
+        if self.ctx.abandoned() {
+            return; // the GPU may still use it: see Context::abandon
+        }
         // SAFETY: the GPU work using it has completed; the storage buffer is dropped after.
         unsafe { self.ctx.accel.destroy_acceleration_structure(self.raw, None) };
     }

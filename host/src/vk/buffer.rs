@@ -82,6 +82,9 @@ impl Buffer {
 
 impl Drop for Buffer {
     fn drop(&mut self) {
+        if self.ctx.abandoned() {
+            return; // the GPU may still use it: see Context::abandon
+        }
         // SAFETY: the GPU work using this buffer has completed (every submit waits on a fence).
         unsafe { self.ctx.device.destroy_buffer(self.raw, None) };
         if let Some(allocation) = self.allocation.take() {

@@ -1,7 +1,8 @@
 //! Recording a command buffer, submitting it and waiting for it: the only way twinray submits.
 
 use super::context::Context;
-use crate::error::{Result, VkContext};
+use crate::error::{Error, Result, VkContext};
+use crate::util::{activity, watchdog};
 use ash::vk;
 use std::sync::Arc;
 
@@ -31,8 +32,21 @@ impl OneShot {
         Ok(one)
     }
 
-    /// Records with `record`, submits, waits, and fails on any validation error it caused.
+    /// Records with `record`, submits, waits (one unit of work: see [`OneShot::run_units`]),
+    /// and fails on any validation error it caused.
     pub fn run(&self, record: impl FnOnce(&ash::Device, vk::CommandBuffer) -> Result<()>) -> Result<()> {
+        self.run_units(1, record)
+    }
+
+    /// As [`OneShot::run`], for a submission of `units` units of work (traces, builds), each
+    /// of which may take the context's GPU timeout: past `units` times it, the work is given up
+    /// with [`Error::GpuTimeout`] naming what this thread is doing (`util::activity`), and the
+    /// context is abandoned. A lost device ends the same way with [`Error::DeviceLost`].
+    pub fn run_units(
+        &self,
+        units: u32,
+        record: impl FnOnce(&ash::Device, vk::CommandBuffer) -> Result<()>,
+    ) -> Result<()> {
         let device = &self.ctx.device;
         let begin = vk::CommandBufferBeginInfo::default().flags(vk::CommandBufferUsageFlags::ONE_TIME_SUBMIT);
         // SAFETY: the command buffer is not in use (every run waits for its fence).
@@ -42,18 +56,36 @@ impl OneShot {
         unsafe { device.end_command_buffer(self.cmd) }.call("vkEndCommandBuffer")?;
         let cmds = [self.cmd];
         let submit = [vk::SubmitInfo::default().command_buffers(&cmds)];
-        // SAFETY: the buffer is recorded; the fence is unsignalled; waiting keeps resources alive.
-        unsafe {
+        let limit = self.ctx.gpu_timeout().saturating_mul(units.max(1));
+        let nanos = u64::try_from(limit.as_nanos()).unwrap_or(u64::MAX);
+        // SAFETY: the buffer is recorded; the fence is unsignalled; waiting keeps resources
+        // alive, and a wait that gives up abandons the context, so that nothing is destroyed.
+        let waited = unsafe {
             device.reset_fences(&[self.fence]).call("vkResetFences")?;
-            device.queue_submit(self.ctx.queue, &submit, self.fence).call("vkQueueSubmit")?;
-            device.wait_for_fences(&[self.fence], true, u64::MAX).call("vkWaitForFences")?;
+            device
+                .queue_submit(self.ctx.queue, &submit, self.fence)
+                .and_then(|()| device.wait_for_fences(&[self.fence], true, nanos))
+        };
+        match waited {
+            Ok(()) => self.ctx.check_validation(),
+            Err(vk::Result::TIMEOUT) => {
+                self.ctx.abandon();
+                Err(Error::GpuTimeout { doing: activity::describe(), seconds: watchdog::seconds(limit) })
+            }
+            Err(vk::Result::ERROR_DEVICE_LOST) => {
+                self.ctx.abandon();
+                Err(Error::DeviceLost { doing: activity::describe() })
+            }
+            Err(result) => Err(Error::Vulkan { call: "vkQueueSubmit/vkWaitForFences", result }),
         }
-        self.ctx.check_validation()
     }
 }
 
 impl Drop for OneShot {
     fn drop(&mut self) {
+        if self.ctx.abandoned() {
+            return; // the GPU may still use it: see Context::abandon
+        }
         // SAFETY: run() waits for completion, so the command buffer is idle.
         unsafe {
             self.ctx.device.destroy_fence(self.fence, None);

@@ -10,7 +10,9 @@ use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme, 
 use gpu_allocator::MemoryLocation;
 use std::ffi::CStr;
 use std::mem::ManuallyDrop;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
+use std::time::Duration;
 
 /// What a device is and can do, as reported by `twinray info` and used to lay out the SBT.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -59,7 +61,29 @@ pub struct ContextOptions {
     /// Threads that join each pipeline creation (a deferred host operation); `None`: as many
     /// as the machine has cores.
     pub pipeline_threads: Option<usize>,
+    /// How long one unit of GPU work (a trace, a build) and one pipeline creation may take
+    /// before twinray gives up on it ([`DEFAULT_GPU_TIMEOUT`] unless asked otherwise).
+    pub gpu_timeout: Duration,
 }
+
+impl Default for ContextOptions {
+    /// No validation, the first capable device, no pipeline cache, pipelines made as the
+    /// device allows, one creation thread per core, [`DEFAULT_GPU_TIMEOUT`].
+    fn default() -> Self {
+        ContextOptions {
+            validation: Validation::Off,
+            device_filter: None,
+            pipeline_cache: None,
+            pipelines: None,
+            pipeline_threads: None,
+            gpu_timeout: DEFAULT_GPU_TIMEOUT,
+        }
+    }
+}
+
+/// The default of [`ContextOptions::gpu_timeout`]: generous, since one trace of a large image
+/// on lavapipe takes seconds, and short enough that a looping stage ends the command soon.
+pub const DEFAULT_GPU_TIMEOUT: Duration = Duration::from_secs(120);
 
 /// How ray tracing pipelines are made.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize, clap::ValueEnum)]
@@ -94,6 +118,10 @@ pub struct Context {
     pipeline_cache: Option<PipelineCache>,
     pipelines: PipelineKind,
     pipeline_threads: usize,
+    gpu_timeout: Duration,
+    /// Set when GPU work did not finish: the device may still be running it, so nothing made
+    /// from it may be destroyed (each owner's `Drop` leaks instead).
+    abandoned: AtomicBool,
 }
 
 impl Context {
@@ -188,6 +216,8 @@ impl Context {
                 .pipeline_threads
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
                 .max(1),
+            gpu_timeout: options.gpu_timeout,
+            abandoned: AtomicBool::new(false),
         }))
     }
 
@@ -231,6 +261,22 @@ impl Context {
         } else {
             self.pipeline_threads
         }
+    }
+
+    /// How long one unit of GPU work or one pipeline creation may take.
+    pub fn gpu_timeout(&self) -> Duration {
+        self.gpu_timeout
+    }
+
+    /// Gives the device up: its work did not finish, or it was lost. From now on every object
+    /// made from it is leaked rather than destroyed while the GPU may still use it.
+    pub fn abandon(&self) {
+        self.abandoned.store(true, Ordering::SeqCst);
+    }
+
+    /// Whether [`Context::abandon`] was called: `Drop`s leak their objects.
+    pub fn abandoned(&self) -> bool {
+        self.abandoned.load(Ordering::SeqCst)
     }
 
     /// How this context makes ray tracing pipelines.
@@ -295,6 +341,11 @@ impl Context {
 
 impl Drop for Context {
     fn drop(&mut self) {
+        if self.abandoned() {
+            // The device may still be running the work that never finished: waiting for it
+            // would hang, destroying under it would crash. The process ends soon after.
+            return;
+        }
         self.destroy_device();
         // Nobody can be told any more: what the layer said at teardown goes to the log.
         if let Err(e) = self.check_validation() {

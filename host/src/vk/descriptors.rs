@@ -82,6 +82,9 @@ impl DescriptorSet {
 
 impl Drop for DescriptorSet {
     fn drop(&mut self) {
+        if self.ctx.abandoned() {
+            return; // the GPU may still use it: see Context::abandon
+        }
         // SAFETY: no pending work uses the set; destroying the pool frees it.
         unsafe { self.ctx.device.destroy_descriptor_pool(self.pool, None) };
     }

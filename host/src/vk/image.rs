@@ -23,7 +23,8 @@ pub struct StorageImage {
 }
 
 impl StorageImage {
-    /// A device-local rgba32f image usable as a storage image and a copy source.
+    /// A device-local rgba32f image usable as a storage image, a copy source and a copy
+    /// target (the host fills it with a sentinel before each set writes it).
     pub fn new(ctx: &Arc<Context>, width: u32, height: u32) -> Result<Self> {
         // SAFETY: plain query on a live physical device.
         let format_props = unsafe { ctx.instance.get_physical_device_format_properties(ctx.physical, FORMAT) };
@@ -39,7 +40,7 @@ impl StorageImage {
             .array_layers(1)
             .samples(vk::SampleCountFlags::TYPE_1)
             .tiling(vk::ImageTiling::OPTIMAL)
-            .usage(vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC)
+            .usage(vk::ImageUsageFlags::STORAGE | vk::ImageUsageFlags::TRANSFER_SRC | vk::ImageUsageFlags::TRANSFER_DST)
             .initial_layout(vk::ImageLayout::UNDEFINED);
         // SAFETY: valid create info; destroyed in Drop.
         let raw = unsafe { ctx.device.create_image(&info, None) }.call("vkCreateImage")?;
@@ -74,6 +75,9 @@ pub const COLOR_RANGE: vk::ImageSubresourceRange = vk::ImageSubresourceRange {
 
 impl Drop for StorageImage {
     fn drop(&mut self) {
+        if self.ctx.abandoned() {
+            return; // the GPU may still use it: see Context::abandon
+        }
         // SAFETY: the GPU work using this image has completed; a null view is ignored.
         unsafe {
             self.ctx.device.destroy_image_view(self.view, None);

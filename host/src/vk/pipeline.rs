@@ -5,6 +5,7 @@
 
 use super::context::Context;
 use crate::error::{Error, Result, VkContext};
+use crate::util::watchdog;
 use ash::vk;
 use std::ffi::CStr;
 use std::sync::Arc;
@@ -106,6 +107,8 @@ impl RtPipeline {
         stage: &StageDesc,
     ) -> Result<Self> {
         let mut pipeline = Self::layouts(ctx, bindings, vk::PipelineBindPoint::COMPUTE)?;
+        // A driver's compiler may never return on a damaged module: see util::watchdog.
+        let _deadline = watchdog::arm(ctx.gpu_timeout());
         let mut made = Modules { ctx, raw: Vec::new() };
         let info =
             [vk::ComputePipelineCreateInfo::default().stage(stage_info(&mut made, stage)?).layout(pipeline.layout)];
@@ -205,6 +208,8 @@ fn create_pipeline(
     desc: &PipelineDesc,
     making: Making,
 ) -> Result<vk::Pipeline> {
+    // A driver's compiler may never return on a damaged module: see util::watchdog.
+    let _deadline = watchdog::arm(ctx.gpu_timeout());
     let mut made = Modules { ctx, raw: Vec::new() };
     let stages = desc.stages.iter().map(|s| stage_info(&mut made, s)).collect::<Result<Vec<_>>>()?;
     let unused = vk::SHADER_UNUSED_KHR;
@@ -268,6 +273,9 @@ pub fn pool_sizes(bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)]) 
 
 impl Drop for RtPipeline {
     fn drop(&mut self) {
+        if self.ctx.abandoned() {
+            return; // the GPU may still use it: see Context::abandon
+        }
         // SAFETY: no command buffer using these is pending; null handles are ignored.
         unsafe {
             self.ctx.device.destroy_pipeline(self.raw, None);

@@ -66,6 +66,9 @@ impl Timestamps {
 
 impl Drop for Timestamps {
     fn drop(&mut self) {
+        if self.ctx.abandoned() {
+            return; // the GPU may still use it: see Context::abandon
+        }
         // SAFETY: results were read after the work completed.
         unsafe { self.ctx.device.destroy_query_pool(self.pool, None) };
     }

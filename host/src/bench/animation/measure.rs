@@ -97,6 +97,7 @@ pub fn run(ctx: &Arc<Context>, config: &AnimateConfig, mut progress: impl FnMut(
                 let m = (k + frame as usize) % n;
                 let f = renderers[m].render(frame, true)?;
                 let out = &f.outputs[0];
+                out.written.require(&config.set.to_string(), "pixels", &format!("{} frame {frame}", scene.name()))?;
                 measured.push((
                     m,
                     FrameRow {

@@ -97,8 +97,10 @@ pub struct BisectReport {
     pub modules: Vec<Row>,
     pub image: Finding,
     pub time: Finding,
-    /// Both findings pinned: exit code 0.
+    /// Both findings pinned: exit code 0 (when A and B wrote every output).
     pub pinned: bool,
+    /// What A or B left unwritten of its output, or wrote non-finite: each fails the command.
+    pub failures: Vec<String>,
 }
 
 /// Per stage, the modules of `used` that differ between `a` and `b`.
@@ -247,7 +249,10 @@ pub fn bisect<T>(subject: &mut dyn Subject<Data = T>, a: &ShaderSet, b: &ShaderS
     let time =
         finding(base.time_judged.clone().map(|()| "significant"), [&stages, &pairs, &drill], |r| r.explains_time);
     let [spread_a, spread_b] = base.ms;
+    let mut failures = run_a.written.problems(&format!("A ({a})"), subject.items());
+    failures.extend(run_b.written.problems(&format!("B ({b})"), subject.items()));
     Ok(BisectReport {
+        failures,
         subject: subject.name(),
         device: subject.device(),
         set_a: a.to_string(),

@@ -73,6 +73,9 @@ impl BisectReport {
             self.raygen_stack_bytes_a,
             self.raygen_stack_bytes_b,
         );
+        for failure in &self.failures {
+            s += &format!("  FAIL: {failure}\n");
+        }
         if !self.same_modules.is_empty() {
             s += &format!("  same code in both: {}\n", self.same_modules.join(", "));
         }

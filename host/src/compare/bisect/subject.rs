@@ -3,9 +3,9 @@
 use crate::compare::diff::{diff, verdict};
 use crate::error::Result;
 use crate::probe::case::ProbeCase;
-use crate::probe::run::{probe, ProbeResult};
+use crate::probe::run::{count_written, probe, ProbeResult};
 use crate::render::pipeline::plan_modules;
-use crate::render::{render_there_and_back, RenderOptions, RenderOutput};
+use crate::render::{render_there_and_back, RenderOptions, RenderOutput, Written};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::vk::context::Context;
@@ -41,6 +41,8 @@ pub struct Run<T> {
     pub data: T,
     pub gpu_ms: Vec<f64>,
     pub raygen_stack_bytes: u64,
+    /// What the set left unwritten of its output, or wrote non-finite.
+    pub written: Written,
 }
 
 /// Relative difference of t beyond which two probe results count as differing.
@@ -52,6 +54,8 @@ pub trait Subject {
     /// The scene or case, for the report.
     fn name(&self) -> String;
     fn device(&self) -> String;
+    /// What one item of its output is called: "pixels", "rays".
+    fn items(&self) -> &'static str;
     /// The catalog modules its pipeline uses.
     fn modules(&self) -> Vec<&'static str>;
     /// One run per set, in order.
@@ -75,6 +79,10 @@ impl Subject for ImageSubject<'_> {
         format!("{} {}x{}", self.scene.name(), self.opts.width, self.opts.height)
     }
 
+    fn items(&self) -> &'static str {
+        "pixels"
+    }
+
     fn device(&self) -> String {
         self.ctx.info.name.clone()
     }
@@ -88,7 +96,12 @@ impl Subject for ImageSubject<'_> {
         let outputs = render_there_and_back(self.ctx, self.scene, sets, &self.opts)?;
         Ok(outputs
             .into_iter()
-            .map(|o| Run { gpu_ms: o.gpu_ms.clone(), raygen_stack_bytes: o.raygen_stack_bytes, data: o })
+            .map(|o| Run {
+                gpu_ms: o.gpu_ms.clone(),
+                raygen_stack_bytes: o.raygen_stack_bytes,
+                written: o.written,
+                data: o,
+            })
             .collect())
     }
 
@@ -120,6 +133,10 @@ impl Subject for ProbeSubject<'_> {
         format!("probe case {} ({} rays)", self.case.file.name, self.case.rays.len())
     }
 
+    fn items(&self) -> &'static str {
+        "rays"
+    }
+
     fn device(&self) -> String {
         self.ctx.info.name.clone()
     }
@@ -132,7 +149,8 @@ impl Subject for ProbeSubject<'_> {
         sets.iter()
             .map(|set| {
                 let out = probe(self.ctx, &self.case.scene, set, &self.case.rays, self.warmup, self.runs)?;
-                Ok(Run { data: out.results, gpu_ms: out.gpu_ms, raygen_stack_bytes: out.raygen_stack_bytes })
+                let written = count_written(&out.results);
+                Ok(Run { data: out.results, gpu_ms: out.gpu_ms, raygen_stack_bytes: out.raygen_stack_bytes, written })
             })
             .collect()
     }

@@ -36,6 +36,10 @@ impl Subject for Fake {
         "none".into()
     }
 
+    fn items(&self) -> &'static str {
+        "values"
+    }
+
     fn modules(&self) -> Vec<&'static str> {
         USED.to_vec()
     }
@@ -52,7 +56,7 @@ impl Subject for Fake {
                 }
                 let ms: f64 = 10.0 + self.cost.iter().filter(|(m, _)| glsl(set, m)).map(|(_, c)| c).sum::<f64>();
                 let gpu_ms = (0..self.runs).map(|i| ms + 0.001 * i as f64).collect();
-                Run { data, gpu_ms, raygen_stack_bytes: 0 }
+                Run { data, gpu_ms, raygen_stack_bytes: 0, written: Default::default() }
             })
             .collect())
     }
