@@ -15,9 +15,11 @@ pub const MAX_TIMING_RAYS: u64 = 1 << 23;
 
 #[derive(Args, Clone)]
 pub struct GlobalArgs {
-    /// Enable the Khronos validation layer; its errors fail the command.
-    #[arg(long, global = true)]
-    pub validate: bool,
+    /// Enable the Khronos validation layer; its errors fail the command. `--validate=gpu` adds
+    /// its GPU-assisted validation, which instruments the stages (what the installed layer
+    /// checks there: see the README's "Robust access and GPU-assisted validation").
+    #[arg(long, global = true, value_enum, value_name = "MODE", num_args = 0..=1, require_equals = true, default_missing_value = "core")]
+    pub validate: Option<ValidateMode>,
     /// Use the first ray tracing device whose name contains this text.
     #[arg(long, global = true, value_name = "NAME")]
     pub device: Option<String>,
@@ -41,9 +43,23 @@ pub struct GlobalArgs {
     /// what did not finish [default: 120].
     #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_timeout)]
     pub gpu_timeout: Option<std::time::Duration>,
+    /// Leave robust buffer and image access (VK_EXT_robustness2) off: a stage that reads
+    /// outside a buffer then reads what the driver gives, not zeros [default: on where the
+    /// device has it].
+    #[arg(long, global = true)]
+    pub no_robust_access: bool,
     /// More log output (-v info, -vv debug); RUST_LOG overrides.
     #[arg(short, long, global = true, action = clap::ArgAction::Count)]
     pub verbose: u8,
+}
+
+/// What `--validate` turns on.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum ValidateMode {
+    /// The layer's checks of every Vulkan call.
+    Core,
+    /// Those, and GPU-assisted validation of the stages.
+    Gpu,
 }
 
 /// A GPU timeout: seconds, more than 0 and at most a day.

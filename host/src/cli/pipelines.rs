@@ -117,9 +117,11 @@ fn measure_in_child(global: &GlobalArgs, args: &PipelineBenchArgs, config: &Conf
     let failed = |why: String| Error::Unsupported(format!("measuring {config:?} in a child process: {why}"));
     let exe = std::env::current_exe().map_err(|e| failed(e.to_string()))?;
     let mut command = Command::new(exe);
-    if global.validate {
-        command.arg("--validate");
-    }
+    match global.validate {
+        Some(crate::args::ValidateMode::Core) => command.arg("--validate"),
+        Some(crate::args::ValidateMode::Gpu) => command.arg("--validate=gpu"),
+        None => &mut command,
+    };
     if let Some(device) = &global.device {
         command.args(["--device", device]);
     }

@@ -1,7 +1,7 @@
 //! What every command that renders shares: the Vulkan context from the global options, and
 //! image size and trace counts from the flags.
 
-use crate::args::{FrameArgs, GlobalArgs};
+use crate::args::{FrameArgs, GlobalArgs, ValidateMode};
 use anyhow::{Context as _, Result};
 use std::sync::Arc;
 use twinray::scene::check_size;
@@ -15,7 +15,11 @@ pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
 /// The context options the global flags ask for.
 pub fn options(global: &GlobalArgs) -> ContextOptions {
     ContextOptions {
-        validation: if global.validate { Validation::Required } else { Validation::Off },
+        validation: match global.validate {
+            None => Validation::Off,
+            Some(ValidateMode::Core) => Validation::Required,
+            Some(ValidateMode::Gpu) => Validation::GpuAssisted,
+        },
         device_filter: global.device.clone(),
         pipeline_cache: if global.no_pipeline_cache {
             None
@@ -25,6 +29,7 @@ pub fn options(global: &GlobalArgs) -> ContextOptions {
         pipelines: global.pipeline,
         pipeline_threads: global.threads.map(|n| n as usize),
         gpu_timeout: global.gpu_timeout.unwrap_or(twinray::vk::context::DEFAULT_GPU_TIMEOUT),
+        robust_access: !global.no_robust_access,
     }
 }
 

@@ -51,6 +51,20 @@ pub fn info(global: &GlobalArgs, json: bool) -> Result<ExitCode> {
                 "no: shadow_method = \"query\" and renderer = \"compute\" scenes are refused"
             }
         );
+        let r = i.robustness;
+        let on = |b: bool| if b { "on" } else { "off" };
+        println!(
+            "robustness  VK_EXT_robustness2: robustBufferAccess2 {}, robustImageAccess2 {}{}",
+            on(r.buffer_access2),
+            on(r.image_access2),
+            if r.buffer_access2 {
+                " (a stage reading outside a buffer reads zeros, the same on every driver)"
+            } else if global.no_robust_access {
+                " (--no-robust-access)"
+            } else {
+                " (the device lacks it: a stray read gives what the driver gives)"
+            }
+        );
         println!(
             "host AS     accelerationStructureHostCommands {} (twinray builds acceleration structures on the device)",
             if i.host_acceleration_structure_commands { "yes" } else { "no" }

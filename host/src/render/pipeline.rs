@@ -116,13 +116,11 @@ impl ScenePipeline {
         let origins: Vec<String> = modules.iter().map(|m| format!("{}={}", m.spec.name, m.origin)).collect();
         let doing = format!("creating the pipeline of {set} ({})", origins.join(", "));
         let _doing = activity::doing(doing.clone());
-        Self::from_modules(ctx, plan, (raygen, names, &modules), libraries).map_err(|e| {
-            if e.is_stalled() {
-                e
-            } else {
-                e.during(doing)
-            }
-        })
+        // What the validation layer said of the modules fails here, before a trace can crash
+        // on them (a module declaring a capability the device lacks crashed lavapipe).
+        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), libraries)
+            .and_then(|made| ctx.check_validation().map(|()| made));
+        made.map_err(|e| if e.is_stalled() { e } else { e.during(doing) })
     }
 
     fn from_modules(

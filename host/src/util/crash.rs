@@ -42,6 +42,15 @@ pub fn report_crashes() {
 }
 
 extern "C" fn on_signal(signal: libc::c_int) {
+    // Several driver threads may fault at once: the first reports and ends the process, the
+    // others wait for that (pause is async-signal-safe).
+    static REPORTING: AtomicBool = AtomicBool::new(false);
+    if REPORTING.swap(true, Ordering::SeqCst) {
+        loop {
+            // SAFETY: pause only waits for a signal.
+            unsafe { libc::pause() };
+        }
+    }
     let name = SIGNALS.iter().find(|(s, _)| *s == signal).map_or(&b"a fatal signal"[..], |(_, n)| n);
     let mut doing = activity::snapshot_buffer();
     let n = activity::snapshot(&mut doing);

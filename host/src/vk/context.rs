@@ -1,50 +1,19 @@
 //! The Vulkan context: instance, optional validation messenger, device, queue, allocator and
 //! the ray tracing loaders. Everything else holds an `Arc<Context>`, so it is dropped last.
 
-use super::device_select::{self, Candidate, REQUIRED_EXTENSIONS};
+pub use super::device::DeviceInfo;
+use super::device::{create_device, device_info, robustness, Robustness};
+use super::device_select;
 use super::pipeline_cache::{cache_file, PipelineCache};
 use super::validation::{self, Messenger, Validation, ValidationLog};
 use crate::error::{Error, Result, VkContext};
 use ash::{ext::debug_utils, khr, vk};
 use gpu_allocator::vulkan::{Allocation, AllocationCreateDesc, AllocationScheme, Allocator, AllocatorCreateDesc};
 use gpu_allocator::MemoryLocation;
-use std::ffi::CStr;
 use std::mem::ManuallyDrop;
 use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex};
 use std::time::Duration;
-
-/// What a device is and can do, as reported by `twinray info` and used to lay out the SBT.
-#[derive(Clone, Debug, serde::Serialize)]
-pub struct DeviceInfo {
-    pub name: String,
-    pub device_type: String,
-    pub api_version: String,
-    pub driver_name: String,
-    pub driver_info: String,
-    pub shader_group_handle_size: u32,
-    pub shader_group_handle_alignment: u32,
-    pub shader_group_base_alignment: u32,
-    pub max_ray_recursion_depth: u32,
-    pub max_ray_dispatch_invocation_count: u32,
-    pub max_image_dimension_2d: u32,
-    pub min_scratch_offset_alignment: u32,
-    /// Nanoseconds per timestamp tick.
-    pub timestamp_period_ns: f32,
-    /// Valid bits of timestamps on the queue used; 0 means no GPU timing.
-    pub timestamp_valid_bits: u32,
-    /// Threads of a CPU device (lavapipe): LP_NUM_THREADS if set, else the CPU count, which
-    /// is what lavapipe uses; `None` for GPUs.
-    pub cpu_threads: Option<u32>,
-    /// Whether the device has (and twinray enabled) VK_KHR_pipeline_library.
-    pub pipeline_library: bool,
-    /// Whether the device has (and twinray enabled) VK_KHR_ray_query with its `rayQuery`
-    /// feature.
-    pub ray_query: bool,
-    /// Whether the device can build acceleration structures on the host
-    /// (`accelerationStructureHostCommands`); twinray builds them on the device either way.
-    pub host_acceleration_structure_commands: bool,
-}
 
 /// Options for [`Context::new`].
 #[derive(Clone, Debug)]
@@ -64,6 +33,9 @@ pub struct ContextOptions {
     /// How long one unit of GPU work (a trace, a build) and one pipeline creation may take
     /// before twinray gives up on it ([`DEFAULT_GPU_TIMEOUT`] unless asked otherwise).
     pub gpu_timeout: Duration,
+    /// Turn on robust buffer and image access where the device has VK_EXT_robustness2 (see
+    /// `device::Robustness`); off, a stray read gives whatever the driver gives.
+    pub robust_access: bool,
 }
 
 impl Default for ContextOptions {
@@ -77,6 +49,7 @@ impl Default for ContextOptions {
             pipelines: None,
             pipeline_threads: None,
             gpu_timeout: DEFAULT_GPU_TIMEOUT,
+            robust_access: true,
         }
     }
 }
@@ -130,7 +103,7 @@ impl Context {
         // SAFETY: loading the system Vulkan loader; its entry points are used as documented.
         let entry = unsafe { ash::Entry::load() }?;
         let validation_log = Box::<ValidationLog>::default();
-        let validate = options.validation == Validation::Required;
+        let validate = options.validation != Validation::Off;
         if validate && !layer_available(&entry)? {
             return Err(Error::Unsupported(
                 "validation was requested but VK_LAYER_KHRONOS_validation is not installed \
@@ -138,7 +111,7 @@ impl Context {
                     .into(),
             ));
         }
-        let instance = create_instance(&entry, validate, &validation_log)?;
+        let instance = create_instance(&entry, options.validation, &validation_log)?;
         let messenger = if validate {
             let loader = debug_utils::Instance::new(&entry, &instance);
             let info = validation::messenger_info(&validation_log);
@@ -151,9 +124,13 @@ impl Context {
         };
         let created = device_select::pick(&instance, options.device_filter.as_deref()).and_then(|candidate| {
             let optional = device_select::optional_extensions(&instance, candidate.physical)?;
-            Ok((create_device(&instance, &candidate, &optional)?, candidate, optional))
+            let robust = match options.robust_access {
+                true => robustness(&instance, candidate.physical, &optional),
+                false => Robustness::default(),
+            };
+            Ok((create_device(&instance, &candidate, &optional, robust)?, candidate, (optional, robust)))
         });
-        let (device, candidate, optional) = match created {
+        let (device, candidate, (optional, robust)) = match created {
             Ok(made) => made,
             Err(e) => {
                 destroy_instance(&instance, messenger);
@@ -163,6 +140,7 @@ impl Context {
         let mut info = device_info(&instance, candidate.physical, candidate.queue_family, candidate.name);
         info.pipeline_library = optional.contains(&ash::khr::pipeline_library::NAME);
         info.ray_query = optional.contains(&ash::khr::ray_query::NAME);
+        info.robustness = robust;
         let pipelines = match options.pipelines {
             Some(PipelineKind::Libraries) if !info.pipeline_library => {
                 // SAFETY: nothing was made from the device yet.
@@ -372,7 +350,8 @@ fn layer_available(entry: &ash::Entry) -> Result<bool> {
     Ok(layers.iter().any(|l| l.layer_name_as_c_str() == Ok(validation::LAYER_NAME)))
 }
 
-fn create_instance(entry: &ash::Entry, validate: bool, log: &ValidationLog) -> Result<ash::Instance> {
+fn create_instance(entry: &ash::Entry, validation: Validation, log: &ValidationLog) -> Result<ash::Instance> {
+    let validate = validation != Validation::Off;
     let app = vk::ApplicationInfo::default()
         .application_name(c"twinray")
         .engine_name(c"twinray")
@@ -381,82 +360,18 @@ fn create_instance(entry: &ash::Entry, validate: bool, log: &ValidationLog) -> R
     let extensions = [debug_utils::NAME.as_ptr()];
     let mut messenger_info = validation::messenger_info(log);
     let mut info = vk::InstanceCreateInfo::default().application_info(&app);
+    let gpu = [
+        vk::ValidationFeatureEnableEXT::GPU_ASSISTED,
+        vk::ValidationFeatureEnableEXT::GPU_ASSISTED_RESERVE_BINDING_SLOT,
+    ];
+    let mut features = vk::ValidationFeaturesEXT::default().enabled_validation_features(&gpu);
     if validate {
         // The chained messenger also reports errors of vkCreateInstance/vkDestroyInstance.
         info = info.enabled_layer_names(&layers).enabled_extension_names(&extensions).push_next(&mut messenger_info);
     }
+    if validation == Validation::GpuAssisted {
+        info = info.push_next(&mut features);
+    }
     // SAFETY: all pointers in `info` live until the call returns.
     unsafe { entry.create_instance(&info, None) }.call("vkCreateInstance")
-}
-
-fn create_device(instance: &ash::Instance, candidate: &Candidate, optional: &[&CStr]) -> Result<ash::Device> {
-    let priorities = [1.0];
-    let queues =
-        [vk::DeviceQueueCreateInfo::default().queue_family_index(candidate.queue_family).queue_priorities(&priorities)];
-    let extensions: Vec<_> = REQUIRED_EXTENSIONS.iter().chain(optional).map(|e| e.as_ptr()).collect();
-    let mut f12 = vk::PhysicalDeviceVulkan12Features::default().buffer_device_address(true).vulkan_memory_model(true);
-    let mut accel = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
-    let mut rt = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default().ray_tracing_pipeline(true);
-    let mut query = vk::PhysicalDeviceRayQueryFeaturesKHR::default().ray_query(true);
-    let mut info = vk::DeviceCreateInfo::default()
-        .queue_create_infos(&queues)
-        .enabled_extension_names(&extensions)
-        .push_next(&mut f12)
-        .push_next(&mut accel)
-        .push_next(&mut rt);
-    if optional.contains(&ash::khr::ray_query::NAME) {
-        info = info.push_next(&mut query);
-    }
-    // SAFETY: the candidate supports every extension and feature enabled here.
-    unsafe { instance.create_device(candidate.physical, &info, None) }.call("vkCreateDevice")
-}
-
-fn device_info(instance: &ash::Instance, physical: vk::PhysicalDevice, queue_family: u32, name: String) -> DeviceInfo {
-    let mut rt = vk::PhysicalDeviceRayTracingPipelinePropertiesKHR::default();
-    let mut accel = vk::PhysicalDeviceAccelerationStructurePropertiesKHR::default();
-    let mut driver = vk::PhysicalDeviceDriverProperties::default();
-    let mut props2 =
-        vk::PhysicalDeviceProperties2::default().push_next(&mut rt).push_next(&mut accel).push_next(&mut driver);
-    // SAFETY: the chained structs live until the call returns.
-    unsafe { instance.get_physical_device_properties2(physical, &mut props2) };
-    let props = props2.properties;
-    let mut accel_features = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default();
-    let mut features = vk::PhysicalDeviceFeatures2::default().push_next(&mut accel_features);
-    // SAFETY: the chained struct lives until the call returns; the device was chosen for having
-    // VK_KHR_acceleration_structure.
-    unsafe { instance.get_physical_device_features2(physical, &mut features) };
-    // SAFETY: physical comes from this instance.
-    let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
-    let text = |c: Result<&std::ffi::CStr, _>| c.map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
-    DeviceInfo {
-        name,
-        device_type: format!("{:?}", props.device_type),
-        cpu_threads: (props.device_type == vk::PhysicalDeviceType::CPU).then(cpu_threads),
-        pipeline_library: false,
-        ray_query: false,
-        host_acceleration_structure_commands: accel_features.acceleration_structure_host_commands == vk::TRUE,
-        api_version: format!(
-            "{}.{}.{}",
-            vk::api_version_major(props.api_version),
-            vk::api_version_minor(props.api_version),
-            vk::api_version_patch(props.api_version)
-        ),
-        driver_name: text(driver.driver_name_as_c_str()),
-        driver_info: text(driver.driver_info_as_c_str()),
-        shader_group_handle_size: rt.shader_group_handle_size,
-        shader_group_handle_alignment: rt.shader_group_handle_alignment,
-        shader_group_base_alignment: rt.shader_group_base_alignment,
-        max_ray_recursion_depth: rt.max_ray_recursion_depth,
-        max_ray_dispatch_invocation_count: rt.max_ray_dispatch_invocation_count,
-        max_image_dimension_2d: props.limits.max_image_dimension2_d,
-        min_scratch_offset_alignment: accel.min_acceleration_structure_scratch_offset_alignment,
-        timestamp_period_ns: props.limits.timestamp_period,
-        timestamp_valid_bits: families.get(queue_family as usize).map_or(0, |f| f.timestamp_valid_bits),
-    }
-}
-
-/// Rasterizer threads lavapipe runs with: LP_NUM_THREADS, or the CPUs available.
-fn cpu_threads() -> u32 {
-    let from_env = std::env::var("LP_NUM_THREADS").ok().and_then(|v| v.trim().parse().ok());
-    from_env.unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get() as u32))
 }

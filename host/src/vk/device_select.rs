@@ -61,9 +61,10 @@ pub fn pick(instance: &ash::Instance, filter: Option<&str>) -> Result<Candidate>
 }
 
 /// Extensions twinray enables where the device has them: pipeline libraries (`--pipeline
-/// libraries`) and ray queries (tracing inline, without the pipeline's shader table; every
-/// device with the extension has its `rayQuery` feature).
-pub const OPTIONAL_EXTENSIONS: [&CStr; 2] = [ash::khr::pipeline_library::NAME, ash::khr::ray_query::NAME];
+/// libraries`), ray queries (tracing inline, without the pipeline's shader table; every
+/// device with the extension has its `rayQuery` feature) and robust access (`device`).
+pub const OPTIONAL_EXTENSIONS: [&CStr; 3] =
+    [ash::khr::pipeline_library::NAME, ash::khr::ray_query::NAME, ash::ext::robustness2::NAME];
 
 /// The optional extensions `physical` has.
 pub fn optional_extensions(instance: &ash::Instance, physical: vk::PhysicalDevice) -> Result<Vec<&'static CStr>> {

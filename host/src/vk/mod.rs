@@ -6,6 +6,7 @@ pub mod commands;
 pub mod context;
 pub mod deferred;
 pub mod descriptors;
+pub mod device;
 pub mod device_select;
 pub mod image;
 pub mod pipeline;

@@ -15,6 +15,9 @@ pub enum Validation {
     Off,
     /// Enable it; fail if it is not installed.
     Required,
+    /// Enable it with GPU-assisted validation, which instruments the shaders to report
+    /// out-of-bounds descriptor and buffer access by stage and binding.
+    GpuAssisted,
 }
 
 /// Error messages collected by the messenger; owned by the context, read after each submit.
