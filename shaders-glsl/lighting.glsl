@@ -9,10 +9,11 @@ struct LightSample {
     vec3 irradiance;
 };
 
-LightSample light_sample(Light light, vec3 point, uint i, uint j, float r1, float r2) {
+// A directional light's shadow ray reaches `across` (frame.reach.y: across the whole scene).
+LightSample light_sample(Light light, vec3 point, uint i, uint j, float r1, float r2, float across) {
     vec3 radiance = light.radiance.xyz;
     if (light.kind == LIGHT_DIRECTIONAL) {
-        return LightSample(light.position.xyz, T_MAX, radiance);
+        return LightSample(light.position.xyz, across, radiance);
     }
     vec3 target;
     if (light.kind == LIGHT_POINT) {

@@ -13,11 +13,11 @@
 #ifdef RENDER_COMPUTE
 // Twin of twinray_shaders::query::primary_query.
 void trace_primary(vec3 origin, vec3 direction) {
-    trace_query(origin, T_MIN, direction, T_MAX, frame.background);
+    trace_query(origin, T_MIN, direction, frame.reach.x, frame.background);
 }
 #else
 void trace_primary(vec3 origin, vec3 direction) {
-    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_PRIMARY, origin, T_MIN, direction, T_MAX, 0);
+    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_PRIMARY, origin, T_MIN, direction, frame.reach.x, 0);
 }
 #endif
 
@@ -55,8 +55,8 @@ vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout u
                 }
                 // Independent samples: cell (0, 0) stretched over the whole light.
                 float nf = float(n);
-                LightSample s = stratified ? light_sample(light, point, i, j, r1, r2)
-                                           : light_sample(light, point, 0u, 0u, r1 * nf, r2 * nf);
+                LightSample s = stratified ? light_sample(light, point, i, j, r1, r2, frame.reach.y)
+                                           : light_sample(light, point, 0u, 0u, r1 * nf, r2 * nf, frame.reach.y);
                 float cosine = dot(normal, s.direction);
                 bool casts = shadows && light.shadows != 0u;
                 if (cosine > 0.0) {

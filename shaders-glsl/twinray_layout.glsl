@@ -48,7 +48,6 @@
 #define HIT_KIND_CONE 5u
 #define HIT_KIND_TORUS 6u
 #define T_MIN 0.1
-#define T_MAX 1000.0
 #define OFFSET_ORIGIN 0.03125
 #define OFFSET_FLOAT_SCALE 1.5258789e-5
 #define OFFSET_INT_SCALE 256.0
@@ -63,15 +62,16 @@
 #define TORUS_ROOT_TOLERANCE 9.536743e-7
 #define TORUS_SELF_BAND 0.004
 
-// 160 bytes, as twinray_shared::layout::FrameUniform
+// 176 bytes, as twinray_shared::layout::FrameUniform
 struct FrameUniform {
     mat4 view_inverse; // offset 0
     mat4 proj_inverse; // offset 64
     vec4 background; // offset 128
-    uint light_count; // offset 144
-    uint seed; // offset 148
-    uint width; // offset 152
-    uint height; // offset 156
+    vec4 reach; // offset 144
+    uint light_count; // offset 160
+    uint seed; // offset 164
+    uint width; // offset 168
+    uint height; // offset 172
 };
 
 // 16 bytes, as twinray_shared::layout::ObjectData

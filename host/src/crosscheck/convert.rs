@@ -106,7 +106,7 @@ fn sensor(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Value {
         "fov_axis": "y",
         "fov": c.fov_y_degrees,
         "near_clip": twinray_shared::bindings::T_MIN,
-        "far_clip": twinray_shared::bindings::T_MAX,
+        "far_clip": scene.frame_uniform(width, height).reach.x,
         "to_world": {"look_at": {"origin": c.eye, "target": c.target, "up": c.up}},
         "film": {"type": "hdrfilm", "width": width, "height": height, "pixel_format": "rgba",
                  "rfilter": {"type": "box"}},

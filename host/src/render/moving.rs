@@ -11,7 +11,7 @@ use super::upload::{upload_moving, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::animation::Moves;
 use crate::scene::file::SceneFile;
-use crate::scene::{check_size, frame_data, Scene};
+use crate::scene::{check_size, frame_data, Aabb, Scene};
 use crate::shaders::ShaderSet;
 use crate::util::activity;
 use crate::vk::accel::InstanceRecord;
@@ -36,6 +36,8 @@ pub struct FrameRenderer<'a> {
     moves: Moves,
     posed: SceneFile,
     records: Vec<InstanceRecord>,
+    /// Each object's bounds in its own space, for the reach of each frame's rays.
+    object_bounds: Vec<Aabb>,
     /// Warm-up traces per set, as the first frame's calibration found them.
     warm: Vec<u32>,
     /// Frames rendered so far.
@@ -66,6 +68,7 @@ impl<'a> FrameRenderer<'a> {
             renders,
             outputs,
             records: uploaded.instances.clone(),
+            object_bounds: uploaded.data.object_bounds(),
             uploaded,
             one_shot: OneShot::new(ctx)?,
             timer: Timestamps::new(ctx, 1)?,
@@ -137,7 +140,7 @@ impl<'a> FrameRenderer<'a> {
             return Ok(());
         }
         self.scene.pose(frame, &mut self.posed);
-        let data = frame_data(&self.posed, self.opts.width, self.opts.height);
+        let data = frame_data(&self.posed, self.opts.width, self.opts.height, &self.object_bounds);
         let resources = &self.uploaded.resources;
         if work != AsWork::None {
             for (record, instance) in self.records.iter_mut().zip(&self.uploaded.data.instances) {
@@ -145,7 +148,8 @@ impl<'a> FrameRenderer<'a> {
             }
             resources.tlas.borrow_mut().write(&self.records)?;
         }
-        if self.moves.camera {
+        // Moving objects move the scene's bounds, and with them the rays' reach.
+        if self.moves.camera || self.moves.objects {
             resources.write(b::BINDING_FRAME, bytemuck::bytes_of(&data.uniform))?;
         }
         if self.moves.lights {

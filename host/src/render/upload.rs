@@ -122,7 +122,7 @@ fn upload_scene(
         Some(flags) => Tlas::new(ctx, &instances, flags)?,
         None => build_tlas(ctx, one_shot, &instances)?,
     };
-    let frame = scene.frame_uniform(width, height);
+    let frame = crate::scene::frame_uniform(&scene.file, width, height, &built.world_boxes());
     let storage = vk::DescriptorType::STORAGE_BUFFER;
     let buffers = vec![
         (b::BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER, upload(ctx, "frame", bytemuck::bytes_of(&frame))?),

@@ -8,6 +8,7 @@ use super::file::{
 };
 use super::mesh::MeshData;
 use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
+use super::reach;
 use super::shape::{Formula, ShapeDesc};
 use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
 use std::collections::BTreeMap;
@@ -167,12 +168,37 @@ pub struct FrameData {
     pub uniform: FrameUniform,
 }
 
-/// The transforms, lights and frame constants of `scene` as it stands.
-pub fn frame_data(scene: &SceneFile, width: u32, height: u32) -> FrameData {
-    FrameData {
-        transforms: scene.objects.iter().map(|o| object_transform(o.translate, o.rotate, o.scale.axes())).collect(),
-        lights: lights(scene),
-        uniform: frame_uniform(scene, width, height),
+/// The transforms, lights and frame constants of `scene` as it stands, its objects' own
+/// bounds being `object_bounds` (see `reach::object_bounds`).
+pub fn frame_data(scene: &SceneFile, width: u32, height: u32, object_bounds: &[Aabb]) -> FrameData {
+    let transforms: Vec<Mat4> =
+        scene.objects.iter().map(|o| object_transform(o.translate, o.rotate, o.scale.axes())).collect();
+    let boxes = reach::world_boxes(object_bounds, &transforms);
+    FrameData { uniform: frame_uniform(scene, width, height, &boxes), transforms, lights: lights(scene) }
+}
+
+impl SceneData {
+    /// Each object's world-space bounds, as built.
+    pub fn world_boxes(&self) -> Vec<Aabb> {
+        let transforms: Vec<Mat4> = self.instances.iter().map(|i| i.object_to_world).collect();
+        reach::world_boxes(&self.object_bounds(), &transforms)
+    }
+
+    /// Each object's bounds in its own space, in object (TLAS instance) order.
+    pub fn object_bounds(&self) -> Vec<Aabb> {
+        let blas_bounds: Vec<Aabb> = self.blases.iter().map(|b| self.blas_bounds(b)).collect();
+        self.instances.iter().map(|i| blas_bounds[i.blas]).collect()
+    }
+
+    fn blas_bounds(&self, blas: &BlasDesc) -> Aabb {
+        let points: Vec<Vec3> = match blas {
+            BlasDesc::Aabbs(boxes) => boxes.iter().flat_map(|b| [b.min, b.max]).collect(),
+            BlasDesc::Triangles { vertex_base, vertex_count, .. } => {
+                let range = *vertex_base as usize..(*vertex_base + *vertex_count) as usize;
+                self.vertices[range].iter().map(|v| v.position.truncate()).collect()
+            }
+        };
+        reach::enclose(points).unwrap_or(Aabb { min: Vec3::ZERO, max: Vec3::ZERO })
     }
 }
 
@@ -180,8 +206,9 @@ fn lights(scene: &SceneFile) -> Vec<Light> {
     scene.lights.iter().map(|l| light(l, scene.shadow_samples)).collect()
 }
 
-/// Camera and frame constants for an image of `width` x `height`.
-pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform {
+/// Camera and frame constants for an image of `width` x `height`, the objects' world bounds
+/// being `boxes` (they set the rays' reach).
+pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32, boxes: &[Aabb]) -> FrameUniform {
     let c = &scene.camera;
     let view = glam::camera::rh::view::look_at_mat4(c.eye.into(), c.target.into(), c.up.into());
     let aspect = width as f32 / height as f32;
@@ -190,6 +217,7 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32) -> FrameUniform
         view_inverse: view.inverse(),
         proj_inverse: proj.inverse(),
         background: Vec3::from(scene.background).extend(1.0),
+        reach: reach::reach(boxes, c.eye.into()),
         light_count: scene.lights.len() as u32,
         seed: scene.image.seed,
         width,

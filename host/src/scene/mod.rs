@@ -8,15 +8,17 @@ mod check;
 pub mod file;
 pub mod mesh;
 pub mod plan;
+pub mod reach;
 pub mod shape;
 
 use crate::error::{Error, Result};
 use crate::util::input::{read_text, MAX_TEXT_BYTES};
 pub use animation::Animation;
-pub use build::{frame_data, object_transform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
+pub use build::{frame_data, frame_uniform, object_transform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
 pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
 pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE, MAX_SIDE};
 pub use file::{HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMethod};
+use glam::Vec3;
 pub use mesh::MeshData;
 pub use plan::{
     each_once, material_callable, Colour, HitGeometry, HitGroup, PipelinePlan, CUTOUT_ANY_HIT, PROBE_QUERY,
@@ -118,7 +120,33 @@ impl Scene {
                 meshes.insert(name.clone(), mesh.map_err(|e| scene_error(format!("shape {name:?}: {e}")))?);
             }
         }
-        Ok(Scene { file, source: source.into(), meshes, animation })
+        let scene = Scene { file, source: source.into(), meshes, animation };
+        scene.check_resolution().map_err(scene_error)?;
+        Ok(scene)
+    }
+
+    /// An error when f32 cannot resolve an object where it stands (at frame 0), a warning
+    /// on the log when it resolves it only coarsely (see `reach`).
+    fn check_resolution(&self) -> std::result::Result<(), String> {
+        let boxes = self.build().world_boxes();
+        let Some((i, steps)) = reach::coarsest(&boxes, self.file.camera.eye.into()) else { return Ok(()) };
+        let b = &boxes[i];
+        let size = (b.max - b.min).max_element();
+        let magnitude =
+            b.min.abs().max(b.max.abs()).max_element().max(Vec3::from(self.file.camera.eye).abs().max_element());
+        let what = format!(
+            "object {i} (shape {:?}) is {size:e} units wide at {magnitude:e} units from the origin (or the camera's \
+             distance), where f32 steps by {:e}: {steps:.1} steps across it",
+            self.file.objects[i].shape,
+            reach::step(magnitude)
+        );
+        if steps < reach::UNRESOLVED_STEPS {
+            return Err(format!("{what}, so f32 cannot resolve it on the GPU; bring the scene nearer the origin"));
+        }
+        if steps < reach::COARSE_STEPS {
+            log::warn!("scene {}: {what}, so f32 resolves it only coarsely", self.source);
+        }
+        Ok(())
     }
 
     /// Gives every rect light `n` x `n` shadow samples.
@@ -169,7 +197,7 @@ impl Scene {
 
     /// Camera and frame constants for an image of `width` x `height`.
     pub fn frame_uniform(&self, width: u32, height: u32) -> FrameUniform {
-        build::frame_uniform(&self.file, width, height)
+        build::frame_uniform(&self.file, width, height, &self.build().world_boxes())
     }
 }
 

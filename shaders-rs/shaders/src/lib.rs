@@ -71,7 +71,7 @@ pub fn $name(
             };
             let offset = camera::sample_offset(sx, sy, samples_per_side, r1, r2);
             let ray = camera::primary_ray($frame, pixel, size, offset);
-            $primary(tlas, ray, $payload, $($pres),*);
+            $primary(tlas, ray, $frame.reach.x, $payload, $($pres),*);
             if sample == 0 {
                 first_hit = ($payload.ids.x, $payload.ids.y);
             }

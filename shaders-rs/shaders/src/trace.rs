@@ -7,15 +7,16 @@ use crate::query::visible_query;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use twinray_shared::bindings::{
-    LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MAX, T_MIN,
+    LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MIN,
 };
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
 use twinray_shared::{lighting, offset, random};
 
-/// Traces a primary ray into `payload`. No ray is traced `OPAQUE`: instances say whether they
-/// are (cutouts are not, and their any-hit stage runs), so scenes without cutouts run none.
-pub fn primary(tlas: &AccelerationStructure, ray: Ray, payload: &mut HitPayload) {
+/// Traces a primary ray as far as `t_max` into `payload`. No ray is traced `OPAQUE`: instances
+/// say whether they are (cutouts are not, and their any-hit stage runs), so scenes without
+/// cutouts run none.
+pub fn primary(tlas: &AccelerationStructure, ray: Ray, t_max: f32, payload: &mut HitPayload) {
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
         tlas.trace_ray(
@@ -27,7 +28,7 @@ pub fn primary(tlas: &AccelerationStructure, ray: Ray, payload: &mut HitPayload)
             ray.origin,
             T_MIN,
             ray.direction,
-            T_MAX,
+            t_max,
             payload,
         );
     }
@@ -100,7 +101,7 @@ pub fn $name(
             // Independent samples: cell (0, 0) stretched over the whole light.
             let nf = n as f32;
             let (si, sj, r1, r2) = if stratified { (i, j, r1, r2) } else { (0, 0, r1 * nf, r2 * nf) };
-            let s = lighting::sample(&light, point, si, sj, r1, r2);
+            let s = lighting::sample(&light, point, (si, sj), (r1, r2), frame.reach.y);
             let cosine = normal.dot(s.direction);
             if cosine > 0.0 {
                 let lit = if casts {

@@ -95,6 +95,6 @@ pub const NO_HIT: u32 = 0xffff_ffff;
 /// written. As an f32 it is a signalling NaN with a payload, which no arithmetic produces; as
 /// a u32 it is no object, primitive or kind index and no shadow-ray count a scene reaches.
 pub const UNWRITTEN: u32 = 0x7fa5_dead;
-/// Primary ray interval.
+/// t_min of primary rays. Their t_max, and directional shadow rays', come from the scene's
+/// extent: `FrameUniform::reach`.
 pub const T_MIN: f32 = 0.1;
-pub const T_MAX: f32 = 1000.0;

@@ -278,6 +278,9 @@ impl ModuleSpec {
         if !info.entry_points.contains(&want) {
             return Err(format!("no {} entry point {entry:?} ({})", self.stage.name(), describe_entries(info)));
         }
+        // What the stage passes first: a stage that traces also binds the TLAS, and the
+        // recursion depth is the cause to name.
+        crate::interface::check(self, info)?;
         for &(set, binding) in &info.bindings {
             let spec = LAYOUT.iter().find(|l| set == b::DESCRIPTOR_SET && l.binding == binding);
             match spec {
@@ -292,7 +295,7 @@ impl ModuleSpec {
                 Some(_) => {}
             }
         }
-        crate::interface::check(self, info)
+        Ok(())
     }
 
     /// The entry point a module built elsewhere offers for this spec: the only one with the

@@ -51,6 +51,7 @@ pub fn structs() -> Vec<GlslStruct> {
             view_inverse: "mat4",
             proj_inverse: "mat4",
             background: "vec4",
+            reach: "vec4",
             light_count: "uint",
             seed: "uint",
             width: "uint",
@@ -181,7 +182,6 @@ pub fn layout_include() -> Result<String, String> {
     }
     let floats = [
         ("T_MIN", T_MIN),
-        ("T_MAX", T_MAX),
         ("OFFSET_ORIGIN", OFFSET_ORIGIN),
         ("OFFSET_FLOAT_SCALE", OFFSET_FLOAT_SCALE),
         ("OFFSET_INT_SCALE", OFFSET_INT_SCALE),

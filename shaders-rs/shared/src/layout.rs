@@ -16,6 +16,10 @@ pub struct FrameUniform {
     pub proj_inverse: Mat4,
     /// rgb: colour of rays that hit nothing; w: unused.
     pub background: Vec4,
+    /// How far rays reach, worked out from the scene's bounds: x, the t_max of primary rays
+    /// (past the scene's farthest point from the camera); y, the t_max of directional lights'
+    /// shadow rays (across the whole scene); z, w: unused.
+    pub reach: Vec4,
     /// Number of lights in the light buffer.
     pub light_count: u32,
     /// Seed of the per-pixel, per-sample random sequence.
@@ -25,7 +29,7 @@ pub struct FrameUniform {
     pub width: u32,
     pub height: u32,
 }
-const _: () = assert!(core::mem::size_of::<FrameUniform>() == 160);
+const _: () = assert!(core::mem::size_of::<FrameUniform>() == 176);
 
 /// Per object (TLAS instance), indexed by the instance index.
 #[repr(C)]

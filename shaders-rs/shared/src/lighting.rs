@@ -1,7 +1,7 @@
 //! Light sampling: for a shading point, where a light (sample) is, how much it delivers before
 //! visibility, and how far a shadow ray must reach.
 
-use crate::bindings::{LIGHT_DIRECTIONAL, LIGHT_POINT, T_MAX};
+use crate::bindings::{LIGHT_DIRECTIONAL, LIGHT_POINT};
 use crate::layout::Light;
 use glam::{Vec3, Vec4Swizzles};
 #[cfg(target_arch = "spirv")]
@@ -20,11 +20,12 @@ pub struct LightSample {
 }
 
 /// Sample `(i, j)` of a light at `point`, with `(r1, r2)` in [0, 1) jittering the sample
-/// inside its stratum (rect lights only; one sample for the others).
-pub fn sample(light: &Light, point: Vec3, i: u32, j: u32, r1: f32, r2: f32) -> LightSample {
+/// inside its stratum (rect lights only; one sample for the others). A directional light's
+/// shadow ray reaches `across` (`FrameUniform::reach.y`: across the whole scene).
+pub fn sample(light: &Light, point: Vec3, (i, j): (u32, u32), (r1, r2): (f32, f32), across: f32) -> LightSample {
     let radiance = light.radiance.xyz();
     if light.kind == LIGHT_DIRECTIONAL {
-        return LightSample { direction: light.position.xyz(), distance: T_MAX, irradiance: radiance };
+        return LightSample { direction: light.position.xyz(), distance: across, irradiance: radiance };
     }
     let target = if light.kind == LIGHT_POINT {
         light.position.xyz()
