@@ -1,14 +1,16 @@
 //! `cargo xtask watch [SCENE]`: the edit loop. Builds the host once and both shader sets into
 //! `target/watch/`, then on every save under `shaders-rs/` or `shaders-glsl/` rebuilds only the
 //! set whose sources changed, runs `twinray compare` on the fresh modules from disk, and prints
-//! the verdict with the time from the save to it.
+//! the verdict with the time from the save to it. The compare runs in a process of its own,
+//! under a GPU deadline: a save whose stage never returns, crashes the driver or fails
+//! validation is a verdict line, and the next save is compared as usual.
 
 use crate::process::{cargo, repo_root};
 use crate::shaders::{build_set, require_tools, Output};
 use anyhow::{Context, Result};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::Command;
+use std::process::{Command, ExitStatus};
 use std::time::{Duration, Instant, SystemTime};
 use twinray_shared::catalog::Language;
 
@@ -96,22 +98,67 @@ fn rebuild(root: &Path, out: &Path, language: Language) -> Result<()> {
     Ok(())
 }
 
+/// GPU deadline of watch's compares unless the arguments after `--` give one: a stage that
+/// never returns should cost a save seconds, not twinray's default of two minutes.
+const WATCH_GPU_TIMEOUT: &str = "20";
+
 /// `twinray compare` of the two fresh sets; its own output is the verdict. A failed parity
-/// (exit code 1) is a verdict, not an error of the loop.
+/// (exit code 1) is a verdict, and so is a stage that does not finish or a crash: each gets a
+/// line, and the loop goes on.
 fn compare(twinray: &Path, out: &Path, args: &WatchArgs) -> Result<()> {
     let mut command = Command::new(twinray);
     command.arg("compare");
     command.args(args.scene.as_deref());
     command.arg("--a").arg(out.join("rust")).arg("--b").arg(out.join("glsl"));
     command.arg("--out-dir").arg(out.join("compare")).args(["--runs", "1", "--warmup", "0"]);
+    let timeout = match args.compare_args.iter().position(|a| a.starts_with("--gpu-timeout")) {
+        Some(_) => None,
+        None => Some(WATCH_GPU_TIMEOUT),
+    };
+    command.args(timeout.map(|t| format!("--gpu-timeout={t}")));
     command.args(&args.compare_args);
-    let status = command.status().with_context(|| format!("starting {}", twinray.display()))?;
+    // Its error lines go where its verdicts go, in order.
+    use std::os::fd::AsFd;
+    command.stderr(std::process::Stdio::from(std::io::stdout().as_fd().try_clone_to_owned()?));
+    let mut child = command.spawn().with_context(|| format!("starting {}", twinray.display()))?;
+    // twinray keeps its own deadline; this one only catches a twinray that cannot.
+    let backstop = Duration::from_secs(600);
+    let start = Instant::now();
+    let status = loop {
+        if let Some(status) = child.try_wait()? {
+            break status;
+        }
+        if start.elapsed() > backstop {
+            let _ = child.kill();
+            let _ = child.wait();
+            println!("watch: verdict: twinray compare still ran after {} s and was stopped", backstop.as_secs());
+            return Ok(());
+        }
+        std::thread::sleep(Duration::from_millis(20));
+    };
     if args.compare_args.is_empty() {
         println!("watch: GPU times above are one cold trace per set; for a ratio, add -- --runs 10 --warmup 2");
     }
-    match status.code() {
-        Some(0 | 1) => Ok(()),
-        _ => anyhow::bail!("twinray compare failed with {status}"),
+    if let Some(line) = verdict(status) {
+        println!("watch: verdict: {line}");
+    }
+    Ok(())
+}
+
+/// The verdict line of a compare that ended in `status`, beyond the one twinray printed: none
+/// when it compared (0: pass, 1: fail).
+fn verdict(status: ExitStatus) -> Option<String> {
+    use std::os::unix::process::ExitStatusExt;
+    match (status.code(), status.signal()) {
+        (Some(0 | 1), _) => None,
+        (Some(2), _) => Some("the sets or the scene were refused (see the error above); fix and save again".into()),
+        (Some(3), _) => {
+            Some("a stage did not finish in time, or the device was lost (see above); fix and save again".into())
+        }
+        (Some(4), _) => Some("the driver crashed on the new modules (see above); fix and save again".into()),
+        (Some(code), _) => Some(format!("twinray compare failed with exit code {code} (see above)")),
+        (None, Some(signal)) => Some(format!("twinray compare was killed by signal {signal}; fix and save again")),
+        (None, None) => Some(format!("twinray compare ended with {status}")),
     }
 }
 
@@ -166,6 +213,18 @@ fn target_dir(root: &Path) -> PathBuf {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn every_way_a_compare_ends_is_a_verdict() {
+        use std::os::unix::process::ExitStatusExt;
+        let ended = |raw: i32| verdict(ExitStatus::from_raw(raw));
+        assert_eq!(ended(0), None);
+        assert_eq!(ended(1 << 8), None, "a failed parity prints its own verdict");
+        assert!(ended(3 << 8).unwrap().contains("did not finish in time"));
+        assert!(ended(4 << 8).unwrap().contains("crashed"));
+        // A raw wait status of 11: killed by SIGSEGV, with no handler to report it.
+        assert!(ended(11).unwrap().contains("killed by signal 11"));
+    }
 
     #[test]
     fn a_change_rebuilds_only_the_set_of_its_sources() {

@@ -143,12 +143,14 @@ fn new_shape_scaffolds_a_shape_that_builds_passes_parity_and_touches_four_files(
 }
 
 /// `cargo xtask watch` on the new scene: after its first verdict, a one-line edit of the GLSL
-/// twin rebuilds the GLSL set only and prints a verdict and the time from the save.
+/// twin rebuilds the GLSL set only and prints a verdict and the time from the save; a save
+/// whose ray generation stage never returns ends in a verdict line within the deadline, and
+/// the save that fixes it passes again, without a restart.
 fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
     use std::io::{BufRead, BufReader};
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut child = Command::new(cargo)
-        .args(["xtask", "watch", name, "--changes", "1", "--poll-ms", "100"])
+        .args(["xtask", "watch", name, "--changes", "3", "--poll-ms", "100", "--", "--gpu-timeout", "3"])
         .current_dir(dir)
         .env("CARGO_TARGET_DIR", scaffold_target())
         .stdout(std::process::Stdio::piped())
@@ -172,9 +174,27 @@ fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
     std::fs::write(&twin, text.replace("float radius = primitive.a.x;", "float radius = primitive.a.x; // edited"))
         .unwrap();
     wait_for("watch: save to verdict", &mut seen);
+    let first = seen.len();
+    // A ray generation stage that never returns (its store keeps the loop from being removed).
+    let raygen = dir.join("shaders-glsl/raygen_main.glsl");
+    let body = std::fs::read_to_string(&raygen).unwrap();
+    let looping = "void main() {\n    while (hit_ids[0] != 0xfffffff0u) { hit_ids[1] += 1u; }";
+    std::fs::write(&raygen, body.replacen("void main() {", looping, 1)).unwrap();
+    let saved = std::time::Instant::now();
+    wait_for("watch: save to verdict", &mut seen);
+    let hung = saved.elapsed();
+    let second = seen.len();
+    std::fs::write(&raygen, &body).unwrap();
+    wait_for("watch: save to verdict", &mut seen);
     assert!(child.wait().expect("watch exits").success(), "{}", seen.join("\n"));
     let after = seen.iter().skip_while(|l| !l.contains("watch: watching")).cloned().collect::<Vec<_>>().join("\n");
     assert!(after.contains(&format!("watch: changed shaders-glsl/shapes/{name}.glsl")), "{after}");
     assert!(after.contains("built the glsl set") && !after.contains("built the rust set"), "{after}");
-    assert!(after.contains("PASS: within the scene's parity tolerance"), "{after}");
+    assert!(seen[..first].join("\n").contains("PASS: within the scene's parity tolerance"), "{after}");
+    let looped = seen[first..second].join("\n");
+    assert!(looped.contains("did not finish in 3 s") && looped.contains("raygen"), "{looped}");
+    assert!(looped.contains("watch: verdict: a stage did not finish in time"), "{looped}");
+    assert!(hung < std::time::Duration::from_secs(120), "the looping save took {hung:?}");
+    let fixed = seen[second..].join("\n");
+    assert!(fixed.contains("PASS: within the scene's parity tolerance"), "the next good save recovers: {fixed}");
 }
