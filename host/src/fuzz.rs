@@ -25,6 +25,19 @@ pub fn obj(bytes: &[u8]) {
     }
 }
 
+/// A SPIR-V module from disk, as a damaged or hostile one reaches twinray: read, and checked
+/// as every module of the catalog (entry point, bindings, what it passes between stages), and
+/// its unused ray query declaration dropped. (SPIRV-Tools' validator runs before these in
+/// twinray; it is a separate program, fuzzed upstream.)
+pub fn module(bytes: &[u8]) {
+    let Ok(info) = twinray_shared::spirv_info::parse(bytes) else { return };
+    for spec in crate::shaders::MODULES {
+        let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
+        let _ = spec.check_module(&info, &entry);
+    }
+    let _ = twinray_shared::spirv_info::without_unused_ray_query(bytes);
+}
+
 /// A probe case: parsed, its scene loaded (built-in names only: the folder does not exist),
 /// its rays generated and checked.
 pub fn probe_case(bytes: &[u8]) {

@@ -29,6 +29,11 @@ fn obj_seeds() {
 }
 
 #[test]
+fn module_seeds() {
+    run_seeds("module", twinray::fuzz::module);
+}
+
+#[test]
 fn probe_case_seeds() {
     run_seeds("probe_case", twinray::fuzz::probe_case);
 }

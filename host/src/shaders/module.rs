@@ -40,10 +40,12 @@ pub(crate) struct DiskModule {
 pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String> {
     let file = path.display();
     let bytes = std::fs::read(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
-    super::validate::validate(&bytes).map_err(|e| format!("{file}: {e}"))?;
+    // twinray's own checks first, whose words say what a module for this stage must be; the
+    // validator's after, for everything else a driver would trip on.
     let info = spirv_info::parse(&bytes).map_err(|e| format!("{file}: not a SPIR-V module ({e})"))?;
     let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
     spec.check_module(&info, &entry).map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;
+    super::validate::validate(&bytes).map_err(|e| format!("{file}: {e}"))?;
     Ok(DiskModule { path: path.to_path_buf(), spirv: bytes.into(), entry })
 }
 
