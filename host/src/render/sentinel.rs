@@ -24,10 +24,10 @@ pub(crate) fn poison_buffers(device: &ash::Device, cmd: vk::CommandBuffer, buffe
     memory_barrier(device, cmd, TRANSFER_WRITE, traced);
 }
 
-/// Records filling `image` with the sentinel in every channel, through `staging` (a buffer of
-/// the image's size, made with TRANSFER_SRC and TRANSFER_DST: a copy keeps the bits exactly,
-/// where a clear of a float format may not keep a NaN's), and leaves it in the layout traces
-/// write. Its earlier contents are discarded.
+/// Records filling `image` with the sentinel in every channel, through `staging` (a
+/// device-local buffer of the image's size, made with TRANSFER_SRC and TRANSFER_DST: a copy
+/// keeps the bits exactly, where a clear of a float format may not keep a NaN's), and leaves
+/// it in the layout traces write. Its earlier contents are discarded.
 pub(crate) fn poison_image(device: &ash::Device, cmd: vk::CommandBuffer, image: &StorageImage, staging: &Buffer) {
     // SAFETY: cmd is recording; the staging buffer holds at least the image's bytes.
     unsafe { device.cmd_fill_buffer(cmd, staging.raw, 0, vk::WHOLE_SIZE, UNWRITTEN) };
@@ -56,6 +56,7 @@ pub fn unwritten(word: u32) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::vk::image::StorageImage;
 
     #[test]
     fn the_sentinel_is_a_signalling_nan_and_no_id() {
@@ -65,5 +66,42 @@ mod tests {
         let computed = f32::INFINITY - f32::INFINITY;
         assert!(computed.is_nan() && !unwritten(computed.to_bits()) && !unwritten(f32::NAN.to_bits()));
         assert!(!unwritten(twinray_shared::bindings::NO_HIT));
+    }
+
+    /// What poisoning a set's outputs costs in setup: GPU time of filling a 1920x1080 image and
+    /// its hit ids with the sentinel, as each set's output trace does first (never inside the
+    /// timed traces). A measurement, run by hand on each device:
+    /// `cargo test --release -p twinray --lib -- --ignored sentinel_setup_cost --nocapture`.
+    #[test]
+    #[ignore = "a measurement: prints what the sentinel costs on this machine's device"]
+    fn sentinel_setup_cost() {
+        use crate::render::storage_buffer;
+        use crate::vk::commands::OneShot;
+        use crate::vk::context::{Context, ContextOptions};
+        use crate::vk::timing::Timestamps;
+        let ctx = Context::new(&ContextOptions::default()).unwrap();
+        let (w, h) = (1920u32, 1080u32);
+        let pixels = u64::from(w) * u64::from(h);
+        let image = StorageImage::new(&ctx, w, h).unwrap();
+        let staging = storage_buffer(&ctx, "staging", pixels * 16).unwrap();
+        let ids = storage_buffer(&ctx, "ids", pixels * 12).unwrap();
+        let runs = 20;
+        let Some(timer) = Timestamps::new(&ctx, runs).unwrap() else { return };
+        let one_shot = OneShot::new(&ctx).unwrap();
+        one_shot
+            .run(|device, cmd| {
+                timer.reset(cmd);
+                for k in 0..runs {
+                    timer.begin(cmd, k);
+                    poison_image(device, cmd, &image, &staging);
+                    poison_buffers(device, cmd, &[&ids]);
+                    timer.end(cmd, k);
+                }
+                Ok(())
+            })
+            .unwrap();
+        let ms = timer.read_ms().unwrap();
+        let median = crate::util::stats::median(&ms).unwrap();
+        println!("sentinel setup on {}: {median:.3} ms per set (median of {runs}) at {w}x{h}", ctx.info.name);
     }
 }

@@ -9,9 +9,14 @@ use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
 use twinray_shared::catalog::SPIRV_VAL_ARGS;
 
-/// The validator command; `TWINRAY_SPIRV_VAL` names another one.
-fn program() -> String {
-    std::env::var("TWINRAY_SPIRV_VAL").unwrap_or_else(|_| "spirv-val".into())
+/// The validator: `TWINRAY_SPIRV_VAL` if set, else a `spirv-val` beside twinray's own
+/// executable (the NVIDIA bundle carries one), else `spirv-val` on the PATH.
+fn program() -> std::ffi::OsString {
+    if let Some(named) = std::env::var_os("TWINRAY_SPIRV_VAL") {
+        return named;
+    }
+    let beside = std::env::current_exe().ok().and_then(|exe| Some(exe.parent()?.join("spirv-val")));
+    beside.filter(|p| p.is_file()).map_or_else(|| "spirv-val".into(), |p| p.into_os_string())
 }
 
 /// How long the validator may take on one module: a damaged module must not hang twinray
@@ -33,8 +38,9 @@ pub(crate) fn validate(bytes: &[u8]) -> Result<(), String> {
         .spawn()
         .map_err(|e| {
             format!(
-                "cannot run the SPIR-V validator {program:?} ({e}); every module from disk is validated before a \
-                 driver sees it: install Debian's spirv-tools (cargo xtask setup does) or set TWINRAY_SPIRV_VAL"
+                "cannot run the SPIR-V validator {} ({e}); every module from disk is validated before a \
+                 driver sees it: install Debian's spirv-tools (cargo xtask setup does) or set TWINRAY_SPIRV_VAL",
+                program.to_string_lossy()
             )
         })?;
     let mut stdin = child.stdin.take().ok_or("the validator's input could not be opened")?;

@@ -66,18 +66,25 @@ impl OneShot {
                 .queue_submit(self.ctx.queue, &submit, self.fence)
                 .and_then(|()| device.wait_for_fences(&[self.fence], true, nanos))
         };
-        match waited {
-            Ok(()) => self.ctx.check_validation(),
-            Err(vk::Result::TIMEOUT) => {
-                self.ctx.abandon();
-                Err(Error::GpuTimeout { doing: activity::describe(), seconds: watchdog::seconds(limit) })
-            }
-            Err(vk::Result::ERROR_DEVICE_LOST) => {
-                self.ctx.abandon();
-                Err(Error::DeviceLost { doing: activity::describe() })
-            }
-            Err(result) => Err(Error::Vulkan { call: "vkQueueSubmit/vkWaitForFences", result }),
+        let outcome = ended(waited, limit);
+        if outcome.as_ref().is_err_and(Error::is_stalled) {
+            self.ctx.abandon();
         }
+        outcome?;
+        self.ctx.check_validation()
+    }
+}
+
+/// What a submission whose wait ended with `waited` (under a deadline of `limit`) comes to:
+/// a timeout or a lost device names what this thread was doing.
+fn ended(waited: std::result::Result<(), vk::Result>, limit: std::time::Duration) -> Result<()> {
+    match waited {
+        Ok(()) => Ok(()),
+        Err(vk::Result::TIMEOUT) => {
+            Err(Error::GpuTimeout { doing: activity::describe(), seconds: watchdog::seconds(limit) })
+        }
+        Err(vk::Result::ERROR_DEVICE_LOST) => Err(Error::DeviceLost { doing: activity::describe() }),
+        Err(result) => Err(Error::Vulkan { call: "vkQueueSubmit/vkWaitForFences", result }),
     }
 }
 
@@ -110,4 +117,24 @@ pub fn memory_barrier(
     let barrier = [vk::MemoryBarrier::default().src_access_mask(src_access).dst_access_mask(dst_access)];
     // SAFETY: cmd is recording.
     unsafe { device.cmd_pipeline_barrier(cmd, src_stage, dst_stage, vk::DependencyFlags::empty(), &barrier, &[], &[]) };
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A device lost (NVIDIA's answer to some faults) and a timeout both end the work with what
+    /// was being done; neither is an anonymous Vulkan error.
+    #[test]
+    fn a_lost_device_and_a_timeout_name_the_work() {
+        let _doing = activity::doing("the trace of rust");
+        let limit = std::time::Duration::from_secs(3);
+        let lost = ended(Err(vk::Result::ERROR_DEVICE_LOST), limit).unwrap_err();
+        assert!(lost.is_stalled() && lost.to_string().starts_with("the trace of rust: the device was lost"), "{lost}");
+        let late = ended(Err(vk::Result::TIMEOUT), limit).unwrap_err();
+        assert!(late.is_stalled() && late.to_string().contains("the trace of rust did not finish in 3 s"), "{late}");
+        let other = ended(Err(vk::Result::ERROR_OUT_OF_DEVICE_MEMORY), limit).unwrap_err();
+        assert!(!other.is_stalled());
+        assert!(ended(Ok(()), limit).is_ok());
+    }
 }
