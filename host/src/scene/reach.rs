@@ -10,7 +10,7 @@ use twinray_shared::shapes::spec::Aabb;
 
 /// Slack on every reach: t of a hit is rounded in f32, and the shadow ray's origin is offset
 /// from the surface; 1% is far more than either.
-const SLACK: f64 = 1.01;
+pub const SLACK: f64 = 1.01;
 
 /// The smallest box holding `points`; `None` for none.
 pub fn enclose(points: impl IntoIterator<Item = Vec3>) -> Option<Aabb> {
@@ -42,7 +42,7 @@ pub fn world_boxes(object_bounds: &[Aabb], transforms: &[Mat4]) -> Vec<Aabb> {
 
 /// `FrameUniform::reach` for a camera at `eye` and objects in `boxes`: x, primary rays' t_max
 /// (the farthest corner of the scene from the eye); y, directional shadow rays' (the scene's
-/// diagonal). Computed in f64, with [`SLACK`]; never below twice `T_MIN`.
+/// diagonal). Computed in f64, with 1% slack; never below twice `T_MIN`.
 pub fn reach(boxes: &[Aabb], eye: Vec3) -> Vec4 {
     let floor = 2.0 * f64::from(T_MIN);
     let Some(scene) = enclose(boxes.iter().flat_map(|b| [b.min, b.max])) else {
