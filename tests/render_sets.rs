@@ -41,3 +41,33 @@ fn one_timed_trace_is_not_rotated() {
     let outs = render_sets(&ctx, &scene, &[set("rust"), set("glsl")], &opts).unwrap();
     assert!(outs.iter().all(|o| o.gpu_ms.len() == 1), "{:?}", outs.iter().map(|o| o.gpu_ms.len()).collect::<Vec<_>>());
 }
+
+/// Two identical sets agree bit for bit; a set rendered after them whose ray generation
+/// stage writes nothing is judged on its own outputs (every word still the sentinel), never
+/// on the pixels the sets before it left in the shared image.
+#[test]
+fn identical_sets_agree_bit_for_bit_and_an_empty_set_is_judged_on_its_own_pixels() {
+    let ctx = validated_context();
+    let dir = tempfile::tempdir().unwrap();
+    let noop = dir.path().join("noop.spv");
+    let compiled = std::process::Command::new("glslangValidator")
+        .args(["-V", "--target-env", "spirv1.4", "-o"])
+        .arg(&noop)
+        .arg(twinray_tests::repo_root().join("tests/hostile/stages/noop.rgen"))
+        .output()
+        .expect("glslangValidator (cargo xtask setup installs it)");
+    assert!(compiled.status.success(), "{}", String::from_utf8_lossy(&compiled.stdout));
+    let sets = [set("glsl"), set("glsl"), set(&format!("glsl,raygen={}", noop.display()))];
+    let opts = RenderOptions { width: 48, height: 27, warmup: 0, runs: 1 };
+    let outs = render_sets(&ctx, &showcase(), &sets, &opts).unwrap();
+    let bits = |i: usize| outs[i].linear.iter().flatten().map(|v| v.to_bits()).collect::<Vec<u32>>();
+    assert_eq!(bits(0), bits(1), "identical sets, identical bits");
+    assert_eq!(outs[0].hit_ids, outs[1].hit_ids);
+    assert!(outs[0].written.is_clean() && outs[1].written.is_clean(), "{:?}", outs[0].written);
+    let pixels = 48 * 27;
+    let empty = outs[2].written;
+    assert_eq!((empty.unwritten, empty.unwritten_color, empty.unwritten_ids), (pixels, pixels, pixels));
+    assert!(bits(2).iter().all(|&b| b == twinray_shared::bindings::UNWRITTEN), "the sentinel, not set 1's pixels");
+    assert_eq!(outs[2].rays.shadow, 0, "no shadow ray counted from unwritten counts");
+    assert_eq!(outs[2].mrays_per_s(), None, "no rate for a set that traced nothing");
+}

@@ -75,7 +75,7 @@ mod tests {
     #[test]
     #[ignore = "a measurement: prints what the sentinel costs on this machine's device"]
     fn sentinel_setup_cost() {
-        use crate::render::storage_buffer;
+        use crate::render::prepare::storage_buffer;
         use crate::vk::commands::OneShot;
         use crate::vk::context::{Context, ContextOptions};
         use crate::vk::timing::Timestamps;
