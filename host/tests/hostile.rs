@@ -7,10 +7,10 @@
 
 mod common;
 
-use common::repo;
+use common::{repo, wait_within};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 /// Wall-clock limit of one run: parsing fails in milliseconds, a Vulkan start takes a second.
 const TIME_LIMIT: Duration = Duration::from_secs(60);
@@ -82,18 +82,7 @@ fn run(case: &Case, places: &[(&str, String)]) -> Result<(), String> {
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if start.elapsed() > TIME_LIMIT {
-            let _ = child.kill();
-            let _ = child.wait();
-            return Err(format!("still running after {TIME_LIMIT:?}"));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = wait_within(&mut child, TIME_LIMIT)?;
     let mut stderr = String::new();
     std::io::Read::read_to_string(child.stderr.as_mut().unwrap(), &mut stderr).unwrap();
     let stderr = stderr.trim();

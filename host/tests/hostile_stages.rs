@@ -8,7 +8,7 @@
 
 mod common;
 
-use common::repo;
+use common::{repo, wait_within};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
@@ -64,17 +64,7 @@ fn run(args: &[String], cwd: &Path) -> Result<Ran, String> {
         .spawn()
         .unwrap();
     let start = Instant::now();
-    let status = loop {
-        if let Some(status) = child.try_wait().unwrap() {
-            break status;
-        }
-        if start.elapsed() > TIME_LIMIT {
-            let _ = child.kill();
-            let _ = child.wait();
-            return Err(format!("still running after {TIME_LIMIT:?}"));
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
+    let status = wait_within(&mut child, TIME_LIMIT)?;
     let read = |pipe: Option<&mut dyn std::io::Read>| {
         let mut text = String::new();
         if let Some(p) = pipe {
@@ -233,4 +223,52 @@ fn damaged_modules_end_in_a_verdict_a_refusal_or_a_report() {
     eprintln!("{} damaged modules: {tally:?}", modules.len() * per_module);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
     assert!(tally.keys().any(|k| k.contains("spirv-val")), "the validator refuses some: {tally:?}");
+}
+
+/// Runs this test binary again as a child that does `role` (see `child_roles`): the exit
+/// code and stderr of a process that a watchdog or the crash handler ended.
+fn run_child(role: &str) -> (Option<i32>, String) {
+    let out = Command::new(std::env::current_exe().unwrap())
+        .args(["child_roles", "--exact", "--nocapture", "--test-threads", "1"])
+        .env("TWINRAY_TEST_CHILD", role)
+        .output()
+        .unwrap();
+    (out.status.code(), String::from_utf8_lossy(&out.stderr).into_owned())
+}
+
+/// Not a test of its own: what `run_child` asks of the child process (nothing otherwise).
+#[test]
+fn child_roles() {
+    use twinray::util::{activity, crash, watchdog};
+    match std::env::var("TWINRAY_TEST_CHILD").as_deref() {
+        Ok("stall") => {
+            let _doing = activity::doing("a driver call that never returns");
+            let _deadline = watchdog::arm(Duration::from_millis(50));
+            std::thread::sleep(Duration::from_secs(30));
+            std::process::exit(0);
+        }
+        Ok("crash") => {
+            crash::report_crashes();
+            let _doing = activity::doing("running a stage that faults");
+            // SAFETY: raising a signal; the handler ends the process.
+            unsafe { libc::raise(libc::SIGSEGV) };
+            std::process::exit(0);
+        }
+        _ => {}
+    }
+}
+
+/// A call that never returns under a watchdog ends the process at its deadline with one line
+/// naming what was being done and exit code 3; a fatal signal with the crash report's line and
+/// exit code 4 (the paths a hung or crashing driver takes, made deterministic).
+#[test]
+fn a_stalled_call_and_a_crash_end_in_one_line_and_their_codes() {
+    let start = Instant::now();
+    let (code, stderr) = run_child("stall");
+    assert_eq!(code, Some(twinray::util::watchdog::EXIT_STALLED), "{stderr}");
+    assert!(stderr.contains("error: a driver call that never returns did not finish in 0.05 s"), "{stderr}");
+    assert!(start.elapsed() < Duration::from_secs(20), "the deadline ended it, not the sleep");
+    let (code, stderr) = run_child("crash");
+    assert_eq!(code, Some(twinray::util::crash::EXIT_CRASHED), "{stderr}");
+    assert!(stderr.contains("error: twinray crashed (SIGSEGV) while running a stage that faults"), "{stderr}");
 }

@@ -34,14 +34,7 @@ pub(crate) fn poison_image(device: &ash::Device, cmd: vk::CommandBuffer, image: 
     memory_barrier(device, cmd, TRANSFER_WRITE, (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_READ));
     let copy_target = (vk::ImageLayout::TRANSFER_DST_OPTIMAL, TRANSFER_WRITE.0, TRANSFER_WRITE.1);
     transition(device, cmd, image.raw, UNUSED_IMAGE, copy_target);
-    let region = [vk::BufferImageCopy::default()
-        .image_subresource(vk::ImageSubresourceLayers {
-            aspect_mask: vk::ImageAspectFlags::COLOR,
-            mip_level: 0,
-            base_array_layer: 0,
-            layer_count: 1,
-        })
-        .image_extent(image.extent.into())];
+    let region = [image.whole_copy()];
     // SAFETY: cmd is recording; the image is in TRANSFER_DST_OPTIMAL; sizes match.
     unsafe { device.cmd_copy_buffer_to_image(cmd, staging.raw, image.raw, copy_target.0, &region) };
     let traced = (STORAGE_IMAGE.0, STORAGE_IMAGE.1, vk::AccessFlags::SHADER_READ | vk::AccessFlags::SHADER_WRITE);

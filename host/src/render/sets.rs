@@ -284,14 +284,7 @@ fn copy_out(
     ids: &Buffer,
     ids_dst: &Buffer,
 ) {
-    let region = [vk::BufferImageCopy::default()
-        .image_subresource(vk::ImageSubresourceLayers {
-            aspect_mask: vk::ImageAspectFlags::COLOR,
-            mip_level: 0,
-            base_array_layer: 0,
-            layer_count: 1,
-        })
-        .image_extent(image.extent.into())];
+    let region = [image.whole_copy()];
     let ids_region = [vk::BufferCopy::default().size(ids.size)];
     // SAFETY: cmd is recording; sizes match (PIXEL_BYTES per pixel on both sides).
     unsafe {

@@ -67,6 +67,7 @@ fn upload_scene(
     (width, height): (u32, u32),
     moving: Option<TlasFlags>,
 ) -> Result<UploadedScene> {
+    let _doing = crate::util::activity::doing(format!("building the acceleration structures of {}", scene.name()));
     let one_shot = &OneShot::new(ctx)?;
     let built = scene.build();
     let data = &built;

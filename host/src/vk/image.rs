@@ -64,6 +64,20 @@ impl StorageImage {
     }
 }
 
+impl StorageImage {
+    /// A copy between the whole image and a tightly packed buffer.
+    pub fn whole_copy(&self) -> vk::BufferImageCopy {
+        vk::BufferImageCopy::default()
+            .image_subresource(vk::ImageSubresourceLayers {
+                aspect_mask: vk::ImageAspectFlags::COLOR,
+                mip_level: 0,
+                base_array_layer: 0,
+                layer_count: 1,
+            })
+            .image_extent(self.extent.into())
+    }
+}
+
 /// The one colour mip level and layer of an image.
 pub const COLOR_RANGE: vk::ImageSubresourceRange = vk::ImageSubresourceRange {
     aspect_mask: vk::ImageAspectFlags::COLOR,
