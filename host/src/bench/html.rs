@@ -157,7 +157,7 @@ fn spirv_table(report: &BenchReport) -> String {
 fn rows_table(rows: &[BenchRow]) -> String {
     let mut s = String::from(
         "<h2>Measurements</h2>\n<table><tr><th>scene</th><th>set</th><th>spp</th><th>GPU ms</th><th>IQR</th>\
-         <th>Mrays/s</th><th>primary</th><th>shadow</th><th>RMSE</th><th>PSNR dB</th><th>mean FLIP</th><th>hit mismatches</th><th>raygen stack B</th></tr>\n",
+         <th>Mrays/s</th><th>primary rays (the scene's)</th><th>shadow rays (raygen's count)</th><th>RMSE</th><th>PSNR dB</th><th>mean FLIP</th><th>hit mismatches</th><th>raygen stack B</th></tr>\n",
     );
     for r in rows {
         let (ms, iqr) =
