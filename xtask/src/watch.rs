@@ -27,7 +27,8 @@ pub struct WatchArgs {
     pub poll: Duration,
     /// Stop after this many rebuilds (tests); watch until interrupted when `None`.
     pub changes: Option<u32>,
-    /// More `twinray compare` arguments, after the defaults (`--runs 1 --warmup 0`).
+    /// More `twinray compare` arguments, after the defaults (`--runs 1 --warmup 0 --placements
+    /// 1`), which they override.
     pub compare_args: Vec<String>,
 }
 
@@ -110,7 +111,7 @@ fn compare(twinray: &Path, out: &Path, args: &WatchArgs) -> Result<()> {
     command.arg("compare");
     command.args(args.scene.as_deref());
     command.arg("--a").arg(out.join("rust")).arg("--b").arg(out.join("glsl"));
-    command.arg("--out-dir").arg(out.join("compare")).args(["--runs", "1", "--warmup", "0"]);
+    command.arg("--out-dir").arg(out.join("compare")).args(["--runs", "1", "--warmup", "0", "--placements", "1"]);
     let timeout = match args.compare_args.iter().position(|a| a.starts_with("--gpu-timeout")) {
         Some(_) => None,
         None => Some(WATCH_GPU_TIMEOUT),
@@ -137,7 +138,9 @@ fn compare(twinray: &Path, out: &Path, args: &WatchArgs) -> Result<()> {
         std::thread::sleep(Duration::from_millis(20));
     };
     if args.compare_args.is_empty() {
-        println!("watch: GPU times above are one cold trace per set; for a ratio, add -- --runs 10 --warmup 2");
+        println!(
+            "watch: GPU times above are one cold trace per set; for a ratio with its interval, add -- --runs 10 --warmup 2 --placements 6"
+        );
     }
     if let Some(line) = verdict(status) {
         println!("watch: verdict: {line}");

@@ -3,6 +3,7 @@
 //! scene the reference beside each set's images and FLIP error maps.
 
 use super::plots::{error_by_spp, log_slope, sampler_by_count, Series};
+use super::tables::SceneRatio;
 use super::{BenchReport, BenchRow};
 use crate::error::{Error, Result};
 use std::fmt::Write;
@@ -14,13 +15,13 @@ pub fn escape(text: &str) -> String {
 }
 
 /// Writes `index.html`: the tables, plots and images of the report, with the command that made it.
-pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str, dir: &Path) -> Result<()> {
+pub fn write(report: &BenchReport, ratios: &[SceneRatio], command: &str, dir: &Path) -> Result<()> {
     let html = page(report, ratios, command);
     let path = dir.join("index.html");
     std::fs::write(&path, html).map_err(|source| Error::Io { what: "writing", path, source })
 }
 
-fn page(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str) -> String {
+fn page(report: &BenchReport, ratios: &[SceneRatio], command: &str) -> String {
     let mut s = String::from(
         "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>twinray bench</title><style>\n\
          body{font-family:sans-serif;margin:2em;max-width:1400px}table{border-collapse:collapse;margin:1em 0}\n\
@@ -31,10 +32,12 @@ fn page(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str) -> S
     let threads = report.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
     let _ = write!(
         s,
-        "<p>Device: <b>{}</b>{threads}. GPU time: median and interquartile range of {} timed traces after {} \
-         untimed ones (timestamp queries). Reference: {} samples per pixel rendered by {}. Errors are on display \
+        "<p>Device: <b>{}</b>{threads}. GPU time (timestamp queries): {} placements, each making every set's \
+         pipeline afresh in an order of its own, each of {} timed traces per set after {} untimed ones; the median \
+         and interquartile range of all traces pooled, and each ratio's 95% interval over placements. Reference: {} samples per pixel rendered by {}. Errors are on display \
          values (radiance clamped to [0, 1]).</p>\n<p>Command: <code>{}</code></p>\n",
         escape(&report.device),
+        report.placements,
         report.runs,
         report.warmup,
         report.reference_spp,
@@ -44,6 +47,7 @@ fn page(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str) -> S
     s += "<h2>Plots</h2>\n<div class=\"plots\"><img src=\"plots/error-spp.svg\" alt=\"error against samples per pixel\">\
           <img src=\"plots/error-time.svg\" alt=\"error against GPU time\"><img src=\"plots/ratio.svg\" alt=\"Rust/GLSL time\"></div>\n";
     s += &ratio_table(ratios);
+    s += &pairs_table(report);
     s += "<h2>Convergence</h2>\n<p>Least-squares slope of log RMSE against log samples per pixel (N<sup>-0.5</sup>: \
           independent samples; N<sup>-0.75</sup>: stratified samples near edges).</p>\n";
     s += &slope_table(&error_by_spp(report));
@@ -58,12 +62,51 @@ fn page(report: &BenchReport, ratios: &[(String, u32, f64)], command: &str) -> S
     s
 }
 
-fn ratio_table(ratios: &[(String, u32, f64)]) -> String {
-    let mut s =
-        String::from("<h2>Rust / GLSL GPU time</h2>\n<table><tr><th>scene</th><th>spp</th><th>ratio</th></tr>\n");
+fn ratio_table(ratios: &[SceneRatio]) -> String {
+    let mut s = String::from(
+        "<h2>Rust / GLSL GPU time</h2>\n<p>The geometric mean of the ratios of each placement's medians, with its 95% \
+         interval over placements (a t interval on their logs); red where the interval lies wholly above 1.05.</p>\n\
+         <table><tr><th>scene</th><th>spp</th><th>ratio</th><th>95% interval</th><th>placements</th><th>verdict</th></tr>\n",
+    );
     for (scene, spp, r) in ratios {
-        let flag = if *r > 1.05 { " style=\"color:#b00\"" } else { "" };
-        let _ = writeln!(s, "<tr><td class=\"l\">{}</td><td>{spp}</td><td{flag}>{r:.3}</td></tr>", escape(scene));
+        let flag = if r.low > 1.05 { " style=\"color:#b00\"" } else { "" };
+        let _ = writeln!(
+            s,
+            "<tr><td class=\"l\">{}</td><td>{spp}</td><td{flag}>{:.3}</td><td>{:.3} to {:.3}</td><td>{}</td><td class=\"l\">{}</td></tr>",
+            escape(scene),
+            r.ratio,
+            r.low,
+            r.high,
+            r.placements,
+            escape(&r.verdict("rust"))
+        );
+    }
+    s + "</table>\n"
+}
+
+/// Every pair of sets measured together, the null controls first.
+fn pairs_table(report: &BenchReport) -> String {
+    let mut s = String::from(
+        "<h2>Every pair of sets</h2>\n<p>Each earlier set's time over each later one's; a null control times a \
+         salted copy of a set (the same code, built apart) and its interval should hold 1.</p>\n<table><tr>\
+         <th>scene</th><th>spp</th><th>a / b</th><th>ratio</th><th>95% interval</th><th>verdict</th></tr>\n",
+    );
+    let mut pairs: Vec<_> = report.ratios.iter().collect();
+    pairs.sort_by_key(|r| !r.null_control);
+    for r in pairs {
+        let null = if r.null_control { " (null control)" } else { "" };
+        let _ = writeln!(
+            s,
+            "<tr><td class=\"l\">{}</td><td>{}</td><td class=\"l\">{} / {}{null}</td><td>{:.3}</td><td>{:.3} to {:.3}</td><td class=\"l\">{}</td></tr>",
+            escape(&r.scene),
+            r.spp,
+            escape(&r.a),
+            escape(&r.b),
+            r.interval.ratio,
+            r.interval.low,
+            r.interval.high,
+            escape(&r.verdict)
+        );
     }
     s + "</table>\n"
 }
@@ -156,7 +199,7 @@ fn spirv_table(report: &BenchReport) -> String {
 
 fn rows_table(rows: &[BenchRow]) -> String {
     let mut s = String::from(
-        "<h2>Measurements</h2>\n<table><tr><th>scene</th><th>set</th><th>spp</th><th>GPU ms</th><th>IQR</th>\
+        "<h2>Measurements</h2>\n<table><tr><th>scene</th><th>set</th><th>spp</th><th>GPU ms</th><th>IQR of traces</th>\
          <th>Mrays/s</th><th>primary rays (the scene's)</th><th>shadow rays (raygen's count)</th><th>RMSE</th><th>PSNR dB</th><th>mean FLIP</th><th>hit mismatches</th><th>raygen stack B</th></tr>\n",
     );
     for r in rows {

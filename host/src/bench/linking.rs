@@ -7,6 +7,7 @@ use crate::error::{Error, Result};
 use crate::render::{render_made, RenderOptions};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
+use crate::util::interval::RatioInterval;
 use crate::util::stats::Spread;
 use crate::vk::context::{Context, PipelineKind};
 use serde::Serialize;
@@ -21,8 +22,8 @@ pub struct LinkingRow {
     pub height: u32,
     pub whole: Option<Spread>,
     pub linked: Option<Spread>,
-    /// Linked median over whole median.
-    pub ratio: Option<f64>,
+    /// Linked time over whole, with its 95% interval over placements.
+    pub ratio: Option<RatioInterval>,
     /// Images and hit ids bit-identical.
     pub identical: bool,
 }
@@ -59,7 +60,7 @@ pub fn trace_linking(
                 height: opts.height,
                 whole: w,
                 linked: l,
-                ratio: w.zip(l).filter(|(w, _)| w.median > 0.0).map(|(w, l)| l.median / w.median),
+                ratio: linked.ratio_to(&whole),
                 identical: whole.rgba == linked.rgba && whole.hit_ids == linked.hit_ids,
             });
         }
@@ -70,7 +71,7 @@ pub fn trace_linking(
 /// The rows as a Markdown table.
 pub fn linking_table(rows: &[LinkingRow]) -> String {
     let mut s = String::from(
-        "| scene | size | set | whole ms (IQR) | linked ms (IQR) | linked / whole | images and hit ids |\n|---|---|---|---:|---:|---:|---|\n",
+        "| scene | size | set | whole ms (IQR) | linked ms (IQR) | linked / whole (95% CI) | images and hit ids |\n|---|---|---|---:|---:|---:|---|\n",
     );
     let ms = |s: Option<Spread>| s.map_or("n/a".into(), |s| format!("{:.3} ({:.3})", s.median, s.iqr()));
     for r in rows {
@@ -82,7 +83,7 @@ pub fn linking_table(rows: &[LinkingRow]) -> String {
             r.set,
             ms(r.whole),
             ms(r.linked),
-            r.ratio.map_or("n/a".into(), |r| format!("{r:.3}")),
+            r.ratio.map_or("n/a".into(), |r| format!("{:.3} ({:.3} to {:.3})", r.ratio, r.low, r.high)),
             if r.identical { "identical" } else { "DIFFER" }
         );
     }

@@ -17,9 +17,10 @@ pub use samplers::side_of;
 
 use crate::error::{Error, Result};
 use crate::reference::image::{reference, ReferenceImage};
-use crate::render::{render_sets, to_rgba8, RayCounts, RenderOptions, RenderOutput};
+use crate::render::{render_sets, to_rgba8, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
+use crate::util::interval::RatioInterval;
 use crate::util::output::file_safe;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
@@ -37,7 +38,12 @@ pub struct BenchConfig {
     /// Image size override; each scene's own when `None`.
     pub size: Option<(u32, u32)>,
     pub warmup: u32,
+    /// Timed traces per placement.
     pub runs: u32,
+    /// Placements per measurement (see `render::placement`).
+    pub placements: u32,
+    /// Whether a salted copy of the first set is timed too: the null control.
+    pub null: bool,
     pub reference_spp: u32,
     pub reference_set: ShaderSet,
     pub cache: PathBuf,
@@ -71,7 +77,11 @@ pub struct BenchRow {
     pub spp: u32,
     pub width: u32,
     pub height: u32,
+    /// The median and quartiles of every timed trace, all placements pooled: how traces
+    /// spread, not the uncertainty of a ratio (see `BenchReport::ratios`).
     pub gpu_ms: Option<Spread>,
+    /// Each placement's median and the set's position in its order.
+    pub placements: PlacementTimes,
     pub rays: RayCounts,
     pub mrays_per_s: Option<f64>,
     pub rmse: f64,
@@ -95,17 +105,47 @@ pub struct BenchReport {
     pub cpu_threads: Option<u32>,
     pub runs: u32,
     pub warmup: u32,
+    pub placements: u32,
     pub reference_spp: u32,
     pub reference_set: String,
     /// Per scene, the reference image relative to the output folder.
     pub references: Vec<(String, String)>,
     pub rows: Vec<BenchRow>,
+    /// Every pair of sets measured together, earlier set over later, with its interval.
+    pub ratios: Vec<BenchRatio>,
     /// The shadow-sampler study, with the first set.
     pub samplers: Vec<samplers::SamplerRow>,
     /// The probe cases with robust and naive intersection variants, with the first set.
     pub variants: Vec<crate::probe::stability::StabilityRow>,
     /// Size of every module of both sets, as the binary embeds them.
     pub spirv: Vec<ModuleSize>,
+}
+
+/// The GPU time of set `a` over set `b` for one scene and sample count, over the placements
+/// they were timed in together.
+#[derive(Clone, Debug, Serialize)]
+pub struct BenchRatio {
+    pub scene: String,
+    pub spp: u32,
+    pub a: String,
+    pub b: String,
+    pub interval: RatioInterval,
+    /// The interval in words: "rust slower by 3.1% (95% CI 1.2% to 5.0%)".
+    pub verdict: String,
+    /// Whether `b` is a salted copy of `a`: the null control, whose interval should hold 1.
+    pub null_control: bool,
+}
+
+impl BenchConfig {
+    /// The sets each measurement times: the asked-for ones, a repeat made a salted copy, and
+    /// with `null` a copy of the first set after them.
+    pub fn timed_sets(&self) -> Vec<ShaderSet> {
+        let mut sets = self.sets.clone();
+        if self.null {
+            sets.extend(self.sets.first().cloned());
+        }
+        ShaderSet::distinct(&sets)
+    }
 }
 
 /// A module's SPIR-V in each language: bytes and instructions.
@@ -150,10 +190,12 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         cpu_threads: ctx.info.cpu_threads,
         runs: config.runs,
         warmup: config.warmup,
+        placements: config.placements,
         reference_spp: config.reference_spp,
         reference_set: config.reference_set.to_string(),
         references: Vec::new(),
         rows: Vec::new(),
+        ratios: Vec::new(),
         samplers: Vec::new(),
         variants: Vec::new(),
         spirv: spirv_sizes()?,
@@ -165,15 +207,17 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         let reference_png = format!("images/{}-reference.png", file_safe(scene.name()));
         crate::util::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
         report.references.push((scene.name().to_string(), reference_png));
+        let sets = config.timed_sets();
         for &spp in &config.spp {
-            progress(&format!("{}: {} sets at {spp} spp", scene.name(), config.sets.len()));
-            let outputs = measure(ctx, scene, size, spp, config)?;
+            progress(&format!("{}: {} sets at {spp} spp", scene.name(), sets.len()));
+            let outputs = measure(ctx, scene, size, spp, &sets, config)?;
             let keep = match config.images {
                 Images::All => true,
                 Images::Last => config.spp.iter().max() == Some(&spp),
                 Images::None => false,
             };
-            for (set, out) in config.sets.iter().zip(&outputs) {
+            report.ratios.extend(ratios(scene.name(), spp, &sets, &outputs));
+            for (set, out) in sets.iter().zip(&outputs) {
                 out.written.require(&set.to_string(), "pixels", &format!("{} at {spp} spp", scene.name()))?;
                 let first = outputs.first().filter(|f| !std::ptr::eq(*f, out));
                 let row = row(scene, set, spp, out, &truth, first, keep.then_some(config.out.as_path()))?;
@@ -216,17 +260,40 @@ pub fn steps(config: &BenchConfig) -> usize {
     config.scenes.len() * (1 + config.spp.len()) + study + usize::from(config.probes.is_some())
 }
 
-/// Every set's render of `scene` at `spp`, timed interleaved.
+/// Every set's render of `scene` at `spp`, timed interleaved in every placement.
 fn measure(
     ctx: &Arc<Context>,
     scene: &Scene,
     (width, height): (u32, u32),
     spp: u32,
+    sets: &[ShaderSet],
     config: &BenchConfig,
 ) -> Result<Vec<RenderOutput>> {
     let mut scene = scene.clone();
     scene.file.image.samples = side_of(spp)?;
-    render_sets(ctx, &scene, &config.sets, &RenderOptions { width, height, warmup: config.warmup, runs: config.runs })
+    let (warmup, runs, placements) = (config.warmup, config.runs, config.placements);
+    render_sets(ctx, &scene, sets, &RenderOptions { width, height, warmup, runs, placements })
+}
+
+/// Every pair of `sets`, earlier over later, with the interval of their time ratio.
+fn ratios(scene: &str, spp: u32, sets: &[ShaderSet], outputs: &[RenderOutput]) -> Vec<BenchRatio> {
+    let mut out = Vec::new();
+    for (i, (a, a_out)) in sets.iter().zip(outputs).enumerate() {
+        for (b, b_out) in sets.iter().zip(outputs).skip(i + 1) {
+            if let Some(interval) = a_out.ratio_to(b_out) {
+                out.push(BenchRatio {
+                    scene: scene.to_string(),
+                    spp,
+                    a: a.to_string(),
+                    b: b.to_string(),
+                    verdict: interval.verdict(&a.to_string()),
+                    interval,
+                    null_control: a.original() == b.original(),
+                });
+            }
+        }
+    }
+    out
 }
 
 fn row(
@@ -255,6 +322,7 @@ fn row(
         width: out.width,
         height: out.height,
         gpu_ms: out.spread(),
+        placements: out.placements.clone(),
         rays: out.rays,
         mrays_per_s: out.mrays_per_s(),
         rmse: errors.rmse,

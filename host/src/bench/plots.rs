@@ -3,6 +3,7 @@
 //! per scene. PNG text uses an embedded font, so no system font library is needed.
 
 use super::samplers::SamplerRow;
+use super::tables::SceneRatio;
 use super::{BenchReport, BenchRow};
 use crate::error::{Error, Result};
 use plotters::coord::Shift;
@@ -91,7 +92,7 @@ pub fn log_slope(points: &[(f64, f64)]) -> Option<f64> {
 }
 
 /// Writes error-spp, error-time and ratio plots (PNG and SVG) into `dir`.
-pub fn write(report: &BenchReport, ratios: &[(String, u32, f64)], dir: &Path) -> Result<()> {
+pub fn write(report: &BenchReport, ratios: &[SceneRatio], dir: &Path) -> Result<()> {
     // Registering twice is harmless; it fails only on a bad font, which is a build error.
     let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
     std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.into(), source })?;
@@ -269,7 +270,7 @@ fn tick(v: f64) -> String {
     }
 }
 
-fn draw_ratios<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, ratios: &[(String, u32, f64)]) -> Drawn
+fn draw_ratios<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, ratios: &[SceneRatio]) -> Drawn
 where
     DB::ErrorType: 'static,
 {
@@ -280,7 +281,8 @@ where
         }
         v
     });
-    let (lo, hi) = ratios.iter().fold((0.9f64, 1.1f64), |(lo, hi), r| (lo.min(r.2 - 0.02), hi.max(r.2 + 0.02)));
+    let (lo, hi) =
+        ratios.iter().fold((0.9f64, 1.1f64), |(lo, hi), r| (lo.min(r.2.low - 0.02), hi.max(r.2.high + 0.02)));
     let n = scenes.len().max(1) as f64;
     let mut chart = ChartBuilder::on(&root)
         .margin(20)
@@ -293,7 +295,7 @@ where
         .x_labels(scenes.len().max(1))
         .x_label_formatter(&|x| names.get(x.round() as usize).map_or(String::new(), |s| s.to_string()))
         .light_line_style(WHITE)
-        .y_desc("Rust / GLSL GPU time (median); lines at 1.00 and 1.05")
+        .y_desc("Rust / GLSL GPU time with its 95% interval over placements; lines at 1.00 and 1.05")
         .draw()?;
     for (level, colour) in [(1.0, BLACK.mix(0.5)), (1.05, RED.mix(0.5))] {
         chart.draw_series(LineSeries::new([(-0.5, level), (n - 0.5, level)], colour.stroke_width(1)))?;
@@ -303,10 +305,17 @@ where
     counts.dedup();
     for (i, &spp) in counts.iter().enumerate() {
         let colour = Palette99::pick(i).to_rgba();
-        let points = ratios.iter().filter(|r| r.1 == spp).filter_map(|(scene, _, r)| {
-            let x = scenes.iter().position(|s| s == scene)? as f64;
-            Some(Circle::new((x, *r), 5, colour.filled()))
+        // Each sample count a little to the side, so that the intervals do not overlap.
+        let dx = 0.12 * (i as f64 - (counts.len() as f64 - 1.0) / 2.0);
+        let at = |scene: &String| scenes.iter().position(|s| s == scene).map(|x| x as f64 + dx);
+        let bars = ratios.iter().filter(|r| r.1 == spp).filter_map(|(scene, _, r)| {
+            Some(PathElement::new([(at(scene)?, r.low), (at(scene)?, r.high)], colour.stroke_width(2)))
         });
+        chart.draw_series(bars)?;
+        let points = ratios
+            .iter()
+            .filter(|r| r.1 == spp)
+            .filter_map(|(scene, _, r)| Some(Circle::new((at(scene)?, r.ratio), 5, colour.filled())));
         chart
             .draw_series(points)?
             .label(format!("{spp} spp"))

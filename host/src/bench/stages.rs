@@ -14,6 +14,7 @@ use crate::render::{render, RenderOptions, RenderOutput};
 use crate::scene::file::{CutoutPattern, MaterialDesc};
 use crate::scene::{HitGroups, MaterialShading, Renderer, Scene, ShadowMethod};
 use crate::shaders::ShaderSet;
+use crate::util::interval::RatioInterval;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
 use serde::Serialize;
@@ -153,12 +154,15 @@ pub struct StageRow {
     pub set: String,
     pub width: u32,
     pub height: u32,
-    /// GPU time of every timed trace of every round.
+    /// GPU time of every timed trace of every round pooled: how the traces spread.
     pub gpu_ms: Spread,
-    /// Its median over the first variant's with the same set.
-    pub against_first: f64,
-    /// Its median over the same variant's with the first set.
-    pub against_first_set: f64,
+    /// The median of each round (each round makes the pipeline afresh: a placement).
+    pub round_ms: Vec<f64>,
+    /// Its time over the first variant's with the same set, round by round, with the 95%
+    /// interval over rounds.
+    pub against_first: Option<RatioInterval>,
+    /// Its time over the same variant's with the first set, likewise.
+    pub against_first_set: Option<RatioInterval>,
     /// RMSE of its image (display values) against the first variant's with the same set.
     pub rmse: f64,
     pub hit_mismatches: u64,
@@ -209,6 +213,7 @@ pub fn run(
         let cells: Vec<(usize, usize)> =
             (0..runs.len()).flat_map(|v| (0..plan.sets.len()).map(move |s| (v, s))).collect();
         let mut times = vec![Vec::new(); cells.len()];
+        let mut round_ms = vec![Vec::new(); cells.len()];
         let mut last: Vec<Option<RenderOutput>> = (0..cells.len()).map(|_| None).collect();
         for round in 0..plan.rounds.max(1) as usize {
             for k in 0..cells.len() {
@@ -219,10 +224,11 @@ pub fn run(
                 let set = plan.sets[s].to_string();
                 out.written.require(&set, "pixels", &format!("{} {}", scene.name(), runs[v].0.name()))?;
                 times[c].extend(&out.gpu_ms);
+                round_ms[c].push(out.median_ms().unwrap_or(f64::NAN));
                 last[c] = Some(out);
             }
         }
-        rows.extend(rows_of(scene, &runs, plan.sets, &cells, &times, &last));
+        rows.extend(rows_of(scene, &runs, plan.sets, &cells, (&times, &round_ms), &last));
     }
     Ok((rows, skipped))
 }
@@ -232,10 +238,10 @@ fn rows_of(
     runs: &[(Variant, Scene)],
     sets: &[ShaderSet],
     cells: &[(usize, usize)],
-    times: &[Vec<f64>],
+    (times, round_ms): (&[Vec<f64>], &[Vec<f64>]),
     last: &[Option<RenderOutput>],
 ) -> Vec<StageRow> {
-    let median = |c: usize| Spread::of(&times[c]).map_or(f64::NAN, |s| s.median);
+    let against = |c: usize, d: usize| RatioInterval::paired(&round_ms[c], &round_ms[d]);
     let cell = |v: usize, s: usize| cells.iter().position(|&x| x == (v, s)).unwrap_or(0);
     let mut rows = Vec::new();
     for (c, &(v, s)) in cells.iter().enumerate() {
@@ -255,8 +261,9 @@ fn rows_of(
                 q3: f64::NAN,
                 samples: 0,
             }),
-            against_first: median(c) / median(first),
-            against_first_set: median(c) / median(cell(v, 0)),
+            round_ms: round_ms[c].clone(),
+            against_first: against(c, first),
+            against_first_set: against(c, cell(v, 0)),
             rmse: rmse(&out.linear, &base.linear),
             hit_mismatches: d.hit_mismatches,
             primary_rays: out.rays.primary,
@@ -267,14 +274,22 @@ fn rows_of(
     rows
 }
 
+/// "1.031 (1.012 to 1.050)", or "n/a".
+fn with_interval(r: Option<RatioInterval>) -> String {
+    r.map_or("n/a".into(), |r| match r.has_interval() {
+        true => format!("{:.3} ({:.3} to {:.3})", r.ratio, r.low, r.high),
+        false => format!("{:.3}", r.ratio),
+    })
+}
+
 /// The rows as a Markdown table, and the skipped variants under it.
 pub fn table(rows: &[StageRow], skipped: &[Skipped]) -> String {
     let mut s = String::from(
-        "| scene | variant | set | size | GPU ms (median) | IQR | against first variant | against first set | RMSE against first variant | hit mismatches | shadow rays | raygen stack |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| scene | variant | set | size | GPU ms (median) | IQR of traces | against first variant (95% CI) | against first set (95% CI) | RMSE against first variant | hit mismatches | shadow rays | raygen stack |\n|---|---|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for r in rows {
         s += &format!(
-            "| {} | {} | {} | {}x{} | {:.3} | {:.3} | {:.3} | {:.3} | {:.2e} | {} | {} | {} |\n",
+            "| {} | {} | {} | {}x{} | {:.3} | {:.3} | {} | {} | {:.2e} | {} | {} | {} |\n",
             r.scene,
             r.variant.name(),
             r.set,
@@ -282,8 +297,8 @@ pub fn table(rows: &[StageRow], skipped: &[Skipped]) -> String {
             r.height,
             r.gpu_ms.median,
             r.gpu_ms.q3 - r.gpu_ms.q1,
-            r.against_first,
-            r.against_first_set,
+            with_interval(r.against_first),
+            with_interval(r.against_first_set),
             r.rmse,
             r.hit_mismatches,
             r.shadow_rays,

@@ -1,21 +1,41 @@
 //! The bench's numbers as files: results.json (the whole report) and results.csv (one line
 //! per scene, set and sample count), and the Rust/GLSL time ratios they imply.
 
-use super::{BenchReport, BenchRow};
+use super::BenchReport;
 use crate::error::{Error, Result};
+use crate::util::interval::RatioInterval;
 use std::path::Path;
 
-/// Rust over GLSL median GPU time per scene and sample count, where both plain sets ran.
-pub fn ratios(report: &BenchReport) -> Vec<(String, u32, f64)> {
-    let median = |row: &BenchRow| row.gpu_ms.map(|s| s.median);
+/// Rust over GLSL GPU time per scene and sample count, with its interval over placements.
+pub type SceneRatio = (String, u32, RatioInterval);
+
+/// Rust over GLSL GPU time per scene and sample count, where both plain sets ran together.
+pub fn ratios(report: &BenchReport) -> Vec<SceneRatio> {
     let mut out = Vec::new();
-    for rust in report.rows.iter().filter(|r| r.set == "rust") {
-        let glsl = report.rows.iter().find(|r| r.set == "glsl" && r.scene == rust.scene && r.spp == rust.spp);
-        if let (Some(a), Some(b)) = (median(rust), glsl.and_then(median)) {
-            out.push((rust.scene.clone(), rust.spp, a / b));
+    for r in &report.ratios {
+        match (r.a.as_str(), r.b.as_str()) {
+            ("rust", "glsl") => out.push((r.scene.clone(), r.spp, r.interval)),
+            ("glsl", "rust") => out.push((r.scene.clone(), r.spp, r.interval.inverse())),
+            _ => {}
         }
     }
     out
+}
+
+/// The columns of `ratios.csv`.
+pub const RATIO_CSV_HEADER: &str = "scene,spp,a,b,ratio,ci_low,ci_high,placements,null_control,verdict";
+
+/// `ratios.csv`: one row per scene, sample count and pair of sets.
+pub fn ratio_csv(report: &BenchReport) -> String {
+    let mut s = format!("{RATIO_CSV_HEADER}\n");
+    for r in &report.ratios {
+        let i = &r.interval;
+        s += &format!(
+            "\"{}\",{},\"{}\",\"{}\",{},{},{},{},{},\"{}\"\n",
+            r.scene, r.spp, r.a, r.b, i.ratio, i.low, i.high, i.placements, r.null_control, r.verdict
+        );
+    }
+    s
 }
 
 /// The columns of `results.csv`.
@@ -95,12 +115,13 @@ pub fn variant_csv(report: &BenchReport) -> String {
     s
 }
 
-/// Writes results.json, results.csv, samplers.csv and variants.csv into `dir`.
+/// Writes results.json, results.csv, ratios.csv, samplers.csv and variants.csv into `dir`.
 pub fn write(report: &BenchReport, dir: &Path) -> Result<()> {
     let json = serde_json::to_string_pretty(report).map_err(|e| Error::Input(format!("results.json: {e}")))?;
     let files = [
         ("results.json", json),
         ("results.csv", csv(report)),
+        ("ratios.csv", ratio_csv(report)),
         ("samplers.csv", sampler_csv(report)),
         ("variants.csv", variant_csv(report)),
     ];

@@ -66,6 +66,7 @@ pub fn animate_bench(global: &GlobalArgs, args: AnimateBenchArgs) -> Result<Exit
         height,
         warmup: args.warmup,
         runs: args.runs,
+        placements: args.placements,
     };
     let report = run(&ctx, &config, |step| eprintln!("animate-bench: {step}"))?;
     let command = std::env::args().collect::<Vec<_>>().join(" ");

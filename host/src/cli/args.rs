@@ -10,6 +10,8 @@ use twinray::ShaderSet;
 pub const MAX_RUNS: u32 = 10_000;
 /// Most untimed warm-up traces.
 pub const MAX_WARMUP: u32 = 10_000;
+/// The most placements a command takes: each makes every pipeline afresh.
+pub const MAX_PLACEMENTS: u32 = 1_000;
 /// Most rays a probe case is repeated to for timing: 2^23 rays and results take 512 MiB.
 pub const MAX_TIMING_RAYS: u64 = 1 << 23;
 
@@ -79,9 +81,14 @@ pub struct FrameArgs {
     /// Image height in pixels [default: the scene's].
     #[arg(long)]
     pub height: Option<u32>,
-    /// Timed traces; the median GPU time is reported [default: render 1, compare 10].
+    /// Timed traces per placement; the median GPU time is reported [default: render 1, compare 10].
     #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: Option<u32>,
+    /// Independent placements: each set's pipeline, SBT and descriptors made afresh, in an order
+    /// of their own, each giving one median per set; a ratio's 95% interval is taken over them
+    /// [default: render 1, compare 6].
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PLACEMENTS)))]
+    pub placements: Option<u32>,
     /// Untimed traces before the timed ones [default: render 0, compare 2].
     #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: Option<u32>,
@@ -262,12 +269,20 @@ pub struct BenchArgs {
     /// Image height for every scene [default: each scene's].
     #[arg(long, requires = "width")]
     pub height: Option<u32>,
-    /// Timed traces per measurement (at least 10).
+    /// Timed traces per measurement and placement (at least 10).
     #[arg(long, default_value_t = 10, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
     /// Untimed traces before them.
     #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
+    /// Independent placements of every set's pipeline per measurement (see `compare
+    /// --placements`); each set's ratio to the first set has a 95% interval over them.
+    #[arg(long, default_value_t = twinray::render::DEFAULT_PLACEMENTS, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PLACEMENTS)))]
+    pub placements: u32,
+    /// Also time a salted copy of the first set (the same code, built apart): the null
+    /// control, whose ratio to the first set has an interval that should contain 1.
+    #[arg(long)]
+    pub null: bool,
     /// Samples per pixel of the references.
     #[arg(long, default_value_t = 1024)]
     pub reference_spp: u32,
@@ -325,6 +340,10 @@ pub struct AnimateBenchArgs {
     /// Untimed traces before the first frame (and at least 200 ms of GPU time when above 0).
     #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
+    /// Renderings of the whole animation, each mode's pipeline made afresh in an order of its
+    /// own; the trace-time ratios' 95% intervals are over them.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PLACEMENTS)))]
+    pub placements: u32,
     /// Output folder (created if missing).
     #[arg(long, default_value = "bench/out-animation")]
     pub out: PathBuf,

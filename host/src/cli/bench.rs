@@ -81,6 +81,8 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         size: args.width.zip(args.height),
         warmup: args.warmup,
         runs: args.runs,
+        placements: args.placements,
+        null: args.null,
         reference_spp: args.reference_spp,
         reference_set: args.reference_set,
         cache: args.cache.unwrap_or_else(twinray::reference::image::default_cache),
@@ -106,8 +108,9 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     bench::plots::write(&report, &ratios, &args.out.join("plots"))?;
     let command: Vec<String> = std::env::args().collect();
     bench::html::write(&report, &ratios, &command.join(" "), &args.out)?;
-    for (scene, spp, ratio) in &ratios {
-        println!("{scene:<12} {spp:>4} spp  rust/glsl {ratio:.3}");
+    for r in &report.ratios {
+        let what = if r.null_control { "null control" } else { "" };
+        println!("{:<12} {:>4} spp  {} / {}: {:.3}  {} {what}", r.scene, r.spp, r.a, r.b, r.interval.ratio, r.verdict);
     }
     println!("wrote {}/index.html, results.json, results.csv, plots/ and images/", args.out.display());
     Ok(ExitCode::SUCCESS)

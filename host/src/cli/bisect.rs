@@ -16,10 +16,14 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
             }
             let case = ProbeCase::load(path)?;
             let ctx = context(global)?;
-            let (warmup, runs) = COMPARE_TRACES;
-            let runs = args.frame.runs.unwrap_or(runs);
-            let mut subject =
-                ProbeSubject { ctx: &ctx, case: &case, warmup: args.frame.warmup.unwrap_or(warmup), runs };
+            let (warmup, runs, placements) = COMPARE_TRACES;
+            let mut subject = ProbeSubject {
+                ctx: &ctx,
+                case: &case,
+                warmup: args.frame.warmup.unwrap_or(warmup),
+                runs: args.frame.runs.unwrap_or(runs),
+                placements: args.frame.placements.unwrap_or(placements),
+            };
             run_bisect(&mut subject, &args.a, &args.b)?
         }
         None => {

@@ -26,7 +26,10 @@ use twinray::util::{activity, crash, watchdog};
 #[command(
     name = "twinray",
     version,
-    about = "Render ray tracing scenes with Rust or GLSL shader sets (or any per-stage mix) and compare them."
+    about = "Render ray tracing scenes with Rust or GLSL shader sets (or any per-stage mix) and compare them.",
+    // A flag given twice takes its last value: `cargo xtask watch -- --runs 10` follows the
+    // `--runs 1` watch gives by default.
+    args_override_self = true
 )]
 struct Cli {
     #[command(flatten)]

@@ -62,21 +62,29 @@ pub fn pipeline_bench(global: &GlobalArgs, args: PipelineBenchArgs) -> Result<Ex
     Ok(ExitCode::SUCCESS)
 }
 
+/// One placement per render: `stage-bench`'s rounds are its placements.
+const STAGE_TRACES: (u32, u32, u32) = (COMPARE_TRACES.0, COMPARE_TRACES.1, 1);
+
 pub fn stage_bench(global: &GlobalArgs, args: StageBenchArgs) -> Result<ExitCode> {
     use twinray::bench::stages::{run, table, StagePlan, Variant};
     let scenes = args.scenes.iter().map(|name| Scene::load(Some(name))).collect::<Result<Vec<_>, _>>()?;
     let variants = Variant::parse_list(&args.variants)?;
     let sets = twinray::shaders::parse_sets(&args.sets)?;
+    if args.frame.placements.is_some() {
+        let why =
+            "stage-bench: each round makes every pipeline afresh (a placement); give --rounds instead of --placements";
+        return Err(twinray::Error::Input(why.into()).into());
+    }
     for scene in &scenes {
-        render_options(scene, &args.frame, COMPARE_TRACES)?;
+        render_options(scene, &args.frame, STAGE_TRACES)?;
     }
     create_dir(&args.out)?;
     let ctx = context(global)?;
     let plan = StagePlan { scenes: &scenes, variants: &variants, sets: &sets, rounds: args.rounds };
-    let opts = |s: &Scene| render_options(s, &args.frame, COMPARE_TRACES).expect("checked above");
+    let opts = |s: &Scene| render_options(s, &args.frame, STAGE_TRACES).expect("checked above");
     let (rows, skipped) = run(&ctx, &plan, opts, |step| eprintln!("stage-bench: {step}"))?;
     let text = format!(
-        "{} on {}, {} rounds; times are medians of every timed trace of every round\n\n{}",
+        "{} on {}, {} rounds (each a placement); times are medians of every timed trace of every round, ratios have their 95% interval over rounds\n\n{}",
         std::env::args().collect::<Vec<_>>().join(" "),
         ctx.info.name,
         args.rounds,

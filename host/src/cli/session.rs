@@ -33,18 +33,28 @@ pub fn options(global: &GlobalArgs) -> ContextOptions {
     }
 }
 
-/// (warm-up, timed) traces when not given: `render` wants an image quickly, `compare` a
-/// GPU-time ratio that is a median over several traces.
-pub const RENDER_TRACES: (u32, u32) = (0, 1);
-pub const COMPARE_TRACES: (u32, u32) = (2, 10);
+/// (warm-up, timed traces, placements) when not given: `render` wants an image quickly,
+/// `compare` a GPU-time ratio with its interval over placements.
+pub const RENDER_TRACES: (u32, u32, u32) = (0, 1, 1);
+pub const COMPARE_TRACES: (u32, u32, u32) = (2, 10, twinray::render::DEFAULT_PLACEMENTS);
 
 /// Size from the flags, or the scene's, checked against twinray's limits; trace counts from the
-/// flags or `(warmup, runs)`.
-pub fn render_options(scene: &Scene, frame: &FrameArgs, (warmup, runs): (u32, u32)) -> Result<RenderOptions, Error> {
+/// flags or the defaults given.
+pub fn render_options(
+    scene: &Scene,
+    frame: &FrameArgs,
+    (warmup, runs, placements): (u32, u32, u32),
+) -> Result<RenderOptions, Error> {
     let width = frame.width.unwrap_or(scene.file.image.width);
     let height = frame.height.unwrap_or(scene.file.image.height);
     check_size(width, height).map_err(Error::Input)?;
-    Ok(RenderOptions { width, height, warmup: frame.warmup.unwrap_or(warmup), runs: frame.runs.unwrap_or(runs) })
+    Ok(RenderOptions {
+        width,
+        height,
+        warmup: frame.warmup.unwrap_or(warmup),
+        runs: frame.runs.unwrap_or(runs),
+        placements: frame.placements.unwrap_or(placements),
+    })
 }
 
 /// Shows the library's progress reports (long runs of timed traces) as a bar on stderr; the

@@ -181,6 +181,7 @@ mod tests {
             linear: vec![],
             hit_ids,
             gpu_ms: vec![],
+            placements: Default::default(),
             rays: Default::default(),
             warmup_traces: 0,
             raygen_stack_bytes: 0,

@@ -3,9 +3,10 @@
 
 use super::diff::{diff, diff_image, verdict, ImageDiff};
 use crate::error::{Error, Result};
-use crate::render::{render_sets, RayCounts, RenderOptions, RenderOutput};
+use crate::render::{render_sets, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
+use crate::util::interval::RatioInterval;
 use crate::util::output::write_png;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
@@ -25,12 +26,19 @@ pub struct CompareReport {
     #[serde(flatten)]
     pub diff: ImageDiff,
     pub pixel_threshold: u8,
-    /// Median GPU milliseconds of the timed traces of each set; null when the device cannot time.
+    /// Median GPU milliseconds of each set (the median of its placements' medians); null when
+    /// the device cannot time.
     pub gpu_ms_a: Option<f64>,
     pub gpu_ms_b: Option<f64>,
-    /// gpu_ms_a / gpu_ms_b.
+    /// A's time over B's: the geometric mean of the placements' ratios (`timing.ratio`).
     pub ratio: Option<f64>,
-    /// Median and interquartile range of each set's timed traces.
+    /// The ratio with its 95% interval over placements, and the verdict in words.
+    pub timing: Option<Timing>,
+    /// Each set's placement medians and positions.
+    pub placements_a: PlacementTimes,
+    pub placements_b: PlacementTimes,
+    /// Median and interquartile range of each set's timed traces, every placement pooled: how
+    /// the traces spread, not how uncertain the ratio is.
     pub spread_a: Option<Spread>,
     pub spread_b: Option<Spread>,
     /// Rays each set traced in one trace (shadow rays may differ where the sets' hits do).
@@ -48,12 +56,24 @@ pub struct CompareReport {
     /// Stack bytes each set's ray generation stage needs, as the driver reports it.
     pub raygen_stack_bytes_a: u64,
     pub raygen_stack_bytes_b: u64,
-    /// Timed traces per set in each of the two build orders (after `warmup` untimed ones).
+    /// Timed traces per set in each placement (after `warmup` untimed ones), and placements.
     pub runs: u32,
     pub warmup: u32,
+    pub placements: u32,
+    /// Whether B is a salted copy of A (`compare --a X --b X`): the null control.
+    pub null_control: bool,
     pub pass: bool,
     /// Why `pass` is false, one line per broken tolerance.
     pub failures: Vec<String>,
+}
+
+/// A's GPU time over B's with its interval over placements, and what it resolves in words.
+#[derive(Clone, Debug, Serialize)]
+pub struct Timing {
+    #[serde(flatten)]
+    pub interval: RatioInterval,
+    /// "a slower by 3.1% (95% CI 1.2% to 5.0%)" or "no difference resolved (95% CI ...)".
+    pub verdict: String,
 }
 
 /// Both renders and the report on them.
@@ -71,6 +91,8 @@ pub fn compare_sets(
     set_b: &ShaderSet,
     opts: &RenderOptions,
 ) -> Result<Comparison> {
+    // The same set twice is timed as two copies built apart: the null control.
+    let set_b = &ShaderSet::distinct(&[set_a.clone(), set_b.clone()])[1];
     let [a, b]: [RenderOutput; 2] = render_sets(ctx, scene, &[set_a.clone(), set_b.clone()], opts)?
         .try_into()
         .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
@@ -78,6 +100,7 @@ pub fn compare_sets(
     let diff = diff(&a, &b, parity.pixel_threshold);
     let failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
     let (gpu_ms_a, gpu_ms_b) = (a.median_ms(), b.median_ms());
+    let interval = a.ratio_to(&b);
     let report = CompareReport {
         scene: scene.name().to_string(),
         device: ctx.info.name.clone(),
@@ -89,7 +112,10 @@ pub fn compare_sets(
         pixel_threshold: parity.pixel_threshold,
         gpu_ms_a,
         gpu_ms_b,
-        ratio: gpu_ms_a.zip(gpu_ms_b).filter(|(_, b)| *b > 0.0).map(|(a, b)| a / b),
+        ratio: interval.map(|i| i.ratio),
+        timing: interval.map(|interval| Timing { interval, verdict: interval.verdict("a") }),
+        placements_a: a.placements.clone(),
+        placements_b: b.placements.clone(),
         spread_a: a.spread(),
         spread_b: b.spread(),
         rays_a: a.rays,
@@ -103,6 +129,8 @@ pub fn compare_sets(
         raygen_stack_bytes_b: b.raygen_stack_bytes,
         runs: opts.runs,
         warmup: opts.warmup,
+        placements: opts.placements,
+        null_control: set_b.original() == *set_a,
         pass: failures.is_empty(),
         failures,
     };
@@ -123,29 +151,29 @@ impl Comparison {
 impl CompareReport {
     /// The human-readable summary `compare` prints.
     pub fn summary(&self) -> String {
-        let timing = |spread: Option<Spread>, rate: Option<f64>, rays: RayCounts| {
-            let ms = spread.map_or("n/a".to_string(), |s| format!("{:.3} ms (IQR {:.3})", s.median, s.iqr()));
+        let timing = |ms: Option<f64>, spread: Option<Spread>, rate: Option<f64>, rays: RayCounts| {
+            let ms =
+                ms.zip(spread).map_or("n/a".to_string(), |(m, s)| format!("{m:.3} ms (traces' IQR {:.3})", s.iqr()));
             let rate = rate.map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
             format!("GPU {ms}{rate} of {rays}")
         };
-        let pixels = (u64::from(self.width) * u64::from(self.height)).max(1) as f64;
-        let pct = |n: u64| 100.0 * n as f64 / pixels;
-        let d = &self.diff.color;
         let threads = self.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
+        let null = if self.null_control { " (b is a salted copy of a: the null control)" } else { "" };
         let mut s = format!(
-            "scene {} {}x{} on {}{threads}, median of {} traces after {}/{} untimed\n  a = {:<28} {}\n  b = {:<28} {}\n  ratio a/b {}, raygen stack {} / {} bytes\n",
+            "scene {} {}x{} on {}{threads}, {} placements of {} timed traces after {}/{} untimed\n  a = {:<28} {}\n  b = {:<28} {}{null}\n  time a/b {}, raygen stack {} / {} bytes\n",
             self.scene,
             self.width,
             self.height,
             self.device,
-            self.spread_a.map_or(self.runs, |s| s.samples as u32),
+            self.placements,
+            self.runs,
             self.warmup_traces_a,
             self.warmup_traces_b,
             self.set_a,
-            timing(self.spread_a, self.mrays_per_s_a, self.rays_a),
+            timing(self.gpu_ms_a, self.spread_a, self.mrays_per_s_a, self.rays_a),
             self.set_b,
-            timing(self.spread_b, self.mrays_per_s_b, self.rays_b),
-            self.ratio.map_or("n/a".into(), |r| format!("{r:.3}")),
+            timing(self.gpu_ms_b, self.spread_b, self.mrays_per_s_b, self.rays_b),
+            self.timing.as_ref().map_or("n/a".into(), |t| format!("{:.3}: {}", t.interval.ratio, t.verdict)),
             self.raygen_stack_bytes_a,
             self.raygen_stack_bytes_b,
         );
@@ -154,6 +182,9 @@ impl CompareReport {
                 s += &format!("  {problem} (magenta in diff.png)\n");
             }
         }
+        let pixels = (u64::from(self.width) * u64::from(self.height)).max(1) as f64;
+        let pct = |n: u64| 100.0 * n as f64 / pixels;
+        let d = &self.diff.color;
         s += &format!(
             "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette\n",
             d.rmse,

@@ -105,7 +105,7 @@ pub fn converged(
             }
         }
         frame.file.image.seed = frame_seed(scene.file.image.seed, k);
-        let out = render(ctx, &frame, set, &RenderOptions { width, height, warmup: 0, runs: 1 })?;
+        let out = render(ctx, &frame, set, &RenderOptions::once(width, height, 0, 1))?;
         out.written.require(&set.to_string(), "pixels", &format!("the reference of {}", scene.name()))?;
         for (s, p) in sum.iter_mut().zip(&out.linear) {
             for c in 0..3 {

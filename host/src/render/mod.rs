@@ -1,6 +1,6 @@
 //! Rendering a scene with a shader set: upload the scene's acceleration structures and buffers,
 //! build the set's pipeline, descriptors and SBT, trace (warm-up traces, then timed ones between
-//! timestamps), and read back colour and hit ids.
+//! timestamps) once per placement, and read back colour and hit ids.
 
 mod barriers;
 pub mod frames;
@@ -8,6 +8,7 @@ pub mod libraries;
 mod moving;
 pub mod output;
 pub mod pipeline;
+pub mod placement;
 pub(crate) mod prepare;
 pub mod sentinel;
 mod sets;
@@ -18,7 +19,8 @@ pub(crate) use barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
 pub use frames::{AsWork, Frame, FrameRange, TlasKind, TlasMode, DEFAULT_TLAS};
 pub use moving::{render_frames, FrameRenderer};
 pub use output::{to_rgba8, RayCounts, RenderOptions, RenderOutput, Written, NOT_A_NUMBER_RGB, NO_HIT_ID};
+pub use placement::{PlacementTimes, DEFAULT_PLACEMENTS};
 pub use prepare::MIN_WARM_MS;
 pub(crate) use prepare::{prepare, storage_buffer};
-pub use sets::{render, render_made, render_sets, render_there_and_back};
+pub use sets::{render, render_made, render_sets};
 pub(crate) use tracing::submit;

@@ -1,6 +1,8 @@
 //! What a render produces, and reading it back from the GPU's bytes.
 
+use super::placement::PlacementTimes;
 use super::sentinel;
+use crate::util::interval::RatioInterval;
 use crate::util::stats::{median, Spread};
 use twinray_shared::bindings as b;
 
@@ -14,8 +16,18 @@ pub struct RenderOptions {
     pub height: u32,
     /// Untimed traces before the timed ones.
     pub warmup: u32,
-    /// Timed traces (at least one trace always runs).
+    /// Timed traces per placement (at least one trace always runs).
     pub runs: u32,
+    /// Independent placements of the sets' pipelines (see `render::placement`), each with its
+    /// own warm-up and timed traces; at least one.
+    pub placements: u32,
+}
+
+impl RenderOptions {
+    /// One placement of `runs` timed traces after `warmup` untimed ones.
+    pub fn once(width: u32, height: u32, warmup: u32, runs: u32) -> Self {
+        RenderOptions { width, height, warmup, runs, placements: 1 }
+    }
 }
 
 /// What a render produced.
@@ -29,8 +41,10 @@ pub struct RenderOutput {
     /// Per pixel, what the first primary ray hit: object index << 32 | primitive index, or
     /// [`NO_HIT_ID`].
     pub hit_ids: Vec<u64>,
-    /// GPU milliseconds of each timed trace; empty when the device cannot time.
+    /// GPU milliseconds of each timed trace, every placement's; empty when the device cannot time.
     pub gpu_ms: Vec<f64>,
+    /// The median of each placement's timed traces, and where the set was in its order.
+    pub placements: PlacementTimes,
     /// Rays one trace traced.
     pub rays: RayCounts,
     /// Untimed traces before the timed ones: the asked-for count, raised to fill `MIN_WARM_MS`.
@@ -138,14 +152,22 @@ impl RayCounts {
 }
 
 impl RenderOutput {
-    /// Median GPU time of the timed traces.
+    /// Median GPU time: the median of the placements' medians (of the traces when no
+    /// placement was recorded), so that a placement with more traces weighs no more.
     pub fn median_ms(&self) -> Option<f64> {
-        median(&self.gpu_ms)
+        median(&self.placements.median_ms).or_else(|| median(&self.gpu_ms))
     }
 
-    /// Median and interquartile range of the timed traces.
+    /// Median and interquartile range of the timed traces of every placement pooled: how the
+    /// traces spread, not how uncertain a ratio of two sets is (see `ratio_to`).
     pub fn spread(&self) -> Option<Spread> {
         Spread::of(&self.gpu_ms)
+    }
+
+    /// This set's time against `other`'s (rendered in the same placements), with its 95%
+    /// interval over placements.
+    pub fn ratio_to(&self, other: &RenderOutput) -> Option<RatioInterval> {
+        self.placements.ratio_to(&other.placements)
     }
 
     /// Millions of rays per second at the median GPU time, of the rays [`RayCounts`] counts;

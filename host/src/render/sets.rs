@@ -1,9 +1,10 @@
 //! Rendering a scene with one or more shader sets over one upload of the scene and one output
-//! image, their traces interleaved (see `tracing`), in every build order when timed.
+//! image, their traces interleaved (see `tracing`), once per placement (see `placement`).
 
 use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE};
 use super::libraries::Libraries;
 use super::output::{read_back, to_rgba8, RayCounts, RenderOptions, RenderOutput};
+use super::placement;
 use super::prepare::{prepare_on, storage_buffer, Prepared};
 use super::sentinel;
 use super::tracing::{self, Trace};
@@ -11,7 +12,8 @@ use super::upload::{upload_shared, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::{check_size, Scene};
 use crate::shaders::ShaderSet;
-use crate::util::activity;
+use crate::util::stats::median;
+use crate::util::{activity, progress};
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::memory_barrier;
 use crate::vk::context::{Context, PipelineKind};
@@ -30,11 +32,10 @@ pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderO
 }
 
 /// Renders `scene` with each of `sets` over the same acceleration structures and outputs,
-/// timed interleaved (see `tracing`). When several timed runs are asked for, it renders once
-/// per rotation of the sets' order, so that each set is built and traced first once, and pools
-/// each set's timed traces: on the H200, a pipeline's time moved by up to 7% with the order the
-/// pipelines were built in, the same way in every repeat (lights at 16 spp: Rust/GLSL 1.03 with
-/// GLSL built first, 1.14 with Rust first). Images and hit ids are the first rotation's.
+/// timed interleaved (see `tracing`), once per placement (`opts.placements`, see
+/// `placement`): each set's pipeline, SBT and descriptors made afresh in that placement's
+/// order, over a fresh upload. Each set's timed traces are pooled, and each placement's median
+/// kept apart, for the ratio's interval. Images and hit ids are the first placement's.
 pub fn render_sets(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -57,46 +58,28 @@ pub fn render_made(
     sets: &[(ShaderSet, PipelineKind)],
     opts: &RenderOptions,
 ) -> Result<Vec<RenderOutput>> {
-    let rotations = if opts.runs > 1 { sets.len() } else { 1 };
-    let orders: Vec<Vec<usize>> =
-        (0..rotations).map(|shift| (0..sets.len()).map(|k| (k + shift) % sets.len()).collect()).collect();
-    render_in_orders(ctx, scene, sets, opts, &orders)
-}
-
-/// [`render_sets`] built and traced in the given order and then in reverse (when several
-/// timed runs are asked for): every set is timed at both ends of the order without the
-/// square of the sets' count that every rotation costs (`twinray bisect` renders up to 16).
-pub fn render_there_and_back(
-    ctx: &Arc<Context>,
-    scene: &Scene,
-    sets: &[ShaderSet],
-    opts: &RenderOptions,
-) -> Result<Vec<RenderOutput>> {
-    let forward: Vec<usize> = (0..sets.len()).collect();
-    let mut orders = vec![forward.clone()];
-    if opts.runs > 1 && sets.len() > 1 {
-        orders.push(forward.into_iter().rev().collect());
-    }
-    render_in_orders(ctx, scene, &made_as_context_says(ctx, sets), opts, &orders)
-}
-
-/// One render per order (indices into `sets`), pooling each set's timed traces; images and hit
-/// ids are the first order's.
-fn render_in_orders(
-    ctx: &Arc<Context>,
-    scene: &Scene,
-    sets: &[(ShaderSet, PipelineKind)],
-    opts: &RenderOptions,
-    orders: &[Vec<usize>],
-) -> Result<Vec<RenderOutput>> {
     let mut outputs: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
-    for order in orders {
+    let orders = placement::orders(sets.len(), opts.placements);
+    for (p, order) in orders.iter().enumerate() {
         let ordered: Vec<_> = order.iter().map(|&i| sets[i].clone()).collect();
-        for (&i, out) in order.iter().zip(render_and_release(ctx, scene, &ordered, opts)?) {
+        let _doing = activity::doing(format!("placement {} of {}", p + 1, orders.len()));
+        let placed = render_and_release(ctx, scene, &ordered, opts)?;
+        for (position, (&i, mut out)) in order.iter().zip(placed).enumerate() {
+            if let Some(ms) = median(&out.gpu_ms) {
+                out.placements.median_ms.push(ms);
+                out.placements.position.push(position as u32);
+            }
             match &mut outputs[i] {
-                Some(first) => first.gpu_ms.extend(out.gpu_ms),
+                Some(first) => {
+                    first.gpu_ms.extend(out.gpu_ms);
+                    first.placements.median_ms.extend(out.placements.median_ms);
+                    first.placements.position.extend(out.placements.position);
+                }
                 slot => *slot = Some(out),
             }
+        }
+        if orders.len() > 1 {
+            progress::report("placements", p as u64 + 1, orders.len() as u64);
         }
     }
     // Every object of the render is destroyed by now: catch what the layer said about that too.
@@ -104,7 +87,7 @@ fn render_in_orders(
     outputs
         .into_iter()
         .collect::<Option<Vec<_>>>()
-        .ok_or_else(|| Error::Unsupported("an order of the render left a set out".into()))
+        .ok_or_else(|| Error::Unsupported("a placement of the render left a set out".into()))
 }
 
 /// The outputs every set of a render writes in turn (one image, one hit-id buffer), so that
@@ -230,6 +213,7 @@ impl SetRender {
             linear: read.linear,
             hit_ids: read.hit_ids,
             gpu_ms,
+            placements: Default::default(),
             rays: RayCounts { primary: pixels * samples, shadow: read.shadow },
             warmup_traces,
             raygen_stack_bytes: self.prepared.pipeline.raygen_stack_bytes(),

@@ -2,10 +2,12 @@
 //! set (the committed SPIR-V, embedded), or from a SPIR-V file on disk, validated and checked
 //! before use.
 //! The pipeline code never branches on where a module came from, so any per-stage mix, and a
-//! user's freshly built modules, are just other sets.
+//! user's freshly built modules, are just other sets. A set's salted copy (`ShaderSet::copy`)
+//! is the same code that no driver cache can take for the original.
 
 mod builtin;
 mod module;
+mod salt;
 mod set;
 mod validate;
 

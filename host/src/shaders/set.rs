@@ -26,11 +26,13 @@ pub struct ShaderSet {
     origins: Vec<Origin>,
     /// As written, for sets with modules from disk (built-in sets print canonically).
     text: Option<String>,
+    /// 0 for the set itself; N for its Nth salted copy (see `copy`).
+    copy: u32,
 }
 
 impl PartialEq for ShaderSet {
     fn eq(&self, other: &Self) -> bool {
-        self.origins == other.origins
+        self.origins == other.origins && self.copy == other.copy
     }
 }
 
@@ -46,7 +48,31 @@ enum Target {
 impl ShaderSet {
     /// Every module from the built-in set of `language`.
     pub fn uniform(language: Language) -> Self {
-        ShaderSet { origins: vec![Origin::Builtin(language); MODULES.len()], text: None }
+        ShaderSet { origins: vec![Origin::Builtin(language); MODULES.len()], text: None, copy: 0 }
+    }
+
+    /// Copy `n` of this set (n > 0): every module salted (`salt::salted`) so that the driver
+    /// compiles and places it apart from the set's own and any other copy's, its code
+    /// unchanged. Printed as the set with "(copy N)" after it. Copy 0 is the set itself.
+    pub fn copy(&self, n: u32) -> ShaderSet {
+        ShaderSet { copy: n, ..self.clone() }
+    }
+
+    /// The set this is a copy of (itself when it is no copy).
+    pub fn original(&self) -> ShaderSet {
+        self.copy(0)
+    }
+
+    /// Each of `sets` with every repeat of an earlier set made its next copy: "glsl,glsl,rust,
+    /// glsl" is glsl, glsl (copy 1), rust and glsl (copy 2). Timing the same code twice then
+    /// times two placements of it, never one pipeline shared by a driver's cache.
+    pub fn distinct(sets: &[ShaderSet]) -> Vec<ShaderSet> {
+        let mut out: Vec<ShaderSet> = Vec::with_capacity(sets.len());
+        for set in sets {
+            let repeats = out.iter().filter(|s| s.original() == set.original()).count() as u32;
+            out.push(if repeats == 0 { set.clone() } else { set.copy(set.copy + repeats) });
+        }
+        out
     }
 
     /// The built-in language of `stage`, when every module of the stage comes from one.
@@ -76,7 +102,13 @@ impl ShaderSet {
         let origin = index.and_then(|i| self.origins.get(i)).ok_or_else(|| {
             Error::Unsupported(format!("module {} is not in the catalog this build knows", spec.name))
         })?;
-        origin.resolve(spec).map_err(|e| Error::Input(format!("shader set {self}: {e}")))
+        let module = origin.resolve(spec).map_err(|e| Error::Input(format!("shader set {self}: {e}")))?;
+        if self.copy == 0 {
+            return Ok(module);
+        }
+        let spirv = super::salt::salted(&module.spirv, self.copy)
+            .ok_or_else(|| Error::Input(format!("shader set {self}: module {} is not SPIR-V to salt", spec.name)))?;
+        Ok(StageModule { spirv: spirv.into(), ..module })
     }
 
     /// This set with the modules called `names` taken from `other` (what `twinray bisect`
@@ -239,6 +271,16 @@ pub fn parse_sets(text: &str) -> Result<Vec<ShaderSet>> {
 /// single modules); a set with modules from disk as it was written.
 impl fmt::Display for ShaderSet {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        self.fmt_set(f)?;
+        match self.copy {
+            0 => Ok(()),
+            n => write!(f, " (copy {n})"),
+        }
+    }
+}
+
+impl ShaderSet {
+    fn fmt_set(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         if let Some(text) = &self.text {
             return f.write_str(text);
         }

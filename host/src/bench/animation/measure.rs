@@ -1,9 +1,10 @@
 //! Measuring: every scene with every TLAS mode, frame by frame, and the summary per mode.
 
 use crate::error::Result;
-use crate::render::{AsWork, FrameRenderer, RenderOptions, TlasMode};
+use crate::render::{placement, AsWork, FrameRenderer, RenderOptions, TlasMode};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
+use crate::util::interval::RatioInterval;
 use crate::util::progress;
 use crate::util::stats::median;
 use crate::vk::context::Context;
@@ -23,6 +24,9 @@ pub struct AnimateConfig {
     pub height: u32,
     pub warmup: u32,
     pub runs: u32,
+    /// Times the whole animation is rendered, each mode's pipeline made afresh each time in
+    /// an order of its own (see `render::placement`); each ratio's interval is over them.
+    pub placements: u32,
 }
 
 /// One frame of one scene and mode.
@@ -30,6 +34,8 @@ pub struct AnimateConfig {
 pub struct FrameRow {
     pub instances: usize,
     pub mode: String,
+    /// Which rendering of the animation (0-based; see `AnimateConfig::placements`).
+    pub placement: u32,
     pub frame: u32,
     pub as_work: AsWork,
     pub as_ms: Option<f64>,
@@ -48,13 +54,15 @@ pub struct ModeSummary {
     pub update_ms: Option<f64>,
     /// Median AS ms over every frame: what the mode costs per frame.
     pub as_ms_per_frame: Option<f64>,
+    /// The first placement's trace time at the first and the last frame.
     pub trace_ms_first: Option<f64>,
     pub trace_ms_last: Option<f64>,
     /// The last frame's trace time over the same frame's with a TLAS rebuilt for fast trace:
-    /// what the mode's TLAS costs in trace time after the scene's full motion.
-    pub trace_vs_rebuild_last: Option<f64>,
-    /// The same, as the median over every frame.
-    pub trace_vs_rebuild_median: Option<f64>,
+    /// what the mode's TLAS costs in trace time after the scene's full motion; one ratio per
+    /// placement, with the interval over them.
+    pub trace_vs_rebuild_last: Option<RatioInterval>,
+    /// The same, of each placement's median ratio over every frame.
+    pub trace_vs_rebuild_median: Option<RatioInterval>,
 }
 
 /// Everything the bench measured.
@@ -69,51 +77,32 @@ pub struct AnimateReport {
     pub frames: u32,
     pub runs: u32,
     pub warmup: u32,
+    pub placements: u32,
     pub rows: Vec<FrameRow>,
     pub summaries: Vec<ModeSummary>,
 }
 
-/// Renders every scene with every mode; `progress` hears of each scene as it starts. The
-/// modes take turns frame by frame, in an order that rotates each frame, each after warm-up
-/// traces of its own, so that the GPU's clock state reaches every mode alike: measured on the
-/// H100 with the modes one after another, trace and TLAS times of one mode jumped 3x together
-/// mid-run when the clocks dropped, which a per-mode comparison cannot tell from a slower TLAS.
+/// Renders every scene with every mode, once per placement; `progress` hears of each scene as
+/// it starts. The modes take turns frame by frame, in an order that rotates each frame, each
+/// after warm-up traces of its own, so that the GPU's clock state reaches every mode alike:
+/// measured on the H100 with the modes one after another, trace and TLAS times of one mode
+/// jumped 3x together mid-run when the clocks dropped, which a per-mode comparison cannot tell
+/// from a slower TLAS. Each mode has its own pipeline, so each placement makes them afresh:
+/// where the driver put one mode's code would otherwise pass for its TLAS's cost.
 pub fn run(ctx: &Arc<Context>, config: &AnimateConfig, mut progress: impl FnMut(&str)) -> Result<AnimateReport> {
-    let opts = RenderOptions { width: config.width, height: config.height, warmup: config.warmup, runs: config.runs };
+    let (width, height, warmup, runs) = (config.width, config.height, config.warmup, config.runs);
+    let opts = RenderOptions { width, height, warmup, runs, placements: 1 };
     let mut rows = Vec::new();
     for scene in &config.scenes {
         let instances = scene.file.objects.len();
-        progress(&format!("{instances} instances, {} frames, modes in turn", config.frames));
-        let set = std::slice::from_ref(&config.set);
-        let mut renderers = config
-            .modes
-            .iter()
-            .map(|&mode| FrameRenderer::new(ctx, scene, set, &opts, 0, mode))
-            .collect::<Result<Vec<_>>>()?;
-        for frame in 0..config.frames {
-            let n = renderers.len();
-            let mut measured = Vec::with_capacity(n);
-            for k in 0..n {
-                let m = (k + frame as usize) % n;
-                let f = renderers[m].render(frame, true)?;
-                let out = &f.outputs[0];
-                out.written.require(&config.set.to_string(), "pixels", &format!("{} frame {frame}", scene.name()))?;
-                measured.push((
-                    m,
-                    FrameRow {
-                        instances,
-                        mode: config.modes[m].name(),
-                        frame,
-                        as_work: f.as_work,
-                        as_ms: f.as_ms,
-                        trace_ms: out.median_ms(),
-                        rays: out.rays.total(),
-                    },
-                ));
-            }
-            measured.sort_by_key(|(m, _)| *m);
-            rows.extend(measured.into_iter().map(|(_, row)| row));
-            progress::report("frames", u64::from(frame + 1), u64::from(config.frames));
+        for (p, order) in placement::orders(config.modes.len(), config.placements).iter().enumerate() {
+            progress(&format!(
+                "{instances} instances, {} frames, modes in turn (placement {} of {})",
+                config.frames,
+                p + 1,
+                config.placements
+            ));
+            rows.extend(animate(ctx, scene, config, &opts, (p as u32, order))?);
         }
     }
     ctx.check_validation()?;
@@ -128,9 +117,44 @@ pub fn run(ctx: &Arc<Context>, config: &AnimateConfig, mut progress: impl FnMut(
         frames: config.frames,
         runs: config.runs,
         warmup: config.warmup,
+        placements: config.placements,
         rows,
         summaries,
     })
+}
+
+/// The frames of one placement of `scene`: renderers made in `order` (indices of the modes).
+fn animate(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    config: &AnimateConfig,
+    opts: &RenderOptions,
+    (placement, order): (u32, &[usize]),
+) -> Result<Vec<FrameRow>> {
+    let instances = scene.file.objects.len();
+    let set = std::slice::from_ref(&config.set);
+    let mut renderers = Vec::with_capacity(order.len());
+    for &m in order {
+        renderers.push((m, FrameRenderer::new(ctx, scene, set, opts, 0, config.modes[m])?));
+    }
+    let mut rows = Vec::new();
+    for frame in 0..config.frames {
+        let n = renderers.len();
+        let mut measured = Vec::with_capacity(n);
+        for k in 0..n {
+            let (m, renderer) = &mut renderers[(k + frame as usize) % n];
+            let f = renderer.render(frame, true)?;
+            let out = &f.outputs[0];
+            out.written.require(&config.set.to_string(), "pixels", &format!("{} frame {frame}", scene.name()))?;
+            let (as_work, as_ms, trace_ms, rays) = (f.as_work, f.as_ms, out.median_ms(), out.rays.total());
+            let mode = config.modes[*m].name();
+            measured.push((*m, FrameRow { instances, mode, placement, frame, as_work, as_ms, trace_ms, rays }));
+        }
+        measured.sort_by_key(|(m, _)| *m);
+        rows.extend(measured.into_iter().map(|(_, row)| row));
+        progress::report("frames", u64::from(frame + 1), u64::from(config.frames));
+    }
+    Ok(rows)
 }
 
 /// Per instance count and mode: medians of the AS work by kind, the trace time at the first
@@ -150,23 +174,45 @@ pub fn summarise(rows: &[FrameRow], modes: &[TlasMode]) -> Vec<ModeSummary> {
             let as_of = |work: AsWork| {
                 median(&frames.iter().filter(|r| r.as_work == work).filter_map(|r| r.as_ms).collect::<Vec<_>>())
             };
-            let ratios: Vec<f64> = frames
-                .iter()
-                .zip(&reference)
-                .filter_map(|(r, b)| Some(r.trace_ms? / b.trace_ms.filter(|&ms| ms > 0.0)?))
-                .collect();
+            // Per placement: the median ratio over its frames, and its last frame's ratio.
+            let mut medians = Vec::new();
+            let mut lasts = Vec::new();
+            for p in placements(&frames) {
+                let ratios: Vec<f64> = frames
+                    .iter()
+                    .filter(|r| r.placement == p)
+                    .filter_map(|r| {
+                        let b = reference.iter().find(|b| b.placement == p && b.frame == r.frame)?;
+                        Some(r.trace_ms? / b.trace_ms.filter(|&ms| ms > 0.0)?)
+                    })
+                    .collect();
+                medians.extend(median(&ratios).map(f64::ln));
+                lasts.extend(ratios.last().map(|r| r.ln()));
+            }
+            let (first, last) = (
+                frames.iter().filter(|r| r.placement == 0).min_by_key(|r| r.frame),
+                frames.iter().filter(|r| r.placement == 0).max_by_key(|r| r.frame),
+            );
             out.push(ModeSummary {
                 instances,
                 mode: mode.clone(),
                 build_ms: as_of(AsWork::Build),
                 update_ms: as_of(AsWork::Update),
                 as_ms_per_frame: median(&frames.iter().filter_map(|r| r.as_ms).collect::<Vec<_>>()),
-                trace_ms_first: frames.first().and_then(|r| r.trace_ms),
-                trace_ms_last: frames.last().and_then(|r| r.trace_ms),
-                trace_vs_rebuild_last: (!reference.is_empty()).then(|| ratios.last().copied()).flatten(),
-                trace_vs_rebuild_median: median(&ratios),
+                trace_ms_first: first.and_then(|r| r.trace_ms),
+                trace_ms_last: last.and_then(|r| r.trace_ms),
+                trace_vs_rebuild_last: RatioInterval::of_logs(&lasts),
+                trace_vs_rebuild_median: RatioInterval::of_logs(&medians),
             });
         }
     }
     out
+}
+
+/// The placements `rows` come from, in order.
+fn placements(rows: &[&FrameRow]) -> Vec<u32> {
+    let mut all: Vec<u32> = rows.iter().map(|r| r.placement).collect();
+    all.sort_unstable();
+    all.dedup();
+    all
 }

@@ -4,6 +4,7 @@
 use super::measure::{AnimateReport, FrameRow, ModeSummary};
 use crate::bench::plots::{write_lines, Series};
 use crate::error::{Error, Result};
+use crate::util::interval::RatioInterval;
 use std::fmt::Write;
 use std::path::Path;
 
@@ -11,14 +12,21 @@ fn ms(v: Option<f64>) -> String {
     v.map_or("n/a".into(), |v| format!("{v:.3}"))
 }
 
-fn ratio(v: Option<f64>) -> String {
-    v.map_or("n/a".into(), |v| format!("{v:.3}"))
+/// "1.031 (1.012 to 1.050)": the ratio and its 95% interval over placements.
+fn ratio(v: Option<RatioInterval>) -> String {
+    v.map_or("n/a".into(), |v| {
+        if v.has_interval() {
+            format!("{:.3} ({:.3} to {:.3})", v.ratio, v.low, v.high)
+        } else {
+            format!("{:.3}", v.ratio)
+        }
+    })
 }
 
 /// The summary table, in Markdown.
 pub fn table(report: &AnimateReport) -> String {
     let mut s = String::from(
-        "| instances | TLAS mode | build ms | update ms | AS ms per frame | trace ms, first frame | trace ms, last frame | trace / rebuilt, last frame | trace / rebuilt, median |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
+        "| instances | TLAS mode | build ms | update ms | AS ms per frame | trace ms, first frame | trace ms, last frame | trace / rebuilt, last frame (95% CI) | trace / rebuilt, median (95% CI) |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|\n",
     );
     for m in &report.summaries {
         let _ = writeln!(
@@ -39,8 +47,9 @@ pub fn table(report: &AnimateReport) -> String {
 }
 
 fn summary_csv(summaries: &[ModeSummary]) -> String {
-    let mut s = String::from("instances,mode,build_ms,update_ms,as_ms_per_frame,trace_ms_first,trace_ms_last,trace_vs_rebuild_last,trace_vs_rebuild_median\n");
+    let mut s = String::from("instances,mode,build_ms,update_ms,as_ms_per_frame,trace_ms_first,trace_ms_last,trace_vs_rebuild_last,last_ci_low,last_ci_high,trace_vs_rebuild_median,median_ci_low,median_ci_high\n");
     let f = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
+    let r = |v: Option<RatioInterval>| v.map_or(",,".into(), |v| format!("{},{},{}", v.ratio, v.low, v.high));
     for m in summaries {
         let _ = writeln!(
             s,
@@ -52,29 +61,29 @@ fn summary_csv(summaries: &[ModeSummary]) -> String {
             f(m.as_ms_per_frame),
             f(m.trace_ms_first),
             f(m.trace_ms_last),
-            f(m.trace_vs_rebuild_last),
-            f(m.trace_vs_rebuild_median)
+            r(m.trace_vs_rebuild_last),
+            r(m.trace_vs_rebuild_median)
         );
     }
     s
 }
 
 fn rows_csv(report: &AnimateReport) -> String {
-    let mut s = String::from("instances,mode,frame,as_work,as_ms,trace_ms,rays\n");
+    let mut s = String::from("instances,mode,placement,frame,as_work,as_ms,trace_ms,rays\n");
     let f = |v: Option<f64>| v.map_or(String::new(), |v| format!("{v}"));
     for r in &report.rows {
         let work =
             serde_json::to_value(r.as_work).ok().and_then(|v| v.as_str().map(str::to_string)).unwrap_or_default();
-        let _ =
-            writeln!(s, "{},{},{},{work},{},{},{}", r.instances, r.mode, r.frame, f(r.as_ms), f(r.trace_ms), r.rays);
+        let (i, p) = (r.instances, r.placement);
+        let _ = writeln!(s, "{i},{},{p},{},{work},{},{},{}", r.mode, r.frame, f(r.as_ms), f(r.trace_ms), r.rays);
     }
     s
 }
 
-/// One series per instance count and mode of `value` against the frame.
+/// One series per instance count and mode of `value` against the frame, of the first placement.
 fn series(report: &AnimateReport, value: impl Fn(&FrameRow) -> Option<f64>) -> Vec<Series> {
     let mut out: Vec<Series> = Vec::new();
-    for r in &report.rows {
+    for r in report.rows.iter().filter(|r| r.placement == 0) {
         let Some(v) = value(r).filter(|v| *v > 0.0) else { continue };
         let label = format!("{} inst, {}", r.instances, r.mode);
         match out.iter_mut().find(|s| s.label == label) {
@@ -111,14 +120,16 @@ fn page(report: &AnimateReport, command: &str) -> String {
          body{{font-family:sans-serif;margin:2em;max-width:1400px}}table{{border-collapse:collapse}}\n\
          td,th{{border:1px solid #ccc;padding:3px 8px;text-align:right}}th{{background:#eee}}img{{width:49%}}</style></head><body>\n\
          <h1>twinray animate-bench</h1>\n<p>Device: <b>{}</b>{threads}. Scene <b>{}</b> at {}x{}, set {}, {} frames per \
-         instance count and TLAS mode; per frame, the TLAS work and the median of {} timed traces (after warm-up \
-         before the first frame), each between timestamp queries.</p>\n<p>Command: <code>{}</code></p>\n<table>\n",
+         instance count and TLAS mode, rendered {} times (placements: each mode's pipeline made afresh, in an order \
+         of its own); per frame, the TLAS work and the median of {} timed traces (after warm-up before the first \
+         frame), each between timestamp queries. Ratios carry their 95% interval over placements.</p>\n<p>Command: <code>{}</code></p>\n<table>\n",
         esc(&report.device),
         esc(&report.scene),
         report.width,
         report.height,
         esc(&report.set),
         report.frames,
+        report.placements,
         report.runs,
         esc(command)
     );

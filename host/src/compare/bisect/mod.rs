@@ -19,7 +19,8 @@ pub use subject::{Gap, ImageSubject, ProbeSubject, Run, Subject, PROBE_T_TOLERAN
 
 use crate::error::Result;
 use crate::shaders::{ShaderSet, Stage, MODULES};
-use crate::util::stats::Spread;
+use crate::util::interval::RatioInterval;
+use crate::util::stats::median;
 use serde::Serialize;
 
 /// Share of an image difference a swap must carry in both directions to explain it.
@@ -28,10 +29,8 @@ pub const IMAGE_EXPLAINED: f64 = 0.9;
 pub const TIME_EXPLAINED: f64 = 0.75;
 /// ...and in each.
 pub const TIME_EXPLAINED_EACH: f64 = 0.5;
-/// A time difference is judged only when each set was timed at least this often...
-pub const MIN_TIMED_RUNS: usize = 3;
-/// ...and counts when it is at least this fraction of A's time and at least the larger
-/// interquartile range of the two.
+/// A time difference counts when its 95% interval over placements excludes 1 and it is at
+/// least this fraction of A's time: a smaller one, though resolved, is left unbisected.
 pub const MIN_TIME_DIFFERENCE: f64 = 0.02;
 
 /// Stages or modules swapped together.
@@ -56,11 +55,12 @@ pub struct Row {
     /// Shares of the image difference, [A to B, B to A]; null where that part is zero.
     pub rmse_share: Option<[f64; 2]>,
     pub mismatch_share: Option<[f64; 2]>,
-    /// Median GPU ms of A-with and B-with, their ratios against A and B, and their shares of
-    /// the time difference (null when it is not judged or not beyond noise).
+    /// Median GPU ms of A-with and B-with, their ratios against A and B (with intervals over
+    /// placements), and their shares of the time difference (null when it is not judged or not
+    /// resolved).
     pub gpu_ms: [Option<f64>; 2],
-    pub ratio_forward: Option<f64>,
-    pub ratio_reverse: Option<f64>,
+    pub ratio_forward: Option<RatioInterval>,
+    pub ratio_reverse: Option<RatioInterval>,
     pub time_share: Option<[f64; 2]>,
     pub explains_image: bool,
     pub explains_time: bool,
@@ -69,7 +69,7 @@ pub struct Row {
 /// Whether there was a difference and what explains it.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Finding {
-    /// "none", "significant", "within noise" or "not judged (...)".
+    /// "none", "significant", "within noise", "under 2%" or "not judged (...)".
     pub difference: String,
     /// The units (stages, pairs "a+b", or modules "stage: module") that explain it.
     pub explained_by: Vec<String>,
@@ -84,10 +84,12 @@ pub struct BisectReport {
     pub set_a: String,
     pub set_b: String,
     pub whole: Gap,
-    pub spread_a: Option<Spread>,
-    pub spread_b: Option<Spread>,
-    /// t(B) / t(A).
-    pub ratio: Option<f64>,
+    /// Median GPU ms of A and B: the median of their placements' medians.
+    pub gpu_ms_a: Option<f64>,
+    pub gpu_ms_b: Option<f64>,
+    /// t(B) / t(A), with its 95% interval over placements, and that in words.
+    pub ratio: Option<RatioInterval>,
+    pub time_verdict: String,
     pub raygen_stack_bytes_a: u64,
     pub raygen_stack_bytes_b: u64,
     /// The subject's modules that are the same code in both sets.
@@ -133,26 +135,24 @@ fn pairs(units: &[Unit]) -> Vec<Unit> {
 /// A and B's figures that every row is measured against.
 struct Base {
     whole: Gap,
-    ms: [Option<Spread>; 2],
+    ms: [Option<f64>; 2],
+    /// B's time over A's.
+    interval: Option<RatioInterval>,
     time_judged: Result<(), String>,
 }
 
 impl Base {
     fn new<T>(subject: &dyn Subject<Data = T>, a: &Run<T>, b: &Run<T>) -> Base {
-        let ms = [Spread::of(&a.gpu_ms), Spread::of(&b.gpu_ms)];
-        let time_judged = match ms {
-            [Some(x), Some(y)] if x.samples >= MIN_TIMED_RUNS && y.samples >= MIN_TIMED_RUNS => {
-                let delta = (y.median - x.median).abs();
-                if delta >= MIN_TIME_DIFFERENCE * x.median && delta >= x.iqr().max(y.iqr()) {
-                    Ok(())
-                } else {
-                    Err("within noise".into())
-                }
-            }
-            [Some(_), Some(_)] => Err(format!("not judged (fewer than {MIN_TIMED_RUNS} timed runs per set)")),
-            _ => Err("not judged (the device cannot time)".into()),
+        let interval = RatioInterval::paired(&b.placement_ms, &a.placement_ms);
+        let time_judged = match interval {
+            None => Err("not judged (the device cannot time)".into()),
+            Some(i) if !i.has_interval() => Err("not judged (one placement: give --placements 2 or more)".into()),
+            Some(i) if !i.resolved() => Err("within noise".into()),
+            Some(i) if (i.ratio - 1.0).abs() < MIN_TIME_DIFFERENCE => Err("under 2%".into()),
+            Some(_) => Ok(()),
         };
-        Base { whole: subject.gap(&a.data, &b.data), ms, time_judged }
+        let ms = [median(&a.placement_ms), median(&b.placement_ms)];
+        Base { whole: subject.gap(&a.data, &b.data), ms, interval, time_judged }
     }
 
     fn row<T>(&self, subject: &dyn Subject<Data = T>, unit: &Unit, sets: [String; 2], runs: [&Run<T>; 4]) -> Row {
@@ -162,8 +162,8 @@ impl Base {
         let rmse_share = share(self.whole.rmse.powi(2), [left_forward.rmse.powi(2), left_reverse.rmse.powi(2)]);
         let mismatch_share =
             share(self.whole.mismatches as f64, [left_forward.mismatches as f64, left_reverse.mismatches as f64]);
-        let gpu_ms = [a_with, b_with].map(|r| Spread::of(&r.gpu_ms).map(|s| s.median));
-        let [ta, tb] = self.ms.map(|s| s.map(|s| s.median));
+        let gpu_ms = [a_with, b_with].map(|r| median(&r.placement_ms));
+        let [ta, tb] = self.ms;
         let time_share = match (self.time_judged.is_ok(), ta, tb, gpu_ms) {
             (true, Some(ta), Some(tb), [Some(fa), Some(fb)]) => Some([(fa - ta) / (tb - ta), (tb - fb) / (tb - ta)]),
             _ => None,
@@ -186,8 +186,8 @@ impl Base {
             rmse_share,
             mismatch_share,
             gpu_ms,
-            ratio_forward: gpu_ms[0].zip(ta).map(|(x, t)| x / t),
-            ratio_reverse: gpu_ms[1].zip(tb).map(|(x, t)| x / t),
+            ratio_forward: RatioInterval::paired(&a_with.placement_ms, &a.placement_ms),
+            ratio_reverse: RatioInterval::paired(&b_with.placement_ms, &b.placement_ms),
             time_share,
             explains_image,
             explains_time,
@@ -248,7 +248,7 @@ pub fn bisect<T>(subject: &mut dyn Subject<Data = T>, a: &ShaderSet, b: &ShaderS
     let image = finding(image_difference(&base.whole), [&stages, &pairs, &drill], |r| r.explains_image);
     let time =
         finding(base.time_judged.clone().map(|()| "significant"), [&stages, &pairs, &drill], |r| r.explains_time);
-    let [spread_a, spread_b] = base.ms;
+    let [gpu_ms_a, gpu_ms_b] = base.ms;
     let mut failures = run_a.written.problems(&format!("A ({a})"), subject.items());
     failures.extend(run_b.written.problems(&format!("B ({b})"), subject.items()));
     Ok(BisectReport {
@@ -258,9 +258,10 @@ pub fn bisect<T>(subject: &mut dyn Subject<Data = T>, a: &ShaderSet, b: &ShaderS
         set_a: a.to_string(),
         set_b: b.to_string(),
         whole: base.whole,
-        spread_a,
-        spread_b,
-        ratio: spread_a.zip(spread_b).filter(|(x, _)| x.median > 0.0).map(|(x, y)| y.median / x.median),
+        gpu_ms_a,
+        gpu_ms_b,
+        ratio: base.interval,
+        time_verdict: base.interval.map_or("the device cannot time".into(), |i| i.verdict("B")),
         raygen_stack_bytes_a: run_a.raygen_stack_bytes,
         raygen_stack_bytes_b: run_b.raygen_stack_bytes,
         same_modules: used.iter().copied().filter(|m| a.same_module(b, m)).collect(),

@@ -1,6 +1,7 @@
 //! The text `twinray bisect` prints.
 
 use super::{BisectReport, Finding, Gap, Row};
+use crate::util::interval::RatioInterval;
 
 fn gap(g: &Gap) -> String {
     format!("rmse {:.3e}, {} over threshold, {} hit mismatches", g.rmse, g.over, g.mismatches)
@@ -10,8 +11,8 @@ fn pct(share: Option<[f64; 2]>) -> String {
     share.map_or("-".into(), |[f, r]| format!("{:.0}% / {:.0}%", 100.0 * f, 100.0 * r))
 }
 
-fn ratio(r: Option<f64>) -> String {
-    r.map_or("-".into(), |r| format!("{r:.3}"))
+fn ratio(r: Option<RatioInterval>) -> String {
+    r.map_or("-".into(), |r| format!("{:.3}", r.ratio))
 }
 
 fn table(title: &str, rows: &[Row]) -> String {
@@ -57,19 +58,19 @@ impl BisectReport {
     /// The table `twinray bisect` prints: A against B, then each swap's shares (A to B / B to
     /// A), and what explains each difference.
     pub fn summary(&self) -> String {
-        let ms = |s: Option<crate::util::stats::Spread>| {
-            s.map_or("n/a".into(), |s| format!("{:.3} ms (IQR {:.3}, {} runs)", s.median, s.iqr(), s.samples))
-        };
+        let ms = |m: Option<f64>| m.map_or("n/a".into(), |m| format!("{m:.3} ms"));
         let mut s = format!(
-            "bisect {} on {}\n  A = {}\n  B = {}\n  A against B: {}\n  GPU A {}, B {}; B/A {}; raygen stack {} / {} bytes\n",
+            "bisect {} on {}\n  A = {}\n  B = {}\n  A against B: {}\n  GPU A {}, B {}; B/A {} over {} placements: {}; raygen stack {} / {} bytes\n",
             self.subject,
             self.device,
             self.set_a,
             self.set_b,
             gap(&self.whole),
-            ms(self.spread_a),
-            ms(self.spread_b),
+            ms(self.gpu_ms_a),
+            ms(self.gpu_ms_b),
             ratio(self.ratio),
+            self.ratio.map_or(0, |r| r.placements),
+            self.time_verdict,
             self.raygen_stack_bytes_a,
             self.raygen_stack_bytes_b,
         );

@@ -5,9 +5,11 @@ use crate::error::Result;
 use crate::probe::case::ProbeCase;
 use crate::probe::run::{count_written, probe, ProbeResult};
 use crate::render::pipeline::plan_modules;
-use crate::render::{render_there_and_back, RenderOptions, RenderOutput, Written};
+use crate::render::placement::orders;
+use crate::render::{render_sets, RenderOptions, RenderOutput, Written};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
+use crate::util::stats::median;
 use crate::vk::context::Context;
 use serde::Serialize;
 use std::sync::Arc;
@@ -36,10 +38,11 @@ impl Gap {
     }
 }
 
-/// What one run of a set gave: its output (compared through [`Subject::gap`]) and GPU times.
+/// What one run of a set gave: its output (compared through [`Subject::gap`]) and GPU times,
+/// the median of each placement (placement p of every set of one `Subject::run` together).
 pub struct Run<T> {
     pub data: T,
-    pub gpu_ms: Vec<f64>,
+    pub placement_ms: Vec<f64>,
     pub raygen_stack_bytes: u64,
     /// What the set left unwritten of its output, or wrote non-finite.
     pub written: Written,
@@ -93,11 +96,11 @@ impl Subject for ImageSubject<'_> {
     }
 
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<RenderOutput>>> {
-        let outputs = render_there_and_back(self.ctx, self.scene, sets, &self.opts)?;
+        let outputs = render_sets(self.ctx, self.scene, sets, &self.opts)?;
         Ok(outputs
             .into_iter()
             .map(|o| Run {
-                gpu_ms: o.gpu_ms.clone(),
+                placement_ms: o.placements.median_ms.clone(),
                 raygen_stack_bytes: o.raygen_stack_bytes,
                 written: o.written,
                 data: o,
@@ -118,12 +121,14 @@ impl Subject for ImageSubject<'_> {
     }
 }
 
-/// A probe case's rays, each set probed in turn (not interleaved: a probe is one dispatch).
+/// A probe case's rays, each set probed in turn (not interleaved: a probe is one dispatch),
+/// in each placement's order.
 pub struct ProbeSubject<'a> {
     pub ctx: &'a Arc<Context>,
     pub case: &'a ProbeCase,
     pub warmup: u32,
     pub runs: u32,
+    pub placements: u32,
 }
 
 impl Subject for ProbeSubject<'_> {
@@ -146,12 +151,28 @@ impl Subject for ProbeSubject<'_> {
     }
 
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<Vec<ProbeResult>>>> {
-        sets.iter()
-            .map(|set| {
-                let out = probe(self.ctx, &self.case.scene, set, &self.case.rays, self.warmup, self.runs)?;
-                let written = count_written(&out.results);
-                Ok(Run { data: out.results, gpu_ms: out.gpu_ms, raygen_stack_bytes: out.raygen_stack_bytes, written })
-            })
+        let mut runs: Vec<Option<Run<Vec<ProbeResult>>>> = sets.iter().map(|_| None).collect();
+        for order in orders(sets.len(), self.placements) {
+            for i in order {
+                let out = probe(self.ctx, &self.case.scene, &sets[i], &self.case.rays, self.warmup, self.runs)?;
+                let ms = median(&out.gpu_ms);
+                match &mut runs[i] {
+                    Some(run) => run.placement_ms.extend(ms),
+                    slot => {
+                        let written = count_written(&out.results);
+                        let raygen_stack_bytes = out.raygen_stack_bytes;
+                        *slot = Some(Run {
+                            data: out.results,
+                            placement_ms: ms.into_iter().collect(),
+                            raygen_stack_bytes,
+                            written,
+                        });
+                    }
+                }
+            }
+        }
+        runs.into_iter()
+            .map(|r| r.ok_or_else(|| crate::Error::Unsupported("a probe placement left a set out".into())))
             .collect()
     }
 
