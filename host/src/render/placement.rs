@@ -1,15 +1,37 @@
 //! Placements: each an independent making of every set's pipeline, SBT and descriptors over a
-//! fresh upload of the scene, in an order of its own, then the sets' timed traces interleaved.
+//! fresh upload of the scene, in an order of its own, each giving one median per set.
 //!
-//! On the H100 a set's time moved by up to 5% with where the command put it (issue 26), by
-//! more than its traces vary inside one render. Where the driver places a pipeline's code is
-//! outside twinray's control; what twinray controls is that no set is favoured by its place:
-//! orders come in pairs, a shuffled order and its reverse, so every set's mean position over a
-//! pair is the middle, and each placement gives each set one median. A ratio's uncertainty is
-//! then the spread of those medians' ratios over placements (`util::interval`).
+//! Where the driver puts a pipeline's code moves its trace time. Measured on the H100 (issue
+//! 26, `bench/reports/timing/`): two salted copies of one GLSL set built one after the other
+//! and traced interleaved took 2.33 and 2.26 ms on cylinder at 16 spp, the slower being
+//! whichever was built first, every time, in every process; tracing them in the other order,
+//! or moving their SBTs, changed nothing; making one to three other pipelines first moved
+//! each copy's time (2.18 to 2.33 ms) and which copy was slower. Freed code is reused: a
+//! pipeline built after another was released lands where that one was.
+//!
+//! So within a placement the sets do not share the GPU at once: each is built, warmed up,
+//! timed and released before the next is built, and every set of the placement runs from the
+//! same place. Placements differ in where that is: each pair of placements first makes
+//! `spacers` pipelines that it keeps, moving the code of what follows. Orders come in pairs,
+//! a shuffled order and its reverse, so that a drift of the GPU's clocks over a placement
+//! reaches every set alike. A ratio's uncertainty is the spread of the placements' ratios
+//! (`util::interval`): how much a set's time owes to where its code landed, and to drift.
+//!
+//! A render of several placements first renders one more whose times it drops: on the H100 the
+//! first placement of a process ran 5% slower than the rest (sphere at 16 spp: 2.47 and 2.37
+//! ms against 2.33), and the first after a second of idle GPU (the bench writing images) up to
+//! 3x (7.2 ms), though each set had its 200 ms of warm-up traces: the GPU's clocks take longer
+//! than that to settle.
 
+use super::libraries::Libraries;
+use super::pipeline::ScenePipeline;
+use super::upload::UploadedScene;
+use crate::error::Result;
+use crate::shaders::ShaderSet;
 use crate::util::interval::RatioInterval;
+use crate::vk::context::{Context, PipelineKind};
 use serde::Serialize;
+use std::sync::Arc;
 
 /// Placements `compare` and `bench` time over unless told otherwise: three pairs of orders.
 pub const DEFAULT_PLACEMENTS: u32 = 6;
@@ -35,6 +57,34 @@ pub fn orders(sets: usize, placements: u32) -> Vec<Vec<usize>> {
     }
     out.truncate(placements.max(1) as usize);
     out
+}
+
+/// Spacer pipelines placement `p` makes first: 0, 0, 1, 1, 2, 2, 3, 3, 0, ... (each pair of
+/// orders at one place).
+pub fn spacers(p: usize) -> u32 {
+    ((p / 2) % 4) as u32
+}
+
+/// Pipelines made only to be kept while a placement's sets are built and timed, so that their
+/// code lands further on: salted copies of the built-in GLSL set (`ShaderSet::copy`, numbered
+/// from 1000 so that no timed set shares their code), the same whatever sets are timed, so
+/// that `--a X --b Y` and `--a Y --b X` sample the same places.
+pub(super) struct Spacers {
+    _pipelines: Vec<ScenePipeline>,
+    _libraries: Libraries,
+}
+
+impl Spacers {
+    pub fn new(ctx: &Arc<Context>, scene: &UploadedScene, count: u32) -> Result<Spacers> {
+        let set = ShaderSet::uniform(crate::shaders::Language::Glsl);
+        let libraries = Libraries::default();
+        let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
+        let plan = &scene.data.plan;
+        let pipelines = (0..count)
+            .map(|k| ScenePipeline::new(ctx, &set.copy(1000 + k), plan, plan.render_raygen(), linking))
+            .collect::<Result<Vec<_>>>()?;
+        Ok(Spacers { _pipelines: pipelines, _libraries: libraries })
+    }
 }
 
 /// SplitMix64: a small, well-mixed generator, enough to shuffle orders.

@@ -1,5 +1,5 @@
 //! Rendering a scene with one or more shader sets over one upload of the scene and one output
-//! image, their traces interleaved (see `tracing`), once per placement (see `placement`).
+//! image, once per placement (see `placement`), each set built and timed in turn.
 
 use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE};
 use super::libraries::Libraries;
@@ -31,11 +31,12 @@ pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderO
     Ok(outputs.remove(0))
 }
 
-/// Renders `scene` with each of `sets` over the same acceleration structures and outputs,
-/// timed interleaved (see `tracing`), once per placement (`opts.placements`, see
-/// `placement`): each set's pipeline, SBT and descriptors made afresh in that placement's
-/// order, over a fresh upload. Each set's timed traces are pooled, and each placement's median
-/// kept apart, for the ratio's interval. Images and hit ids are the first placement's.
+/// Renders `scene` with each of `sets` over the same acceleration structures and outputs, once
+/// per placement (`opts.placements`, see `placement`): over a fresh upload, each set's
+/// pipeline, SBT and descriptors made, traced and released in turn, in that placement's
+/// order. Each set's timed traces are pooled, and each placement's median kept apart, for the
+/// ratio's interval. With several placements, a first one is a warm-up whose times are
+/// dropped (see `placement`). Images and hit ids are the first placement's.
 pub fn render_sets(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -60,12 +61,18 @@ pub fn render_made(
 ) -> Result<Vec<RenderOutput>> {
     let mut outputs: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
     let orders = placement::orders(sets.len(), opts.placements);
-    for (p, order) in orders.iter().enumerate() {
+    // With several placements, a first one whose times are dropped (see `placement`).
+    let warm_up = (opts.placements > 1).then(|| orders[0].iter().rev().copied().collect::<Vec<_>>());
+    let total = orders.len() + usize::from(warm_up.is_some());
+    let all = warm_up.iter().map(|o| (None, o)).chain(orders.iter().enumerate().map(|(p, o)| (Some(p), o)));
+    for (done, (timed, order)) in all.enumerate() {
         let ordered: Vec<_> = order.iter().map(|&i| sets[i].clone()).collect();
-        let _doing = activity::doing(format!("placement {} of {}", p + 1, orders.len()));
-        let placed = render_and_release(ctx, scene, &ordered, opts)?;
+        let _doing = activity::doing(format!("placement {} of {total}", done + 1));
+        let placed = render_placement(ctx, scene, &ordered, opts, placement::spacers(timed.unwrap_or(0)))?;
         for (position, (&i, mut out)) in order.iter().zip(placed).enumerate() {
-            if let Some(ms) = median(&out.gpu_ms) {
+            if timed.is_none() {
+                out.gpu_ms.clear();
+            } else if let Some(ms) = median(&out.gpu_ms) {
                 out.placements.median_ms.push(ms);
                 out.placements.position.push(position as u32);
             }
@@ -78,8 +85,8 @@ pub fn render_made(
                 slot => *slot = Some(out),
             }
         }
-        if orders.len() > 1 {
-            progress::report("placements", p as u64 + 1, orders.len() as u64);
+        if total > 1 {
+            progress::report("placements", done as u64 + 1, total as u64);
         }
     }
     // Every object of the render is destroyed by now: catch what the layer said about that too.
@@ -222,28 +229,33 @@ impl SetRender {
     }
 }
 
-fn render_and_release(
+/// One placement: the scene uploaded, `spacers` pipelines made and kept (see
+/// `placement::Spacers`), then each set in turn built, traced alone for its output, warmed up,
+/// timed and released before the next is built, so that every set of the placement has its
+/// code where the driver put the first.
+fn render_placement(
     ctx: &Arc<Context>,
     scene: &Scene,
     sets: &[(ShaderSet, PipelineKind)],
     opts: &RenderOptions,
+    spacers: u32,
 ) -> Result<Vec<RenderOutput>> {
     check_size(opts.width, opts.height).map_err(Error::Input)?;
     check_device_limits(ctx, opts)?;
     let size = (opts.width, opts.height);
     let uploaded = upload_shared(ctx, scene, size)?;
     let outputs = SharedOutputs::new(ctx, opts)?;
-    let renders = SetRender::each(ctx, &uploaded, &outputs, sets, opts)?;
-    let Some(first) = renders.first() else { return Ok(Vec::new()) };
-    for r in &renders {
-        r.trace_output(ctx, &outputs, size)?;
+    let _spacers = placement::Spacers::new(ctx, &uploaded, spacers)?;
+    let mut out = Vec::with_capacity(sets.len());
+    for set in sets {
+        let render = SetRender::each(ctx, &uploaded, &outputs, std::slice::from_ref(set), opts)?.remove(0);
+        render.trace_output(ctx, &outputs, size)?;
+        let trace = render.timed_trace(ctx, size, (opts.warmup, opts.runs))?;
+        let _doing = activity::doing(format!("the timed traces of {}", render.label));
+        tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
+        out.push(render.output(scene, opts, trace.warmup)?);
     }
-    let traces =
-        renders.iter().map(|r| r.timed_trace(ctx, size, (opts.warmup, opts.runs))).collect::<Result<Vec<_>>>()?;
-    let labels: Vec<&str> = renders.iter().map(|r| r.label.as_str()).collect();
-    let _doing = activity::doing(format!("the timed traces of {}", labels.join(" and ")));
-    tracing::submit(ctx, &first.prepared.one_shot, &traces, |_, _| {}, |_, _| {})?;
-    renders.iter().zip(&traces).map(|(r, t)| r.output(scene, opts, t.warmup)).collect()
+    Ok(out)
 }
 
 pub(super) fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {
