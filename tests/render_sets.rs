@@ -1,6 +1,6 @@
 //! Rendering several sets together (`render_sets`, which `compare` and `bench` use): the
-//! sets share the scene and the output image, are timed interleaved and in every build order,
-//! and each must still get its own image, hit ids and timings.
+//! sets share the scene and the output image, are timed in turn over several placements, and
+//! each must still get its own image, hit ids and timings.
 
 use twinray::{render_sets, RenderOptions, Scene};
 use twinray_tests::{set, validated_context};
@@ -17,29 +17,33 @@ fn each_set_gets_what_it_renders_alone() {
     let ctx = validated_context();
     let scene = showcase();
     let sets = [set("rust"), set("glsl"), set("glsl,intersection=rust")];
-    let opts = RenderOptions { width: 48, height: 27, warmup: 1, runs: 3 };
+    let opts = RenderOptions { width: 48, height: 27, warmup: 1, runs: 3, placements: 3 };
     let together = render_sets(&ctx, &scene, &sets, &opts).unwrap();
     assert_eq!(together.len(), sets.len());
     for (s, out) in sets.iter().zip(&together) {
-        let alone = twinray::render(&ctx, &scene, s, &RenderOptions { runs: 1, warmup: 0, ..opts }).unwrap();
+        let alone =
+            twinray::render(&ctx, &scene, s, &RenderOptions { runs: 1, warmup: 0, placements: 1, ..opts }).unwrap();
         // Bit-exact: the same pipeline traced the same rays over the same scene.
         assert_eq!(out.hit_ids, alone.hit_ids, "{s}: hit ids");
         assert_eq!(out.rays, alone.rays, "{s}: ray counts");
         assert!(out.linear == alone.linear, "{s}: image differs from its render alone");
-        // Every rotation of the build order adds `runs` timed traces.
-        assert_eq!(out.gpu_ms.len(), sets.len() * opts.runs as usize, "{s}: timed traces");
+        // Every timed placement adds `runs` timed traces and one median; the warm-up none.
+        assert_eq!(out.gpu_ms.len(), (opts.placements * opts.runs) as usize, "{s}: timed traces");
+        assert_eq!(out.placements.median_ms.len(), opts.placements as usize, "{s}: placements");
+        assert!(out.placements.position.iter().all(|&p| (p as usize) < sets.len()), "{s}");
         assert!(out.gpu_ms.iter().all(|&ms| ms > 0.0), "{s}: {:?}", out.gpu_ms);
         assert!(out.raygen_stack_bytes > 0, "{s}: no raygen stack size");
     }
 }
 
 #[test]
-fn one_timed_trace_is_not_rotated() {
+fn one_placement_has_no_warm_up_placement() {
     let ctx = validated_context();
     let scene = showcase();
-    let opts = RenderOptions { width: 16, height: 16, warmup: 0, runs: 1 };
+    let opts = RenderOptions { width: 16, height: 16, warmup: 0, runs: 1, placements: 1 };
     let outs = render_sets(&ctx, &scene, &[set("rust"), set("glsl")], &opts).unwrap();
-    assert!(outs.iter().all(|o| o.gpu_ms.len() == 1), "{:?}", outs.iter().map(|o| o.gpu_ms.len()).collect::<Vec<_>>());
+    let counts: Vec<_> = outs.iter().map(|o| (o.gpu_ms.len(), o.placements.median_ms.len())).collect();
+    assert!(counts.iter().all(|&c| c == (1, 1)), "{counts:?}");
 }
 
 /// Two identical sets agree bit for bit; a set rendered after them whose ray generation
@@ -58,7 +62,7 @@ fn identical_sets_agree_bit_for_bit_and_an_empty_set_is_judged_on_its_own_pixels
         .expect("glslangValidator (cargo xtask setup installs it)");
     assert!(compiled.status.success(), "{}", String::from_utf8_lossy(&compiled.stdout));
     let sets = [set("glsl"), set("glsl"), set(&format!("glsl,raygen={}", noop.display()))];
-    let opts = RenderOptions { width: 48, height: 27, warmup: 0, runs: 1 };
+    let opts = RenderOptions { width: 48, height: 27, warmup: 0, runs: 1, placements: 1 };
     let outs = render_sets(&ctx, &showcase(), &sets, &opts).unwrap();
     let bits = |i: usize| outs[i].linear.iter().flatten().map(|v| v.to_bits()).collect::<Vec<u32>>();
     assert_eq!(bits(0), bits(1), "identical sets, identical bits");

@@ -23,6 +23,9 @@ fn a_small_bench_writes_every_report_file() {
         "10",
         "--warmup",
         "1",
+        "--placements",
+        "2",
+        "--null",
         "--reference-spp",
         "64",
         "--shadow-spp",
@@ -48,7 +51,7 @@ fn a_small_bench_writes_every_report_file() {
     let json: serde_json::Value =
         serde_json::from_slice(&std::fs::read(report.join("results.json")).unwrap()).expect("results.json parses");
     let rows = json["rows"].as_array().unwrap();
-    assert_eq!(rows.len(), 2 * 2 * 2, "scenes x spp x sets");
+    assert_eq!(rows.len(), 2 * 2 * 3, "scenes x spp x sets (rust, glsl and the null control's copy of rust)");
     for row in rows {
         for key in ["image", "error_map"] {
             // --images last: only the 4-spp renders are kept.
@@ -60,8 +63,9 @@ fn a_small_bench_writes_every_report_file() {
             assert_eq!(image::open(&png).expect("a readable PNG").width(), 48, "{}", png.display());
         }
         assert!(row["rmse"].as_f64().unwrap() > 0.0 && row["flip"].as_f64().unwrap() > 0.0, "{row}");
-        // 10 timed traces in each of the two build orders of the two sets.
+        // 10 timed traces in each of the two timed placements (the warm-up placement's dropped).
         assert_eq!(row["gpu_ms"]["samples"], 20);
+        assert_eq!(row["placements"]["median_ms"].as_array().unwrap().len(), 2, "{row}");
         assert!(row["raygen_stack_bytes"].as_u64().unwrap() > 0, "{row}");
         assert!(row["mrays_per_s"].as_f64().unwrap() > 0.0);
     }
@@ -69,6 +73,23 @@ fn a_small_bench_writes_every_report_file() {
     assert!(rows.iter().filter(|r| r["set"] == "glsl").all(|r| r["hit_mismatches"] == 0));
     let csv = std::fs::read_to_string(report.join("results.csv")).unwrap();
     assert_eq!(csv.lines().count(), 1 + rows.len());
+    // Every pair of the three sets per scene and sample count, each with its interval; the
+    // null control is rust against its copy.
+    let ratios = json["ratios"].as_array().unwrap();
+    assert_eq!(ratios.len(), 2 * 2 * 3, "scenes x spp x pairs");
+    let null: Vec<_> = ratios.iter().filter(|r| r["null_control"] == true).collect();
+    assert_eq!(null.len(), 4, "{ratios:?}");
+    assert!(null.iter().all(|r| r["a"] == "rust" && r["b"] == "rust (copy 1)"), "{null:?}");
+    for r in ratios {
+        let i = &r["interval"];
+        let (low, ratio, high) =
+            (i["low"].as_f64().unwrap(), i["ratio"].as_f64().unwrap(), i["high"].as_f64().unwrap());
+        assert!(low <= ratio && ratio <= high && i["placements"] == 2, "{r}");
+        assert!(r["verdict"].as_str().unwrap().contains("95% CI"), "{r}");
+    }
+    let ratio_csv = std::fs::read_to_string(report.join("ratios.csv")).unwrap();
+    assert_eq!(ratio_csv.lines().next().unwrap(), twinray::bench::tables::RATIO_CSV_HEADER);
+    assert_eq!(ratio_csv.lines().count(), 1 + ratios.len());
     assert_eq!(csv.lines().next().unwrap(), twinray::bench::tables::CSV_HEADER);
     // The sampler study of the soft-shadow scene (lights): two samplers at two counts.
     assert_eq!(json["samplers"].as_array().unwrap().len(), 4);

@@ -10,7 +10,8 @@ use std::process::Command;
 
 fn bisect(args: &[&str], dir: &Path) -> (Value, i32) {
     let base = ["--validate", "bisect"];
-    let out = twinray(&[&base[..], args, &["--runs", "1", "--warmup", "1", "--json"]].concat(), dir);
+    let out =
+        twinray(&[&base[..], args, &["--runs", "1", "--warmup", "1", "--placements", "1", "--json"]].concat(), dir);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let json = serde_json::from_str(&stdout)
         .unwrap_or_else(|e| panic!("{e}: {stdout}{}", String::from_utf8_lossy(&out.stderr)));
@@ -56,7 +57,7 @@ fn the_naive_sphere_formula_is_pinned_on_the_intersection_stage() {
     let stages = json["stages"].as_array().unwrap();
     assert_eq!(stages.len(), 1, "only the intersection stage differs: {json}");
     assert_eq!(stages[0]["rmse_share"], serde_json::json!([1.0, 1.0]), "the swap is the whole difference");
-    assert_eq!(json["time"]["difference"], "not judged (fewer than 3 timed runs per set)");
+    assert_eq!(json["time"]["difference"], "not judged (one placement: give --placements 2 or more)");
     assert!(json["same_modules"].as_array().unwrap().iter().any(|m| m == "raygen"));
 }
 
@@ -74,14 +75,29 @@ fn a_difference_only_in_the_miss_stage_is_pinned_on_miss() {
     assert_eq!(json["stages"].as_array().unwrap().len(), 1);
     assert!(json["modules"].as_array().unwrap().is_empty(), "one module differs: nothing to refine");
     let text = twinray(
-        &["bisect", "spheres", "--width", "64", "--height", "48", "--a", "glsl", "--b", &b, "--runs", "3"],
+        &[
+            "bisect",
+            "spheres",
+            "--width",
+            "64",
+            "--height",
+            "48",
+            "--a",
+            "glsl",
+            "--b",
+            &b,
+            "--runs",
+            "3",
+            "--placements",
+            "2",
+        ],
         dir.path(),
     );
     let stdout = String::from_utf8_lossy(&text.stdout);
     // (Whether lavapipe's times differ beyond noise here is up to the machine: not asserted.)
     assert!(stdout.contains("image: explained by miss\n"), "{stdout}");
-    // Built and timed in one order and then in reverse: 3 timed traces in each.
-    assert!(stdout.contains(", 6 runs)"), "{stdout}");
+    // Two placements, one order and its reverse: the ratio's interval is over them.
+    assert!(stdout.contains(" over 2 placements: "), "{stdout}");
 }
 
 /// The new stage kinds are set members like the others: a user's any-hit stage that fills the

@@ -69,7 +69,20 @@ fn no_pipeline_cache_reads_and_writes_nothing() {
 #[test]
 fn pipeline_bench_writes_a_row_per_configuration() {
     let work = tempfile::tempdir().unwrap();
-    let trace = ["--trace-scenes", "sphere", "--width", "48", "--height", "32", "--runs", "3", "--warmup", "0"];
+    let trace = [
+        "--trace-scenes",
+        "sphere",
+        "--width",
+        "48",
+        "--height",
+        "32",
+        "--runs",
+        "3",
+        "--warmup",
+        "0",
+        "--placements",
+        "2",
+    ];
     let args = ["pipeline-bench", "sphere", "--repeats", "1", "--thread-counts", "1", "--out", "pb"];
     let out = twinray(&[&args[..], &trace[..]].concat(), work.path());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -81,13 +94,14 @@ fn pipeline_bench_writes_a_row_per_configuration() {
     assert!(rows.iter().all(|r| r["ms"].as_f64().is_some_and(|ms| ms > 0.0)));
     let linked_mixes = rows.iter().find(|r| r["pipelines"] == "libraries" && r["sets"] == 16).unwrap();
     assert!(linked_mixes["libraries"].as_u64().is_some_and(|n| n > 0 && n < 16 * 4), "{linked_mixes}");
-    // Rust and GLSL, whole against linked, each timed in both build orders.
+    // Rust and GLSL, whole against linked, each timed in two placements.
     let linking = results["linking"].as_array().unwrap();
     assert_eq!(linking.len(), 2);
     for row in linking {
         assert_eq!(row["identical"], true, "{row}");
-        assert_eq!(row["whole"]["samples"], 6, "3 runs in each of 2 orders: {row}");
-        assert!(row["ratio"].as_f64().is_some_and(|r| r > 0.0), "{row}");
+        assert_eq!(row["whole"]["samples"], 6, "3 runs in each of 2 placements: {row}");
+        assert!(row["ratio"]["ratio"].as_f64().is_some_and(|r| r > 0.0), "{row}");
+        assert_eq!(row["ratio"]["placements"], 2, "{row}");
     }
     let table = std::fs::read_to_string(work.path().join("pb/table.md")).unwrap();
     assert!(table.contains("| Libraries |") && table.contains("| sphere | 48x32 | rust |"), "{table}");

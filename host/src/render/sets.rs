@@ -67,7 +67,7 @@ pub fn render_made(
     let all = warm_up.iter().map(|o| (None, o)).chain(orders.iter().enumerate().map(|(p, o)| (Some(p), o)));
     for (done, (timed, order)) in all.enumerate() {
         let ordered: Vec<_> = order.iter().map(|&i| sets[i].clone()).collect();
-        let _doing = activity::doing(format!("placement {} of {total}", done + 1));
+        let _doing = (total > 1).then(|| activity::doing(format!("placement {} of {total}", done + 1)));
         let placed = render_placement(ctx, scene, &ordered, opts, placement::spacers(timed.unwrap_or(0)))?;
         for (position, (&i, mut out)) in order.iter().zip(placed).enumerate() {
             if timed.is_none() {

@@ -1,0 +1,69 @@
+//! GPU-time ratios and their intervals over placements, on lavapipe: a set against a salted copy
+//! of itself (the null control) is not resolved; a ray generation stage that does the work
+//! twice is resolved as slower, its interval excluding 1.
+
+use twinray::compare::compare_sets;
+use twinray::{RenderOptions, Scene, ShaderSet};
+use twinray_tests::{set, validated_context};
+
+fn sphere() -> Scene {
+    Scene::load(Some("sphere")).unwrap_or_else(|e| panic!("sphere: {e}"))
+}
+
+fn opts() -> RenderOptions {
+    RenderOptions { width: 96, height: 72, warmup: 1, runs: 5, placements: 6 }
+}
+
+/// A 95% interval misses a true ratio of 1 in one run out of 20, by design: a second run is
+/// allowed, so that the test fails by chance about once in 400 runs, not once in 20.
+#[test]
+fn a_set_against_its_salted_copy_is_not_resolved() {
+    let ctx = validated_context();
+    let glsl = set("glsl");
+    let mut verdicts = Vec::new();
+    for _ in 0..2 {
+        let c = compare_sets(&ctx, &sphere(), &glsl, &glsl, &opts()).unwrap();
+        let r = &c.report;
+        assert!(r.null_control && r.set_b == "glsl (copy 1)", "{} / {}", r.set_a, r.set_b);
+        assert!(r.pass, "a copy renders what the set renders: {:?}", r.failures);
+        let timing = r.timing.clone().expect("lavapipe times");
+        assert_eq!(timing.interval.placements, 6, "one median per timed placement, the warm-up dropped");
+        assert_eq!(r.placements_a.median_ms.len(), 6);
+        if !timing.interval.resolved() {
+            assert!(timing.verdict.starts_with("no difference resolved (95% CI"), "{}", timing.verdict);
+            return;
+        }
+        verdicts.push(timing.verdict);
+    }
+    panic!("identical code resolved as different twice: {verdicts:?}");
+}
+
+#[test]
+fn twice_the_work_is_resolved_as_slower() {
+    let ctx = validated_context();
+    let dir = tempfile::tempdir().unwrap();
+    let twice = dir.path().join("raygen-twice.spv");
+    let compiled = std::process::Command::new("glslangValidator")
+        .args(["-V", "--target-env", "spirv1.4"])
+        .arg(format!("-I{}", twinray_tests::repo_root().join("shaders-glsl").display()))
+        .arg("-o")
+        .arg(&twice)
+        .arg(twinray_tests::repo_root().join("tests/timing/raygen-twice.rgen"))
+        .output()
+        .expect("glslangValidator (cargo xtask setup installs it)");
+    assert!(compiled.status.success(), "{}", String::from_utf8_lossy(&compiled.stdout));
+    let heavy: ShaderSet = format!("glsl,raygen={}", twice.display()).parse().unwrap();
+    let c = compare_sets(&ctx, &sphere(), &set("glsl"), &heavy, &opts()).unwrap();
+    let r = &c.report;
+    assert!(r.pass && !r.null_control, "the same image, not a copy: {:?}", r.failures);
+    let timing = r.timing.clone().expect("lavapipe times");
+    let i = timing.interval;
+    // Twice the rays take about twice the time; the interval must leave 1 well behind.
+    assert!(i.high < 0.8 && i.ratio > 0.35, "{i:?}");
+    assert!(timing.verdict.starts_with("a faster by"), "{}", timing.verdict);
+    // Each set was timed at both ends of the order, as often.
+    for p in [&r.placements_a, &r.placements_b] {
+        let first = p.position.iter().filter(|&&x| x == 0).count();
+        assert_eq!(first, 3, "{:?}", p.position);
+    }
+}
