@@ -134,7 +134,7 @@ fn render_writes_png_and_json() {
 fn compare_prints_json_with_the_documented_keys() {
     let dir = tempfile::tempdir().unwrap();
     let args = ["--validate", "compare", "--width", "96", "--height", "96", "--runs", "2", "--warmup", "1"];
-    let out = twinray(&[&args[..], &["--out-dir", "cmp", "--json"]].concat(), dir.path());
+    let out = twinray(&[&args[..], &["--placements", "3", "--out-dir", "cmp", "--json"]].concat(), dir.path());
     let stdout = String::from_utf8_lossy(&out.stdout);
     let json: serde_json::Value = serde_json::from_str(&stdout).expect("compare --json prints JSON");
     let keys = [
@@ -156,11 +156,24 @@ fn compare_prints_json_with_the_documented_keys() {
         "mrays_per_s_a",
         "mrays_per_s_b",
         "cpu_threads",
+        "timing",
+        "placements_a",
+        "placements_b",
+        "null_control",
         "pass",
     ];
     for key in keys {
         assert!(json.get(key).is_some(), "missing {key} in {stdout}");
     }
+    // The ratio with its interval over the three timed placements, and the verdict in words.
+    let timing = &json["timing"];
+    for key in ["ratio", "low", "high", "log_sd", "verdict"] {
+        assert!(timing.get(key).is_some(), "missing timing.{key} in {stdout}");
+    }
+    assert_eq!(timing["placements"], 3);
+    assert_eq!(json["placements_a"]["median_ms"].as_array().unwrap().len(), 3);
+    assert!(timing["verdict"].as_str().unwrap().contains("95% CI"), "{timing}");
+    assert_eq!(json["null_control"], false);
     assert_eq!(out.status.success(), json["pass"] == true, "exit code must follow pass");
     for name in ["a.png", "b.png", "diff.png"] {
         assert!(dir.path().join("cmp").join(name).is_file(), "{name} not written");

@@ -131,7 +131,9 @@ fn demo(animated: bool) -> Result<()> {
     let dir = out.to_string_lossy();
     let twinray = ["run", "--release", "--quiet", "-p", "twinray", "--"];
     if !animated {
-        return cargo(&[&twinray[..], &["compare", "--out-dir", &dir]].concat(), &[]);
+        // Four placements of 5 traces: an interval in about half a minute on lavapipe.
+        let compare = ["compare", "--runs", "5", "--placements", "4", "--out-dir", &dir];
+        return cargo(&[&twinray[..], &compare[..]].concat(), &[]);
     }
     // Half the scene's size: lavapipe renders the 48 frames in about a minute.
     std::fs::create_dir_all(&out).with_context(|| format!("creating {dir}"))?;

@@ -13,7 +13,7 @@ const HEADER_WORDS: usize = 5;
 /// `spirv` with `OpModuleProcessed "twinray copy {copy}"` at the end of its debug section;
 /// `None` when it is not whole SPIR-V words with a header and whole instructions.
 pub fn salted(spirv: &[u8], copy: u32) -> Option<Vec<u8>> {
-    if spirv.len() % 4 != 0 {
+    if !spirv.len().is_multiple_of(4) {
         return None;
     }
     let words: Vec<u32> = spirv.chunks_exact(4).map(|w| u32::from_le_bytes([w[0], w[1], w[2], w[3]])).collect();
