@@ -262,9 +262,9 @@ macro_rules! procedural_intersection {
         ) {
             // Not bounds-checked, as GLSL's twin is not: the index is the instance's custom index
             // (its object's first primitive) plus the AABB's index in its BLAS, both made by the
-            // host from one primitive list. On the H100 the check alone, even one that returns
-            // rather than panics, cost 3% on `showcase` at 16 spp (bench/reports/rust-raygen,
-            // run 14).
+            // host from one primitive list. Timed over placements on the H100, the check costs
+            // 0.4% on `cylinder` at 16 spp, nothing resolved elsewhere (the 3% once measured on
+            // `showcase` was where the driver put the code: bench/reports/rust-raygen, 0).
             // SAFETY: see above; every AABB of a BLAS has its primitive at that index.
             let p = unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
             if let Some(hit) = $intersect(origin, direction, &p, t_min, t_max) {
