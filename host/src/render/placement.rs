@@ -32,6 +32,7 @@ use crate::util::interval::RatioInterval;
 use crate::vk::context::{Context, PipelineKind};
 use serde::Serialize;
 use std::sync::Arc;
+use twinray_shared::random::SplitMix64;
 
 /// Placements `compare` and `bench` time over unless told otherwise: three pairs of orders.
 pub const DEFAULT_PLACEMENTS: u32 = 6;
@@ -43,7 +44,7 @@ const SEED: u64 = 0x7417_2a79_5eed_0026;
 /// The order of each placement of `sets` sets: pairs of a shuffled order and its reverse (the
 /// last one alone when `placements` is odd).
 pub fn orders(sets: usize, placements: u32) -> Vec<Vec<usize>> {
-    let mut rng = SplitMix(SEED);
+    let mut rng = SplitMix64(SEED);
     let mut out = Vec::with_capacity(placements as usize);
     while out.len() < placements.max(1) as usize {
         let mut order: Vec<usize> = (0..sets).collect();
@@ -84,19 +85,6 @@ impl Spacers {
             .map(|k| ScenePipeline::new(ctx, &set.copy(1000 + k), plan, plan.render_raygen(), linking))
             .collect::<Result<Vec<_>>>()?;
         Ok(Spacers { _pipelines: pipelines, _libraries: libraries })
-    }
-}
-
-/// SplitMix64: a small, well-mixed generator, enough to shuffle orders.
-struct SplitMix(u64);
-
-impl SplitMix {
-    fn next(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-        z ^ (z >> 31)
     }
 }
 

@@ -15,6 +15,27 @@ pub fn random(seed: u32, pixel: u32, sample: u32, dimension: u32) -> f32 {
     (h >> 8) as f32 * (1.0 / 16_777_216.0)
 }
 
+/// SplitMix64 (Steele, Lea, Flood 2014), on the host: small, fast, fully specified. It places
+/// the spheres of a sphere field and shuffles the orders of timing placements.
+#[cfg(not(target_arch = "spirv"))]
+pub struct SplitMix64(pub u64);
+
+#[cfg(not(target_arch = "spirv"))]
+impl SplitMix64 {
+    pub fn next(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in [0, 1) with 24 random bits: exact in f32.
+    pub fn unit(&mut self) -> f32 {
+        (self.next() >> 40) as f32 / (1u64 << 24) as f32
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

@@ -117,6 +117,7 @@ pub const SHAPE: super::spec::ShapeSpec = super::spec::ShapeSpec {
 mod scene {
     use super::super::spec::{no_check, one, Aabb, Param, ParamType, Rule, ShapeKind, Values, MAX_PRIMITIVES};
     use crate::layout::Primitive;
+    use crate::random::SplitMix64;
     use glam::{Vec3, Vec4};
 
     pub const SPHERE: ShapeKind = ShapeKind {
@@ -179,24 +180,6 @@ mod scene {
                 sphere(center, radius, tint)
             })
             .collect()
-    }
-
-    /// SplitMix64 (Steele, Lea, Flood 2014): small, fast, and fully specified.
-    struct SplitMix64(u64);
-
-    impl SplitMix64 {
-        fn next(&mut self) -> u64 {
-            self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
-            let mut z = self.0;
-            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
-            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
-            z ^ (z >> 31)
-        }
-
-        /// Uniform in [0, 1) with 24 random bits: exact in f32.
-        fn unit(&mut self) -> f32 {
-            (self.next() >> 40) as f32 / (1u64 << 24) as f32
-        }
     }
 }
 
