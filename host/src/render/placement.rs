@@ -50,7 +50,7 @@ pub fn orders(sets: usize, placements: u32) -> Vec<Vec<usize>> {
         let mut order: Vec<usize> = (0..sets).collect();
         // Fisher-Yates.
         for i in (1..sets).rev() {
-            order.swap(i, (rng.next() % (i as u64 + 1)) as usize);
+            order.swap(i, (rng.next_u64() % (i as u64 + 1)) as usize);
         }
         out.push(order.clone());
         order.reverse();
