@@ -200,7 +200,7 @@ fn probes_through_holes_keep_their_normals() {
     let ctx = validated_context();
     for set_text in ["rust", "glsl", "glsl,any_hit=rust"] {
         let out = twinray::probe::probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-        let r = twinray::probe::report::evaluate(&case, &out.results, set_text, "test", None);
+        let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
         eprintln!("{}", r.summary());
         assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{set_text}");
         assert!(r.decided > 8000, "{set_text}: {} decided", r.decided);

@@ -22,7 +22,7 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
         Some(formula) => format!("{} ({formula})", args.shaders),
         None => args.shaders.to_string(),
     };
-    let report = twinray::probe::report::evaluate(&case, &out.results, &label, &ctx.info.name, median);
+    let report = twinray::probe::report::evaluate(&case, out.records(), &label, &ctx.info.name, median);
     if let Some(path) = &args.rays_out {
         let mut csv = Vec::new();
         twinray::probe::report::write_rays_csv(&mut csv, &case, &[(&label, &out.results)])?;

@@ -7,6 +7,7 @@ pub mod generate;
 mod generate_tests;
 pub mod report;
 pub mod run;
+pub mod split;
 pub mod stability;
 
 pub use run::{probe, ProbeOutput, ProbeRay, ProbeResult};

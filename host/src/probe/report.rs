@@ -4,30 +4,13 @@
 use super::case::Generated;
 use super::case::ProbeCase;
 use super::run::{count_written, record_written};
+use super::split::{relative, split, AgreedHit, TErrorSplit};
 use crate::reference::scene::SceneVerdict;
 use crate::render::Written;
+use crate::util::stats::Quantiles;
 use serde::Serialize;
 use twinray_shared::bindings::NO_HIT;
 use twinray_shared::layout::{ProbeRay, ProbeResult};
-
-/// Median, 99th percentile and maximum.
-#[derive(Clone, Copy, Debug, Default, Serialize)]
-pub struct Spread {
-    pub median: f64,
-    pub p99: f64,
-    pub max: f64,
-}
-
-impl Spread {
-    fn of(mut values: Vec<f64>) -> Spread {
-        if values.is_empty() {
-            return Spread::default();
-        }
-        values.sort_by(f64::total_cmp);
-        let at = |q: f64| values[((values.len() - 1) as f64 * q).round() as usize];
-        Spread { median: at(0.5), p99: at(0.99), max: at(1.0) }
-    }
-}
 
 /// The accuracy of one probe run against the reference; serialised as `probe --json` prints it.
 #[derive(Clone, Debug, Serialize)]
@@ -45,11 +28,15 @@ pub struct ProbeReport {
     /// Both hit, but different objects.
     pub wrong_object: usize,
     /// |t - t_ref| / t_ref over rays both hit.
-    pub relative_t_error: Spread,
+    pub relative_t_error: Quantiles,
     /// |t - t_ref| in f32 ULPs of t_ref, 99th percentile.
     pub ulp_error_p99: f64,
     /// Angle between the normals, radians, 99th percentile.
     pub normal_angle_error_p99: f64,
+    /// The relative t error split into the stages' own and the driver's transform's, over the
+    /// hits the reference agrees with; none without a witness pass (the compute renderer's
+    /// probe has none, nor a set from a folder without the `probe_witness` module).
+    pub t_error_by_source: Option<TErrorSplit>,
     /// Median GPU milliseconds of tracing every ray once, and per million rays.
     pub gpu_ms: Option<f64>,
     pub gpu_ms_per_million_rays: Option<f64>,
@@ -128,10 +115,11 @@ pub fn judge(case: &ProbeCase, results: &[ProbeResult]) -> Vec<Judged> {
         .collect()
 }
 
-/// Judges each result against the reference of its ray.
+/// Judges each result against the reference of its ray; with the records of the witness pass,
+/// splits the t error by source.
 pub fn evaluate(
     case: &ProbeCase,
-    results: &[ProbeResult],
+    (results, witness): (&[ProbeResult], Option<&[ProbeResult]>),
     set: &str,
     device: &str,
     gpu_ms: Option<f64>,
@@ -146,9 +134,10 @@ pub fn evaluate(
         false_hits: 0,
         false_misses: 0,
         wrong_object: 0,
-        relative_t_error: Spread::default(),
+        relative_t_error: Quantiles::default(),
         ulp_error_p99: 0.0,
         normal_angle_error_p99: 0.0,
+        t_error_by_source: None,
         gpu_ms,
         gpu_ms_per_million_rays: gpu_ms.map(|ms| ms * 1e6 / case.rays.len().max(1) as f64),
         generators: case.generated.clone(),
@@ -159,7 +148,8 @@ pub fn evaluate(
     report.failures = report.written.problems(set, "rays");
     report.pass = report.failures.is_empty();
     let (mut rel, mut ulps, mut angles) = (Vec::new(), Vec::new(), Vec::new());
-    for (judged, result) in judge(case, results).iter().zip(results) {
+    let judged = judge(case, results);
+    for (judged, result) in judged.iter().zip(results) {
         match judged.outcome {
             Outcome::Ambiguous => report.ambiguous += 1,
             Outcome::FalseHit => report.false_hits += 1,
@@ -169,7 +159,7 @@ pub fn evaluate(
             Outcome::Agrees => {
                 if let SceneVerdict::Hit { t, normal, .. } = judged.verdict {
                     let got_t = f64::from(result.normal_t.w);
-                    rel.push((got_t - t).abs() / t.abs().max(1e-30));
+                    rel.push(relative(got_t, t));
                     ulps.push((got_t - t).abs() / ulp(t as f32));
                     let n = result.normal_t.truncate().normalize().as_dvec3();
                     angles.push(n.dot(normal).clamp(-1.0, 1.0).acos());
@@ -184,9 +174,16 @@ pub fn evaluate(
         };
         generated.hit = Some(hits(judged, results));
     }
-    report.relative_t_error = Spread::of(rel);
-    report.ulp_error_p99 = Spread::of(ulps).p99;
-    report.normal_angle_error_p99 = Spread::of(angles).p99;
+    report.t_error_by_source = witness.map(|witness| {
+        let hits = judged.iter().zip(results).zip(witness).filter_map(|((judged, result), witness)| {
+            let SceneVerdict::Hit { t, .. } = judged.verdict else { return None };
+            (judged.outcome == Outcome::Agrees).then_some(AgreedHit { ray: &judged.ray, t_ref: t, result, witness })
+        });
+        split(&case.reference, hits)
+    });
+    report.relative_t_error = Quantiles::of(rel);
+    report.ulp_error_p99 = Quantiles::of(ulps).p99;
+    report.normal_angle_error_p99 = Quantiles::of(angles).p99;
     report
 }
 
@@ -258,7 +255,10 @@ impl ProbeReport {
             "case {} with {} on {}: {} rays, {} decided, {} ambiguous\n  false hits {}, false misses {}, wrong object {}\n  relative t error: median {:.2e}, p99 {:.2e}, max {:.2e}; ULP error p99 {:.1}\n  normal angle error p99 {:.2e} rad\n  {ms}\n",
             self.case, self.set, self.device, self.rays, self.decided, self.ambiguous, self.false_hits,
             self.false_misses, self.wrong_object, t.median, t.p99, t.max, self.ulp_error_p99, self.normal_angle_error_p99
-        ) + &if self.generators.is_empty() { String::new() } else { format!("  generators: {}\n", self.generators_made()) }
+        ) + &match &self.t_error_by_source {
+            Some(split) => format!("  {}\n", split.summary()),
+            None => "  relative t error by source: n/a (no witness pass: the compute renderer's probe, or a folder set without probe_witness)\n".into(),
+        } + &if self.generators.is_empty() { String::new() } else { format!("  generators: {}\n", self.generators_made()) }
     }
 
     /// Per generator, the rays it made and how many of them the set hit.

@@ -4,7 +4,9 @@
 //! compute renderer is probed by `probe_query`, which traces as it does.
 
 use crate::error::{Error, Result};
-use crate::render::{prepare, sentinel, storage_buffer, submit, transition, Written, STORAGE_IMAGE, UNUSED_IMAGE};
+use crate::render::{
+    prepare, sentinel, storage_buffer, submit, transition, Prepared, Trace, Written, STORAGE_IMAGE, UNUSED_IMAGE,
+};
 use crate::scene::{Renderer, Scene, PROBE_QUERY};
 use crate::shaders::ShaderSet;
 use crate::util::activity;
@@ -22,10 +24,20 @@ pub use twinray_shared::layout::{ProbeRay, ProbeResult};
 pub struct ProbeOutput {
     /// One per ray, in order.
     pub results: Vec<ProbeResult>,
+    /// One per ray, in order, from the witness pass (see [`super::split::witness`]); none for a scene
+    /// without hit groups, or one the compute renderer renders.
+    pub witness: Option<Vec<ProbeResult>>,
     /// GPU milliseconds of each timed trace of all the rays.
     pub gpu_ms: Vec<f64>,
     /// Stack bytes the probe ray generation stage needs, as the driver reports it.
     pub raygen_stack_bytes: u64,
+}
+
+impl ProbeOutput {
+    /// The probe's records and the witness pass's, as `report::evaluate` takes them.
+    pub fn records(&self) -> (&[ProbeResult], Option<&[ProbeResult]>) {
+        (&self.results, self.witness.as_deref())
+    }
 }
 
 /// Whether the probe stage wrote this record: no word of it still holds the sentinel.
@@ -95,16 +107,30 @@ fn probe_and_release(
         [(b::BINDING_HIT_IDS, &unused), (b::BINDING_PROBE_RAYS, &ray_buffer), (b::BINDING_PROBE_RESULTS, &results)];
     let p = prepare(ctx, scene, set, module, ((1, 1), (1, 1)), &extra)?;
     let timestamps = Timestamps::new(ctx, runs)?;
-    let readback =
-        Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
     let label = format!("the probe trace of {set} ({})", p.pipeline.modules.join(", "));
     let _doing = activity::doing(label);
+    // The witness pass first, untimed, so that the timed traces are the probe's as before.
+    let witness = match &p.witness_sbt {
+        Some(sbt) => {
+            let pass = Trace { sbt: Some(sbt), ..p.trace(ctx, None, (count, 1), (0, 1))? };
+            Some(read_pass(ctx, &p, pass, &results, bytes)?)
+        }
+        None => None,
+    };
     let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
-    // Every trace writes the same records: poisoned once before the first, what the stage
-    // never writes still holds the sentinel after the last.
+    let results = read_pass(ctx, &p, trace, &results, bytes)?;
+    let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
+    Ok(ProbeOutput { results, witness, gpu_ms, raygen_stack_bytes: p.pipeline.raygen_stack_bytes() })
+}
+
+/// Runs `trace` over `results`, poisoned first, and reads back the records it wrote: every
+/// trace writes the same records, so what the stage never writes still holds the sentinel.
+fn read_pass(ctx: &Arc<Context>, p: &Prepared, trace: Trace, results: &Buffer, bytes: u64) -> Result<Vec<ProbeResult>> {
+    let readback =
+        Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
     let before = |device: &ash::Device, cmd| {
         transition(device, cmd, p.image.raw, UNUSED_IMAGE, STORAGE_IMAGE);
-        sentinel::poison_buffers(device, cmd, &[&results]);
+        sentinel::poison_buffers(device, cmd, &[results]);
     };
     submit(ctx, &p.one_shot, &[trace], before, |device, cmd| {
         let written = (TRACING_STAGES, vk::AccessFlags::SHADER_WRITE);
@@ -115,7 +141,5 @@ fn probe_and_release(
         let copied = (vk::PipelineStageFlags::TRANSFER, vk::AccessFlags::TRANSFER_WRITE);
         memory_barrier(device, cmd, copied, (vk::PipelineStageFlags::HOST, vk::AccessFlags::HOST_READ));
     })?;
-    let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
-    let results = bytemuck::pod_collect_to_vec(&readback.mapped()?[..bytes as usize]);
-    Ok(ProbeOutput { results, gpu_ms, raygen_stack_bytes: p.pipeline.raygen_stack_bytes() })
+    Ok(bytemuck::pod_collect_to_vec(&readback.mapped()?[..bytes as usize]))
 }

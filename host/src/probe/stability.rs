@@ -5,7 +5,7 @@
 use super::case::ProbeCase;
 use super::generate::Generator;
 use super::report::{evaluate, ProbeReport};
-use super::run::probe;
+use super::run::{probe, ProbeOutput};
 use crate::error::{Error, Result};
 use crate::scene::shape::Formula;
 use crate::shaders::ShaderSet;
@@ -69,8 +69,8 @@ pub fn run(
         for &formula in formulas.iter().filter(|&&f| f == Formula::Robust || has_naive) {
             case.set_formula(formula);
             for set in sets {
-                let (results, gpu_ms) = measure(ctx, &case, set, timing)?;
-                let report = evaluate(&case, &results, &set.to_string(), &ctx.info.name, gpu_ms);
+                let (out, gpu_ms) = measure(ctx, &case, set, timing)?;
+                let report = evaluate(&case, out.records(), &set.to_string(), &ctx.info.name, gpu_ms);
                 // A set that leaves records unwritten fails with either formula.
                 let mut failures = report.failures.clone();
                 if formula == Formula::Robust {
@@ -103,13 +103,17 @@ fn measure(
     case: &ProbeCase,
     set: &ShaderSet,
     timing: Timing,
-) -> Result<(Vec<twinray_shared::layout::ProbeResult>, Option<f64>)> {
+) -> Result<(ProbeOutput, Option<f64>)> {
     let n = case.rays.len();
     let copies = timing.rays.div_ceil(n).max(1);
     let rays: Vec<_> = case.rays.iter().copied().cycle().take(n * copies).collect();
     let mut out = probe(ctx, &case.scene, set, &rays, timing.warmup, timing.runs)?;
     out.results.truncate(n);
-    Ok((out.results, crate::util::stats::median(&out.gpu_ms).map(|ms| ms / copies as f64)))
+    if let Some(witness) = &mut out.witness {
+        witness.truncate(n);
+    }
+    let ms = crate::util::stats::median(&out.gpu_ms).map(|ms| ms / copies as f64);
+    Ok((out, ms))
 }
 
 /// What a robust report breaks of its case's targets.

@@ -41,6 +41,34 @@ impl RefObject {
     }
 }
 
+impl RefObject {
+    /// The true answer for a ray in this object's own space: its first hit over the object's
+    /// shapes (the holes of a cutout skipped), with the object-space normal; ambiguous when
+    /// any shape's answer is, or the hit is on the edge of a hole.
+    pub fn first_hit(&self, ray: &RefRay) -> Verdict {
+        let mut first: Option<(f64, DVec3)> = None;
+        for shape in &self.shapes {
+            match intersect(shape, ray) {
+                Verdict::Ambiguous => return Verdict::Ambiguous,
+                Verdict::Miss => {}
+                Verdict::Hit { t, normal } => {
+                    if let Some(cutout) = &self.cutout {
+                        match cutout.coverage(ray.at(t), ray.edge_band(t, normal)) {
+                            Coverage::Hole => continue,
+                            Coverage::Edge => return Verdict::Ambiguous,
+                            Coverage::Solid => {}
+                        }
+                    }
+                    if first.is_none_or(|(nearest, _)| t < nearest) {
+                        first = Some((t, normal));
+                    }
+                }
+            }
+        }
+        first.map_or(Verdict::Miss, |(t, normal)| Verdict::Hit { t, normal })
+    }
+}
+
 /// The f64 reference of every object of a scene.
 pub struct SceneReference {
     pub objects: Vec<RefObject>,
@@ -79,23 +107,14 @@ impl SceneReference {
                 t_max,
                 noise_floor: object.noise_floor(origin),
             };
-            for shape in &object.shapes {
-                match intersect(shape, &ray) {
-                    Verdict::Ambiguous => return SceneVerdict::Ambiguous,
-                    Verdict::Miss => {}
-                    Verdict::Hit { t, normal } => {
-                        if let Some(cutout) = &object.cutout {
-                            match cutout.coverage(ray.at(t), ray.edge_band(t, normal)) {
-                                Coverage::Hole => continue,
-                                Coverage::Edge => return SceneVerdict::Ambiguous,
-                                Coverage::Solid => {}
-                            }
-                        }
-                        // Normals go to world space by the inverse transpose.
-                        let world = object.world_to_object.transpose().transform_vector3(normal).normalize();
-                        let facing = if world.dot(direction) > 0.0 { -world } else { world };
-                        hits.push((i, t, facing));
-                    }
+            match object.first_hit(&ray) {
+                Verdict::Ambiguous => return SceneVerdict::Ambiguous,
+                Verdict::Miss => {}
+                Verdict::Hit { t, normal } => {
+                    // Normals go to world space by the inverse transpose.
+                    let world = object.world_to_object.transpose().transform_vector3(normal).normalize();
+                    let facing = if world.dot(direction) > 0.0 { -world } else { world };
+                    hits.push((i, t, facing));
                 }
             }
         }

@@ -21,6 +21,6 @@ pub use moving::{render_frames, FrameRenderer};
 pub use output::{to_rgba8, RayCounts, RenderOptions, RenderOutput, Written, NOT_A_NUMBER_RGB, NO_HIT_ID};
 pub use placement::{PlacementTimes, DEFAULT_PLACEMENTS};
 pub use prepare::MIN_WARM_MS;
-pub(crate) use prepare::{prepare, storage_buffer};
+pub(crate) use prepare::{prepare, storage_buffer, Prepared};
 pub use sets::{render, render_made, render_sets};
-pub(crate) use tracing::submit;
+pub(crate) use tracing::{submit, Trace};

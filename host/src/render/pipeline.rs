@@ -7,7 +7,7 @@
 
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
-use crate::scene::{PipelinePlan, PROBE_QUERY, RENDER_COMPUTE};
+use crate::scene::{HitGroup, PipelinePlan, PROBE_QUERY, RENDER_COMPUTE};
 use crate::shaders::{ShaderSet, Stage, StageModule};
 use crate::util::activity;
 use crate::vk::context::Context;
@@ -22,6 +22,9 @@ pub struct ScenePipeline {
     pub rt: RtPipeline,
     /// The group of each record of each SBT region (raygen, miss, hit, callable).
     pub sbt_records: [Vec<u32>; 4],
+    /// Of a probe's pipeline: the records of its witness pass, each hit group's record
+    /// replaced by the group's witness (see [`PROBE_WITNESS`]).
+    pub witness_records: Option<[Vec<u32>; 4]>,
     /// Groups in the pipeline.
     pub group_count: u32,
     /// Names of the modules in the pipeline, in stage order (for tests and reports).
@@ -30,6 +33,19 @@ pub struct ScenePipeline {
     pub workgroup: Option<(u32, u32)>,
     /// The libraries it was linked from (none when made whole), kept while it lives.
     _libraries: Vec<std::rc::Rc<RtPipeline>>,
+}
+
+/// The probe's witness closest-hit stage. A probe's pipeline holds, besides the scene's hit
+/// groups, a witness of each: the same intersection and any-hit stages with this closest-hit
+/// stage, which reports the object-space ray the GPU handed them. A pass of the probe over an
+/// SBT of witnesses reads those rays back; the scene's own stages are not changed.
+pub const PROBE_WITNESS: &str = "probe_witness";
+
+/// Whether a pipeline of `set` with ray generation stage `raygen` over `plan` holds witness
+/// groups: the ray tracing probe's, when the scene has hit groups and the set has the witness
+/// (a folder of modules built before it existed lacks it, and probes without it).
+fn witnessed(set: &ShaderSet, plan: &PipelinePlan, raygen: &str) -> bool {
+    raygen == "probe" && !plan.hit_groups.is_empty() && !set.lacks(PROBE_WITNESS)
 }
 
 /// (binding, type, stages) of every descriptor, from the shared layout.
@@ -111,14 +127,18 @@ impl ScenePipeline {
         raygen: &'static str,
         libraries: Option<&Libraries>,
     ) -> Result<Self> {
-        let names = plan_modules(plan, raygen);
+        let mut names = plan_modules(plan, raygen);
+        let witness = witnessed(set, plan, raygen);
+        if witness {
+            names.push(PROBE_WITNESS);
+        }
         let modules = names.iter().map(|name| set.module(name)).collect::<Result<Vec<StageModule>>>()?;
         let origins: Vec<String> = modules.iter().map(|m| format!("{}={}", m.spec.name, m.origin)).collect();
         let doing = format!("creating the pipeline of {set} ({})", origins.join(", "));
         let _doing = activity::doing(doing.clone());
         // What the validation layer said of the modules fails here, before a trace can crash
         // on them (a module declaring a capability the device lacks crashed lavapipe).
-        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), libraries)
+        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), (witness, libraries))
             .and_then(|made| ctx.check_validation().map(|()| made));
         made.map_err(|e| if e.is_stalled() { e } else { e.during(doing) })
     }
@@ -127,7 +147,7 @@ impl ScenePipeline {
         ctx: &Arc<Context>,
         plan: &PipelinePlan,
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
-        libraries: Option<&Libraries>,
+        (witness, libraries): (bool, Option<&Libraries>),
     ) -> Result<Self> {
         let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler];
         let spec_entries: Vec<_> = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER]
@@ -139,7 +159,7 @@ impl ScenePipeline {
         let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
         // A compute pipeline has no groups and no SBT.
         let compute = workgroup(raygen).is_some();
-        let groups = if compute { Vec::new() } else { groups(plan, &names) };
+        let groups = if compute { Vec::new() } else { groups(plan, &names, witness) };
         require_device_features(ctx, modules)?;
         let bindings = descriptor_bindings();
         let stages: Vec<_> = modules
@@ -167,6 +187,7 @@ impl ScenePipeline {
         Ok(ScenePipeline {
             rt,
             sbt_records: if compute { Default::default() } else { sbt_records(plan) },
+            witness_records: witness.then(|| witness_records(plan, groups.len())),
             group_count: groups.len() as u32,
             modules: names,
             workgroup: workgroup(raygen),
@@ -253,22 +274,34 @@ fn sbt_records(plan: &PipelinePlan) -> [Vec<u32>; 4] {
     [vec![0], (1..hits).collect(), (hits..first_callable).collect(), callable_records]
 }
 
+/// The records of the witness pass: those of `sbt_records`, with the hit region's records the
+/// witness groups, which are the last of the pipeline's `groups` (one per hit group, in order).
+fn witness_records(plan: &PipelinePlan, groups: usize) -> [Vec<u32>; 4] {
+    let [raygen, miss, hit, callable] = sbt_records(plan);
+    let first = (groups - hit.len()) as u32;
+    [raygen, miss, (first..first + hit.len() as u32).collect(), callable]
+}
+
 /// SBT order: raygen, miss (`MISS_PRIMARY`), shadow miss (`MISS_SHADOW`), the hit groups in the
-/// plan's order, then the material callables.
-fn groups(plan: &PipelinePlan, names: &[&'static str]) -> Vec<GroupDesc> {
+/// plan's order, the material callables, then (when `witness`) the witness of each hit group.
+fn groups(plan: &PipelinePlan, names: &[&'static str], witness: bool) -> Vec<GroupDesc> {
     let index = |name: &str| names.iter().position(|n| *n == name).map_or(vk::SHADER_UNUSED_KHR, |i| i as u32);
     let mut groups = vec![GroupDesc::General(0), GroupDesc::General(index("miss"))];
     if plan.shadow_miss() {
         groups.push(GroupDesc::General(index("shadow_miss")));
     }
-    for group in &plan.hit_groups {
-        let closest_hit = index(group.closest_hit_module());
+    let hit_group = |group: &HitGroup, closest_hit: &str| {
+        let closest_hit = index(closest_hit);
         let any_hit = group.any_hit_module().map_or(vk::SHADER_UNUSED_KHR, index);
-        groups.push(match group.intersection_module() {
+        match group.intersection_module() {
             Some(intersection) => GroupDesc::Procedural { intersection: index(intersection), closest_hit, any_hit },
             None => GroupDesc::Triangles { closest_hit, any_hit },
-        });
-    }
+        }
+    };
+    groups.extend(plan.hit_groups.iter().map(|g| hit_group(g, g.closest_hit_module())));
     groups.extend(plan.callables().iter().map(|c| GroupDesc::General(index(c))));
+    if witness {
+        groups.extend(plan.hit_groups.iter().map(|g| hit_group(g, PROBE_WITNESS)));
+    }
     groups
 }

@@ -32,6 +32,8 @@ pub(crate) struct Prepared {
     pub descriptors: DescriptorSet,
     /// None for the compute renderer.
     pub sbt: Option<ShaderBindingTable>,
+    /// The probe's witness pass (see `pipeline::PROBE_WITNESS`), when its pipeline has one.
+    pub witness_sbt: Option<ShaderBindingTable>,
     _resources: Rc<SceneResources>,
 }
 
@@ -121,12 +123,10 @@ pub(crate) fn prepare_on(
         buffers,
     };
     let descriptors = DescriptorSet::new(ctx, pipeline.rt.set_layout, &pool_sizes(&descriptor_bindings()), &targets)?;
-    let sbt = if pipeline.group_count == 0 {
-        None
-    } else {
-        Some(ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_count, &pipeline.sbt_records)?)
-    };
-    Ok(Prepared { one_shot: OneShot::new(ctx)?, image, pipeline, descriptors, sbt, _resources: resources })
+    let table = |records: &[Vec<u32>; 4]| ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_count, records);
+    let sbt = if pipeline.group_count == 0 { None } else { Some(table(&pipeline.sbt_records)?) };
+    let witness_sbt = pipeline.witness_records.as_ref().map(table).transpose()?;
+    Ok(Prepared { one_shot: OneShot::new(ctx)?, image, pipeline, descriptors, sbt, witness_sbt, _resources: resources })
 }
 
 /// A device-local storage buffer of `size` bytes that can be copied out and filled (with the

@@ -89,6 +89,11 @@ impl ShaderSet {
         MODULES.iter().zip(&self.origins).filter(move |(m, _)| m.stage == stage).map(|(_, o)| o)
     }
 
+    /// Whether this set takes the module called `name` from a folder that has no file for it.
+    pub fn lacks(&self, name: &str) -> bool {
+        MODULES.iter().zip(&self.origins).any(|(m, o)| m.name == name && matches!(o, Origin::Missing(_)))
+    }
+
     /// The module called `name` in this set.
     pub fn module(&self, name: &str) -> Result<StageModule> {
         let spec = twinray_shared::catalog::module(name)

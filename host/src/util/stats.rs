@@ -42,6 +42,25 @@ impl Spread {
     }
 }
 
+/// Median, 99th percentile and maximum of errors (none: all zero).
+#[derive(Clone, Copy, Debug, Default, serde::Serialize)]
+pub struct Quantiles {
+    pub median: f64,
+    pub p99: f64,
+    pub max: f64,
+}
+
+impl Quantiles {
+    pub fn of(mut values: Vec<f64>) -> Quantiles {
+        if values.is_empty() {
+            return Quantiles::default();
+        }
+        values.sort_by(f64::total_cmp);
+        let at = |q: f64| values[((values.len() - 1) as f64 * q).round() as usize];
+        Quantiles { median: at(0.5), p99: at(0.99), max: at(1.0) }
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::Spread;

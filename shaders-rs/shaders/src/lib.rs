@@ -195,6 +195,25 @@ pub fn probe(
     results[i] = ProbeResult { normal_t: payload.shading_normal.xyz().extend(payload.position.w), ids: payload.ids };
 }
 
+/// The probe's witness: a closest-hit stage twinray puts in place of a hit group's own (same
+/// intersection and any-hit stages) for one extra pass of the probe. It packs the object-space
+/// ray the GPU handed the hit group, and the t its stages reported, into the payload fields the
+/// probe ray generation stage copies out (as `ProbeResult` documents), so a probe can judge the
+/// stages against the ray they were given, apart from the driver's world-to-object transform.
+#[spirv(closest_hit)]
+pub fn probe_witness(
+    #[spirv(hit_kind)] hit_kind: u32,
+    #[spirv(object_ray_origin)] object_origin: Vec3,
+    #[spirv(object_ray_direction)] object_direction: Vec3,
+    #[spirv(ray_tmax)] t: f32,
+    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+) {
+    payload.position.w = t;
+    payload.shading_normal = object_origin.extend(payload.shading_normal.w);
+    let d = object_direction;
+    payload.ids = UVec4::new(d.x.to_bits(), d.y.to_bits(), d.z.to_bits(), hit_kind);
+}
+
 /// The compute renderer's probe (a probe of a `renderer = "compute"` scene): one ray per
 /// invocation, traced inline by the code that traces the renderer's primary rays, in
 /// workgroups of `PROBE_GROUP_SIZE` (the literal is the attribute's); writes what it described,
@@ -357,3 +376,4 @@ pub fn cutout_any_hit(
         unsafe { spirv_std::arch::ignore_intersection() };
     }
 }
+

@@ -146,6 +146,7 @@ macro_rules! module_table {
             ModuleSpec { name: "flat_material", stage: Stage::Callable, glsl: GlslSource::File("flat_material.rcall") },
             ModuleSpec { name: "checker_material", stage: Stage::Callable, glsl: GlslSource::File("checker_material.rcall") },
             ModuleSpec { name: "cutout_any_hit", stage: Stage::AnyHit, glsl: GlslSource::File("cutout.rahit") },
+            ModuleSpec { name: "probe_witness", stage: Stage::ClosestHit, glsl: GlslSource::File("probe_witness.rchit") },
         ];
     };
 }

@@ -201,6 +201,11 @@ pub struct ProbeRay {
 const _: () = assert!(core::mem::size_of::<ProbeRay>() == 32);
 
 /// What a probe ray hit, as the closest-hit stage described it.
+///
+/// The probe's witness pass (the `probe_witness` closest-hit stage in place of each hit
+/// group's own) fills the same fields with what the GPU handed the hit group's stages:
+/// `normal_t` xyz: the object-space ray origin, w: the t they reported; `ids` xyz: the bits of
+/// the object-space ray direction, w: the hit kind (or `NO_HIT` on a miss).
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]

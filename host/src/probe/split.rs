@@ -1,0 +1,178 @@
+//! The t error of a probe split by where it comes from. A hit group's stages never see the
+//! world-space ray: the driver hands them the ray in object space, transformed in f32. The
+//! witness pass reads that object-space ray back with the t the stages reported, so the f64
+//! reference can judge the stages against the very ray they were given (their own error) and,
+//! apart from it, how far the driver's transform moved the true answer (the driver's error).
+//! On lavapipe an instance translated 1e4 away and seen from 10 units gets a relative t error
+//! of 2.5e-4 in both sets, all of it the transform's; a user can fix only the other part.
+
+use super::run::{record_written, ProbeResult};
+use crate::reference::scene::SceneReference;
+use crate::reference::shapes::{RefRay, Verdict};
+use crate::util::stats::Quantiles;
+use glam::Vec3;
+use serde::Serialize;
+use twinray_shared::bindings::NO_HIT;
+use twinray_shared::layout::ProbeRay;
+
+/// What the witness pass read back for one ray (see `ProbeResult`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Witness {
+    /// The object-space ray the GPU handed the hit group's stages.
+    pub origin: Vec3,
+    pub direction: Vec3,
+    /// The t they reported.
+    pub t: f32,
+}
+
+/// The witness in a record of the witness pass; none where the ray missed or the record was
+/// never written.
+pub fn witness(r: &ProbeResult) -> Option<Witness> {
+    if !record_written(r) || r.ids.w == NO_HIT {
+        return None;
+    }
+    let direction = Vec3::new(f32::from_bits(r.ids.x), f32::from_bits(r.ids.y), f32::from_bits(r.ids.z));
+    Some(Witness { origin: r.normal_t.truncate(), direction, t: r.normal_t.w })
+}
+
+/// The relative t error over hits, split by source.
+#[derive(Clone, Debug, Default, Serialize)]
+pub struct TErrorSplit {
+    /// Hits judged: the reference decides their object-space ray, and the witness pass
+    /// repeated the probe's t.
+    pub rays: usize,
+    /// |t - t_obj| / t_obj, t_obj the f64 first hit of the object-space ray the GPU handed the
+    /// stages: the stages' own error.
+    pub stage: Quantiles,
+    /// |t_obj - t_ref| / t_ref, t_ref the f64 first hit of the world-space ray: how far the
+    /// driver's world-to-object transform moved the true answer.
+    pub transform: Quantiles,
+    /// Hits whose object-space ray the reference finds ambiguous, or a miss (left out).
+    pub undecided: usize,
+    /// Hits the witness pass answered with another t, or none: the GPU's answer did not repeat
+    /// (left out).
+    pub unrepeated: usize,
+}
+
+/// One hit the reference agrees with: the ray, the reference's t, and the probe's record.
+pub struct AgreedHit<'a> {
+    pub ray: &'a ProbeRay,
+    pub t_ref: f64,
+    pub result: &'a ProbeResult,
+    pub witness: &'a ProbeResult,
+}
+
+/// The split over `hits`.
+pub fn split<'a>(reference: &SceneReference, hits: impl Iterator<Item = AgreedHit<'a>>) -> TErrorSplit {
+    let mut out = TErrorSplit::default();
+    let (mut stage, mut transform) = (Vec::new(), Vec::new());
+    for hit in hits {
+        let t = hit.result.normal_t.w;
+        let Some(w) = witness(hit.witness).filter(|w| w.t.to_bits() == t.to_bits()) else {
+            out.unrepeated += 1;
+            continue;
+        };
+        let Some(object) = reference.objects.get(hit.result.ids.x as usize) else {
+            out.undecided += 1;
+            continue;
+        };
+        let ray = RefRay {
+            origin: w.origin.as_dvec3(),
+            direction: w.direction.as_dvec3(),
+            t_min: f64::from(hit.ray.origin.w),
+            t_max: f64::from(hit.ray.direction.w),
+            // Given in the object's own space: rounded at its own magnitude.
+            noise_floor: 0.0,
+        };
+        match object.first_hit(&ray) {
+            Verdict::Hit { t: t_obj, .. } => {
+                stage.push(relative(f64::from(t), t_obj));
+                transform.push(relative(t_obj, hit.t_ref));
+                out.rays += 1;
+            }
+            Verdict::Miss | Verdict::Ambiguous => out.undecided += 1,
+        }
+    }
+    out.stage = Quantiles::of(stage);
+    out.transform = Quantiles::of(transform);
+    out
+}
+
+/// |got - want| / |want|.
+pub fn relative(got: f64, want: f64) -> f64 {
+    (got - want).abs() / want.abs().max(1e-30)
+}
+
+impl TErrorSplit {
+    /// The line `twinray probe` prints.
+    pub fn summary(&self) -> String {
+        let left_out = match (self.undecided, self.unrepeated) {
+            (0, 0) => String::new(),
+            (u, 0) => format!("; {u} left out, ambiguous in object space"),
+            (u, r) => format!("; {u} left out, ambiguous in object space, {r} whose t did not repeat"),
+        };
+        format!(
+            "relative t error by source, over {} hit{}: stages p99 {:.2e} (against the object-space ray the GPU handed them), driver's transform p99 {:.2e}{left_out}",
+            self.rays,
+            if self.rays == 1 { "" } else { "s" },
+            self.stage.p99,
+            self.transform.p99
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::scene::{MeshFiles, Scene};
+    use glam::{UVec4, Vec4};
+
+    /// A unit sphere at x = 1e4; rays along +z from z = -10 (world), t_ref = 9.
+    fn reference() -> SceneReference {
+        let scene = "[image]\nwidth = 4\nheight = 4\n\
+                     [camera]\neye = [0.0, 0.0, -10.0]\ntarget = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov_y_degrees = 45.0\n\
+                     [materials.m]\nkind = \"diffuse\"\ncolor = [1.0, 1.0, 1.0]\n\
+                     [shapes.s]\nkind = \"sphere\"\nradius = 1.0\n\
+                     [[objects]]\nshape = \"s\"\nmaterial = \"m\"\ntranslate = [10000.0, 0.0, 0.0]\n";
+        let scene = Scene::parse(scene, "split.toml", MeshFiles::Builtin).expect("scene");
+        SceneReference::new(&scene).expect("reference")
+    }
+
+    /// The record the witness pass writes for an object-space ray and t.
+    fn witnessed(origin: Vec3, direction: Vec3, t: f32) -> ProbeResult {
+        let d = direction.to_array().map(f32::to_bits);
+        ProbeResult { normal_t: origin.extend(t), ids: UVec4::new(d[0], d[1], d[2], 1) }
+    }
+
+    #[test]
+    fn the_stage_is_judged_on_the_ray_it_was_handed_and_the_transform_on_the_rest() {
+        let reference = reference();
+        let ray = ProbeRay { origin: Vec4::new(10000.0, 0.0, -10.0, 0.0), direction: Vec4::new(0.0, 0.0, 1.0, 100.0) };
+        let result = ProbeResult { normal_t: Vec4::new(0.0, 0.0, -1.0, 9.0), ids: UVec4::new(0, 0, 0, 1) };
+        // The driver moved the origin 2^-10 towards the sphere; the stage answered as before.
+        let moved = witnessed(Vec3::new(0.0, 0.0, -10.0 + 0.0009765625), Vec3::Z, 9.0);
+        let hits = [AgreedHit { ray: &ray, t_ref: 9.0, result: &result, witness: &moved }];
+        let s = split(&reference, hits.into_iter());
+        assert_eq!((s.rays, s.undecided, s.unrepeated), (1, 0, 0));
+        // The truth moved to t_obj = 9 - 2^-10, and the stage's 9 is 2^-10 off it.
+        let t_obj = 9.0 - 0.0009765625;
+        assert!((s.transform.max - 0.0009765625 / 9.0).abs() < 1e-15, "{s:?}");
+        assert!((s.stage.max - 0.0009765625 / t_obj).abs() < 1e-15, "{s:?}");
+    }
+
+    #[test]
+    fn a_witness_that_does_not_repeat_the_probe_or_missed_is_left_out() {
+        let reference = reference();
+        let ray = ProbeRay { origin: Vec4::new(10000.0, 0.0, -10.0, 0.0), direction: Vec4::new(0.0, 0.0, 1.0, 100.0) };
+        let result = ProbeResult { normal_t: Vec4::new(0.0, 0.0, -1.0, 9.0), ids: UVec4::new(0, 0, 0, 1) };
+        let other_t = witnessed(Vec3::new(0.0, 0.0, -10.0), Vec3::Z, 9.5);
+        let missed = ProbeResult { normal_t: Vec4::ZERO, ids: UVec4::splat(NO_HIT) };
+        // Grazing the sphere's silhouette in object space: the reference cannot decide it.
+        let grazing = witnessed(Vec3::new(1.0, 0.0, -10.0), Vec3::Z, 9.0);
+        let hits =
+            [&other_t, &missed, &grazing].map(|w| AgreedHit { ray: &ray, t_ref: 9.0, result: &result, witness: w });
+        let s = split(&reference, hits.into_iter());
+        assert_eq!((s.rays, s.unrepeated, s.undecided), (0, 2, 1), "{s:?}");
+        assert_eq!(witness(&missed), None);
+    }
+}
