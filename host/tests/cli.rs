@@ -196,6 +196,7 @@ fn stability_prints_rows_costs_and_json_and_fails_on_a_missed_target() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert_eq!(out.status.code(), Some(0), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("sphere-far-1e3") && stdout.contains("robust/naive"), "{stdout}");
+    assert!(stdout.contains("stage p99") && stdout.contains("xform p99"), "the t error by source: {stdout}");
     let out = twinray(&[&args[..], &["--json"]].concat(), dir.path());
     let rows: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON rows");
     let rows = rows.as_array().unwrap();
@@ -204,6 +205,8 @@ fn stability_prints_rows_costs_and_json_and_fails_on_a_missed_target() {
     for key in ["formula", "rays", "decided", "false_hits", "false_misses", "relative_t_error", "failures"] {
         assert!(rows[0].get(key).is_some(), "no {key} in {}", rows[0]);
     }
+    let split = &rows[0]["t_error_by_source"];
+    assert!(split["rays"].as_u64() > Some(0) && split["stage"]["p99"].is_f64(), "{split}");
     // An unreachable target: the same run now fails.
     let strict = std::fs::read_to_string(dir.path().join("cone-apex.toml")).unwrap().replace("1e-06", "1e-12");
     std::fs::write(dir.path().join("cone-apex.toml"), strict).unwrap();

@@ -13,6 +13,7 @@ fn probe_prints_rays_per_generator_and_writes_every_ray() {
     let out = twinray(&args, dir.path());
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("relative t error by source, over "), "the t error by source: {stdout}");
     // Both surface generators make every ray they are asked for.
     let line = stdout.lines().find(|l| l.trim_start().starts_with("generators:")).expect("a generators line");
     let made: Vec<&str> = line.split(';').collect();

@@ -186,9 +186,26 @@ fn generators(rows: &[StabilityRow]) -> String {
 
 fn results(rows: &[StabilityRow]) -> String {
     let mut s = format!(
-        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>8} {:>9} {:>9}  targets\n",
-        "case", "set", "formula", "rays", "decided", "f.hit", "f.miss", "t p99", "ulp p99", "n p99", "ms/Mray"
+        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>10} {:>10} {:>8} {:>9} {:>9}  targets\n",
+        "case",
+        "set",
+        "formula",
+        "rays",
+        "decided",
+        "f.hit",
+        "f.miss",
+        "t p99",
+        "stage p99",
+        "xform p99",
+        "ulp p99",
+        "n p99",
+        "ms/Mray"
     );
+    // The t error by source (`split`): the stages' own, and the driver's transform's.
+    let by_source = |r: &ProbeReport| match &r.t_error_by_source {
+        Some(split) => (format!("{:.2e}", split.stage.p99), format!("{:.2e}", split.transform.p99)),
+        None => ("n/a".into(), "n/a".into()),
+    };
     for row in rows {
         let r = &row.report;
         let verdict = if row.formula != "robust" {
@@ -198,8 +215,9 @@ fn results(rows: &[StabilityRow]) -> String {
         } else {
             format!("MISSED: {}", row.failures.join("; "))
         };
+        let (stage, transform) = by_source(r);
         s += &format!(
-            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
+            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>10} {:>10} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
             r.case,
             r.set,
             row.formula,
@@ -208,6 +226,8 @@ fn results(rows: &[StabilityRow]) -> String {
             r.false_hits,
             r.false_misses + r.wrong_object,
             r.relative_t_error.p99,
+            stage,
+            transform,
             r.ulp_error_p99,
             r.normal_angle_error_p99,
             r.gpu_ms_per_million_rays.map_or("n/a".into(), |m| format!("{m:.2}")),
