@@ -376,4 +376,3 @@ pub fn cutout_any_hit(
         unsafe { spirv_std::arch::ignore_intersection() };
     }
 }
-
