@@ -12,6 +12,7 @@
 //! - [`render`](mod@render): uploading a scene, building a set's pipeline and tracing it, timed;
 //! - [`reference`](mod@reference): the f64 reference of shapes and scenes; converged images;
 //! - [`probe`](mod@probe): probe cases, their generators, judging rays, and the hard-case suite;
+//! - [`explain`](mod@explain): every ray of one pixel, made on the CPU as the GPU makes it;
 //! - [`compare`](mod@compare): image differences, verdicts and the report of two sets;
 //! - [`bench`](mod@bench): speed against error, with tables, plots and HTML;
 //! - [`crosscheck`](mod@crosscheck): twinray's references against Mitsuba 3's renders;
@@ -31,6 +32,8 @@ pub mod render;
 pub mod reference;
 
 pub mod probe;
+
+pub mod explain;
 
 pub mod compare;
 

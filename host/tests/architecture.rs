@@ -16,6 +16,7 @@ const LAYERS: &[&str] = &[
     "render",
     "reference",
     "probe",
+    "explain",
     "compare",
     "bench",
     "crosscheck",
