@@ -37,38 +37,35 @@ impl Camera {
     /// The primary samples of `pixel`, in the order the ray generation stage traces them; an
     /// error for a pixel outside the image.
     pub fn primary_samples(&self, pixel: (u32, u32)) -> Result<Vec<PrimarySample>> {
-        let (size, m, frame) = (self.size, self.samples_per_side, &self.frame);
+        let (size, m) = (self.size, self.samples_per_side);
         if pixel.0 >= size.x || pixel.1 >= size.y {
             let (x, y) = pixel;
             return Err(Error::Input(format!("pixel {x},{y} is outside the {}x{} image", size.x, size.y)));
         }
+        Ok((0..m * m).map(|index| self.sample(pixel, index)).collect())
+    }
+
+    /// Sample `index` of `pixel` (inside the image), as the stage makes it.
+    fn sample(&self, pixel: (u32, u32), index: u32) -> PrimarySample {
+        let (size, m, frame) = (self.size, self.samples_per_side, &self.frame);
         let pixel = UVec2::new(pixel.0, pixel.1);
         let pixel_index = pixel.y * size.x + pixel.x;
-        let mut samples = Vec::with_capacity((m * m) as usize);
-        for sy in 0..m {
-            for sx in 0..m {
-                let index = sy * m + sx;
-                // As the stage: jitter only when there is more than one sample.
-                let (r1, r2) = if m > 1 {
-                    (
-                        random::random(frame.seed, pixel_index, index, 0),
-                        random::random(frame.seed, pixel_index, index, 1),
-                    )
-                } else {
-                    (0.5, 0.5)
-                };
-                let ray = camera::primary_ray(frame, pixel, size, camera::sample_offset(sx, sy, m, r1, r2));
-                let ray = ProbeRay { origin: ray.origin.extend(T_MIN), direction: ray.direction.extend(frame.reach.x) };
-                samples.push(PrimarySample { index, stratum: (sx, sy), ray });
-            }
-        }
-        Ok(samples)
+        let (sx, sy) = (index % m, index / m);
+        // As the stage: jitter only when there is more than one sample.
+        let (r1, r2) = if m > 1 {
+            (random::random(frame.seed, pixel_index, index, 0), random::random(frame.seed, pixel_index, index, 1))
+        } else {
+            (0.5, 0.5)
+        };
+        let ray = camera::primary_ray(frame, pixel, size, camera::sample_offset(sx, sy, m, r1, r2));
+        let ray = ProbeRay { origin: ray.origin.extend(T_MIN), direction: ray.direction.extend(frame.reach.x) };
+        PrimarySample { index, stratum: (sx, sy), ray }
     }
 
     /// The first primary sample of every pixel, row by row: the rays whose hits the image's
     /// hit ids record.
     pub fn first_samples(&self) -> Vec<ProbeRay> {
         let pixels = (0..self.size.y).flat_map(|y| (0..self.size.x).map(move |x| (x, y)));
-        pixels.filter_map(|p| self.primary_samples(p).ok().and_then(|s| s.first().map(|s| s.ray))).collect()
+        pixels.map(|p| self.sample(p, 0).ray).collect()
     }
 }

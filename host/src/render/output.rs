@@ -204,10 +204,16 @@ pub(crate) fn read_back(image: &[u8], ids: &[u8]) -> ReadBack {
         written.unwritten_ids += u64::from(ids_unwritten);
         written.non_finite += u64::from(!color_unwritten && !rgba.iter().all(|x| x.is_finite()));
         out.linear.push([rgba[0], rgba[1], rgba[2]]);
-        out.hit_ids.push(u64::from(w[0]) << 32 | u64::from(w[1]));
+        out.hit_ids.push(hit_id(w[0], w[1]));
         out.shadow += if sentinel::unwritten(w[2]) { 0 } else { u64::from(w[2]) };
     }
     out
+}
+
+/// The hit id of `object` and `primitive` as `RenderOutput::hit_ids` holds it; a miss (both
+/// `NO_HIT`) is [`NO_HIT_ID`].
+pub fn hit_id(object: u32, primitive: u32) -> u64 {
+    (u64::from(object) << 32) | u64::from(primitive)
 }
 
 /// Colour of pixels that are not a finite number (never written, or NaN or infinite) in the

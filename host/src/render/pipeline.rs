@@ -184,10 +184,11 @@ impl ScenePipeline {
                 PipelineDesc { bindings: &bindings, stages: &stages, groups: &groups, max_recursion_depth: depth };
             (RtPipeline::new(ctx, &desc)?, Vec::new())
         };
+        let records = if compute { Default::default() } else { sbt_records(plan) };
         Ok(ScenePipeline {
             rt,
-            sbt_records: if compute { Default::default() } else { sbt_records(plan) },
-            witness_records: witness.then(|| witness_records(plan, groups.len())),
+            witness_records: witness.then(|| witness_records(records.clone(), groups.len())),
+            sbt_records: records,
             group_count: groups.len() as u32,
             modules: names,
             workgroup: workgroup(raygen),
@@ -276,8 +277,7 @@ fn sbt_records(plan: &PipelinePlan) -> [Vec<u32>; 4] {
 
 /// The records of the witness pass: those of `sbt_records`, with the hit region's records the
 /// witness groups, which are the last of the pipeline's `groups` (one per hit group, in order).
-fn witness_records(plan: &PipelinePlan, groups: usize) -> [Vec<u32>; 4] {
-    let [raygen, miss, hit, callable] = sbt_records(plan);
+fn witness_records([raygen, miss, hit, callable]: [Vec<u32>; 4], groups: usize) -> [Vec<u32>; 4] {
     let first = (groups - hit.len()) as u32;
     [raygen, miss, (first..first + hit.len() as u32).collect(), callable]
 }
