@@ -30,6 +30,7 @@ bool visible(vec3 origin, vec3 direction, float distance) {
 }
 #endif
 
+#ifndef TRACE_ONLY
 // shadows: whether any light casts shadows (a specialisation constant); stratified: rect lights'
 // shadow samples one per cell of an N x N grid, else independent. Adds the shadow rays it
 // traces to shadow_rays.
@@ -74,4 +75,5 @@ vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout u
     }
     return payload.color.xyz * light_sum;
 }
+#endif // TRACE_ONLY
 #endif

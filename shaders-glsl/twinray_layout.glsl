@@ -18,6 +18,8 @@
 #define BINDING_PROBE_RESULTS 11u
 #define RENDER_GROUP_SIZE 8u
 #define PROBE_GROUP_SIZE 64u
+#define EXPLAIN_PRIMARY 0u
+#define EXPLAIN_SHADOW 1u
 #define HIT_KIND_TRIANGLE_FRONT 254u
 #define HIT_KIND_TRIANGLE_BACK 255u
 #define MISS_PRIMARY 0u
@@ -149,6 +151,19 @@ struct ProbeRay {
 struct ProbeResult {
     vec4 normal_t; // offset 0
     uvec4 ids; // offset 16
+};
+
+// 48 bytes, as twinray_shared::layout::ExplainRay
+struct ExplainRay {
+    vec4 origin; // offset 0
+    vec4 direction; // offset 16
+    uvec4 kind; // offset 32
+};
+
+// 96 bytes, as twinray_shared::layout::ExplainResult
+struct ExplainResult {
+    HitPayload hit; // offset 0
+    uvec4 occluded; // offset 80
 };
 
 #endif

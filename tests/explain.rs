@@ -1,8 +1,12 @@
-//! `twinray explain`'s rays (issue 27, in progress): the primary rays made on the CPU by the
-//! shared camera and random code are the ones the ray generation stage traces. Traced through
-//! the same set's real stages by the probe, the first sample of every pixel hits what the
-//! image's hit ids record, in both sets, with one sample per pixel and with jittered samples.
+//! `twinray explain`'s rays: the primary rays made on the CPU by the shared camera and random
+//! code are the ones the ray generation stage traces (traced through the same set's real stages
+//! by the probe, the first sample of every pixel hits what the image's hit ids record, in both
+//! sets, with one sample per pixel and with jittered samples); and a pixel's rays, with the
+//! shadow rays remade at each set's own hits, add up to the pixel its image holds, in every way
+//! the scene's renderer traces (traceRay, ray-query shadows, the compute renderer).
 
+use twinray::explain::parting::first_parting;
+use twinray::explain::pixel::explain_pixel;
 use twinray::explain::rays::Camera;
 use twinray::probe::probe;
 use twinray::render::hit_id;
@@ -38,5 +42,43 @@ fn a_pixel_outside_the_image_is_bad_input() {
     for pixel in [(16, 0), (0, 8)] {
         let e = camera.primary_samples(pixel).expect_err("outside");
         assert!(matches!(e, twinray::Error::Input(_)) && e.to_string().contains("outside the 16x8 image"), "{e}");
+    }
+}
+
+/// `scene` with `line` added at its top level (before its first table).
+fn with_top_level(name: &str, line: &str) -> twinray::Scene {
+    let (text, source, meshes) = twinray::Scene::read(Some(name)).expect("built-in scene");
+    twinray::Scene::parse(&format!("{line}\n{text}"), &source, meshes).expect("scene with {line}")
+}
+
+#[test]
+fn identical_sets_agree_on_every_ray_and_their_rays_add_up_to_their_pixels() {
+    let ctx = validated_context();
+    let scenes = [
+        ("showcase", twinray::Scene::load(Some("showcase")).unwrap()),
+        ("cutout", twinray::Scene::load(Some("cutout")).unwrap()),
+        ("cutout, ray-query shadows", with_top_level("cutout", "shadow_method = \"query\"")),
+        ("cutout, compute renderer", with_top_level("cutout", "renderer = \"compute\"")),
+    ];
+    let sets = [("rust".to_string(), set("rust")), ("glsl".to_string(), set("glsl"))];
+    let size = (64, 48);
+    for (label, scene) in scenes {
+        let data = scene.build();
+        let mut shadow_rays = 0;
+        for pixel in [(10, 40), (32, 30), (50, 20)] {
+            let px = explain_pixel(&ctx, &scene, &sets, size, pixel).expect("explain");
+            let parting = first_parting(&px, &data);
+            assert!(parting.text.starts_with("all rays agree"), "{label} {pixel:?}: {}", parting.text);
+            assert_eq!(parting.stage, None, "{label} {pixel:?}");
+            for s in &px.sets {
+                // The CPU adds the same f32 terms in the same order as the stages; the GLSL
+                // stage's compiled code rounds a term an ULP apart on lavapipe (showcase pixel
+                // 10,40: 1.9422458 against 1.9422457), so a few ULPs, not bit equality.
+                let off = ((s.image - s.remade).abs() / s.image.abs().max(glam::Vec3::ONE)).max_element();
+                assert!(off <= 1e-6, "{label} {pixel:?} {}: {} against {}", s.label, s.image, s.remade);
+                shadow_rays += s.samples.iter().flat_map(|x| &x.occluded).filter(|o| o.is_some()).count();
+            }
+        }
+        assert!(shadow_rays > 0, "{label}: the pixels must trace shadow rays for this to test them");
     }
 }

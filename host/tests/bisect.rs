@@ -3,10 +3,9 @@
 
 mod common;
 
-use common::{assert_bad_input, repo, twinray};
+use common::{assert_bad_input, naive_sphere, planted_glsl, repo, twinray};
 use serde_json::Value;
 use std::path::Path;
-use std::process::Command;
 
 fn bisect(args: &[&str], dir: &Path) -> (Value, i32) {
     let base = ["--validate", "bisect"];
@@ -20,29 +19,6 @@ fn bisect(args: &[&str], dir: &Path) -> (Value, i32) {
 
 fn explained(json: &Value, what: &str) -> Vec<String> {
     json[what]["explained_by"].as_array().unwrap().iter().map(|v| v.as_str().unwrap().to_string()).collect()
-}
-
-fn naive_sphere() -> String {
-    format!("rust,sphere_intersection={}", repo().join("spirv/rust/sphere_naive_intersection.spv").display())
-}
-
-/// A user's stage: the GLSL stage file `file` of `shaders-glsl/` with `edit.0` replaced by
-/// `edit.1`, compiled by glslang into `dir`; the SPIR-V file.
-fn planted_glsl(file: &str, edit: (&str, &str), dir: &Path) -> std::path::PathBuf {
-    let source = std::fs::read_to_string(repo().join("shaders-glsl").join(file)).unwrap();
-    let planted = source.replace(edit.0, edit.1);
-    assert_ne!(planted, source, "the planted edit must apply to {file}");
-    let (glsl, spv) = (dir.join(format!("planted-{file}")), dir.join(format!("planted-{file}.spv")));
-    std::fs::write(&glsl, planted).unwrap();
-    let out = Command::new("glslangValidator")
-        .args(["-V", "--target-env", "spirv1.4"])
-        .arg(format!("-I{}", repo().join("shaders-glsl").display()))
-        .arg("-o")
-        .args([&spv, &glsl])
-        .output()
-        .expect("glslangValidator (cargo xtask setup installs it)");
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
-    spv
 }
 
 #[test]

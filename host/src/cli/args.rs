@@ -405,3 +405,41 @@ pub struct StageBenchArgs {
     #[arg(long, default_value = "bench/out-stages")]
     pub out: PathBuf,
 }
+
+#[derive(Args)]
+pub struct ExplainArgs {
+    /// Scene file, or the name of a built-in scene [default: spheres].
+    pub scene: Option<String>,
+    /// The pixel: column X and row Y from the top left, as compare's images number them.
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
+    pub pixel: (u32, u32),
+    /// Set A.
+    #[arg(long, default_value = "rust")]
+    pub a: ShaderSet,
+    /// Set B; without it, set A alone against the f64 reference.
+    #[arg(long)]
+    pub b: Option<ShaderSet>,
+    /// The frame of an animated scene (0 to its frame count - 1).
+    #[arg(long, value_name = "K", default_value_t = 0)]
+    pub frame: u32,
+    /// Image width in pixels [default: the scene's].
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels [default: the scene's].
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Also show the pixel of a converged reference image of SPP samples per pixel, rendered
+    /// by set A (or read from the cache `twinray reference` keeps).
+    #[arg(long, value_name = "SPP")]
+    pub converged: Option<u32>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// "X,Y" as two pixel coordinates.
+fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("a pixel is X,Y with two whole numbers (got {text:?})");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    Ok((x.trim().parse().map_err(|_| bad())?, y.trim().parse().map_err(|_| bad())?))
+}

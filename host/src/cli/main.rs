@@ -7,6 +7,7 @@ mod args;
 mod bench;
 mod bisect;
 mod crosscheck;
+mod explain;
 mod frames;
 mod pipelines;
 mod probe;
@@ -15,8 +16,8 @@ mod session;
 mod summary;
 
 use args::{
-    AnimateBenchArgs, BenchArgs, BisectArgs, CompareArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs, ReferenceArgs,
-    RenderArgs, StabilityArgs, StageBenchArgs,
+    AnimateBenchArgs, BenchArgs, BisectArgs, CompareArgs, ExplainArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs,
+    ReferenceArgs, RenderArgs, StabilityArgs, StageBenchArgs,
 };
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
@@ -61,6 +62,9 @@ enum Command {
     /// where none explains it, two) from the other, and reports each stage's share of the image
     /// and time differences. Exit code 0 when every difference was pinned on a stage or pair.
     Bisect(BisectArgs),
+    /// Every ray one pixel traces, in each set and in the f64 reference, and the first place
+    /// they part: which sample, which ray, which set is wrong and which stage made it so.
+    Explain(ExplainArgs),
     /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
     Probe(ProbeArgs),
     /// The hard-case suite: every probe case of a folder, per set and formula, against the
@@ -122,6 +126,7 @@ fn main() -> ExitCode {
         Command::Render(args) => render::render(&cli.global, args),
         Command::Compare(args) => render::compare(&cli.global, args),
         Command::Bisect(args) => bisect::bisect(&cli.global, args),
+        Command::Explain(args) => explain::explain(&cli.global, args),
         Command::Probe(args) => probe::probe(&cli.global, args),
         Command::Stability(args) => probe::stability(&cli.global, args),
         Command::Reference(args) => bench::reference(&cli.global, args),

@@ -4,6 +4,7 @@
 pub mod bisect;
 pub mod diff;
 pub mod frames;
+pub mod pixels;
 pub mod report;
 
 pub use diff::{color_diff, color_verdict, diff, diff_image, hit_count, verdict, ColorDiff, ImageDiff, DIFF_LEGEND};

@@ -2,6 +2,7 @@
 //! GPU time, judge that against the scene's tolerance, and write the images.
 
 use super::diff::{diff, diff_image, verdict, ImageDiff};
+use super::pixels::{named_pixels, NamedPixel};
 use crate::error::{Error, Result};
 use crate::render::{render_sets, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
@@ -62,6 +63,9 @@ pub struct CompareReport {
     pub placements: u32,
     /// Whether B is a salted copy of A (`compare --a X --b X`): the null control.
     pub null_control: bool,
+    /// The pixels that differ most and the hit mismatches, a few, with their `twinray explain`
+    /// lines.
+    pub pixels: Vec<NamedPixel>,
     pub pass: bool,
     /// Why `pass` is false, one line per broken tolerance.
     pub failures: Vec<String>,
@@ -91,6 +95,7 @@ pub fn compare_sets(
     set_b: &ShaderSet,
     opts: &RenderOptions,
 ) -> Result<Comparison> {
+    let named_sets = (set_a.to_string(), set_b.to_string());
     // The same set twice is timed as two copies built apart: the null control.
     let set_b = &ShaderSet::distinct(&[set_a.clone(), set_b.clone()])[1];
     let [a, b]: [RenderOutput; 2] = render_sets(ctx, scene, &[set_a.clone(), set_b.clone()], opts)?
@@ -131,6 +136,7 @@ pub fn compare_sets(
         warmup: opts.warmup,
         placements: opts.placements,
         null_control: set_b.original() == *set_a,
+        pixels: named_pixels(scene, (&a, &b), parity.pixel_threshold, (&named_sets.0, &named_sets.1)),
         pass: failures.is_empty(),
         failures,
     };
@@ -197,6 +203,11 @@ impl CompareReport {
             pct(self.diff.hit_mismatches),
             self.diff.hit_mismatches_off_silhouette,
         );
+        for p in &self.pixels {
+            let what =
+                if p.hit_mismatch { format!("{} steps, hit mismatch", p.steps) } else { format!("{} steps", p.steps) };
+            s += &format!("  pixel {},{} ({what}): {}\n", p.x, p.y, p.explain);
+        }
         if self.pass {
             s += "  PASS: within the scene's parity tolerance\n";
         } else {

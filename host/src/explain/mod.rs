@@ -1,7 +1,11 @@
-//! `twinray explain` (issue 27, in progress): every ray one pixel traces, made on the CPU by the
-//! same shared code and seed as the GPU's ray generation stage, traced through each set's real
-//! stages and judged against the f64 reference.
-//!
-//! Built so far: the pixel's primary rays (`rays`).
+//! `twinray explain`: every ray one pixel traces, made on the CPU by the same shared code and
+//! seed as the GPU's ray generation stage (`rays`, `shading`), traced through each set's real
+//! stages (`trace`), judged against the f64 reference (`pixel`), and the first place they part
+//! (`parting`), in words and JSON (`report`).
 
+pub mod parting;
+pub mod pixel;
 pub mod rays;
+pub mod report;
+pub mod shading;
+pub mod trace;

@@ -91,6 +91,20 @@ pub struct Judged {
     pub outcome: Outcome,
 }
 
+/// The outcome of a record with `ids` (written or not) against the reference's `verdict`.
+pub fn outcome(verdict: SceneVerdict, written: bool, ids: glam::UVec4) -> Outcome {
+    let got_hit = ids.w != NO_HIT;
+    match verdict {
+        _ if !written => Outcome::Unwritten,
+        SceneVerdict::Ambiguous => Outcome::Ambiguous,
+        SceneVerdict::Miss if got_hit => Outcome::FalseHit,
+        SceneVerdict::Miss => Outcome::Agrees,
+        SceneVerdict::Hit { .. } if !got_hit => Outcome::FalseMiss,
+        SceneVerdict::Hit { object, .. } if ids.x as usize != object => Outcome::WrongObject,
+        SceneVerdict::Hit { .. } => Outcome::Agrees,
+    }
+}
+
 /// Each result against the reference of its ray, in order.
 pub fn judge(case: &ProbeCase, results: &[ProbeResult]) -> Vec<Judged> {
     case.reference_rays()
@@ -100,16 +114,7 @@ pub fn judge(case: &ProbeCase, results: &[ProbeResult]) -> Vec<Judged> {
             let o = ray.origin.truncate().as_dvec3();
             let d = ray.direction.truncate().as_dvec3();
             let verdict = case.reference.trace(o, d, f64::from(ray.origin.w), f64::from(ray.direction.w));
-            let got_hit = result.ids.w != NO_HIT;
-            let outcome = match verdict {
-                _ if !record_written(result) => Outcome::Unwritten,
-                SceneVerdict::Ambiguous => Outcome::Ambiguous,
-                SceneVerdict::Miss if got_hit => Outcome::FalseHit,
-                SceneVerdict::Miss => Outcome::Agrees,
-                SceneVerdict::Hit { .. } if !got_hit => Outcome::FalseMiss,
-                SceneVerdict::Hit { object, .. } if result.ids.x as usize != object => Outcome::WrongObject,
-                SceneVerdict::Hit { .. } => Outcome::Agrees,
-            };
+            let outcome = outcome(verdict, record_written(result), result.ids);
             Judged { ray: *ray, verdict, outcome }
         })
         .collect()
@@ -170,7 +175,7 @@ pub fn evaluate(
     report.decided = report.rays - report.ambiguous - report.written.unwritten as usize;
     for (generated, judged) in report.generators.iter_mut().zip(generator_spans(case)) {
         let hits = |range: std::ops::Range<usize>, results: &[ProbeResult]| {
-            results[range].iter().filter(|r| record_written(r) && r.ids.w != NO_HIT).count()
+            results[range].iter().filter(|r| record_written(*r) && r.ids.w != NO_HIT).count()
         };
         generated.hit = Some(hits(judged, results));
     }

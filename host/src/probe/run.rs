@@ -40,17 +40,17 @@ impl ProbeOutput {
     }
 }
 
-/// Whether the probe stage wrote this record: no word of it still holds the sentinel.
-pub fn record_written(r: &ProbeResult) -> bool {
+/// Whether the stage wrote this record: no word of it still holds the sentinel.
+pub fn record_written<T: bytemuck::Pod>(r: &T) -> bool {
     let words: &[u32] = bytemuck::cast_slice(std::slice::from_ref(r));
     !words.iter().any(|&w| sentinel::unwritten(w))
 }
 
 /// Records never written, and hits written with a NaN or infinite t or normal.
 pub fn count_written(results: &[ProbeResult]) -> Written {
-    let unwritten = results.iter().filter(|r| !record_written(r)).count() as u64;
+    let unwritten = results.iter().filter(|r| !record_written(*r)).count() as u64;
     let non_finite =
-        results.iter().filter(|r| record_written(r) && r.ids.w != b::NO_HIT && !r.normal_t.is_finite()).count() as u64;
+        results.iter().filter(|r| record_written(*r) && r.ids.w != b::NO_HIT && !r.normal_t.is_finite()).count() as u64;
     Written { unwritten, non_finite, ..Written::default() }
 }
 
@@ -99,13 +99,9 @@ fn probe_and_release(
         return Err(Error::Input(format!("a probe needs 1..={most} rays on {} (got {})", ctx.info.name, rays.len())));
     }
     let bytes = u64::from(count) * size_of::<ProbeResult>() as u64;
-    let ray_buffer =
-        Buffer::with_data(ctx, "probe rays", bytemuck::cast_slice(rays), vk::BufferUsageFlags::STORAGE_BUFFER)?;
-    let results = storage_buffer(ctx, "probe results", bytes)?;
-    let unused = storage_buffer(ctx, "unused hit ids", 64)?;
-    let extra =
-        [(b::BINDING_HIT_IDS, &unused), (b::BINDING_PROBE_RAYS, &ray_buffer), (b::BINDING_PROBE_RESULTS, &results)];
-    let p = prepare(ctx, scene, set, module, ((1, 1), (1, 1)), &extra)?;
+    let buffers = RayBuffers::new(ctx, "probe", bytemuck::cast_slice(rays), bytes)?;
+    let p = prepare(ctx, scene, set, module, ((1, 1), (1, 1)), &buffers.extra())?;
+    let results = buffers.results;
     let timestamps = Timestamps::new(ctx, runs)?;
     let label = format!("the probe trace of {set} ({})", p.pipeline.modules.join(", "));
     let _doing = activity::doing(label);
@@ -123,9 +119,42 @@ fn probe_and_release(
     Ok(ProbeOutput { results, witness, gpu_ms, raygen_stack_bytes: p.pipeline.raygen_stack_bytes() })
 }
 
+/// The buffers a pass of chosen rays binds besides the scene's: the rays, the results (of
+/// `result_bytes`) and an unused hit-id buffer (the layout binds every binding).
+pub(crate) struct RayBuffers {
+    rays: Buffer,
+    pub results: Buffer,
+    unused: Buffer,
+}
+
+impl RayBuffers {
+    pub fn new(ctx: &Arc<Context>, what: &str, rays: &[u8], result_bytes: u64) -> Result<RayBuffers> {
+        Ok(RayBuffers {
+            rays: Buffer::with_data(ctx, &format!("{what} rays"), rays, vk::BufferUsageFlags::STORAGE_BUFFER)?,
+            results: storage_buffer(ctx, &format!("{what} results"), result_bytes)?,
+            unused: storage_buffer(ctx, "unused hit ids", 64)?,
+        })
+    }
+
+    /// The bindings `prepare` takes.
+    pub fn extra(&self) -> [(u32, &Buffer); 3] {
+        [
+            (b::BINDING_HIT_IDS, &self.unused),
+            (b::BINDING_PROBE_RAYS, &self.rays),
+            (b::BINDING_PROBE_RESULTS, &self.results),
+        ]
+    }
+}
+
 /// Runs `trace` over `results`, poisoned first, and reads back the records it wrote: every
 /// trace writes the same records, so what the stage never writes still holds the sentinel.
-fn read_pass(ctx: &Arc<Context>, p: &Prepared, trace: Trace, results: &Buffer, bytes: u64) -> Result<Vec<ProbeResult>> {
+pub(crate) fn read_pass<T: bytemuck::Pod>(
+    ctx: &Arc<Context>,
+    p: &Prepared,
+    trace: Trace,
+    results: &Buffer,
+    bytes: u64,
+) -> Result<Vec<T>> {
     let readback =
         Buffer::new(ctx, "probe readback", bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu)?;
     let before = |device: &ash::Device, cmd| {

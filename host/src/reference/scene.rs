@@ -16,6 +16,8 @@ pub struct RefObject {
     /// Its material's holes, if it is a cutout: a shape's first hit in a hole is ignored (as
     /// the any-hit stage ignores it, and the intersection stage reports no further root).
     pub cutout: Option<RefCutout>,
+    /// Its instance mask: shadow rays see only occluders (`MASK_OCCLUDER`).
+    pub mask: u32,
 }
 
 /// The first hit over all objects, in world space.
@@ -42,6 +44,17 @@ impl RefObject {
 }
 
 impl RefObject {
+    /// A world-space ray in this object's own space.
+    fn ray(&self, origin: DVec3, direction: DVec3, (t_min, t_max): (f64, f64)) -> RefRay {
+        RefRay {
+            origin: self.world_to_object.transform_point3(origin),
+            direction: self.world_to_object.transform_vector3(direction),
+            t_min,
+            t_max,
+            noise_floor: self.noise_floor(origin),
+        }
+    }
+
     /// The true answer for a ray in this object's own space: its first hit over the object's
     /// shapes (the holes of a cutout skipped), with the object-space normal; ambiguous when
     /// any shape's answer is, or the hit is on the edge of a hole.
@@ -90,6 +103,7 @@ impl SceneReference {
                     world_to_object: object_to_world.inverse(),
                     object_to_world,
                     cutout: RefCutout::of(material),
+                    mask: instance.mask,
                 })
             })
             .collect::<Result<_, String>>()?;
@@ -98,16 +112,15 @@ impl SceneReference {
 
     /// The true answer for a world-space ray.
     pub fn trace(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> SceneVerdict {
+        self.trace_masked(origin, direction, (t_min, t_max), u32::MAX)
+    }
+
+    /// The true answer for a world-space ray that sees only objects whose mask shares a bit
+    /// with `mask` (as a ray traced with that cull mask).
+    pub fn trace_masked(&self, origin: DVec3, direction: DVec3, (t_min, t_max): (f64, f64), mask: u32) -> SceneVerdict {
         let mut hits: Vec<(usize, f64, DVec3)> = Vec::new();
-        for (i, object) in self.objects.iter().enumerate() {
-            let ray = RefRay {
-                origin: object.world_to_object.transform_point3(origin),
-                direction: object.world_to_object.transform_vector3(direction),
-                t_min,
-                t_max,
-                noise_floor: object.noise_floor(origin),
-            };
-            match object.first_hit(&ray) {
+        for (i, object) in self.objects.iter().enumerate().filter(|(_, o)| o.mask & mask != 0) {
+            match object.first_hit(&object.ray(origin, direction, (t_min, t_max))) {
                 Verdict::Ambiguous => return SceneVerdict::Ambiguous,
                 Verdict::Miss => {}
                 Verdict::Hit { t, normal } => {
@@ -119,15 +132,40 @@ impl SceneReference {
             }
         }
         hits.sort_by(|a, b| a.1.total_cmp(&b.1));
-        match hits.as_slice() {
-            [] => SceneVerdict::Miss,
-            [(object, t, normal), rest @ ..] => {
-                let scale = origin.abs().max_element().max((origin + direction * *t).abs().max_element());
-                let noise = super::shapes::AMBIGUOUS_ULPS * scale / 16_777_216.0 / direction.length();
-                match rest.first() {
-                    Some((other, t2, _)) if other != object && t2 - t <= noise => SceneVerdict::Ambiguous,
-                    _ => SceneVerdict::Hit { object: *object, t: *t, normal: *normal },
-                }
+        first_of(&hits, origin, direction)
+    }
+
+    /// The objects (seen by `mask`) whose shapes a world-space ray crosses, holes and all, and
+    /// the t of the first crossing of each, nearest first: where a stage may have found a hit
+    /// the reference does not (a cutout's any-hit stage that kept a hit in a hole).
+    pub fn crossings(&self, origin: DVec3, direction: DVec3, range: (f64, f64), mask: u32) -> Vec<(usize, f64)> {
+        let mut out: Vec<(usize, f64)> = Vec::new();
+        for (i, object) in self.objects.iter().enumerate().filter(|(_, o)| o.mask & mask != 0) {
+            let ray = object.ray(origin, direction, range);
+            let ts = object.shapes.iter().filter_map(|shape| match intersect(shape, &ray) {
+                Verdict::Hit { t, .. } => Some(t),
+                _ => None,
+            });
+            if let Some(t) = ts.min_by(f64::total_cmp) {
+                out.push((i, t));
+            }
+        }
+        out.sort_by(|a, b| a.1.total_cmp(&b.1));
+        out
+    }
+}
+
+/// The first of `hits` (sorted by t) as the scene's verdict: ambiguous when another object's hit
+/// is within float noise of it.
+fn first_of(hits: &[(usize, f64, DVec3)], origin: DVec3, direction: DVec3) -> SceneVerdict {
+    match hits {
+        [] => SceneVerdict::Miss,
+        [(object, t, normal), rest @ ..] => {
+            let scale = origin.abs().max_element().max((origin + direction * *t).abs().max_element());
+            let noise = super::shapes::AMBIGUOUS_ULPS * scale / 16_777_216.0 / direction.length();
+            match rest.first() {
+                Some((other, t2, _)) if other != object && t2 - t <= noise => SceneVerdict::Ambiguous,
+                _ => SceneVerdict::Hit { object: *object, t: *t, normal: *normal },
             }
         }
     }

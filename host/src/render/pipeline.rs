@@ -7,7 +7,7 @@
 
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
-use crate::scene::{HitGroup, PipelinePlan, PROBE_QUERY, RENDER_COMPUTE};
+use crate::scene::{HitGroup, PipelinePlan, EXPLAIN_QUERY, PROBE_QUERY, RENDER_COMPUTE};
 use crate::shaders::{ShaderSet, Stage, StageModule};
 use crate::util::activity;
 use crate::vk::context::Context;
@@ -78,12 +78,12 @@ pub fn stage_flag(stage: Stage) -> vk::ShaderStageFlags {
     }
 }
 
-/// The workgroup size of a compute module (`render_compute` or `probe_query`), which the
+/// The workgroup size of a compute module (`render_compute`, `probe_query`, `explain_query`), which the
 /// host dispatches over its launch; `None` for the ray tracing stages.
 pub fn workgroup(module: &str) -> Option<(u32, u32)> {
     match module {
         RENDER_COMPUTE => Some((b::RENDER_GROUP_SIZE, b::RENDER_GROUP_SIZE)),
-        PROBE_QUERY => Some((b::PROBE_GROUP_SIZE, 1)),
+        PROBE_QUERY | EXPLAIN_QUERY => Some((b::PROBE_GROUP_SIZE, 1)),
         _ => None,
     }
 }
@@ -218,6 +218,7 @@ fn require_device_features(ctx: &Context, modules: &[StageModule]) -> Result<()>
                 match m.spec.name {
                     "raygen_query" => " (the scene sets shadow_method = \"query\")",
                     RENDER_COMPUTE | PROBE_QUERY => " (the scene sets renderer = \"compute\")",
+                    EXPLAIN_QUERY => " (the scene sets renderer = \"compute\" or shadow_method = \"query\")",
                     _ => "",
                 }
             )));

@@ -21,8 +21,8 @@ pub use file::{HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMe
 use glam::Vec3;
 pub use mesh::MeshData;
 pub use plan::{
-    each_once, material_callable, Colour, HitGeometry, HitGroup, PipelinePlan, CUTOUT_ANY_HIT, PROBE_QUERY,
-    RENDER_COMPUTE,
+    each_once, material_callable, Colour, HitGeometry, HitGroup, PipelinePlan, CUTOUT_ANY_HIT, EXPLAIN, EXPLAIN_QUERY,
+    PROBE_QUERY, RENDER_COMPUTE,
 };
 pub use shape::{Formula, ShapeDesc};
 use std::collections::BTreeMap;

@@ -42,6 +42,12 @@ pub const RENDER_COMPUTE: &str = "render_compute";
 /// The module that probes a compute scene: its rays traced as the compute renderer traces.
 pub const PROBE_QUERY: &str = "probe_query";
 
+/// `twinray explain`'s ray generation stage: its rays traced by `traceRay` as `raygen` traces.
+pub const EXPLAIN: &str = "explain";
+/// `twinray explain`'s compute stage: its rays traced inline, as the compute renderer traces
+/// them and `raygen_query` traces shadow rays.
+pub const EXPLAIN_QUERY: &str = "explain_query";
+
 /// The any-hit module of cutout hit groups.
 pub const CUTOUT_ANY_HIT: &str = "cutout_any_hit";
 

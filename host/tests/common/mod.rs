@@ -46,3 +46,37 @@ pub fn wait_within(
 pub fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
+
+/// Set B of the planted formula: the Rust set with the textbook sphere intersection stage.
+pub fn naive_sphere() -> String {
+    format!("rust,sphere_intersection={}", repo().join("spirv/rust/sphere_naive_intersection.spv").display())
+}
+
+/// A user's stage: the GLSL stage file `file` of `shaders-glsl/` with `edit.0` replaced by
+/// `edit.1`, compiled by glslang into `dir`; the SPIR-V file.
+pub fn planted_glsl(file: &str, edit: (&str, &str), dir: &Path) -> PathBuf {
+    planted_include(file, file, edit, dir)
+}
+
+/// A user's stage whose edit lies in a file it includes: `stage` of `shaders-glsl/` compiled
+/// with `edited` (that file or one it includes) changed as `planted_glsl` changes it. Both go
+/// to `dir`, where glslang looks for includes first (the including file's folder).
+pub fn planted_include(stage: &str, edited: &str, edit: (&str, &str), dir: &Path) -> PathBuf {
+    let source = std::fs::read_to_string(repo().join("shaders-glsl").join(edited)).unwrap();
+    let planted = source.replace(edit.0, edit.1);
+    assert_ne!(planted, source, "the planted edit must apply to {edited}");
+    std::fs::write(dir.join(edited), planted).unwrap();
+    if stage != edited {
+        std::fs::copy(repo().join("shaders-glsl").join(stage), dir.join(stage)).unwrap();
+    }
+    let spv = dir.join(format!("planted-{stage}.spv"));
+    let out = Command::new("glslangValidator")
+        .args(["-V", "--target-env", "spirv1.4"])
+        .arg(format!("-I{}", repo().join("shaders-glsl").display()))
+        .arg("-o")
+        .args([&spv, &dir.join(stage)])
+        .output()
+        .expect("glslangValidator (cargo xtask setup installs it)");
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
+    spv
+}

@@ -16,10 +16,10 @@ use spirv_std::glam::{UVec2, UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4, Vec4S
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
-use twinray_shared::bindings::{HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, SHADOW_SAMPLER_STRATIFIED};
+use twinray_shared::bindings::{EXPLAIN_SHADOW, HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, SHADOW_SAMPLER_STRATIFIED};
 use twinray_shared::layout::{
-    FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive, ProbeRay, ProbeResult,
-    ShadowPayload, Vertex,
+    ExplainRay, ExplainResult, FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive,
+    ProbeRay, ProbeResult, ShadowPayload, Vertex,
 };
 use twinray_shared::{camera, random, shading};
 
@@ -212,6 +212,67 @@ pub fn probe_witness(
     payload.shading_normal = object_origin.extend(payload.shading_normal.w);
     let d = object_direction;
     payload.ids = UVec4::new(d.x.to_bits(), d.y.to_bits(), d.z.to_bits(), hit_kind);
+}
+
+/// `twinray explain`'s stage: one ray per launch index, traced as the renderer traces rays of
+/// its kind (`trace::primary` or `trace::visible`, the functions `raygen` calls); writes the
+/// primary ray's payload, or whether the shadow ray was occluded.
+#[spirv(ray_generation)]
+pub fn explain(
+    #[spirv(launch_id)] launch_id: UVec3,
+    #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ExplainRay],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ExplainResult],
+    #[spirv(ray_payload)] payload: &mut HitPayload,
+    #[spirv(ray_payload)] shadow: &mut ShadowPayload,
+) {
+    let i = launch_id.x as usize;
+    let r = rays[i];
+    let ray = camera::Ray { origin: r.origin.xyz(), direction: r.direction.xyz() };
+    results[i] = if r.kind.x == EXPLAIN_SHADOW {
+        let lit = trace::visible(tlas, ray.origin, ray.direction, r.direction.w, shadow);
+        ExplainResult { hit: HitPayload::NONE, occluded: UVec4::new(if lit { 0 } else { 1 }, 0, 0, 0) }
+    } else {
+        trace::primary(tlas, ray, frame.reach.x, payload);
+        ExplainResult { hit: *payload, occluded: UVec4::ZERO }
+    };
+}
+
+/// `twinray explain`'s stage for rays traced inline (`renderer = "compute"`, and the shadow
+/// rays of `shadow_method = "query"`): as `explain`, with `query::primary_query` and
+/// `query::visible_query`, which the compute renderer and `raygen_query` call; in workgroups of
+/// `PROBE_GROUP_SIZE` (the literal is the attribute's).
+#[spirv(compute(threads(64)))]
+#[allow(clippy::too_many_arguments)]
+pub fn explain_query(
+    #[spirv(global_invocation_id)] id: UVec3,
+    #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ExplainRay],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ExplainResult],
+) {
+    let i = id.x as usize;
+    // Whole workgroups cover the rays.
+    if i >= rays.len() {
+        return;
+    }
+    let r = rays[i];
+    let ray = camera::Ray { origin: r.origin.xyz(), direction: r.direction.xyz() };
+    results[i] = if r.kind.x == EXPLAIN_SHADOW {
+        let lit = query::visible_query(tlas, ray.origin, ray.direction, r.direction.w, objects, primitives, materials);
+        ExplainResult { hit: HitPayload::NONE, occluded: UVec4::new(if lit { 0 } else { 1 }, 0, 0, 0) }
+    } else {
+        let mut hit = HitPayload::NONE;
+        let t_max = frame.reach.x;
+        query::primary_query(tlas, ray, t_max, &mut hit, frame, objects, primitives, materials, vertices, indices);
+        ExplainResult { hit, occluded: UVec4::ZERO }
+    };
 }
 
 /// The compute renderer's probe (a probe of a `renderer = "compute"` scene): one ray per

@@ -137,7 +137,7 @@ shading!(
 );
 
 /// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`.
-fn visible(
+pub fn visible(
     tlas: &AccelerationStructure,
     origin: Vec3,
     direction: Vec3,

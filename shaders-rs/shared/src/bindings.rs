@@ -36,6 +36,10 @@ pub const BINDING_PROBE_RAYS: u32 = 10;
 /// `[ProbeResult]` written by the probe stage.
 pub const BINDING_PROBE_RESULTS: u32 = 11;
 
+/// `ExplainRay::kind` of a primary ray and of a shadow ray.
+pub const EXPLAIN_PRIMARY: u32 = 0;
+pub const EXPLAIN_SHADOW: u32 = 1;
+
 /// The compute renderer (`renderer = "compute"`) runs workgroups of N x N pixels.
 pub const RENDER_GROUP_SIZE: u32 = 8;
 /// Its probe (`probe_query`) runs workgroups of N rays.

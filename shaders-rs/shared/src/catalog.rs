@@ -147,6 +147,8 @@ macro_rules! module_table {
             ModuleSpec { name: "checker_material", stage: Stage::Callable, glsl: GlslSource::File("checker_material.rcall") },
             ModuleSpec { name: "cutout_any_hit", stage: Stage::AnyHit, glsl: GlslSource::File("cutout.rahit") },
             ModuleSpec { name: "probe_witness", stage: Stage::ClosestHit, glsl: GlslSource::File("probe_witness.rchit") },
+            ModuleSpec { name: "explain", stage: Stage::Raygen, glsl: GlslSource::File("explain.rgen") },
+            ModuleSpec { name: "explain_query", stage: Stage::Compute, glsl: GlslSource::File("explain_query.comp") },
         ];
     };
 }

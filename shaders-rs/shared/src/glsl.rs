@@ -7,8 +7,8 @@
 
 use crate::bindings::*;
 use crate::layout::{
-    FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive, ProbeRay, ProbeResult,
-    ShadowPayload, Vertex,
+    ExplainRay, ExplainResult, FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive,
+    ProbeRay, ProbeResult, ShadowPayload, Vertex,
 };
 use crate::offset::{OFFSET_FLOAT_SCALE, OFFSET_INT_SCALE, OFFSET_ORIGIN, OFFSET_REACH_SCALE};
 use crate::shading::CHECKER_DEPTH;
@@ -89,6 +89,8 @@ pub fn structs() -> Vec<GlslStruct> {
         glsl_struct!(MaterialCall { material: "Material", point: "vec4", normal: "vec4", color: "vec4" }),
         glsl_struct!(ProbeRay { origin: "vec4", direction: "vec4" }),
         glsl_struct!(ProbeResult { normal_t: "vec4", ids: "uvec4" }),
+        glsl_struct!(ExplainRay { origin: "vec4", direction: "vec4", kind: "uvec4" }),
+        glsl_struct!(ExplainResult { hit: "HitPayload", occluded: "uvec4" }),
     ]
 }
 
@@ -98,8 +100,9 @@ fn glsl_size_align(glsl_type: &str) -> Option<(usize, usize)> {
         "float" | "uint" | "int" => Some((4, 4)),
         "vec4" | "uvec4" | "ivec4" => Some((16, 16)),
         "mat4" => Some((64, 16)),
-        // A struct member: Material is 16-aligned (its vec4s) and a multiple of 16 long.
+        // Struct members: Material and HitPayload are 16-aligned (their vec4s) and multiples of 16 long.
         "Material" => Some((size_of::<Material>(), 16)),
+        "HitPayload" => Some((size_of::<HitPayload>(), 16)),
         _ => None,
     }
 }
@@ -149,6 +152,8 @@ pub fn layout_include() -> Result<String, String> {
         ("BINDING_PROBE_RESULTS", BINDING_PROBE_RESULTS),
         ("RENDER_GROUP_SIZE", crate::bindings::RENDER_GROUP_SIZE),
         ("PROBE_GROUP_SIZE", crate::bindings::PROBE_GROUP_SIZE),
+        ("EXPLAIN_PRIMARY", crate::bindings::EXPLAIN_PRIMARY),
+        ("EXPLAIN_SHADOW", crate::bindings::EXPLAIN_SHADOW),
         ("HIT_KIND_TRIANGLE_FRONT", crate::bindings::HIT_KIND_TRIANGLE_FRONT),
         ("HIT_KIND_TRIANGLE_BACK", crate::bindings::HIT_KIND_TRIANGLE_BACK),
         ("MISS_PRIMARY", MISS_PRIMARY),

@@ -138,6 +138,8 @@ const _: () = assert!(core::mem::size_of::<Light>() == 80);
 /// The payload of primary rays: what the closest-hit stage found, for ray generation to shade.
 #[repr(C)]
 #[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
 pub struct HitPayload {
     /// xyz: world-space hit point; w: the ray parameter t. (Recomputing it in ray generation
     /// from the ray measured 0.8% slower for the Rust set on an H200: the ray stays live
@@ -217,3 +219,33 @@ pub struct ProbeResult {
     pub ids: UVec4,
 }
 const _: () = assert!(core::mem::size_of::<ProbeResult>() == 32);
+
+/// One ray of `twinray explain`, traced as the renderer traces rays of its `kind`: a primary
+/// ray (`EXPLAIN_PRIMARY`, over the camera's reach) or a shadow ray (`EXPLAIN_SHADOW`, from 0
+/// to `direction.w`).
+#[repr(C)]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct ExplainRay {
+    /// xyz: world-space origin; w: 0.
+    pub origin: Vec4,
+    /// xyz: world-space direction; w: a shadow ray's length (0 for a primary ray).
+    pub direction: Vec4,
+    /// x: `EXPLAIN_PRIMARY` or `EXPLAIN_SHADOW`; yzw: 0.
+    pub kind: UVec4,
+}
+const _: () = assert!(core::mem::size_of::<ExplainRay>() == 48);
+
+/// What an explain ray found: of a primary ray, the payload the hit or miss stage left (and
+/// `occluded` all zero); of a shadow ray, `occluded.x` 1 if something cast a shadow, else 0
+/// (and `hit` all zero).
+#[repr(C)]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
+#[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
+pub struct ExplainResult {
+    pub hit: HitPayload,
+    pub occluded: UVec4,
+}
+const _: () = assert!(core::mem::size_of::<ExplainResult>() == 96);

@@ -1,8 +1,9 @@
 //! Light sampling: for a shading point, where a light (sample) is, how much it delivers before
 //! visibility, and how far a shadow ray must reach.
 
-use crate::bindings::{LIGHT_DIRECTIONAL, LIGHT_POINT};
+use crate::bindings::{LIGHT_DIRECTIONAL, LIGHT_POINT, LIGHT_RECT};
 use crate::layout::Light;
+use crate::random::random;
 use glam::{Vec3, Vec4Swizzles};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
@@ -49,6 +50,34 @@ pub fn sample(light: &Light, point: Vec3, (i, j): (u32, u32), (r1, r2): (f32, f3
         radiance * (cos_light * area_normal.length() / (n * n * distance_sq))
     };
     LightSample { direction, distance, irradiance }
+}
+
+/// The sample ray generation takes of light number `l` (`light`) for shadow sample `(i, j)` of
+/// its `n` x `n`, for primary sample `sample` of pixel `pixel` with the frame's `seed`, at
+/// `point`: rect lights jittered by the random numbers of dimensions `2 + 2 * (l * 64 + j * n +
+/// i)` and the next (0 and 1 jitter the pixel), `stratified` (one per cell) or independent
+/// (cell (0, 0) stretched over the whole light); other lights take no random numbers. This is
+/// what `twinray explain` remakes a pixel's shadow rays with on the CPU. The stages' shading
+/// loop (trace.rs, trace.glsl) writes the same arithmetic out: calling this from the Rust loop
+/// changed its ray generation module's code (21320 to 21848 bytes), which the timing tables
+/// measured, so it stays apart; explain's test checks that both add up to the image's pixels.
+pub fn sample_of(
+    light: &Light,
+    (l, i, j, n): (u32, u32, u32, u32),
+    stratified: bool,
+    (seed, pixel, sample): (u32, u32, u32),
+    point: Vec3,
+    across: f32,
+) -> LightSample {
+    let dimension = 2 + 2 * (l * 64 + j * n + i);
+    let (r1, r2) = if light.kind == LIGHT_RECT {
+        (random(seed, pixel, sample, dimension), random(seed, pixel, sample, dimension + 1))
+    } else {
+        (0.0, 0.0)
+    };
+    let nf = n as f32;
+    let (si, sj, r1, r2) = if stratified { (i, j, r1, r2) } else { (0, 0, r1 * nf, r2 * nf) };
+    self::sample(light, point, (si, sj), (r1, r2), across)
 }
 
 /// Shadow samples per side of `light`: rect lights use their own count, the others one.

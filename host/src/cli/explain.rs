@@ -1,0 +1,71 @@
+//! `twinray explain`: every ray of one pixel, in each set and in the f64 reference, with the
+//! first place they part.
+
+use crate::args::{ExplainArgs, GlobalArgs};
+use crate::session::context;
+use anyhow::Result;
+use std::process::ExitCode;
+use twinray::explain::pixel::explain_pixel;
+use twinray::explain::report::{Converged, ExplainReport};
+use twinray::reference::image::{default_cache, reference};
+use twinray::scene::check_size;
+use twinray::{Error, Scene};
+
+pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
+    let scene = Scene::load(args.scene.as_deref())?;
+    let frames = scene.frame_count();
+    if args.frame >= frames {
+        return Err(Error::Input(format!(
+            "--frame {} is past the end of {} ({} frame(s): 0 to {})",
+            args.frame,
+            scene.name(),
+            frames,
+            frames - 1
+        ))
+        .into());
+    }
+    let scene = if scene.animation.is_some() { scene.at_frame(args.frame) } else { scene };
+    let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
+    check_size(size.0, size.1).map_err(Error::Input)?;
+    let mut sets = vec![(label(&args.a, "A"), args.a.clone())];
+    if let Some(b) = &args.b {
+        sets.push((label(b, "B"), b.clone()));
+    }
+    if sets.len() == 2 && sets[0].0 == sets[1].0 {
+        sets[0].0 = format!("A ({})", sets[0].0);
+        sets[1].0 = format!("B ({})", sets[1].0);
+    }
+    let ctx = context(global)?;
+    let px = explain_pixel(&ctx, &scene, &sets, size, args.pixel)?;
+    let converged = match args.converged {
+        Some(spp) => {
+            let image = reference(&ctx, &scene, &args.a, size, spp, &default_cache())?;
+            let index = (args.pixel.1 * size.0 + args.pixel.0) as usize;
+            Some(Converged { spp, value: image.linear[index] })
+        }
+        None => None,
+    };
+    let mut report = ExplainReport::new(&px, &scene.build(), args.frame, converged);
+    let specs = [Some(&args.a), args.b.as_ref()].into_iter().flatten().zip(&sets);
+    report.specs = specs
+        .filter(|(set, (label, _))| set.to_string() != *label)
+        .map(|(set, (label, _))| format!("{label} = {set}"))
+        .collect();
+    if args.json {
+        println!("{}", serde_json::to_string(&report)?);
+    } else {
+        print!("{}", report.summary());
+    }
+    Ok(ExitCode::SUCCESS)
+}
+
+/// A set's name in the report: its spec, or `which` (A or B) when that is long (a folder or
+/// file path).
+fn label(set: &twinray::ShaderSet, which: &str) -> String {
+    let text = set.to_string();
+    if text.len() <= 40 {
+        text
+    } else {
+        format!("set {which}")
+    }
+}

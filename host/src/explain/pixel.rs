@@ -1,0 +1,145 @@
+//! Every ray of one pixel, in each set and in the f64 reference: the primary samples made on
+//! the CPU (`rays`), traced through each set's real stages (`trace`); the light samples each
+//! set's stage takes at its own hit, remade on the CPU (`shading`) and their shadow rays traced
+//! through its stages too; each ray judged by the reference; and the pixel as each set's image
+//! holds it, next to what its rays add up to.
+
+use super::rays::{Camera, PrimarySample};
+use super::shading::{self, LightSample};
+use super::trace;
+use crate::error::{Error, Result};
+use crate::probe::report::{outcome, Outcome};
+use crate::reference::scene::{SceneReference, SceneVerdict};
+use crate::render::{render_sets, RenderOptions};
+use crate::scene::Scene;
+use crate::shaders::ShaderSet;
+use crate::vk::context::Context;
+use glam::{UVec4, Vec3};
+use std::sync::Arc;
+use twinray_shared::bindings::{EXPLAIN_PRIMARY, MASK_OCCLUDER};
+use twinray_shared::layout::{ExplainRay, HitPayload};
+
+/// One set's answer for one primary sample.
+#[derive(Clone, Debug)]
+pub struct SetSample {
+    /// The payload its hit or miss stage left.
+    pub hit: HitPayload,
+    /// How it stands against the reference's verdict for the ray.
+    pub outcome: Outcome,
+    /// The light samples its ray generation stage takes at that hit, in order.
+    pub lights: Vec<LightSample>,
+    /// Per light sample: whether its shadow ray was occluded (`None`: no ray traced).
+    pub occluded: Vec<Option<bool>>,
+    /// Per light sample: the reference's answer for that very shadow ray (`None`: not traced).
+    pub shadow_verdicts: Vec<Option<SceneVerdict>>,
+    /// The colour the sample adds, as the stage adds it up.
+    pub radiance: Vec3,
+}
+
+/// One set's rays of the pixel.
+#[derive(Clone, Debug)]
+pub struct SetRays {
+    pub label: String,
+    pub samples: Vec<SetSample>,
+    /// The pixel in the set's image (linear).
+    pub image: Vec3,
+    /// What its samples add up to, as the stage averages them.
+    pub remade: Vec3,
+}
+
+/// The explanation of one pixel.
+pub struct PixelRays {
+    pub scene: String,
+    pub pixel: (u32, u32),
+    pub size: (u32, u32),
+    pub samples: Vec<PrimarySample>,
+    /// The reference's verdict for each primary sample.
+    pub reference: Vec<SceneVerdict>,
+    pub sets: Vec<SetRays>,
+    /// The f64 reference of the scene.
+    pub truth: SceneReference,
+    /// The scene's background: what the miss stage shows.
+    pub background: Vec3,
+}
+
+/// Traces every ray of `pixel` of `scene` (a still scene, or one frame of an animation) at
+/// `size` with each of `sets`, and judges them with the f64 reference.
+pub fn explain_pixel(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    sets: &[(String, ShaderSet)],
+    size: (u32, u32),
+    pixel: (u32, u32),
+) -> Result<PixelRays> {
+    let camera = Camera::new(scene, size);
+    let samples = camera.primary_samples(pixel)?;
+    let reference = SceneReference::new(scene).map_err(|e| Error::Input(format!("{}: {e}", scene.name())))?;
+    let frame = scene.frame_uniform(size.0, size.1);
+    let verdicts: Vec<SceneVerdict> = samples
+        .iter()
+        .map(|s| {
+            let (o, d) = (s.ray.origin.truncate().as_dvec3(), s.ray.direction.truncate().as_dvec3());
+            reference.trace(o, d, f64::from(s.ray.origin.w), f64::from(s.ray.direction.w))
+        })
+        .collect();
+    let only_sets: Vec<ShaderSet> = sets.iter().map(|(_, s)| s.clone()).collect();
+    let images = render_sets(ctx, scene, &only_sets, &RenderOptions::once(size.0, size.1, 0, 1))?;
+    let index = (pixel.1 * size.0 + pixel.0) as usize;
+    let data = scene.build();
+    let mut out = Vec::new();
+    for ((label, set), image) in sets.iter().zip(&images) {
+        let primary: Vec<ExplainRay> = samples
+            .iter()
+            .map(|s| ExplainRay {
+                origin: s.ray.origin.truncate().extend(0.0),
+                direction: s.ray.direction.truncate().extend(0.0),
+                kind: UVec4::new(EXPLAIN_PRIMARY, 0, 0, 0),
+            })
+            .collect();
+        let hits = trace::trace(ctx, scene, set, size, &primary)?;
+        let pixel_index = pixel.1 * size.0 + pixel.0;
+        let lights: Vec<Vec<LightSample>> = hits
+            .iter()
+            .zip(&samples)
+            .map(|(r, s)| shading::light_samples((&frame, &data.lights, &data.plan), &r.hit, pixel_index, s.index))
+            .collect();
+        let shadow_rays: Vec<ExplainRay> = lights.iter().flatten().filter(|l| l.traced).map(|l| l.ray()).collect();
+        let mut answers = trace::trace(ctx, scene, set, size, &shadow_rays)?.into_iter().map(|r| r.occluded.x != 0);
+        let mut set_samples = Vec::new();
+        for ((result, lights), verdict) in hits.iter().zip(lights).zip(&verdicts) {
+            let occluded: Vec<Option<bool>> =
+                lights.iter().map(|l| if l.traced { answers.next() } else { None }).collect();
+            let shadow_verdicts = lights.iter().map(|l| l.traced.then(|| shadow_verdict(&reference, l))).collect();
+            let radiance = shading::radiance(&result.hit, &lights, |k| occluded[k] == Some(false));
+            set_samples.push(SetSample {
+                hit: result.hit,
+                outcome: outcome(*verdict, true, result.hit.ids),
+                lights,
+                occluded,
+                shadow_verdicts,
+                radiance,
+            });
+        }
+        let sum = set_samples.iter().fold(Vec3::ZERO, |sum, s| sum + s.radiance);
+        let remade = sum / set_samples.len() as f32;
+        let image = Vec3::from(image.linear[index]);
+        out.push(SetRays { label: label.clone(), samples: set_samples, image, remade });
+    }
+    let background = frame.background.truncate();
+    Ok(PixelRays {
+        scene: scene.name().to_string(),
+        pixel,
+        size,
+        samples,
+        reference: verdicts,
+        sets: out,
+        truth: reference,
+        background,
+    })
+}
+
+/// The reference's answer for a shadow ray: a hit is an occluder in the way.
+fn shadow_verdict(reference: &SceneReference, light: &LightSample) -> SceneVerdict {
+    let (o, d) = (light.origin.as_dvec3(), light.direction.as_dvec3());
+    reference.trace_masked(o, d, (0.0, f64::from(light.distance)), MASK_OCCLUDER)
+}
