@@ -115,4 +115,17 @@ fn bad_input_gets_one_line_and_exit_2() {
     assert_bad_input(&["explain", "spheres", "--pixel", "1,1", "--frame", "1"], &["--frame 1", "1 frame(s)"]);
     assert_bad_input(&["explain", "spheres", "--pixel", "1,1", "--a", "/no/such/set"], &["/no/such/set"]);
     assert_bad_input(&["explain", "no-such-scene", "--pixel", "1,1"], &["no-such-scene"]);
+    // A folder of modules built before explain existed.
+    let folder = tempfile::tempdir().unwrap();
+    for entry in std::fs::read_dir(repo().join("spirv/glsl")).unwrap() {
+        let path = entry.unwrap().path();
+        if !path.file_stem().unwrap().to_string_lossy().starts_with("explain") {
+            std::fs::copy(&path, folder.path().join(path.file_name().unwrap())).unwrap();
+        }
+    }
+    let a = folder.path().to_string_lossy().into_owned();
+    assert_bad_input(
+        &["explain", "spheres", "--pixel", "1,1", "--a", &a],
+        &["has no explain module", "rebuild the folder"],
+    );
 }

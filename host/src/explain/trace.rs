@@ -37,6 +37,12 @@ pub fn trace(
     let kind = first.kind.x;
     debug_assert!(rays.iter().all(|r| r.kind.x == kind), "one kind of ray per trace");
     let module = explain_module(&scene.build().plan, kind);
+    if set.lacks(module) {
+        return Err(Error::Input(format!(
+            "shader set {set} has no {module} module, which explain traces with (a folder built before explain \
+             existed): rebuild the folder, or copy {module}.spv in from spirv/rust or spirv/glsl"
+        )));
+    }
     let results = trace_and_release(ctx, scene, set, (size, module), rays)?;
     ctx.check_validation()?;
     if let Some(i) = results.iter().position(|r| !record_written(r)) {
