@@ -63,11 +63,10 @@ fn identical_sets_agree_on_every_ray_and_their_rays_add_up_to_their_pixels() {
     let sets = [("rust".to_string(), set("rust")), ("glsl".to_string(), set("glsl"))];
     let size = (64, 48);
     for (label, scene) in scenes {
-        let data = scene.build();
         let mut shadow_rays = 0;
         for pixel in [(10, 40), (32, 30), (50, 20)] {
             let px = explain_pixel(&ctx, &scene, &sets, size, pixel).expect("explain");
-            let parting = first_parting(&px, &data);
+            let parting = first_parting(&px);
             assert!(parting.text.starts_with("all rays agree"), "{label} {pixel:?}: {}", parting.text);
             assert_eq!(parting.stage, None, "{label} {pixel:?}");
             for s in &px.sets {

@@ -45,7 +45,7 @@ pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
         }
         None => None,
     };
-    let mut report = ExplainReport::new(&px, &scene.build(), args.frame, converged);
+    let mut report = ExplainReport::new(&px, args.frame, converged);
     let specs = [Some(&args.a), args.b.as_ref()].into_iter().flatten().zip(&sets);
     report.specs = specs
         .filter(|(set, (label, _))| set.to_string() != *label)

@@ -7,7 +7,7 @@ use super::pixel::{PixelRays, SetRays, SetSample};
 use crate::probe::report::Outcome;
 use crate::reference::scene::SceneVerdict;
 use crate::render::to_rgba8;
-use crate::scene::SceneData;
+use crate::scene::{HitGroup, SceneData};
 use glam::{Vec3, Vec4Swizzles};
 use serde::Serialize;
 use twinray_shared::bindings::{MASK_OCCLUDER, NO_HIT};
@@ -31,8 +31,8 @@ pub struct Parting {
 
 /// The first place the rays of `px` part (between its two sets, or its one set and the
 /// reference).
-pub fn first_parting(px: &PixelRays, data: &SceneData) -> Parting {
-    let sets = &px.sets;
+pub fn first_parting(px: &PixelRays) -> Parting {
+    let (sets, data) = (&px.sets, &px.data);
     let m2 = px.samples.len();
     for (k, verdict) in px.reference.iter().enumerate() {
         let at = |stage: Option<String>, text: String| Parting {
@@ -54,7 +54,7 @@ pub fn first_parting(px: &PixelRays, data: &SceneData) -> Parting {
         if let Some((stage, text)) = parted {
             return at(stage, text);
         }
-        if let Some(p) = shadow_parts(px, data, k) {
+        if let Some(p) = shadow_parts(px, k) {
             return Parting { sample: Some(k as u32), text: format!("sample {k} (of {m2}): {}", p.text), ..p };
         }
     }
@@ -73,8 +73,7 @@ fn angle(a: Vec3, b: Vec3) -> f32 {
 /// The stage that computes the geometric normal of `object`'s hits: a procedural shape's
 /// intersection stage (its hit attribute), or a mesh's closest-hit stage (from its vertices).
 fn normal_stage(data: &SceneData, object: u32) -> String {
-    let group = data.instances.get(object as usize).map(|i| data.plan.hit_groups[i.hit_group as usize]);
-    match group {
+    match group_of(data, object) {
         Some(g) => g.intersection_module().unwrap_or(g.closest_hit_module()).to_string(),
         None => "intersection stage".into(),
     }
@@ -165,18 +164,15 @@ fn primary_parts(
 
 /// Where one set's shadow rays of sample `k` first part from the other's (or, for one set,
 /// from the reference's answer for the same ray).
-fn shadow_parts(px: &PixelRays, data: &SceneData, k: usize) -> Option<Parting> {
-    let sets = &px.sets;
+fn shadow_parts(px: &PixelRays, k: usize) -> Option<Parting> {
+    let (sets, data) = (&px.sets, &px.data);
     let first = &sets.first()?.samples[k];
     for (j, light) in first.lights.iter().enumerate() {
-        let answers: Vec<(String, Option<bool>, Option<SceneVerdict>)> = sets
+        let answers: Vec<(&SetRays, Option<bool>, Option<SceneVerdict>)> = sets
             .iter()
             .map(|s| {
-                (
-                    s.label.clone(),
-                    s.samples[k].occluded.get(j).copied().flatten(),
-                    s.samples[k].shadow_verdicts.get(j).copied().flatten(),
-                )
+                let sample = &s.samples[k];
+                (s, sample.occluded.get(j).copied().flatten(), sample.shadow_verdicts.get(j).copied().flatten())
             })
             .collect();
         let differ = match answers.as_slice() {
@@ -187,15 +183,13 @@ fn shadow_parts(px: &PixelRays, data: &SceneData, k: usize) -> Option<Parting> {
         if !differ {
             continue;
         }
-        let lights_of =
-            |label: &str| sets.iter().find(|s| s.label == label).map_or(&[][..], |s| &s.samples[k].lights[..]);
         let said: Vec<String> = answers
             .iter()
-            .map(|(label, occluded, verdict)| {
+            .map(|(set, occluded, verdict)| {
                 let got = match occluded {
                     Some(true) => "is occluded".to_string(),
                     Some(false) => "reaches the light".to_string(),
-                    None => match lights_of(label).get(j) {
+                    None => match set.samples[k].lights.get(j) {
                         Some(l) if l.cosine <= 0.0 => {
                             format!("is not traced: its surface faces away (cosine {:.4})", l.cosine)
                         }
@@ -203,23 +197,23 @@ fn shadow_parts(px: &PixelRays, data: &SceneData, k: usize) -> Option<Parting> {
                     },
                 };
                 let truth = verdict.map_or(String::new(), |v| format!(" (the reference: {})", shadow_words(data, &v)));
-                format!("{label}'s shadow ray {got}{truth}")
+                format!("{}'s shadow ray {got}{truth}", set.label)
             })
             .collect();
         let wrong = answers.iter().find(|(_, o, v)| v.and_then(|v| decided(&v)).is_some_and(|truth| Some(truth) != *o));
-        let stage = wrong.map(|(label, occluded, verdict)| match (occluded, verdict) {
+        let stage = wrong.map(|(set, occluded, verdict)| match (occluded, verdict) {
             (Some(false), Some(SceneVerdict::Hit { object, .. })) => {
-                format!("{label}'s {}", intersection(data, *object as u32))
+                format!("{}'s {}", set.label, intersection(data, *object as u32))
             }
             _ => {
                 // A shadow the reference does not find: the occluders the ray crosses (holes and
                 // all) are the suspects, the nearest first.
-                let l = &lights_of(label)[j];
+                let l = &set.samples[k].lights[j];
                 let (o, d) = (l.origin.as_dvec3(), l.direction.as_dvec3());
                 let suspects = px.truth.crossings(o, d, (0.0, f64::from(l.distance)), MASK_OCCLUDER);
                 match suspects.first() {
-                    Some((object, _)) => format!("{label}'s {}", intersection(data, *object as u32)),
-                    None => format!("{label}'s intersection or any-hit stage of an occluder"),
+                    Some((object, _)) => format!("{}'s {}", set.label, intersection(data, *object as u32)),
+                    None => format!("{}'s intersection or any-hit stage of an occluder", set.label),
                 }
             }
         });
@@ -315,10 +309,15 @@ fn blame(data: &SceneData, set: &SetRays, s: &SetSample, verdict: &SceneVerdict)
     }
 }
 
+/// The hit group of `object`.
+fn group_of(data: &SceneData, object: u32) -> Option<HitGroup> {
+    data.instances.get(object as usize).map(|i| data.plan.hit_groups[i.hit_group as usize])
+}
+
 /// "sphere #2": the object's hit group and index.
 pub fn object_name(data: &SceneData, object: u32) -> String {
-    match data.instances.get(object as usize) {
-        Some(i) => format!("{} #{object}", data.plan.hit_groups[i.hit_group as usize].name()),
+    match group_of(data, object) {
+        Some(group) => format!("{} #{object}", group.name()),
         None => format!("object #{object}"),
     }
 }
@@ -326,8 +325,7 @@ pub fn object_name(data: &SceneData, object: u32) -> String {
 /// The intersection stage of `object`'s hit group: its module, or the driver's triangle test
 /// (and for cutouts, the any-hit stage that decides holes).
 pub fn intersection(data: &SceneData, object: u32) -> String {
-    let Some(i) = data.instances.get(object as usize) else { return "intersection stage".into() };
-    let group = data.plan.hit_groups[i.hit_group as usize];
+    let Some(group) = group_of(data, object) else { return "intersection stage".into() };
     let test = group.intersection_module().map_or("the driver's triangle test".to_string(), str::to_string);
     match group.any_hit_module() {
         Some(any_hit) => format!("{test} (or {any_hit})"),
@@ -337,9 +335,7 @@ pub fn intersection(data: &SceneData, object: u32) -> String {
 
 /// The closest-hit module of `object`'s hit group.
 fn closest_hit(data: &SceneData, object: u32) -> String {
-    data.instances
-        .get(object as usize)
-        .map_or("closest-hit".into(), |i| data.plan.hit_groups[i.hit_group as usize].closest_hit_module().to_string())
+    group_of(data, object).map_or("closest-hit".into(), |g| g.closest_hit_module().to_string())
 }
 
 /// "rust hits sphere #0 at t 4.21830" or "glsl misses".

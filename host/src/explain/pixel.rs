@@ -11,7 +11,7 @@ use crate::error::{Error, Result};
 use crate::probe::report::{outcome, Outcome};
 use crate::reference::scene::{SceneReference, SceneVerdict};
 use crate::render::{render_sets, RenderOptions};
-use crate::scene::Scene;
+use crate::scene::{Scene, SceneData};
 use crate::shaders::ShaderSet;
 use crate::vk::context::Context;
 use glam::{UVec4, Vec3};
@@ -56,6 +56,8 @@ pub struct PixelRays {
     /// The reference's verdict for each primary sample.
     pub reference: Vec<SceneVerdict>,
     pub sets: Vec<SetRays>,
+    /// The scene's GPU data and pipeline plan (what names objects and stages).
+    pub data: SceneData,
     /// The f64 reference of the scene.
     pub truth: SceneReference,
     /// The scene's background: what the miss stage shows.
@@ -84,27 +86,27 @@ pub fn explain_pixel(
         .collect();
     let only_sets: Vec<ShaderSet> = sets.iter().map(|(_, s)| s.clone()).collect();
     let images = render_sets(ctx, scene, &only_sets, &RenderOptions::once(size.0, size.1, 0, 1))?;
-    let index = (pixel.1 * size.0 + pixel.0) as usize;
+    let pixel_index = pixel.1 * size.0 + pixel.0;
     let data = scene.build();
+    let primary: Vec<ExplainRay> = samples
+        .iter()
+        .map(|s| ExplainRay {
+            origin: s.ray.origin.truncate().extend(0.0),
+            direction: s.ray.direction.truncate().extend(0.0),
+            kind: UVec4::new(EXPLAIN_PRIMARY, 0, 0, 0),
+        })
+        .collect();
     let mut out = Vec::new();
     for ((label, set), image) in sets.iter().zip(&images) {
-        let primary: Vec<ExplainRay> = samples
-            .iter()
-            .map(|s| ExplainRay {
-                origin: s.ray.origin.truncate().extend(0.0),
-                direction: s.ray.direction.truncate().extend(0.0),
-                kind: UVec4::new(EXPLAIN_PRIMARY, 0, 0, 0),
-            })
-            .collect();
-        let hits = trace::trace(ctx, scene, set, size, &primary)?;
-        let pixel_index = pixel.1 * size.0 + pixel.0;
+        let hits = trace::trace(ctx, (scene, &data.plan), set, size, &primary)?;
         let lights: Vec<Vec<LightSample>> = hits
             .iter()
             .zip(&samples)
             .map(|(r, s)| shading::light_samples((&frame, &data.lights, &data.plan), &r.hit, pixel_index, s.index))
             .collect();
         let shadow_rays: Vec<ExplainRay> = lights.iter().flatten().filter(|l| l.traced).map(|l| l.ray()).collect();
-        let mut answers = trace::trace(ctx, scene, set, size, &shadow_rays)?.into_iter().map(|r| r.occluded.x != 0);
+        let mut answers =
+            trace::trace(ctx, (scene, &data.plan), set, size, &shadow_rays)?.into_iter().map(|r| r.occluded.x != 0);
         let mut set_samples = Vec::new();
         for ((result, lights), verdict) in hits.iter().zip(lights).zip(&verdicts) {
             let occluded: Vec<Option<bool>> =
@@ -122,7 +124,7 @@ pub fn explain_pixel(
         }
         let sum = set_samples.iter().fold(Vec3::ZERO, |sum, s| sum + s.radiance);
         let remade = sum / set_samples.len() as f32;
-        let image = Vec3::from(image.linear[index]);
+        let image = Vec3::from(image.linear[pixel_index as usize]);
         out.push(SetRays { label: label.clone(), samples: set_samples, image, remade });
     }
     let background = frame.background.truncate();
@@ -133,6 +135,7 @@ pub fn explain_pixel(
         samples,
         reference: verdicts,
         sets: out,
+        data,
         truth: reference,
         background,
     })

@@ -4,7 +4,6 @@
 use super::parting::{first_parting, hit_words, rgb, shadow_words, verdict_words, xyz, Parting};
 use super::pixel::{PixelRays, SetSample};
 use crate::reference::scene::SceneVerdict;
-use crate::scene::SceneData;
 use glam::{Vec3, Vec4Swizzles};
 use serde::Serialize;
 use std::fmt::Write;
@@ -99,8 +98,8 @@ pub struct PixelReport {
 }
 
 impl ExplainReport {
-    /// The report of `px` (frame `frame` of its scene, whose data is `data`).
-    pub fn new(px: &PixelRays, data: &SceneData, frame: u32, converged: Option<Converged>) -> ExplainReport {
+    /// The report of `px` (frame `frame` of its scene).
+    pub fn new(px: &PixelRays, frame: u32, converged: Option<Converged>) -> ExplainReport {
         let samples = px
             .samples
             .iter()
@@ -119,8 +118,8 @@ impl ExplainReport {
             .iter()
             .map(|s| PixelReport { set: s.label.clone(), image: s.image.to_array(), rays: s.remade.to_array() })
             .collect();
-        let parting = first_parting(px, data);
-        let text = sample_lines(px, data);
+        let parting = first_parting(px);
+        let text = sample_lines(px);
         ExplainReport {
             scene: px.scene.clone(),
             pixel: [px.pixel.0, px.pixel.1],
@@ -175,7 +174,8 @@ impl ExplainReport {
 
 /// Each sample's rays in words: the ray, the reference's verdict, each set's answer, and each
 /// of its light samples.
-fn sample_lines(px: &PixelRays, data: &SceneData) -> String {
+fn sample_lines(px: &PixelRays) -> String {
+    let data = &px.data;
     let mut s = String::new();
     for (k, sample) in px.samples.iter().enumerate() {
         let (o, d) = (sample.ray.origin.xyz(), sample.ray.direction.xyz());

@@ -24,11 +24,12 @@ pub fn explain_module(plan: &PipelinePlan, kind: u32) -> &'static str {
     }
 }
 
-/// Traces `rays`, all of one kind, through `scene` (with frame constants for an image of
-/// `size`) with `set`; one result per ray. An error if the stage left a record unwritten.
+/// Traces `rays`, all of one kind, through `scene` (whose pipeline plan is `plan`; with frame
+/// constants for an image of `size`) with `set`; one result per ray. An error if the stage left
+/// a record unwritten.
 pub fn trace(
     ctx: &Arc<Context>,
-    scene: &Scene,
+    (scene, plan): (&Scene, &PipelinePlan),
     set: &ShaderSet,
     size: (u32, u32),
     rays: &[ExplainRay],
@@ -36,7 +37,7 @@ pub fn trace(
     let Some(first) = rays.first() else { return Ok(Vec::new()) };
     let kind = first.kind.x;
     debug_assert!(rays.iter().all(|r| r.kind.x == kind), "one kind of ray per trace");
-    let module = explain_module(&scene.build().plan, kind);
+    let module = explain_module(plan, kind);
     if set.lacks(module) {
         return Err(Error::Input(format!(
             "shader set {set} has no {module} module, which explain traces with (a folder built before explain \
