@@ -16,7 +16,8 @@
 //! - [`compare`](mod@compare): image differences, verdicts and the report of two sets;
 //! - [`bench`](mod@bench): speed against error, with tables, plots and HTML;
 //! - [`crosscheck`](mod@crosscheck): twinray's references against Mitsuba 3's renders;
-//! - [`fuzz`](mod@fuzz): what the fuzz targets feed arbitrary bytes.
+//! - [`fuzz`](mod@fuzz): what the fuzz targets feed arbitrary bytes;
+//! - [`view`](mod@view): the live page in the browser (its GPU work runs `twinray` children).
 
 pub mod error;
 pub mod util;
@@ -42,6 +43,8 @@ pub mod bench;
 pub mod crosscheck;
 
 pub mod fuzz;
+
+pub mod view;
 
 pub use error::{Error, Result};
 pub use render::{render, render_sets, RenderOptions, RenderOutput};

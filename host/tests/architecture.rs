@@ -21,6 +21,7 @@ const LAYERS: &[&str] = &[
     "bench",
     "crosscheck",
     "fuzz",
+    "view",
 ];
 
 /// Longest source file, in lines.

@@ -104,6 +104,8 @@ fn help_documents_every_command() {
         &["probe", "--help"],
         &["stability", "--help"],
         &["reference", "--help"],
+        &["explain", "--help"],
+        &["view", "--help"],
     ];
     for args in commands {
         let out = twinray(args, dir.path());
@@ -128,6 +130,39 @@ fn render_writes_png_and_json() {
     assert!(json["cpu_threads"].as_u64().is_some_and(|t| t >= 1), "lavapipe's threads");
     let png = image::open(dir.path().join("r.png")).expect("a readable PNG");
     assert_eq!((png.width(), png.height()), (64, 48));
+}
+
+/// `--frame`, `--eye` and `--look-at` choose the still image; the camera moves the picture.
+#[test]
+fn a_still_image_from_another_camera_or_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let render = |extra: &[&str], out: &str| {
+        let args = ["--validate", "render", "spheres", "--width", "48", "--height", "48", "--out", out];
+        let ran = twinray(&[&args[..], extra].concat(), dir.path());
+        assert!(ran.status.success(), "{extra:?}: {}", String::from_utf8_lossy(&ran.stderr));
+        image::open(dir.path().join(out)).unwrap().to_rgba8()
+    };
+    let scene = render(&[], "scene.png");
+    let same = render(&["--eye", "0,0,4", "--look-at", "0,0,0"], "same.png");
+    let above = render(&["--eye", "0,6,0.1", "--look-at", "0,0,0"], "above.png");
+    assert_ne!(scene, above, "a camera above the spheres sees another picture");
+    assert_ne!(same, above);
+    let frame =
+        ["compare", "orbit", "--frame", "47", "--width", "32", "--height", "18", "--runs", "1", "--placements", "1"];
+    let ran = twinray(&[&frame[..], &["--warmup", "0", "--out-dir", "c", "--json"]].concat(), dir.path());
+    assert!(ran.status.success(), "{}", String::from_utf8_lossy(&ran.stderr));
+}
+
+#[test]
+fn impossible_viewpoints_are_refused() {
+    assert_bad_input(
+        &["render", "--eye", "0,0,0", "--look-at", "0,0,0", "--out", "x.png"],
+        &["--eye/--look-at", "differ"],
+    );
+    assert_bad_input(&["render", "--eye", "1,2", "--out", "x.png"], &["--eye", "X,Y,Z"]);
+    assert_bad_input(&["render", "--look-at", "0,nan,0", "--out", "x.png"], &["--look-at", "finite"]);
+    assert_bad_input(&["compare", "orbit", "--frames", "all", "--frame", "3"], &["--frame", "--frames"]);
+    assert_bad_input(&["compare", "orbit", "--frame", "48"], &["--frame 48", "48 frame(s)"]);
 }
 
 #[test]

@@ -23,8 +23,8 @@ struct Cli {
 #[derive(Subcommand)]
 enum Task {
     /// Install what is missing (idempotent): the pinned nightly for rust-gpu, and, as root with
-    /// apt, Mesa lavapipe, glslang, SPIRV-Tools and the validation layer. Otherwise prints the
-    /// commands to run.
+    /// apt, Mesa lavapipe, glslang, SPIRV-Tools, the validation layer, and chromium with
+    /// chromedriver (the browser tests of `twinray view`). Otherwise prints the commands to run.
     Setup {
         /// Only the Vulkan loader and driver (what rendering needs), not the shader toolchain.
         #[arg(long)]
@@ -42,6 +42,9 @@ enum Task {
         /// Built-in scene names [default: all].
         scenes: Vec<String>,
     },
+    /// Re-take the screenshot of `twinray view` in docs/images/view.png, as its browser test
+    /// takes it (showcase with a planted miss stage, a pixel explained).
+    Screenshot,
     /// Scaffold a procedural shape in both languages (shared math with a placeholder robust
     /// intersection and CPU tests, its registry line, the GLSL twin, a built-in scene), build
     /// the shaders and compare its scene's renders with both sets.
@@ -103,6 +106,7 @@ fn main() -> Result<()> {
         Task::Setup { vulkan_only } => setup::run(if vulkan_only { Scope::Vulkan } else { Scope::Full }),
         Task::Shaders { check } => shaders::run(check),
         Task::Golden { scenes } => golden(&scenes),
+        Task::Screenshot => screenshot(),
         Task::NewShape { name } => new_shape::run(&name),
         Task::Watch { scene, poll_ms, changes, compare_args } => watch::run(&watch::WatchArgs {
             scene,
@@ -122,6 +126,14 @@ fn golden(scenes: &[String]) -> Result<()> {
     let env = [("TWINRAY_REFRESH_GOLDEN", "1"), ("TWINRAY_GOLDEN_SCENES", only.as_str())];
     cargo(&["test", "--release", "-p", "twinray-tests", "--test", "golden"], &env)?;
     println!("golden images rewritten in tests/golden/; review them with git diff before committing");
+    Ok(())
+}
+
+fn screenshot() -> Result<()> {
+    let test = "the_page_follows_saves_explains_pixels_and_recovers_from_broken_stages";
+    let env = [("TWINRAY_REFRESH_SCREENSHOT", "1")];
+    cargo(&["test", "--release", "-p", "twinray", "--test", "view", "--", "--exact", test], &env)?;
+    println!("screenshot rewritten in docs/images/view.png; look at it before committing");
     Ok(())
 }
 

@@ -5,9 +5,9 @@ use crate::process::{self, output};
 use anyhow::{bail, Result};
 use std::path::Path;
 use std::process::Command;
+use twinray_build::NIGHTLY;
 
-/// rustc_codegen_spirv 0.11.0 builds only with this nightly and these components.
-pub const NIGHTLY: &str = "nightly-2026-08-15";
+/// The components rustc_codegen_spirv needs of its nightly.
 const NIGHTLY_COMPONENTS: [&str; 3] = ["rust-src", "rustc-dev", "llvm-tools"];
 
 /// Lavapipe exposes VK_KHR_ray_tracing_pipeline from Mesa 25 on (bookworm's own 22.3 does not).
@@ -29,6 +29,8 @@ pub fn run(scope: Scope) -> Result<()> {
     let mut packages = vec!["libvulkan1", "g++"];
     if scope == Scope::Full {
         packages.extend(["glslang-tools", "spirv-tools", "vulkan-validationlayers"]);
+        // The browser tests of `twinray view` drive Debian's chromium through chromedriver.
+        packages.extend(["chromium", "chromium-driver"]);
     }
     ensure_packages(&packages)?;
     if scope == Scope::Full {

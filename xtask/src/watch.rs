@@ -6,21 +6,13 @@
 //! validation is a verdict line, and the next save is compared as usual.
 
 use crate::process::{cargo, repo_root};
-use crate::shaders::{build_set, require_tools, Output};
 use anyhow::{Context, Result};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
-use std::process::{Command, ExitStatus};
+use std::process::Command;
 use std::time::{Duration, Instant, SystemTime};
+use twinray_build::{build_set, exit_words, require_tools, sets_for, sources, Output, GENERATORS};
 use twinray_shared::catalog::Language;
-
-/// Sources of each set, relative to the repository root.
-const RUST_SOURCES: [&str; 2] = ["shaders-rs/shaders/src", "shaders-rs/shared/src"];
-const GLSL_SOURCES: [&str; 1] = ["shaders-glsl"];
-
-/// Shared files the host or the GLSL include are generated from: a change to them needs
-/// `cargo xtask shaders` and a new host, which this loop does not do.
-const GENERATORS: [&str; 5] = ["layout.rs", "bindings.rs", "catalog.rs", "glsl.rs", "shapes/mod.rs"];
 
 pub struct WatchArgs {
     pub scene: Option<String>,
@@ -44,7 +36,8 @@ pub fn run(args: &WatchArgs) -> Result<()> {
         rebuild(&root, &out, language)?;
     }
     compare(&twinray, &out, args)?;
-    println!("watch: watching {} and {} (Ctrl-C to stop)", RUST_SOURCES.join(", "), GLSL_SOURCES.join(", "));
+    let watched: Vec<&str> = Language::ALL.into_iter().flat_map(sources).copied().collect();
+    println!("watch: watching {} (Ctrl-C to stop)", watched.join(", "));
     let mut rebuilds = 0;
     while args.changes.is_none_or(|n| rebuilds < n) {
         std::thread::sleep(args.poll);
@@ -70,7 +63,7 @@ fn cycle(root: &Path, twinray: &Path, out: &Path, args: &WatchArgs, changed: &[(
     }
     let start = Instant::now();
     let mut built = Vec::new();
-    for language in sets_for(changed) {
+    for language in sets_for(changed.iter().map(|(p, _)| p.as_path())) {
         if let Err(e) = rebuild(root, out, language) {
             println!("watch: the {} set does not build: {e:#}", language.name());
             return;
@@ -142,46 +135,16 @@ fn compare(twinray: &Path, out: &Path, args: &WatchArgs) -> Result<()> {
             "watch: GPU times above are one cold trace per set; for a ratio with its interval, add -- --runs 10 --warmup 2 --placements 6"
         );
     }
-    if let Some(line) = verdict(status) {
+    if let Some(line) = exit_words(status) {
         println!("watch: verdict: {line}");
     }
     Ok(())
 }
 
-/// The verdict line of a compare that ended in `status`, beyond the one twinray printed: none
-/// when it compared (0: pass, 1: fail).
-fn verdict(status: ExitStatus) -> Option<String> {
-    use std::os::unix::process::ExitStatusExt;
-    match (status.code(), status.signal()) {
-        (Some(0 | 1), _) => None,
-        (Some(2), _) => Some("the sets or the scene were refused (see the error above); fix and save again".into()),
-        (Some(3), _) => {
-            Some("a stage did not finish in time, or the device was lost (see above); fix and save again".into())
-        }
-        (Some(4), _) => Some("the driver crashed on the new modules (see above); fix and save again".into()),
-        (Some(code), _) => Some(format!("twinray compare failed with exit code {code} (see above)")),
-        (None, Some(signal)) => Some(format!("twinray compare was killed by signal {signal}; fix and save again")),
-        (None, None) => Some(format!("twinray compare ended with {status}")),
-    }
-}
-
-/// Which sets a change rebuilds: the Rust set for `shaders-rs/`, the GLSL set for `shaders-glsl/`.
-fn sets_for(changed: &[(PathBuf, SystemTime)]) -> Vec<Language> {
-    let under = |dirs: &[&str]| changed.iter().any(|(p, _)| dirs.iter().any(|d| p.starts_with(d)));
-    let mut sets = Vec::new();
-    if under(&RUST_SOURCES) {
-        sets.push(Language::Rust);
-    }
-    if under(&GLSL_SOURCES) {
-        sets.push(Language::Glsl);
-    }
-    sets
-}
-
 /// Modification time and size of every file of both sets' sources, by path from the root.
 fn snapshot(root: &Path) -> BTreeMap<PathBuf, (SystemTime, u64)> {
     let mut files = BTreeMap::new();
-    let mut stack: Vec<PathBuf> = RUST_SOURCES.iter().chain(&GLSL_SOURCES).map(|d| root.join(d)).collect();
+    let mut stack: Vec<PathBuf> = Language::ALL.into_iter().flat_map(sources).map(|d| root.join(d)).collect();
     while let Some(dir) = stack.pop() {
         let Ok(entries) = std::fs::read_dir(&dir) else { continue };
         for entry in entries.flatten() {
@@ -216,27 +179,6 @@ fn target_dir(root: &Path) -> PathBuf {
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn every_way_a_compare_ends_is_a_verdict() {
-        use std::os::unix::process::ExitStatusExt;
-        let ended = |raw: i32| verdict(ExitStatus::from_raw(raw));
-        assert_eq!(ended(0), None);
-        assert_eq!(ended(1 << 8), None, "a failed parity prints its own verdict");
-        assert!(ended(3 << 8).unwrap().contains("did not finish in time"));
-        assert!(ended(4 << 8).unwrap().contains("crashed"));
-        // A raw wait status of 11: killed by SIGSEGV, with no handler to report it.
-        assert!(ended(11).unwrap().contains("killed by signal 11"));
-    }
-
-    #[test]
-    fn a_change_rebuilds_only_the_set_of_its_sources() {
-        let at = |p: &str| (PathBuf::from(p), SystemTime::now());
-        assert_eq!(sets_for(&[at("shaders-rs/shared/src/shapes/sphere.rs")]), [Language::Rust]);
-        assert_eq!(sets_for(&[at("shaders-glsl/shapes/sphere.glsl")]), [Language::Glsl]);
-        let both = [at("shaders-rs/shaders/src/lib.rs"), at("shaders-glsl/raygen.rgen")];
-        assert_eq!(sets_for(&both), [Language::Rust, Language::Glsl]);
-    }
 
     #[test]
     fn snapshots_see_edits_additions_and_removals() {

@@ -5,6 +5,8 @@ use std::path::PathBuf;
 use twinray::render::{FrameRange, TlasKind, TlasMode};
 use twinray::ShaderSet;
 
+pub use crate::image_args::{ExplainArgs, ViewArgs, ViewpointArgs};
+
 /// Most timed traces a command takes: past it, a typo (an extra zero or three) would hold the
 /// GPU for hours. Work over 100 rounds shows progress.
 pub const MAX_RUNS: u32 = 10_000;
@@ -53,6 +55,30 @@ pub struct GlobalArgs {
     /// More log output (-v info, -vv debug); RUST_LOG overrides.
     #[arg(short, long, global = true, action = clap::ArgAction::Count)]
     pub verbose: u8,
+}
+
+impl GlobalArgs {
+    /// The flags that gave these options, for a `twinray` child process (`view`'s renders).
+    pub fn forwarded(&self) -> Vec<String> {
+        let mut args = Vec::new();
+        match self.validate {
+            Some(ValidateMode::Core) => args.push("--validate".into()),
+            Some(ValidateMode::Gpu) => args.push("--validate=gpu".into()),
+            None => {}
+        }
+        let mut pair = |flag: &str, value: Option<String>| args.extend(value.map(|v| format!("{flag}={v}")));
+        pair("--device", self.device.clone());
+        pair(
+            "--pipeline",
+            self.pipeline.and_then(|p| clap::ValueEnum::to_possible_value(&p).map(|v| v.get_name().to_string())),
+        );
+        pair("--threads", self.threads.map(|n| n.to_string()));
+        pair("--pipeline-cache", self.pipeline_cache.as_ref().map(|p| p.display().to_string()));
+        pair("--gpu-timeout", self.gpu_timeout.map(|t| t.as_secs_f64().to_string()));
+        let switches = [(self.no_pipeline_cache, "--no-pipeline-cache"), (self.no_robust_access, "--no-robust-access")];
+        args.extend(switches.into_iter().filter(|(on, _)| *on).map(|(_, flag)| flag.to_string()));
+        args
+    }
 }
 
 /// What `--validate` turns on.
@@ -132,6 +158,8 @@ pub struct RenderArgs {
     #[command(flatten)]
     pub frame: FrameArgs,
     #[command(flatten)]
+    pub viewpoint: ViewpointArgs,
+    #[command(flatten)]
     pub animation: AnimationArgs,
 }
 
@@ -151,6 +179,8 @@ pub struct CompareArgs {
     pub out_dir: PathBuf,
     #[command(flatten)]
     pub frame: FrameArgs,
+    #[command(flatten)]
+    pub viewpoint: ViewpointArgs,
     #[command(flatten)]
     pub animation: AnimationArgs,
 }
@@ -404,42 +434,4 @@ pub struct StageBenchArgs {
     /// Output folder for table.md and results.json (created if missing).
     #[arg(long, default_value = "bench/out-stages")]
     pub out: PathBuf,
-}
-
-#[derive(Args)]
-pub struct ExplainArgs {
-    /// Scene file, or the name of a built-in scene [default: spheres].
-    pub scene: Option<String>,
-    /// The pixel: column X and row Y from the top left, as compare's images number them.
-    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
-    pub pixel: (u32, u32),
-    /// Set A.
-    #[arg(long, default_value = "rust")]
-    pub a: ShaderSet,
-    /// Set B; without it, set A alone against the f64 reference.
-    #[arg(long)]
-    pub b: Option<ShaderSet>,
-    /// The frame of an animated scene (0 to its frame count - 1).
-    #[arg(long, value_name = "K", default_value_t = 0)]
-    pub frame: u32,
-    /// Image width in pixels [default: the scene's].
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Image height in pixels [default: the scene's].
-    #[arg(long)]
-    pub height: Option<u32>,
-    /// Also show the pixel of a converged reference image of SPP samples per pixel, rendered
-    /// by set A (or read from the cache `twinray reference` keeps).
-    #[arg(long, value_name = "SPP")]
-    pub converged: Option<u32>,
-    /// Print one JSON object instead of text.
-    #[arg(long)]
-    pub json: bool,
-}
-
-/// "X,Y" as two pixel coordinates.
-fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
-    let bad = || format!("a pixel is X,Y with two whole numbers (got {text:?})");
-    let (x, y) = text.split_once(',').ok_or_else(bad)?;
-    Ok((x.trim().parse().map_err(|_| bad())?, y.trim().parse().map_err(|_| bad())?))
 }

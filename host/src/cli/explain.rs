@@ -2,34 +2,24 @@
 //! first place they part.
 
 use crate::args::{ExplainArgs, GlobalArgs};
-use crate::session::context;
+use crate::session::{context, load_still};
 use anyhow::Result;
 use std::process::ExitCode;
 use twinray::explain::pixel::explain_pixel;
 use twinray::explain::report::{Converged, ExplainReport};
 use twinray::reference::image::{default_cache, reference};
 use twinray::scene::check_size;
-use twinray::{Error, Scene};
+use twinray::Error;
 
 pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
-    let scene = Scene::load(args.scene.as_deref())?;
-    let frames = scene.frame_count();
-    if args.frame >= frames {
-        return Err(Error::Input(format!(
-            "--frame {} is past the end of {} ({} frame(s): 0 to {})",
-            args.frame,
-            scene.name(),
-            frames,
-            frames - 1
-        ))
-        .into());
-    }
-    let scene = if scene.animation.is_some() { scene.at_frame(args.frame) } else { scene };
+    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
     let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
     check_size(size.0, size.1).map_err(Error::Input)?;
-    let mut sets = vec![(label(&args.a, "A"), args.a.clone())];
+    let names = args.names.clone().map_or([None, None], |(a, b)| [Some(a), Some(b)]);
+    let [name_a, name_b] = names;
+    let mut sets = vec![(name_a.unwrap_or_else(|| label(&args.a, "A")), args.a.clone())];
     if let Some(b) = &args.b {
-        sets.push((label(b, "B"), b.clone()));
+        sets.push((name_b.unwrap_or_else(|| label(b, "B")), b.clone()));
     }
     if sets.len() == 2 && sets[0].0 == sets[1].0 {
         sets[0].0 = format!("A ({})", sets[0].0);
@@ -45,7 +35,7 @@ pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
         }
         None => None,
     };
-    let mut report = ExplainReport::new(&px, args.frame, converged);
+    let mut report = ExplainReport::new(&px, args.viewpoint.frame.unwrap_or(0), converged);
     let specs = [Some(&args.a), args.b.as_ref()].into_iter().flatten().zip(&sets);
     report.specs = specs
         .filter(|(set, (label, _))| set.to_string() != *label)

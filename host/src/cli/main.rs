@@ -9,15 +9,17 @@ mod bisect;
 mod crosscheck;
 mod explain;
 mod frames;
+mod image_args;
 mod pipelines;
 mod probe;
 mod render;
 mod session;
 mod summary;
+mod view;
 
 use args::{
     AnimateBenchArgs, BenchArgs, BisectArgs, CompareArgs, ExplainArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs,
-    ReferenceArgs, RenderArgs, StabilityArgs, StageBenchArgs,
+    ReferenceArgs, RenderArgs, StabilityArgs, StageBenchArgs, ViewArgs,
 };
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
 use std::process::ExitCode;
@@ -65,6 +67,10 @@ enum Command {
     /// Every ray one pixel traces, in each set and in the f64 reference, and the first place
     /// they part: which sample, which ray, which set is wrong and which stage made it so.
     Explain(ExplainArgs),
+    /// A live page in the browser: A and B side by side, as a wipe or flipped, and their
+    /// difference, re-rendered on every save of a shader source, set folder or the scene;
+    /// click a pixel to explain it. Serves 127.0.0.1 and prints the address.
+    View(ViewArgs),
     /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
     Probe(ProbeArgs),
     /// The hard-case suite: every probe case of a folder, per set and formula, against the
@@ -127,6 +133,7 @@ fn main() -> ExitCode {
         Command::Compare(args) => render::compare(&cli.global, args),
         Command::Bisect(args) => bisect::bisect(&cli.global, args),
         Command::Explain(args) => explain::explain(&cli.global, args),
+        Command::View(args) => view::view(&cli.global, args),
         Command::Probe(args) => probe::probe(&cli.global, args),
         Command::Stability(args) => probe::stability(&cli.global, args),
         Command::Reference(args) => bench::reference(&cli.global, args),

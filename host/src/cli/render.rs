@@ -1,19 +1,22 @@
 //! `twinray render` and `twinray compare`.
 
 use crate::args::{CompareArgs, GlobalArgs, RenderArgs};
-use crate::session::{context, render_options, COMPARE_TRACES, RENDER_TRACES};
+use crate::session::{
+    context, load_still, refuse_viewpoint_with_frames, render_options, COMPARE_TRACES, RENDER_TRACES,
+};
 use anyhow::Result;
 use std::process::ExitCode;
 use twinray::compare::hit_count;
 use twinray::compare::report::compare_sets;
 use twinray::util::output::{check_png_target, write_png};
-use twinray::{Error, Scene};
+use twinray::Error;
 
 pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     if let Some(range) = args.animation.frames {
+        refuse_viewpoint_with_frames(&args.viewpoint)?;
         return crate::frames::render(global, args, range);
     }
-    let scene = Scene::load(args.scene.as_deref())?;
+    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     check_png_target(&args.out)?;
     let ctx = context(global)?;
@@ -66,9 +69,10 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
 
 pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
     if let Some(range) = args.animation.frames {
+        refuse_viewpoint_with_frames(&args.viewpoint)?;
         return crate::frames::compare(global, args, range);
     }
-    let scene = Scene::load(args.scene.as_deref())?;
+    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
     let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());

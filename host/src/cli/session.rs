@@ -1,7 +1,7 @@
 //! What every command that renders shares: the Vulkan context from the global options, and
 //! image size and trace counts from the flags.
 
-use crate::args::{FrameArgs, GlobalArgs, ValidateMode};
+use crate::args::{FrameArgs, GlobalArgs, ValidateMode, ViewpointArgs};
 use anyhow::{Context as _, Result};
 use std::sync::Arc;
 use twinray::scene::check_size;
@@ -31,6 +31,31 @@ pub fn options(global: &GlobalArgs) -> ContextOptions {
         gpu_timeout: global.gpu_timeout.unwrap_or(twinray::vk::context::DEFAULT_GPU_TIMEOUT),
         robust_access: !global.no_robust_access,
     }
+}
+
+/// The still scene `arg` names (a file or a built-in name), at the frame and from the camera
+/// `viewpoint` asks for.
+pub fn load_still(arg: Option<&str>, viewpoint: &ViewpointArgs) -> Result<Scene, Error> {
+    let scene = Scene::load(arg)?;
+    let frames = scene.frame_count();
+    let frame = viewpoint.frame.unwrap_or(0);
+    if frame >= frames {
+        let last = frames - 1;
+        return Err(Error::Input(format!(
+            "--frame {frame} is past the end of {} ({frames} frame(s): 0 to {last})",
+            scene.name()
+        )));
+    }
+    let scene = if scene.animation.is_some() { scene.at_frame(frame) } else { scene };
+    scene.with_camera(viewpoint.eye, viewpoint.look_at)
+}
+
+/// `--frames` renders a sequence, which a still image's flags cannot choose from.
+pub fn refuse_viewpoint_with_frames(viewpoint: &ViewpointArgs) -> Result<(), Error> {
+    if viewpoint.given() {
+        return Err(Error::Input("--frame, --eye and --look-at choose a still image: leave out --frames".into()));
+    }
+    Ok(())
 }
 
 /// (warm-up, timed traces, placements) when not given: `render` wants an image quickly,

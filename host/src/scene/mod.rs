@@ -185,6 +185,16 @@ impl Scene {
         still
     }
 
+    /// The scene seen from `eye` towards `target` (either left as the scene has it when
+    /// `None`), with the scene's up and field of view; an impossible camera is refused.
+    pub fn with_camera(mut self, eye: Option<[f32; 3]>, target: Option<[f32; 3]>) -> Result<Scene> {
+        let camera = &mut self.file.camera;
+        camera.eye = eye.unwrap_or(camera.eye);
+        camera.target = target.unwrap_or(camera.target);
+        check::check_camera(camera).map_err(|e| Error::Input(format!("--eye/--look-at: {e}")))?;
+        Ok(self)
+    }
+
     /// The scene's `name`.
     pub fn name(&self) -> &str {
         &self.file.name

@@ -1,0 +1,207 @@
+//! Builds a shader set from its sources: the Rust set with rust-gpu (through the small
+//! `shaders-rs/builder` binary on the pinned nightly), the GLSL set with glslangValidator;
+//! every module validated with spirv-val and checked for what the host expects. `cargo xtask
+//! shaders` and `watch` use it on this checkout; `twinray view` on any checkout it is given.
+
+mod exit;
+mod process;
+
+use anyhow::{bail, Context, Result};
+pub use exit::exit_words;
+pub use process::{have, output, run};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+use twinray_shared::catalog::{GlslSource, Language, ModuleSpec, MODULES};
+use twinray_shared::spirv_info::{self, ModuleInfo};
+
+/// rustc_codegen_spirv 0.11.0 builds only with this nightly.
+pub const NIGHTLY: &str = "nightly-2026-08-15";
+
+/// The sources of each set, relative to a checkout's root: a change under them rebuilds it.
+pub fn sources(language: Language) -> &'static [&'static str] {
+    match language {
+        Language::Rust => &["shaders-rs/shaders/src", "shaders-rs/shared/src"],
+        Language::Glsl => &["shaders-glsl"],
+    }
+}
+
+/// Shared files the host or the GLSL include are generated from: a change to them needs
+/// `cargo xtask shaders` and a new host, which an edit loop cannot do.
+pub const GENERATORS: [&str; 5] = ["layout.rs", "bindings.rs", "catalog.rs", "glsl.rs", "shapes/mod.rs"];
+
+/// Which sets the changed files (relative to the root) rebuild, in `Language::ALL` order.
+pub fn sets_for<'a>(changed: impl IntoIterator<Item = &'a Path> + Clone) -> Vec<Language> {
+    let under = |language| changed.clone().into_iter().any(|p| sources(language).iter().any(|d| p.starts_with(d)));
+    Language::ALL.into_iter().filter(|&l| under(l)).collect()
+}
+
+/// Whether `root` holds the sources of `language`'s set (with, for Rust, its builder).
+pub fn has_sources(root: &Path, language: Language) -> bool {
+    match language {
+        Language::Rust => {
+            root.join("shaders-rs/shaders/Cargo.toml").is_file() && root.join("shaders-rs/builder/Cargo.toml").is_file()
+        }
+        Language::Glsl => root.join("shaders-glsl/raygen.rgen").is_file(),
+    }
+}
+
+/// Whether the build tools' own output is shown, or kept and shown only when they fail.
+#[derive(Clone, Copy, PartialEq, Eq)]
+pub enum Output {
+    Shown,
+    OnFailure,
+}
+
+/// The tools every shader build needs.
+pub fn require_tools() -> Result<()> {
+    for tool in ["glslangValidator", "spirv-val", "spirv-opt"] {
+        if !have(tool) {
+            bail!("{tool} not found: run `cargo xtask setup` (Debian packages glslang-tools, spirv-tools)");
+        }
+    }
+    Ok(())
+}
+
+/// Builds every module of `language` from the sources under `root` into `dir` (emptied first)
+/// as `NAME.spv`, validates each with spirv-val and checks what it declares.
+pub fn build_set(root: &Path, language: Language, dir: &Path, output: Output) -> Result<()> {
+    if dir.exists() {
+        std::fs::remove_dir_all(dir)?;
+    }
+    std::fs::create_dir_all(dir)?;
+    match language {
+        Language::Rust => build_rust(root, dir, output)?,
+        Language::Glsl => build_glsl(root, dir, output)?,
+    }
+    for spec in MODULES {
+        let path = dir.join(format!("{}.spv", spec.name));
+        let label = format!("{} {}", language.name(), spec.name);
+        process::output(Command::new("spirv-val").args(twinray_shared::catalog::SPIRV_VAL_ARGS).arg(&path))
+            .with_context(|| format!("spirv-val rejected {label}"))?;
+        let (info, _) = read_module(dir, spec)?;
+        spec.check_declarations(&info, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+    }
+    Ok(())
+}
+
+/// What a built module declares, and its size in bytes.
+pub fn read_module(dir: &Path, spec: &ModuleSpec) -> Result<(ModuleInfo, usize)> {
+    let path = dir.join(format!("{}.spv", spec.name));
+    let bytes = std::fs::read(&path).with_context(|| format!("reading {}", path.display()))?;
+    let info = spirv_info::parse(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    Ok((info, bytes.len()))
+}
+
+/// Where the builder's build outlives a fresh clone, so CI pays for rustc_codegen_spirv once.
+fn cache_dir() -> PathBuf {
+    let base = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+        .unwrap_or_else(std::env::temp_dir);
+    base.join("twinray")
+}
+
+/// A command on the pinned nightly, without the outer (stable) cargo's toolchain variables.
+fn nightly(program: &str) -> Command {
+    let mut command = Command::new("rustup");
+    command.args(["run", NIGHTLY, program]);
+    for var in ["RUSTUP_TOOLCHAIN", "RUSTC", "RUSTDOC", "CARGO", "RUSTC_WRAPPER", "CARGO_TARGET_DIR"] {
+        command.env_remove(var);
+    }
+    command
+}
+
+fn build_rust(root: &Path, out: &Path, output: Output) -> Result<()> {
+    let cache = cache_dir();
+    let target = cache.join("builder-target");
+    if !target.join("release/twinray-shader-builder").exists() {
+        println!("shaders: building the rust-gpu builder (about 9 minutes, once; cached in {})", target.display());
+    }
+    run_tool(
+        output,
+        nightly("cargo")
+            .args(["build", "--release", "--manifest-path"])
+            .arg(root.join("shaders-rs/builder/Cargo.toml"))
+            .env("CARGO_TARGET_DIR", &target),
+    )?;
+    // spirv-builder looks for librustc_codegen_spirv.so on the library path.
+    let deps = target.join("release");
+    run_tool(
+        output,
+        nightly(&target.join("release/twinray-shader-builder").to_string_lossy())
+            .arg(root.join("shaders-rs/shaders"))
+            .arg(out)
+            .arg(cache.join("shader-target"))
+            .env("LD_LIBRARY_PATH", deps),
+    )
+    .context("building the Rust shaders")?;
+    strip_debug_info(out)
+}
+
+/// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
+/// is off, so that the committed modules depend only on the code, and the ray query capability
+/// from modules that trace no ray query.
+fn strip_debug_info(dir: &Path) -> Result<()> {
+    for spec in MODULES {
+        let path = dir.join(format!("{}.spv", spec.name));
+        let stripped = dir.join(format!("{}.stripped", spec.name));
+        run(Command::new("spirv-opt").arg("--strip-debug").arg(&path).arg("-o").arg(&stripped))
+            .with_context(|| format!("stripping {}", path.display()))?;
+        // rust-gpu declares every capability the builder names in every module: one that
+        // declares ray queries without using them would need VK_KHR_ray_query for nothing.
+        let bytes = std::fs::read(&stripped)?;
+        let trimmed =
+            spirv_info::without_unused_ray_query(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        std::fs::write(&path, trimmed)?;
+        std::fs::remove_file(&stripped)?;
+    }
+    Ok(())
+}
+
+/// Compiles every GLSL module; a shape's intersection stage is the few lines of
+/// `ModuleSpec::glsl_wrapper`, written beside the output, with `shaders-glsl/` on the include
+/// path.
+fn build_glsl(root: &Path, out: &Path, output: Output) -> Result<()> {
+    let include = root.join("shaders-glsl");
+    let wrappers = out.join("wrappers");
+    std::fs::create_dir_all(&wrappers)?;
+    for spec in MODULES {
+        let source = match spec.glsl_wrapper() {
+            Some(text) => {
+                let path = wrappers.join(spec.glsl_file());
+                std::fs::write(&path, text)?;
+                path
+            }
+            None => include.join(spec.glsl_file()),
+        };
+        let mut command = Command::new("glslangValidator");
+        command.args(["-V", "--target-env", "spirv1.4", "-o"]).arg(out.join(format!("{}.spv", spec.name)));
+        if let GlslSource::Variant { define, .. } = spec.glsl {
+            command.arg(format!("-D{define}"));
+        }
+        run_tool(output, command.arg(format!("-I{}", include.display())).arg(&source))
+            .with_context(|| format!("compiling {}", source.display()))?;
+    }
+    Ok(())
+}
+
+fn run_tool(output: Output, command: &mut Command) -> Result<()> {
+    match output {
+        Output::Shown => run(command),
+        Output::OnFailure => process::output(command).map(|_| ()),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_change_rebuilds_only_the_set_of_its_sources() {
+        let sets = |paths: &[&str]| sets_for(paths.iter().map(Path::new));
+        assert_eq!(sets(&["shaders-rs/shared/src/shapes/sphere.rs"]), [Language::Rust]);
+        assert_eq!(sets(&["shaders-glsl/shapes/sphere.glsl"]), [Language::Glsl]);
+        assert_eq!(sets(&["shaders-rs/shaders/src/lib.rs", "shaders-glsl/raygen.rgen"]), Language::ALL);
+        assert!(sets(&["scenes/showcase.toml"]).is_empty());
+    }
+}
