@@ -184,16 +184,15 @@ fn keep_screenshot(png: &[u8]) {
     }
 }
 
-/// `loop.rgen` of the hostile stages, compiled into `dir`: a ray generation stage that never
-/// returns.
-fn looping_raygen(dir: &Path) -> std::path::PathBuf {
-    let spv = dir.join("loop.spv");
+/// Stage `name` of the hostile stages (`tests/hostile/stages/`), compiled into `dir`.
+fn hostile_stage(name: &str, dir: &Path) -> std::path::PathBuf {
+    let spv = dir.join(format!("{name}.spv"));
     let out = std::process::Command::new("glslangValidator")
         .args(["-V", "--target-env", "spirv1.4"])
         .arg(format!("-I{}", repo().join("shaders-glsl").display()))
         .arg("-o")
         .arg(&spv)
-        .arg(repo().join("tests/hostile/stages/loop.rgen"))
+        .arg(repo().join("tests/hostile/stages").join(name))
         .output()
         .expect("glslangValidator (cargo xtask setup installs it)");
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
@@ -274,16 +273,49 @@ fn a_stage_that_never_returns_is_a_message_and_bad_requests_are_refused() {
     // Set B's ray generation stage never returns: the page says so, the server goes on, and
     // putting the good module back recovers.
     let good = std::fs::read(set.join("raygen.spv")).unwrap();
-    std::fs::copy(looping_raygen(dir.path()), set.join("raygen.spv")).unwrap();
+    std::fs::copy(hostile_stage("loop.rgen", dir.path()), set.join("raygen.spv")).unwrap();
     let state = server.wait_for(FIRST_RENDER, "the stalled render's message", |s| !s["problem"].is_null());
     let text = state["problem"]["text"].as_str().unwrap();
     assert!(text.contains("did not finish in 3 s"), "{text}");
     assert_eq!(state["render"]["id"].as_u64(), Some(id), "the last good render stays");
     assert_eq!(server.get("/state").0, 200, "the server goes on");
-    std::fs::write(set.join("raygen.spv"), good).unwrap();
+    std::fs::write(set.join("raygen.spv"), &good).unwrap();
     let state =
         server.wait_for(FIRST_RENDER, "recovery", |s| s["problem"].is_null() && s["render"]["id"].as_u64() > Some(id));
     assert_eq!(state["render"]["report"]["pass"], true, "{state:#}");
+
+    // A ray generation stage that writes nothing: a render, whose verdict says so.
+    let id = state["render"]["id"].as_u64();
+    std::fs::copy(hostile_stage("noop.rgen", dir.path()), set.join("raygen.spv")).unwrap();
+    let state = server.wait_for(FIRST_RENDER, "the unwritten render", |s| s["render"]["id"].as_u64() > id);
+    let failures = state["render"]["report"]["failures"].to_string();
+    assert!(failures.contains("3072 pixels not written by set b"), "{failures}");
+    assert_eq!(state["render"]["report"]["written_b"]["unwritten"], 3072);
+}
+
+/// A save to the scene file re-renders it; a broken one is shown, and the next good one
+/// recovers, at the size `view` was given.
+#[test]
+fn the_scene_file_is_followed_too() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = dir.path().join("scene.toml");
+    std::fs::copy(repo().join("scenes/cutout.toml"), &scene).unwrap();
+    let args = [scene.to_str().unwrap(), "--a", "glsl", "--b", "glsl", "--width", "32", "--height", "24"];
+    let server = Server::start(&args, dir.path());
+    let first = server.wait_for(FIRST_RENDER, "the first render", |s| s["status"] == "idle" && !s["render"].is_null());
+    let id = first["render"]["id"].as_u64();
+    edit(&scene, "eye = [0.0, 3.2, 8.5]", "eye = [0.0, 5.0, 8.5]");
+    let moved =
+        server.wait_for(FIRST_RENDER, "the edited scene", |s| s["render"]["id"].as_u64() > id && s["status"] == "idle");
+    assert_eq!(moved["scene"]["eye"], serde_json::json!([0.0, 5.0, 8.5]));
+    assert_eq!(moved["render"]["shot"]["width"], 32, "the size view was given holds");
+    let id = moved["render"]["id"].as_u64();
+    edit(&scene, "[camera]", "[camera");
+    let broken = server.wait_for(FIRST_RENDER, "the broken scene", |s| !s["problem"].is_null());
+    assert_eq!(broken["problem"]["what"], "scene", "{broken:#}");
+    assert!(broken["problem"]["text"].as_str().unwrap().contains("scene.toml"), "{broken:#}");
+    edit(&scene, "[camera", "[camera]");
+    server.wait_for(FIRST_RENDER, "recovery", |s| s["problem"].is_null() && s["render"]["id"].as_u64() > id);
 }
 
 /// A moving scene: the frame asked for is rendered, and explained at that frame.

@@ -67,6 +67,8 @@ pub struct Live {
     pub built_dir: PathBuf,
     /// Where compare writes its images before they are read into memory.
     pub scratch: PathBuf,
+    /// The image size `view` was given (`None`: the scene's).
+    pub size: (Option<u32>, Option<u32>),
     pub preview_width: u32,
     pub jobs: Jobs,
     pub store: Store,
@@ -283,7 +285,7 @@ impl Live {
     /// Reads the scene file again; the page's frame and camera start afresh from it.
     fn reload_scene(&self) -> Result<(), String> {
         let scene = Scene::load(self.scene.as_deref()).map_err(|e| e.to_string())?;
-        let info = SceneInfo::of(&scene);
+        let info = SceneInfo::of(&scene, self.size);
         self.store.update(|s| {
             s.wanted = Shot { width: info.width, height: info.height, frame: 0, eye: None, look_at: None };
             s.scene = info;

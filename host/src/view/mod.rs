@@ -45,9 +45,7 @@ pub struct ViewConfig {
 /// Serves the page until Ctrl-C; `ready` gets the address once it listens.
 pub fn serve(config: ViewConfig, ready: impl FnOnce(SocketAddr)) -> Result<()> {
     let scene = Scene::load(config.scene.as_deref())?;
-    let mut info = SceneInfo::of(&scene);
-    info.width = config.size.0.unwrap_or(info.width);
-    info.height = config.size.1.unwrap_or(info.height);
+    let info = SceneInfo::of(&scene, config.size);
     crate::scene::check_size(info.width, info.height).map_err(Error::Input)?;
     let runtime = tokio::runtime::Runtime::new().map_err(|e| Error::Input(format!("starting the server: {e}")))?;
     runtime.block_on(run(config, info, ready))
@@ -63,6 +61,7 @@ async fn run(config: ViewConfig, info: SceneInfo, ready: impl FnOnce(SocketAddr)
         sources: config.sources.clone(),
         built_dir: config.work_dir.join("sets"),
         scratch: config.work_dir.join("renders"),
+        size: config.size,
         preview_width: config.preview_width,
         jobs: Jobs {
             twinray: config.twinray.clone(),

@@ -25,13 +25,14 @@ pub struct SceneInfo {
 }
 
 impl SceneInfo {
-    pub fn of(scene: &Scene) -> SceneInfo {
+    /// `scene` at the size `view` was given (`None`: the scene's).
+    pub fn of(scene: &Scene, (width, height): (Option<u32>, Option<u32>)) -> SceneInfo {
         let (image, camera) = (scene.file.image, scene.file.camera);
         SceneInfo {
             name: scene.name().to_string(),
             frames: scene.frame_count(),
-            width: image.width,
-            height: image.height,
+            width: width.unwrap_or(image.width),
+            height: height.unwrap_or(image.height),
             eye: camera.eye,
             target: camera.target,
             up: camera.up,
