@@ -7,7 +7,7 @@ use std::path::{Path, PathBuf};
 use twinray_shared::catalog::{Language, MODULES};
 
 fn main() {
-    let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR")).join("..");
+    let root = PathBuf::from(std::env::var("CARGO_MANIFEST_DIR").expect("cargo sets CARGO_MANIFEST_DIR"));
     let out = PathBuf::from(std::env::var("OUT_DIR").expect("cargo sets OUT_DIR"));
     for watched in ["spirv", "scenes"] {
         println!("cargo:rerun-if-changed={}", root.join(watched).display());

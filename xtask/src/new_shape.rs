@@ -60,7 +60,8 @@ pub fn run(name: &str) -> Result<()> {
          - set its scene keys and primitive in SHAPE (same file), and its scene in {scene};\n\
          - `cargo xtask watch {name}` rebuilds and compares both sets on every save;\n\
          - `cargo xtask golden {name}` writes its golden images; review them, then `cargo xtask ci`;\n\
-         - to probe it against the f64 reference, add it to host/src/reference/shapes.rs."
+         - to probe it against the f64 reference, add its distance to TRACED in host/src/reference/traced.rs;\n\
+         - the guide's tutorial, docs/tutorial.md, takes a capsule through all of this."
     );
     Ok(())
 }

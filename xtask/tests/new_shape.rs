@@ -4,40 +4,12 @@
 //! in ~/.cache/twinray/scaffold-target so that later runs are incremental (the first one builds
 //! the host in release mode: about 3 minutes on 2 cores).
 
+mod common;
+
+use common::{cargo, copy_repo, repo, scaffold_target, text};
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
-}
-
-fn scaffold_target() -> PathBuf {
-    let cache = std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(|| repo().join("target"));
-    cache.join("twinray/scaffold-target")
-}
-
-/// The repository's files as a checkout has them (tracked, and new files not ignored).
-fn copy_repo(to: &Path) {
-    let out = Command::new("git")
-        .args(["ls-files", "-z", "--cached", "--others", "--exclude-standard"])
-        .current_dir(repo())
-        .output()
-        .expect("git lists the repository's files");
-    assert!(out.status.success(), "git ls-files: {}", String::from_utf8_lossy(&out.stderr));
-    for name in out.stdout.split(|b| *b == 0).filter(|n| !n.is_empty()) {
-        let name = String::from_utf8_lossy(name).into_owned();
-        let (from, dest) = (repo().join(&name), to.join(&name));
-        if !from.is_file() {
-            continue; // deleted in the work tree, not yet in the index
-        }
-        std::fs::create_dir_all(dest.parent().unwrap()).unwrap();
-        std::fs::copy(&from, &dest).unwrap_or_else(|e| panic!("copying {name}: {e}"));
-    }
-}
+use std::path::Path;
+use std::process::Command;
 
 /// Every file under `dir` but its build folder, with its contents.
 fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
@@ -58,20 +30,6 @@ fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
         }
     }
     out
-}
-
-fn cargo(args: &[&str], dir: &Path) -> Output {
-    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
-    Command::new(cargo)
-        .args(args)
-        .current_dir(dir)
-        .env("CARGO_TARGET_DIR", scaffold_target())
-        .output()
-        .expect("running cargo")
-}
-
-fn text(out: &Output) -> String {
-    format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr))
 }
 
 /// "capsule", or if a capsule has been added since, the first free "capsule_N".

@@ -21,7 +21,7 @@ pub const MAX_TIMING_RAYS: u64 = 1 << 23;
 pub struct GlobalArgs {
     /// Enable the Khronos validation layer; its errors fail the command. `--validate=gpu` adds
     /// its GPU-assisted validation, which instruments the stages (what the installed layer
-    /// checks there: see the README's "Robust access and GPU-assisted validation").
+    /// checks there: docs/broken-stages.md).
     #[arg(long, global = true, value_enum, value_name = "MODE", num_args = 0..=1, require_equals = true, default_missing_value = "core")]
     pub validate: Option<ValidateMode>,
     /// Use the first ray tracing device whose name contains this text.

@@ -21,7 +21,7 @@ pub fn view(global: &GlobalArgs, args: ViewArgs) -> Result<ExitCode> {
     if !args.bind.is_loopback() {
         eprintln!(
             "warning: serving on {}: anyone who can reach this address can see the renders and make this \
-             machine render; prefer ssh -L (see the README)",
+             machine render; prefer ssh -L (docs/commands.md, `twinray view`)",
             args.bind
         );
     }

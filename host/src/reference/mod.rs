@@ -7,4 +7,4 @@ mod ray;
 pub mod scene;
 pub mod shapes;
 pub mod surface;
-mod torus;
+mod traced;

@@ -188,7 +188,7 @@ fn shapes(data: &SceneData, group: HitGroup, blas: usize, primitive_base: u32) -
             (0..boxes.len())
                 .map(|k| {
                     from_primitive(name, &data.primitives[primitive_base as usize + k]).ok_or_else(|| {
-                        format!("the f64 reference has no {name} shape (add it to reference/shapes.rs to probe it)")
+                        format!("the f64 reference has no {name} shape (add its distance to TRACED in host/src/reference/traced.rs to probe it)")
                     })
                 })
                 .collect()

@@ -1,7 +1,8 @@
 //! The f64 reference for every shape: an independent evaluation, not the f32 shader math run
 //! again. Quadrics use the cancellation-free forms in f64; the torus is found by sphere
 //! tracing its exact signed distance in f64 and bisecting the sign change, so a quartic-solver
-//! bug cannot hide in both; triangles use Moller-Trumbore in f64.
+//! bug cannot hide in both; so is any shape of [`TRACED`], by its distance; triangles use
+//! Moller-Trumbore in f64.
 //!
 //! Each answer is a hit, a miss, or `Ambiguous`: the ray passes within a few f32 ULPs of
 //! tangency, of a rim or edge, or of t_min, where rounding the f32 input alone could flip
@@ -9,8 +10,10 @@
 
 use super::ray::{first, Candidate, F32_EPS};
 pub use super::ray::{RefRay, Verdict, AMBIGUOUS_ULPS};
-use super::torus::torus;
+use super::traced::{torus, traced};
+pub use super::traced::{TracedShape, TRACED};
 use glam::DVec3;
+use glam::DVec4;
 use twinray_shared::layout::Primitive;
 use twinray_shared::shapes::plane::DISK;
 
@@ -33,6 +36,8 @@ pub enum RefShape {
     Torus { major: f64, minor: f64 },
     /// One triangle of a mesh.
     Triangle { p: [DVec3; 3] },
+    /// A shape of [`TRACED`], with its primitive's `a`.
+    Traced { shape: &'static TracedShape, a: DVec4 },
 }
 
 /// The true answer for `ray` and `shape`.
@@ -46,6 +51,7 @@ pub fn intersect(shape: &RefShape, ray: &RefRay) -> Verdict {
         RefShape::Cone { radius, half_height } => cone(ray, radius, half_height),
         RefShape::Torus { major, minor } => torus(ray, major, minor),
         RefShape::Triangle { p } => triangle(ray, p),
+        RefShape::Traced { shape, a } => traced(ray, shape, a),
     }
 }
 
@@ -61,7 +67,7 @@ pub fn from_primitive(shape: &str, p: &Primitive) -> Option<RefShape> {
         "cylinder" => RefShape::Cylinder { radius: a.x, half_height: a.y },
         "cone" => RefShape::Cone { radius: a.x, half_height: a.y },
         "torus" => RefShape::Torus { major: a.x, minor: a.y },
-        _ => return None,
+        _ => RefShape::Traced { shape: TRACED.iter().find(|t| t.name == shape)?, a },
     })
 }
 
@@ -77,6 +83,7 @@ pub fn bounding_radius(shape: &RefShape) -> f64 {
         }
         RefShape::Torus { major, minor } => major + minor,
         RefShape::Triangle { p } => p.iter().map(|v| v.length()).fold(0.0, f64::max),
+        RefShape::Traced { shape, a } => (shape.half_extent)(a).length(),
     }
 }
 

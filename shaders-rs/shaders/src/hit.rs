@@ -12,6 +12,10 @@ use twinray_shared::shading;
 /// Defines a closest-hit entry point for every procedural shape, `$name`: the surface from the
 /// reported object-space normal, its colour `$color` of the material `$m`, object-space point
 /// `$p` and normal `$n` (the entry also declares `$params`).
+///
+/// Expands to one `#[spirv(closest_hit)] pub fn $name(..)` taking the hit's built-ins, the
+/// object, primitive and material buffers and the payload; docs/rust-stages.md shows
+/// `procedural_closest_hit_flat` expanded.
 macro_rules! procedural_closest_hit {
     ($(#[$doc:meta])* $name:ident, [$($params:tt)*], |$m:ident, $p:ident, $n:ident| $color:expr) => {
 $(#[$doc])*
@@ -48,6 +52,10 @@ pub fn $name(
 
 /// Defines a closest-hit entry point for triangle meshes, `$name`: normals from the triangle's
 /// vertices (interpolated with the barycentrics), the colour as for `procedural_closest_hit!`.
+///
+/// Expands to one `#[spirv(closest_hit)] pub fn $name(..)` like `procedural_closest_hit!`'s,
+/// with the barycentrics as hit attribute and the vertex and index buffers in place of the
+/// primitives.
 macro_rules! triangle_closest_hit {
     ($(#[$doc:meta])* $name:ident, [$($params:tt)*], |$m:ident, $p:ident, $n:ident| $color:expr) => {
 $(#[$doc])*

@@ -29,6 +29,11 @@ use twinray_shared::{camera, random, shading};
 /// writes the mean colour and the ids of what the first sample hit. The entry also declares
 /// `$params`, and runs `$setup` first. Names the caller's expressions use (`$frame`,
 /// `$payload`) come from the caller, as macro hygiene asks.
+///
+/// Expands to one `#[spirv($stage)] pub fn $name(..)`: the built-ins, the renderers' common
+/// bindings (TLAS, image, frame, lights, hit ids) and specialisation constants, then
+/// `$params`; its body is `$setup` and the sample loop below. Used three times: `raygen`,
+/// `raygen_query` and `render_compute`. docs/rust-stages.md shows stages as plain Rust.
 macro_rules! renderer {
     (
         $(#[$doc:meta])* $name:ident, #[spirv($($stage:tt)*)], [$($builtins:tt)*], $frame:ident,
@@ -326,6 +331,9 @@ pub fn shadow_miss(#[spirv(incoming_ray_payload)] shadow: &mut ShadowPayload) {
 /// from the shared routine `$intersect`, reporting the object-space normal as hit attribute.
 /// The instance custom index is the object's first primitive, so the stage that runs most
 /// often reads one buffer, as the spine's did.
+///
+/// Expands to one `#[spirv(intersection)] pub fn $name(..)` that reports `$intersect`'s hit
+/// with hit kind `$hit_kind`; docs/rust-stages.md shows the sphere's expanded.
 macro_rules! procedural_intersection {
     ($name:ident, $intersect:path, $hit_kind:expr) => {
         #[spirv(intersection)]
@@ -365,6 +373,9 @@ macro_rules! procedural_intersection {
 
 /// The intersection entry points of every registered shape (`twinray_shared::shapes`): its
 /// robust routine and, for shapes that keep one, the textbook variant (issue 4).
+///
+/// Expands to one `procedural_intersection!` per registry line (two for a line with
+/// `naive`), so that a shape's line in `twinray_shared::shapes` is all its stage needs.
 macro_rules! intersection_stages {
     ($($shape:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
         $(

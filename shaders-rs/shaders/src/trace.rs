@@ -41,6 +41,9 @@ pub fn primary(tlas: &AccelerationStructure, ray: Ray, t_max: f32, payload: &mut
 /// to `shadow_rays`. Shadow rays go to `$visible` with the resources `$res`: one body for
 /// `traceRay` and ray-query shadows (a closure would be a struct of references, which rust-gpu
 /// cannot build).
+///
+/// Expands to one plain `pub fn $name(..) -> Vec3` (not an entry point) whose shadow rays call
+/// `$visible(.., $res)`; invoked twice, as `shade` and `shade_query`.
 macro_rules! shading {
     ($(#[$doc:meta])* $name:ident, $visible:ident, $($res:ident: $ty:ty),*) => {
 $(#[$doc])*

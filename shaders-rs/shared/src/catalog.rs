@@ -92,6 +92,8 @@ pub struct ModuleSpec {
     pub glsl: GlslSource,
 }
 
+/// Expands the shape registry's lines to `MODULES`: the fixed modules, then one intersection
+/// module per shape (and one per naive variant).
 macro_rules! module_table {
     ($($shape:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
         /// Every module of both sets; `cargo xtask shaders` builds and checks exactly these. A

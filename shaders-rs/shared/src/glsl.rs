@@ -30,6 +30,8 @@ pub struct GlslStruct {
     pub fields: Vec<GlslField>,
 }
 
+/// `glsl_struct!(T { field: "glsl type", .. })` expands to the `GlslStruct` of `T`: its name,
+/// `size_of`, and each field's GLSL type, name and `offset_of`.
 macro_rules! glsl_struct {
     ($ty:ident { $($field:ident : $glsl:literal),* $(,)? }) => {
         GlslStruct {

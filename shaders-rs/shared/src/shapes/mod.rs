@@ -28,7 +28,8 @@ pub mod torus;
 ///   sets; `naive` adds the textbook variant kept on purpose, for shapes that have one.
 ///
 /// Call it with the name of a macro that takes the lines (see `catalog.rs` and the shaders
-/// crate).
+/// crate): `procedural_shapes!(m)` expands to `m! { LINES }`, the lines below, so each user
+/// of the registry writes one macro that turns the lines into what it needs.
 #[macro_export]
 macro_rules! procedural_shapes {
     ($callback:ident) => {
@@ -46,6 +47,7 @@ macro_rules! procedural_shapes {
 /// Added to a shape's hit kind in [`crate::layout::ObjectData::shape`] for its naive variant.
 pub const SHAPE_NAIVE: u32 = 0x80;
 
+/// Expands the registry's lines to `intersect_shape`, one `if` per shape (and its naive variant).
 macro_rules! dispatch {
     ($($name:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
         /// The first hit of `shape`'s routine (its hit kind, plus [`SHAPE_NAIVE`] for the naive
@@ -91,6 +93,7 @@ pub struct Shape {
     pub spec: &'static spec::ShapeSpec,
 }
 
+/// Expands to `None`, or to `Some("NAME")` for an identifier: a shape's optional naive module.
 #[cfg(not(target_arch = "spirv"))]
 macro_rules! optional_name {
     () => {
@@ -101,6 +104,7 @@ macro_rules! optional_name {
     };
 }
 
+/// Expands the registry's lines to `SHAPES`, one [`Shape`] per line.
 #[cfg(not(target_arch = "spirv"))]
 macro_rules! shape_table {
     ($($name:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {

@@ -131,7 +131,7 @@ fn polish_step(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
 }
 
 /// `s` moved onto the surface along the ray by Newton steps on g (written out, not a loop:
-/// see the README on loops NVIDIA's driver miscompiles).
+/// see docs/rust-stages.md on loops NVIDIA's driver miscompiles).
 fn polish(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
     let s = polish_step(o, d, r, s);
     let s = polish_step(o, d, r, s);
