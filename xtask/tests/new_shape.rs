@@ -19,7 +19,8 @@ fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
         for entry in std::fs::read_dir(&d).unwrap() {
             let path = entry.unwrap().path();
             let relative = path.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
-            if relative == "target" {
+            // The build folder, and host/spirv and host/scenes: links to folders listed anyway.
+            if relative == "target" || path.is_symlink() {
                 continue;
             }
             if path.is_dir() {
