@@ -4,6 +4,9 @@
 //! or `from=FILE macro=NAME with="$a=>x|.."` for a macro's expansion) is still what the
 //! source says. `cargo xtask` words are checked by xtask/tests/doc_words.rs.
 
+#[path = "../../xtask/tests/common/docs.rs"]
+mod docs_text;
+
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -12,32 +15,8 @@ fn root() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
 
-/// README.md and every chapter of docs/ (not docs/upstream/: issue texts written for others).
 fn docs() -> Vec<(String, String)> {
-    let mut names = vec!["README.md".to_string()];
-    let mut chapters: Vec<String> = std::fs::read_dir(root().join("docs"))
-        .unwrap()
-        .filter_map(|e| e.ok()?.file_name().into_string().ok())
-        .filter(|n| n.ends_with(".md"))
-        .map(|n| format!("docs/{n}"))
-        .collect();
-    chapters.sort();
-    names.extend(chapters);
-    names.into_iter().map(|n| (n.clone(), std::fs::read_to_string(root().join(&n)).unwrap())).collect()
-}
-
-/// (info string, text) of every fenced block, and the prose with the blocks left out.
-fn split(markdown: &str) -> (Vec<(String, String)>, String) {
-    let (mut blocks, mut prose, mut open) = (Vec::new(), String::new(), None::<(String, String)>);
-    for line in markdown.lines() {
-        match (open.as_mut(), line.trim_start().strip_prefix("```")) {
-            (None, Some(info)) => open = Some((info.trim().to_string(), String::new())),
-            (Some(_), Some("")) => blocks.extend(open.take()),
-            (Some((_, text)), _) => text.push_str(&(line.to_string() + "\n")),
-            (None, None) => prose.push_str(&(line.to_string() + "\n")),
-        }
-    }
-    (blocks, prose)
+    docs_text::docs(&root())
 }
 
 /// The inline code spans of `prose`.
@@ -55,7 +34,7 @@ fn slug(heading: &str) -> String {
 }
 
 fn anchors(markdown: &str) -> BTreeSet<String> {
-    let (_, prose) = split(markdown);
+    let (_, prose) = docs_text::fenced(markdown);
     prose.lines().filter(|l| l.starts_with('#')).map(slug).collect()
 }
 
@@ -63,7 +42,7 @@ fn anchors(markdown: &str) -> BTreeSet<String> {
 fn every_link_and_anchor_resolves() {
     let mut broken = Vec::new();
     for (name, text) in docs() {
-        let (_, prose) = split(&text);
+        let (_, prose) = docs_text::fenced(&text);
         let dir = root().join(&name).parent().unwrap().to_path_buf();
         for target in prose.split("](").skip(1).filter_map(|rest| rest.split(')').next()) {
             if target.starts_with("http://") || target.starts_with("https://") {
@@ -107,7 +86,7 @@ fn repo_path(span: &str) -> Option<&str> {
 fn every_path_the_docs_name_exists() {
     let mut missing = Vec::new();
     for (name, text) in docs() {
-        let (_, prose) = split(&text);
+        let (_, prose) = docs_text::fenced(&text);
         for span in spans(&prose) {
             let Some(path) = repo_path(&span) else { continue };
             // The capsule is the example shape of the tutorial and of docs/adding-stages.md:
@@ -171,8 +150,8 @@ fn every_twinray_command_and_flag_the_docs_name_exists() {
     let mut helps = BTreeMap::new();
     let (mut stale, mut checked) = (Vec::new(), 0);
     for (name, text) in docs() {
-        let (blocks, prose) = split(&text);
-        let code: Vec<String> = blocks.into_iter().map(|(_, b)| b).chain(spans(&prose)).collect();
+        let (blocks, prose) = docs_text::fenced(&text);
+        let code: Vec<String> = blocks.into_iter().map(|b| b.text).chain(spans(&prose)).collect();
         for words in code.iter().flat_map(|c| invocations(c)) {
             checked += 1;
             let command = words.iter().find(|w| known.contains(w.as_str()));
@@ -231,7 +210,7 @@ fn attribute(info: &str, key: &str) -> Option<String> {
 fn code_quoted_from_the_source_is_what_the_source_says() {
     let mut checked = 0;
     for (name, text) in docs() {
-        for (info, block) in split(&text).0 {
+        for docs_text::Block { info, text: block, line } in docs_text::fenced(&text).0 {
             let Some(file) = attribute(&info, "from") else { continue };
             let source = std::fs::read_to_string(root().join(&file)).unwrap_or_else(|e| panic!("{name}: {file}: {e}"));
             let want = match attribute(&info, "macro") {
@@ -240,7 +219,7 @@ fn code_quoted_from_the_source_is_what_the_source_says() {
             };
             let found =
                 if info.contains(" macro=") { squeeze(&block) == want } else { squeeze(&source).contains(&want) };
-            assert!(found, "{name}: the ```{info} block is no longer what {file} says:\n{block}");
+            assert!(found, "{name}:{line}: the ```{info} block is no longer what {file} says:\n{block}");
             checked += 1;
         }
     }

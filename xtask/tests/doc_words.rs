@@ -4,24 +4,13 @@
 
 mod common;
 
-use common::repo;
+use common::{docs::docs, repo};
 use std::process::Command;
 
 fn help(args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_xtask")).args(args).arg("--help").output().unwrap();
     assert!(out.status.success(), "xtask {args:?} --help: {}", String::from_utf8_lossy(&out.stderr));
     String::from_utf8_lossy(&out.stdout).into_owned()
-}
-
-fn docs() -> Vec<(String, String)> {
-    let mut names = vec!["README.md".to_string()];
-    for entry in std::fs::read_dir(repo().join("docs")).unwrap() {
-        let name = entry.unwrap().file_name().to_string_lossy().into_owned();
-        if name.ends_with(".md") {
-            names.push(format!("docs/{name}"));
-        }
-    }
-    names.into_iter().map(|n| (n.clone(), std::fs::read_to_string(repo().join(&n)).unwrap())).collect()
 }
 
 #[test]
@@ -36,7 +25,7 @@ fn every_xtask_and_flag_the_docs_name_exists() {
         .filter_map(|l| l.split_whitespace().next())
         .collect();
     let (mut stale, mut checked) = (Vec::new(), 0);
-    for (name, text) in docs() {
+    for (name, text) in docs(&repo()) {
         for part in text.split("cargo xtask ").skip(1) {
             let end = part.find(['`', '|', ';', '#', ')', '\n']).unwrap_or(part.len());
             let words: Vec<&str> = part[..end].split_whitespace().collect();

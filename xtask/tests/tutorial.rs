@@ -12,37 +12,11 @@
 
 mod common;
 
+use common::docs::{fenced, Block};
 use common::{copy_repo, repo, scaffold_target};
 use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
-
-/// One fenced block of the tutorial: its info string, its text, and its first line's number.
-struct Block {
-    info: String,
-    text: String,
-    line: usize,
-}
-
-fn blocks(markdown: &str) -> Vec<Block> {
-    let mut out = Vec::new();
-    let mut open: Option<Block> = None;
-    for (i, line) in markdown.lines().enumerate() {
-        match (&mut open, line.strip_prefix("```")) {
-            (None, Some(info)) => {
-                open = Some(Block { info: info.trim().to_string(), text: String::new(), line: i + 1 })
-            }
-            (Some(_), Some("")) => out.extend(open.take()),
-            (Some(block), _) => {
-                block.text.push_str(line);
-                block.text.push('\n');
-            }
-            (None, None) => {}
-        }
-    }
-    assert!(open.is_none(), "docs/tutorial.md: a fenced block is never closed");
-    out
-}
 
 /// The words of an info string, with `key="quoted text"` kept whole and unquoted.
 fn words(info: &str) -> Vec<(String, String)> {
@@ -127,7 +101,7 @@ fn the_tutorial_runs_as_written() {
     copy_repo(dir);
     let started = Instant::now();
     let mut last_output: Option<String> = None;
-    for block in blocks(&markdown) {
+    for block in fenced(&markdown).0 {
         let words = words(&block.info);
         let get = |key: &str| words.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str());
         let language = words.first().map_or("", |(k, _)| k.as_str());

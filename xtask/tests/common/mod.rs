@@ -2,6 +2,8 @@
 //! cargo run in it with a target folder kept between runs.
 #![allow(dead_code)] // each test crate that includes this module uses a part of it
 
+pub mod docs;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
