@@ -27,6 +27,7 @@ layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;
 
 // These stages trace but do not shade: trace.glsl's shading (which reads the lights) is left out.
 #define TRACE_ONLY
+#include "payload.glsl"
 #include "trace.glsl"
 
 void main() {
@@ -43,6 +44,8 @@ void main() {
     } else {
 #ifdef RENDER_COMPUTE
         payload = none;
+#else
+        poison_payload();
 #endif
         trace_primary(ray.origin.xyz, ray.direction.xyz);
         results[i] = ExplainResult(payload, uvec4(0u));

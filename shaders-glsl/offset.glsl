@@ -17,10 +17,12 @@ vec3 offset_ray(vec3 p, vec3 n) {
     return vec3(offset_component(p.x, n.x), offset_component(p.y, n.y), offset_component(p.z, n.z));
 }
 // Twin of offset::offset_hit: p, hit at ray parameter t along a unit direction, moved off the
-// surface by offset_ray and by at least 256 ULPs of the ray's reach (max |p_i| + t) along n.
+// surface by offset_ray and by at least 256 ULPs of the ray's reach (max |p_i| + t) along n;
+// near the origin by the reach's step alone (no fixed step in scene units).
 vec3 offset_hit(vec3 p, vec3 n, float t) {
     float step_reach = (max(max(abs(p.x), abs(p.y)), abs(p.z)) + abs(t)) * OFFSET_REACH_SCALE;
-    vec3 ulps = offset_ray(p, n);
+    vec3 moved = offset_ray(p, n);
+    vec3 ulps = mix(moved, p, lessThan(abs(p), vec3(OFFSET_ORIGIN)));
     vec3 reach = p + step_reach * n;
     return mix(min(ulps, reach), max(ulps, reach), greaterThanEqual(n, vec3(0.0)));
 }

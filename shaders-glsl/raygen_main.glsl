@@ -1,6 +1,7 @@
 // The body of both ray generation stages (raygen.rgen, raygen_query.rgen) and of the compute
 // renderer (render.comp), twin of the Rust `renderer!` macro: M x M primary samples per pixel,
-// shaded here; writes the mean colour and the ids of what the first sample hit. With
+// shaded here; writes the mean colour and the ids of what the first sample hit; the payload is
+// poisoned before each trace, and a ray whose stage left it so is counted, not shaded. With
 // SHADOW_QUERY defined, shadow rays are traced inline by ray queries (trace.glsl), which read the
 // objects, primitives and materials; with RENDER_COMPUTE too, primary rays are, and the payload
 // is a plain variable that trace.glsl describes hits into as the closest-hit stages would.
@@ -37,6 +38,7 @@ layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;
 #endif
 
 #include "camera.glsl"
+#include "payload.glsl"
 #include "trace.glsl"
 
 void main() {
@@ -50,6 +52,7 @@ void main() {
     uint pixel_index = pixel.y * LAUNCH_SIZE.x + pixel.x;
     vec3 sum = vec3(0.0);
     uint shadow_rays = 0u;
+    uint no_payload = 0u;
     for (uint sy = 0u; sy < SAMPLES_PER_SIDE; sy++) {
         for (uint sx = 0u; sx < SAMPLES_PER_SIDE; sx++) {
             uint sample_index = sy * SAMPLES_PER_SIDE + sx;
@@ -62,16 +65,23 @@ void main() {
             vec2 offset = sample_offset(sx, sy, SAMPLES_PER_SIDE, r1, r2);
             vec3 origin, direction;
             primary_ray(frame, pixel, LAUNCH_SIZE, offset, origin, direction);
+            poison_payload();
             trace_primary(origin, direction);
+            bool unwritten = payload_unwritten(payload, true);
             if (sample_index == 0u) {
-                hit_ids[HIT_IDS_PER_PIXEL * pixel_index] = payload.ids.x;
-                hit_ids[HIT_IDS_PER_PIXEL * pixel_index + 1u] = payload.ids.y;
+                hit_ids[HIT_IDS_PER_PIXEL * pixel_index] = unwritten ? NO_HIT : payload.ids.x;
+                hit_ids[HIT_IDS_PER_PIXEL * pixel_index + 1u] = unwritten ? NO_HIT : payload.ids.y;
             }
-            sum += shade(SHADOWS != 0u, SHADOW_SAMPLER == SHADOW_SAMPLER_STRATIFIED, pixel_index, sample_index,
-                         shadow_rays);
+            if (unwritten) {
+                no_payload = no_payload_word(no_payload, sample_index);
+            } else {
+                sum += shade(SHADOWS != 0u, SHADOW_SAMPLER == SHADOW_SAMPLER_STRATIFIED, pixel_index, sample_index,
+                             shadow_rays);
+            }
         }
     }
     hit_ids[HIT_IDS_PER_PIXEL * pixel_index + 2u] = shadow_rays;
-    vec3 color = sum / float(SAMPLES_PER_SIDE * SAMPLES_PER_SIDE);
+    hit_ids[HIT_IDS_PER_PIXEL * pixel_index + 3u] = no_payload;
+    vec3 color = no_payload == 0u ? sum / float(SAMPLES_PER_SIDE * SAMPLES_PER_SIDE) : vec3(uintBitsToFloat(0x7fc00000u));
     imageStore(image, ivec2(pixel), vec4(color, 1.0));
 }

@@ -13,11 +13,11 @@
 #ifdef RENDER_COMPUTE
 // Twin of twinray_shaders::query::primary_query.
 void trace_primary(vec3 origin, vec3 direction) {
-    trace_query(origin, T_MIN, direction, frame.reach.x, frame.background);
+    trace_query(origin, frame.reach.z, direction, frame.reach.x, frame.background);
 }
 #else
 void trace_primary(vec3 origin, vec3 direction) {
-    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_PRIMARY, origin, T_MIN, direction, frame.reach.x, 0);
+    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_PRIMARY, origin, frame.reach.z, direction, frame.reach.x, 0);
 }
 #endif
 

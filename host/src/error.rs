@@ -38,6 +38,11 @@ pub enum Error {
     /// Something the device or this build cannot do.
     #[error("{0}")]
     Unsupported(String),
+    /// A module declares a capability or extension the device does not have enabled (the text
+    /// names the module, what it declares and the device): refused before any pipeline is
+    /// made. The CLI exits with code 2; suites skip the case or scene and say why.
+    #[error("{0}")]
+    DeviceLacks(String),
     /// A file operation failed.
     #[error("{what} {}: {source}", path.display())]
     Io {
@@ -83,7 +88,7 @@ impl Error {
     pub fn is_input(&self) -> bool {
         match self {
             Error::While { cause, .. } => cause.is_input(),
-            other => matches!(other, Error::Input(_) | Error::Scene { .. }),
+            other => matches!(other, Error::Input(_) | Error::Scene { .. } | Error::DeviceLacks(_)),
         }
     }
 
@@ -93,6 +98,15 @@ impl Error {
         match self {
             Error::While { cause, .. } => cause.is_stalled(),
             other => matches!(other, Error::GpuTimeout { .. } | Error::DeviceLost { .. }),
+        }
+    }
+
+    /// True when a module needs what the device lacks ([`Error::DeviceLacks`]): a suite skips
+    /// the case or scene rather than stopping.
+    pub fn device_lacks(&self) -> bool {
+        match self {
+            Error::While { cause, .. } => cause.device_lacks(),
+            other => matches!(other, Error::DeviceLacks(_)),
         }
     }
 

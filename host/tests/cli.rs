@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{assert_bad_input, repo, twinray};
+use common::{assert_bad_input, repo, twinray, with_capability};
 use std::path::Path;
 use std::process::Output;
 
@@ -250,6 +250,44 @@ fn stability_prints_rows_costs_and_json_and_fails_on_a_missed_target() {
     assert!(String::from_utf8_lossy(&out.stdout).contains("MISSED: relative t p99"));
     let empty = tempfile::tempdir().unwrap();
     assert_bad_input(&["stability", "--dir", &empty.path().to_string_lossy()], &["no probe cases"]);
+}
+
+/// A suite runs what the device can: a case whose module asks for what the device was not
+/// asked to enable (here the compute renderer's probe, from a folder set, declaring
+/// RayTracingMotionBlurNV) is skipped with one line naming it and why, the other case is
+/// judged, and the summary counts the skipped one; exit 0.
+#[test]
+fn stability_skips_a_case_the_device_cannot_run_and_judges_the_rest() {
+    let dir = tempfile::tempdir().unwrap();
+    let (cases, set) = (dir.path().join("cases"), dir.path().join("set"));
+    std::fs::create_dir_all(&cases).unwrap();
+    std::fs::create_dir_all(&set).unwrap();
+    for module in std::fs::read_dir(repo().join("spirv/glsl")).unwrap().map(|e| e.unwrap().path()) {
+        std::fs::copy(&module, set.join(module.file_name().unwrap())).unwrap();
+    }
+    let query = std::fs::read(set.join("probe_query.spv")).unwrap();
+    std::fs::write(set.join("probe_query.spv"), with_capability(&query, 5341, "SPV_NV_ray_tracing_motion_blur"))
+        .unwrap();
+    let text = std::fs::read_to_string(repo().join("probes/stability/sphere-far-1e3.toml")).unwrap();
+    std::fs::write(cases.join("sphere-far-1e3.toml"), &text).unwrap();
+    let compute = text.replace("name = \"sphere-far-1e3\"", "name = \"sphere-far-compute\"").replacen(
+        "[scene.materials.m]",
+        "[scene]\nrenderer = \"compute\"\n\n[scene.materials.m]",
+        1,
+    );
+    std::fs::write(cases.join("sphere-far-compute.toml"), compute).unwrap();
+    let (cases, set) = (cases.to_string_lossy().into_owned(), set.to_string_lossy().into_owned());
+    let args = ["stability", "--dir", &cases, "--sets", &set, "--runs", "1", "--warmup", "0", "--timing-rays", "0"];
+    let out = twinray(&args, dir.path());
+    let (stdout, stderr) = (String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert_eq!(out.status.code(), Some(0), "{stdout}{stderr}");
+    let skip = stderr.lines().find(|l| l.starts_with("skipped sphere-far-compute: ")).unwrap_or_default();
+    assert!(
+        skip.contains("the probe_query module (") && skip.contains("capability RayTracingMotionBlurNV"),
+        "{stderr}"
+    );
+    assert!(stdout.contains("sphere-far-1e3") && !stdout.contains("sphere-far-compute  "), "{stdout}");
+    assert!(stdout.contains("skipped 1 of 2 cases, which need what"), "{stdout}");
 }
 
 /// `twinray reference`: renders, then reads the same key from the cache; a sample count that

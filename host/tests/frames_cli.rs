@@ -4,7 +4,7 @@
 
 mod common;
 
-use common::{assert_bad_input, twinray};
+use common::{assert_bad_input, planted_glsl, twinray};
 
 const SMALL: [&str; 4] = ["--width", "64", "--height", "48"];
 
@@ -71,6 +71,35 @@ fn compare_frames_judges_every_frame_and_names_the_worst() {
     let text = twinray(&[&args.concat()[..], &["--out-dir", "cmp"]].concat(), dir.path());
     let stdout = String::from_utf8_lossy(&text.stdout);
     assert!(stdout.contains("worst frame") && stdout.contains("frames within"), "{stdout}");
+}
+
+/// Per frame, a compare names the pixels to explain, as a still compare does, each with its
+/// `twinray explain --frame K` line: here B's miss stage shows half the background.
+#[test]
+fn compare_frames_names_pixels_to_explain_per_frame() {
+    let dir = tempfile::tempdir().unwrap();
+    let miss = planted_glsl(
+        "miss.rmiss",
+        ("payload.color = frame.background;", "payload.color = frame.background * 0.5;"),
+        dir.path(),
+    );
+    let b = format!("glsl,miss={}", miss.display());
+    let args = ["compare", "orbit", "--frames", "1..3", "--runs", "1", "--warmup", "0", "--a", "glsl", "--b", &b];
+    let out = twinray(&[&args[..], &SMALL, &["--out-dir", "cmp", "--json"]].concat(), dir.path());
+    assert_eq!(out.status.code(), Some(1), "the background differs: {}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+    for (k, frame) in json["frames"].as_array().unwrap().iter().enumerate() {
+        let pixels = frame["pixels"].as_array().unwrap();
+        assert!(!pixels.is_empty(), "frame {k} names no pixel: {frame}");
+        let line = pixels[0]["explain"].as_str().unwrap();
+        assert!(
+            line.starts_with("twinray explain orbit --pixel ") && line.ends_with(&format!(" --frame {}", k + 1)),
+            "{line}"
+        );
+    }
+    let text = twinray(&[&args[..], &SMALL, &["--out-dir", "cmp"]].concat(), dir.path());
+    let stdout = String::from_utf8_lossy(&text.stdout);
+    assert!(stdout.contains("pixel ") && stdout.contains(" --frame 2"), "{stdout}");
 }
 
 #[test]

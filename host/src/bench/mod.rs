@@ -16,6 +16,7 @@ pub mod tables;
 pub use samplers::side_of;
 
 use crate::error::{Error, Result};
+use crate::probe::stability::Skipped;
 use crate::reference::image::{reference, ReferenceImage};
 use crate::render::{render_sets, to_rgba8, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
@@ -119,6 +120,8 @@ pub struct BenchReport {
     pub variants: Vec<crate::probe::stability::StabilityRow>,
     /// Size of every module of both sets, as the binary embeds them.
     pub spirv: Vec<ModuleSize>,
+    /// Scenes and probe cases not run: a module they need declares what the device lacks.
+    pub skipped: Vec<Skipped>,
 }
 
 /// The GPU time of set `a` over set `b` for one scene and sample count, over the placements
@@ -199,42 +202,23 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         samplers: Vec::new(),
         variants: Vec::new(),
         spirv: spirv_sizes()?,
+        skipped: Vec::new(),
     };
     for scene in &config.scenes {
-        let size = config.size.unwrap_or((scene.file.image.width, scene.file.image.height));
-        progress(&format!("{}: reference at {} spp", scene.name(), config.reference_spp));
-        let truth = reference(ctx, scene, &config.reference_set, size, config.reference_spp, &config.cache)?;
-        let reference_png = format!("images/{}-reference.png", file_safe(scene.name()));
-        crate::util::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
-        report.references.push((scene.name().to_string(), reference_png));
-        let sets = config.timed_sets();
-        for &spp in &config.spp {
-            progress(&format!("{}: {} sets at {spp} spp", scene.name(), sets.len()));
-            let outputs = measure(ctx, scene, size, spp, &sets, config)?;
-            let keep = match config.images {
-                Images::All => true,
-                Images::Last => config.spp.iter().max() == Some(&spp),
-                Images::None => false,
-            };
-            report.ratios.extend(ratios(scene.name(), spp, &sets, &outputs));
-            for (set, out) in sets.iter().zip(&outputs) {
-                out.written.require(&set.to_string(), "pixels", &format!("{} at {spp} spp", scene.name()))?;
-                let first = outputs.first().filter(|f| !std::ptr::eq(*f, out));
-                let row = row(scene, set, spp, out, &truth, first, keep.then_some(config.out.as_path()))?;
-                report.rows.push(row);
+        // A scene a set's module cannot run on this device is skipped, with what it had added.
+        let kept = (report.references.len(), report.rows.len(), report.ratios.len(), report.samplers.len());
+        match bench_scene(ctx, config, scene, &mut report, progress) {
+            Ok(()) => {}
+            Err(e) if e.device_lacks() => {
+                report.references.truncate(kept.0);
+                report.rows.truncate(kept.1);
+                report.ratios.truncate(kept.2);
+                report.samplers.truncate(kept.3);
+                let skip = Skipped { name: scene.name().to_string(), why: e.to_string() };
+                progress(&skip.line());
+                report.skipped.push(skip);
             }
-        }
-        if scene.has_soft_shadows() && !config.shadow_spp.is_empty() {
-            let study = samplers::Study {
-                set: &config.sets[0],
-                size,
-                counts: &config.shadow_spp,
-                reference_spp: config.reference_spp,
-                cache: &config.cache,
-                warmup: config.warmup,
-                runs: config.runs,
-            };
-            report.samplers.extend(samplers::study(ctx, scene, &study, progress)?);
+            Err(e) => return Err(e),
         }
     }
     if let Some(dir) = &config.probes {
@@ -243,7 +227,11 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         let formulas = [crate::scene::shape::Formula::Robust, crate::scene::shape::Formula::Naive];
         let timing =
             crate::probe::stability::Timing { warmup: config.warmup, runs: config.runs, rays: config.timing_rays };
-        let rows = crate::probe::stability::run(ctx, &files, &config.sets[..1], &formulas, timing)?;
+        let suite = crate::probe::stability::run(ctx, &files, &config.sets[..1], &formulas, timing, |skip| {
+            progress(&skip.line());
+        })?;
+        report.skipped.extend(suite.skipped);
+        let rows = suite.rows;
         // Only cases where the naive formula differs make a comparison.
         let paired = |r: &&crate::probe::stability::StabilityRow| {
             rows.iter().any(|o| o.formula == "naive" && o.report.case == r.report.case)
@@ -251,6 +239,52 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         report.variants = rows.iter().filter(paired).cloned().collect();
     }
     Ok(report)
+}
+
+/// One scene of the bench: its reference, every set at every sample count, the sampler study.
+fn bench_scene(
+    ctx: &Arc<Context>,
+    config: &BenchConfig,
+    scene: &Scene,
+    report: &mut BenchReport,
+    progress: &dyn Fn(&str),
+) -> Result<()> {
+    let size = config.size.unwrap_or((scene.file.image.width, scene.file.image.height));
+    progress(&format!("{}: reference at {} spp", scene.name(), config.reference_spp));
+    let truth = reference(ctx, scene, &config.reference_set, size, config.reference_spp, &config.cache)?;
+    let reference_png = format!("images/{}-reference.png", file_safe(scene.name()));
+    crate::util::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
+    report.references.push((scene.name().to_string(), reference_png));
+    let sets = config.timed_sets();
+    for &spp in &config.spp {
+        progress(&format!("{}: {} sets at {spp} spp", scene.name(), sets.len()));
+        let outputs = measure(ctx, scene, size, spp, &sets, config)?;
+        let keep = match config.images {
+            Images::All => true,
+            Images::Last => config.spp.iter().max() == Some(&spp),
+            Images::None => false,
+        };
+        report.ratios.extend(ratios(scene.name(), spp, &sets, &outputs));
+        for (set, out) in sets.iter().zip(&outputs) {
+            out.written.require(&set.to_string(), "pixels", &format!("{} at {spp} spp", scene.name()))?;
+            let first = outputs.first().filter(|f| !std::ptr::eq(*f, out));
+            let row = row(scene, set, spp, out, &truth, first, keep.then_some(config.out.as_path()))?;
+            report.rows.push(row);
+        }
+    }
+    if scene.has_soft_shadows() && !config.shadow_spp.is_empty() {
+        let study = samplers::Study {
+            set: &config.sets[0],
+            size,
+            counts: &config.shadow_spp,
+            reference_spp: config.reference_spp,
+            cache: &config.cache,
+            warmup: config.warmup,
+            runs: config.runs,
+        };
+        report.samplers.extend(samplers::study(ctx, scene, &study, progress)?);
+    }
+    Ok(())
 }
 
 /// Progress steps `run` reports for `config`.

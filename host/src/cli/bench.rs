@@ -112,6 +112,12 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         let what = if r.null_control { "null control" } else { "" };
         println!("{:<12} {:>4} spp  {} / {}: {:.3}  {} {what}", r.scene, r.spp, r.a, r.b, r.interval.ratio, r.verdict);
     }
+    for skip in &report.skipped {
+        println!("{}", skip.line());
+    }
+    if !report.skipped.is_empty() {
+        println!("skipped {} scenes or probe cases, which need what {} lacks", report.skipped.len(), ctx.info.name);
+    }
     println!("wrote {}/index.html, results.json, results.csv, plots/ and images/", args.out.display());
     Ok(ExitCode::SUCCESS)
 }

@@ -7,6 +7,7 @@ use anyhow::Result;
 use std::process::ExitCode;
 use twinray::explain::pixel::explain_pixel;
 use twinray::explain::report::{Converged, ExplainReport};
+use twinray::probe::report::Outcome::NoPayload;
 use twinray::reference::image::{default_cache, reference};
 use twinray::scene::check_size;
 use twinray::Error;
@@ -46,7 +47,21 @@ pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
     } else {
         print!("{}", report.summary());
     }
-    Ok(ExitCode::SUCCESS)
+    // A ray whose hit or miss stage wrote no payload fails, as it fails every other command.
+    let no_payload = |s: &twinray::explain::pixel::SetRays| s.samples.iter().filter(|x| x.outcome == NoPayload).count();
+    let failed: Vec<String> = px
+        .sets
+        .iter()
+        .filter(|s| no_payload(s) > 0)
+        .map(|s| format!("{} of {}'s primary rays got no payload from their hit or miss stage", no_payload(s), s.label))
+        .collect();
+    if failed.is_empty() {
+        return Ok(ExitCode::SUCCESS);
+    }
+    if !args.json {
+        println!("FAIL: {}", failed.join("; "));
+    }
+    Ok(ExitCode::FAILURE)
 }
 
 /// A set's name in the report: its spec, or `which` (A or B) when that is long (a folder or

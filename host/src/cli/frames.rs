@@ -35,8 +35,11 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
     let mut problems = Vec::new();
     render_frames(&ctx, &scene, std::slice::from_ref(&args.shaders), &opts, frames, mode, |frame| {
         let out = &frame.outputs[0];
-        problems
-            .extend(out.written.problems(&set, "pixels").into_iter().map(|p| format!("frame {}: {p}", frame.index)));
+        let mut found = out.written.problems(&set, "pixels");
+        if !out.no_payload.is_empty() {
+            found.extend(twinray::explain::no_payload::render_lines(&scene.at_frame(frame.index), out, &set));
+        }
+        problems.extend(found.into_iter().map(|p| format!("frame {}: {p}", frame.index)));
         let png = numbered(&args.out, frame.index);
         write_png(&png, out.width, out.height, &out.rgba)?;
         movie.add(&out.rgba)?;

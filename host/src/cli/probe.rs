@@ -43,11 +43,29 @@ pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
     let formulas = [Formula::Robust, Formula::Naive];
     let timing =
         twinray::probe::stability::Timing { warmup: args.warmup, runs: args.runs, rays: args.timing_rays as usize };
-    let rows = twinray::probe::stability::run(&ctx, &files, &sets, &formulas, timing)?;
+    // Each skip is said as it happens, on stderr, so JSON on stdout stays the rows.
+    let skip = |s: &twinray::probe::stability::Skipped| eprintln!("{}", s.line());
+    let suite = twinray::probe::stability::run(&ctx, &files, &sets, &formulas, timing, skip)?;
+    let rows = &suite.rows;
     if args.json {
-        println!("{}", serde_json::to_string(&rows)?);
+        println!("{}", serde_json::to_string(rows)?);
     } else {
-        print!("{}", twinray::probe::stability::table(&rows));
+        print!("{}", twinray::probe::stability::table(rows));
+    }
+    if !suite.skipped.is_empty() {
+        let names: Vec<&str> = suite.skipped.iter().map(|s| s.name.as_str()).collect();
+        let line = format!(
+            "skipped {} of {} cases, which need what {} lacks: {}",
+            names.len(),
+            files.len(),
+            ctx.info.name,
+            names.join(", ")
+        );
+        if args.json {
+            eprintln!("{line}")
+        } else {
+            println!("{line}")
+        }
     }
     let missed = rows.iter().filter(|r| !r.failures.is_empty()).count();
     Ok(if missed == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })

@@ -24,7 +24,8 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     write_png(&args.out, out.width, out.height, &out.rgba)?;
     let median = out.median_ms();
     let set = args.shaders.to_string();
-    let problems = out.written.problems(&set, "pixels");
+    let mut problems = out.written.problems(&set, "pixels");
+    problems.extend(twinray::explain::no_payload::render_lines(&scene, &out, &set));
     if args.frame.json {
         let value = serde_json::json!({
             "scene": scene.name(),

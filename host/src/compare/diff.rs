@@ -186,6 +186,7 @@ mod tests {
             warmup_traces: 0,
             raygen_stack_bytes: 0,
             written: Written::default(),
+            no_payload: vec![],
         }
     }
 
@@ -244,7 +245,7 @@ mod tests {
         let good = ColorDiff { rmse: 0.0, pixels_over_threshold: 0, ..color };
         let ok = ImageDiff { color: good, hit_mismatches: 1, hit_mismatches_off_silhouette: 0, ..d.clone() };
         assert!(verdict(&ok, &parity, 4).is_empty());
-        let half = Written { unwritten: 2, unwritten_color: 2, unwritten_ids: 0, non_finite: 1 };
+        let half = Written { unwritten: 2, unwritten_color: 2, non_finite: 1, ..Written::default() };
         let broken = ImageDiff { written_b: half, ..ok };
         let f = verdict(&broken, &parity, 4);
         assert_eq!(f, ["2 pixels not written by set b (colour 2, hit ids 0)", "1 pixels non-finite in set b"]);

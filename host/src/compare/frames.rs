@@ -2,7 +2,9 @@
 //! the scene's parity tolerance, and the worst frame named.
 
 use super::diff::{diff, verdict, ImageDiff};
+use super::pixels::{named_pixels, pixel_lines, NamedPixel};
 use crate::error::Result;
+use crate::explain::no_payload;
 use crate::render::{render_frames, AsWork, Frame, RayCounts, RenderOptions, RenderOutput, TlasMode};
 use crate::scene::{Parity, Scene};
 use crate::shaders::ShaderSet;
@@ -29,6 +31,9 @@ pub struct FrameFigures {
     pub diff: ImageDiff,
     pub pass: bool,
     pub failures: Vec<String>,
+    /// The pixels that differ most and the hit mismatches of this frame, a few, with their
+    /// `twinray explain --frame` lines (as a single-frame compare names them).
+    pub pixels: Vec<NamedPixel>,
 }
 
 /// Every frame's figures and the verdict on the sequence.
@@ -85,6 +90,7 @@ pub fn compare_frames(
 ) -> Result<FramesReport> {
     let parity = scene.file.parity;
     let pixels = u64::from(opts.width) * u64::from(opts.height);
+    let sets = (set_a.to_string(), set_b.to_string());
     let mut figures = Vec::new();
     let mut worst: Option<(f64, u32)> = None;
     render_frames(ctx, scene, &[set_a.clone(), set_b.clone()], opts, frames, mode, |frame: Frame| {
@@ -94,7 +100,12 @@ pub fn compare_frames(
         if worst.is_none_or(|(w, _)| bad > w) {
             worst = Some((bad, frame.index));
         }
-        let failures = verdict(&d, &parity, pixels);
+        let mut failures = verdict(&d, &parity, pixels);
+        if !(a.no_payload.is_empty() && b.no_payload.is_empty()) {
+            let posed = scene.at_frame(frame.index);
+            failures.extend(no_payload::render_lines(&posed, a, "set a"));
+            failures.extend(no_payload::render_lines(&posed, b, "set b"));
+        }
         let row = FrameFigures {
             frame: frame.index,
             time: frame.time,
@@ -107,6 +118,7 @@ pub fn compare_frames(
             diff: d,
             pass: failures.is_empty(),
             failures,
+            pixels: named_pixels(scene, (a, b), parity.pixel_threshold, (&sets.0, &sets.1), Some(frame.index)),
         };
         each(&row, a, b)?;
         figures.push(row);
@@ -169,6 +181,7 @@ impl FramesReport {
                 f.diff.hit_mismatches,
                 if f.pass { "pass".to_string() } else { format!("FAIL: {}", f.failures.join("; ")) }
             );
+            s += &pixel_lines(&f.pixels, "         ");
         }
         if let Some(w) = self.worst_frame.and_then(|w| self.frames.iter().find(|f| f.frame == w)) {
             s += &format!(

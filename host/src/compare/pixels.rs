@@ -22,12 +22,14 @@ pub struct NamedPixel {
 
 /// Up to `NAMED_PIXELS` pixels over `threshold` steps with the largest differences, then up to
 /// `NAMED_PIXELS` hit mismatches not named yet (the largest differences first; ties in reading
-/// order), with their explain lines for `scene` at the renders' size with sets `a` and `b`.
+/// order), with their explain lines for `scene` at the renders' size with sets `a` and `b`
+/// (at `frame` of a moving scene).
 pub fn named_pixels(
     scene: &Scene,
     (a, b): (&RenderOutput, &RenderOutput),
     threshold: u8,
     sets: (&str, &str),
+    frame: Option<u32>,
 ) -> Vec<NamedPixel> {
     let steps = |i: usize| (0..3).map(|c| a.rgba[4 * i + c].abs_diff(b.rgba[4 * i + c])).max().unwrap_or(0);
     let mut by_steps: Vec<(u8, bool, usize)> =
@@ -43,19 +45,41 @@ pub fn named_pixels(
         .into_iter()
         .map(|(steps, hit_mismatch, i)| {
             let (x, y) = ((i % width) as u32, (i / width) as u32);
-            NamedPixel { x, y, steps, hit_mismatch, explain: explain_line(scene, (a.width, a.height), (x, y), sets) }
+            let explain = explain_line(scene, (a.width, a.height), (x, y), sets, frame);
+            NamedPixel { x, y, steps, hit_mismatch, explain }
         })
         .collect()
 }
 
-/// The `twinray explain` command for pixel `(x, y)` of `scene` rendered at `size`.
-pub fn explain_line(scene: &Scene, size: (u32, u32), (x, y): (u32, u32), (a, b): (&str, &str)) -> String {
+/// The `twinray explain` command for pixel `(x, y)` of `scene` rendered at `size` (at `frame`).
+pub fn explain_line(
+    scene: &Scene,
+    size: (u32, u32),
+    (x, y): (u32, u32),
+    (a, b): (&str, &str),
+    frame: Option<u32>,
+) -> String {
     let source = scene.source.strip_prefix("builtin:").unwrap_or(&scene.source);
     let mut line = format!("twinray explain {} --pixel {x},{y} --a {} --b {}", quoted(source), quoted(a), quoted(b));
     if size != (scene.file.image.width, scene.file.image.height) {
         line += &format!(" --width {} --height {}", size.0, size.1);
     }
+    if let Some(k) = frame {
+        line += &format!(" --frame {k}");
+    }
     line
+}
+
+/// The named pixels as report lines: "  pixel 12,40 (9 steps, hit mismatch): twinray explain ..."
+/// each after `indent`.
+pub fn pixel_lines(pixels: &[NamedPixel], indent: &str) -> String {
+    let mut s = String::new();
+    for p in pixels {
+        let what =
+            if p.hit_mismatch { format!("{} steps, hit mismatch", p.steps) } else { format!("{} steps", p.steps) };
+        s += &format!("{indent}pixel {},{} ({what}): {}\n", p.x, p.y, p.explain);
+    }
+    s
 }
 
 /// `text` as one shell word.

@@ -2,8 +2,9 @@
 //! GPU time, judge that against the scene's tolerance, and write the images.
 
 use super::diff::{diff, diff_image, verdict, ImageDiff};
-use super::pixels::{named_pixels, NamedPixel};
+use super::pixels::{named_pixels, pixel_lines, NamedPixel};
 use crate::error::{Error, Result};
+use crate::explain::no_payload;
 use crate::render::{render_sets, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
@@ -103,7 +104,9 @@ pub fn compare_sets(
         .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
     let parity = scene.file.parity;
     let diff = diff(&a, &b, parity.pixel_threshold);
-    let failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
+    let mut failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
+    failures.extend(no_payload::render_lines(scene, &a, "set a"));
+    failures.extend(no_payload::render_lines(scene, &b, "set b"));
     let (gpu_ms_a, gpu_ms_b) = (a.median_ms(), b.median_ms());
     let interval = a.ratio_to(&b);
     let report = CompareReport {
@@ -136,7 +139,7 @@ pub fn compare_sets(
         warmup: opts.warmup,
         placements: opts.placements,
         null_control: set_b.original() == *set_a,
-        pixels: named_pixels(scene, (&a, &b), parity.pixel_threshold, (&named_sets.0, &named_sets.1)),
+        pixels: named_pixels(scene, (&a, &b), parity.pixel_threshold, (&named_sets.0, &named_sets.1), None),
         pass: failures.is_empty(),
         failures,
     };
@@ -203,11 +206,7 @@ impl CompareReport {
             pct(self.diff.hit_mismatches),
             self.diff.hit_mismatches_off_silhouette,
         );
-        for p in &self.pixels {
-            let what =
-                if p.hit_mismatch { format!("{} steps, hit mismatch", p.steps) } else { format!("{} steps", p.steps) };
-            s += &format!("  pixel {},{} ({what}): {}\n", p.x, p.y, p.explain);
-        }
+        s += &pixel_lines(&self.pixels, "  ");
         if self.pass {
             s += "  PASS: within the scene's parity tolerance\n";
         } else {

@@ -101,12 +101,13 @@ fn base(sensor: &Value, integrator: Value) -> Value {
 
 fn sensor(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Value {
     let c = &scene.file.camera;
+    let reach = scene.frame_uniform(width, height).reach;
     json!({
         "type": "perspective",
         "fov_axis": "y",
         "fov": c.fov_y_degrees,
-        "near_clip": twinray_shared::bindings::T_MIN,
-        "far_clip": scene.frame_uniform(width, height).reach.x,
+        "near_clip": reach.z,
+        "far_clip": reach.x,
         "to_world": {"look_at": {"origin": c.eye, "target": c.target, "up": c.up}},
         "film": {"type": "hdrfilm", "width": width, "height": height, "pixel_format": "rgba",
                  "rfilter": {"type": "box"}},

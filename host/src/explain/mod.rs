@@ -3,6 +3,7 @@
 //! stages (`trace`), judged against the f64 reference (`pixel`), and the first place they part
 //! (`parting`), in words and JSON (`report`).
 
+pub mod no_payload;
 pub mod parting;
 pub mod pixel;
 pub mod rays;

@@ -6,8 +6,9 @@
 use super::pixel::{PixelRays, SetRays, SetSample};
 use crate::probe::report::Outcome;
 use crate::reference::scene::SceneVerdict;
+use crate::reference::stage::stage_of;
 use crate::render::to_rgba8;
-use crate::scene::{HitGroup, SceneData};
+use crate::scene::SceneData;
 use glam::{Vec3, Vec4Swizzles};
 use serde::Serialize;
 use twinray_shared::bindings::{MASK_OCCLUDER, NO_HIT};
@@ -41,6 +42,14 @@ pub fn first_parting(px: &PixelRays) -> Parting {
             stage,
             text: format!("sample {k} (of {m2}): {text}"),
         };
+        if let Some(set) = sets.iter().find(|s| s.samples[k].outcome == Outcome::NoPayload) {
+            let stage = format!("{}'s {}", set.label, stage_of(data, verdict));
+            let text = format!(
+                "{stage} wrote no payload: the payload came back as ray generation poisoned it ({})",
+                verdict_words(data, verdict)
+            );
+            return at(Some(stage), text);
+        }
         let parted = match sets.as_slice() {
             [a, b] => primary_parts(data, (a, &a.samples[k]), (b, &b.samples[k]), verdict, px.background),
             [a] => (!matches!(a.samples[k].outcome, Outcome::Agrees | Outcome::Ambiguous)).then(|| {
@@ -73,7 +82,7 @@ fn angle(a: Vec3, b: Vec3) -> f32 {
 /// The stage that computes the geometric normal of `object`'s hits: a procedural shape's
 /// intersection stage (its hit attribute), or a mesh's closest-hit stage (from its vertices).
 fn normal_stage(data: &SceneData, object: u32) -> String {
-    match group_of(data, object) {
+    match data.hit_group_of(object) {
         Some(g) => g.intersection_module().unwrap_or(g.closest_hit_module()).to_string(),
         None => "intersection stage".into(),
     }
@@ -309,14 +318,9 @@ fn blame(data: &SceneData, set: &SetRays, s: &SetSample, verdict: &SceneVerdict)
     }
 }
 
-/// The hit group of `object`.
-fn group_of(data: &SceneData, object: u32) -> Option<HitGroup> {
-    data.instances.get(object as usize).map(|i| data.plan.hit_groups[i.hit_group as usize])
-}
-
 /// "sphere #2": the object's hit group and index.
 pub fn object_name(data: &SceneData, object: u32) -> String {
-    match group_of(data, object) {
+    match data.hit_group_of(object) {
         Some(group) => format!("{} #{object}", group.name()),
         None => format!("object #{object}"),
     }
@@ -325,7 +329,7 @@ pub fn object_name(data: &SceneData, object: u32) -> String {
 /// The intersection stage of `object`'s hit group: its module, or the driver's triangle test
 /// (and for cutouts, the any-hit stage that decides holes).
 pub fn intersection(data: &SceneData, object: u32) -> String {
-    let Some(group) = group_of(data, object) else { return "intersection stage".into() };
+    let Some(group) = data.hit_group_of(object) else { return "intersection stage".into() };
     let test = group.intersection_module().map_or("the driver's triangle test".to_string(), str::to_string);
     match group.any_hit_module() {
         Some(any_hit) => format!("{test} (or {any_hit})"),
@@ -335,7 +339,7 @@ pub fn intersection(data: &SceneData, object: u32) -> String {
 
 /// The closest-hit module of `object`'s hit group.
 fn closest_hit(data: &SceneData, object: u32) -> String {
-    group_of(data, object).map_or("closest-hit".into(), |g| g.closest_hit_module().to_string())
+    data.hit_group_of(object).map_or("closest-hit".into(), |g| g.closest_hit_module().to_string())
 }
 
 /// "rust hits sphere #0 at t 4.21830" or "glsl misses".

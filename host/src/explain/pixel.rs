@@ -102,7 +102,16 @@ pub fn explain_pixel(
         let lights: Vec<Vec<LightSample>> = hits
             .iter()
             .zip(&samples)
-            .map(|(r, s)| shading::light_samples((&frame, &data.lights, &data.plan), &r.hit, pixel_index, s.index))
+            .map(|(r, s)| {
+                // A poisoned payload has no surface to light.
+                let lit = !r.hit.unwritten(true);
+                let lights = shading::light_samples((&frame, &data.lights, &data.plan), &r.hit, pixel_index, s.index);
+                if lit {
+                    lights
+                } else {
+                    Vec::new()
+                }
+            })
             .collect();
         let shadow_rays: Vec<ExplainRay> = lights.iter().flatten().filter(|l| l.traced).map(|l| l.ray()).collect();
         let mut answers =
@@ -115,7 +124,11 @@ pub fn explain_pixel(
             let radiance = shading::radiance(&result.hit, &lights, |k| occluded[k] == Some(false));
             set_samples.push(SetSample {
                 hit: result.hit,
-                outcome: outcome(*verdict, true, result.hit.ids),
+                outcome: if result.hit.unwritten(true) {
+                    Outcome::NoPayload
+                } else {
+                    outcome(*verdict, true, result.hit.ids)
+                },
                 lights,
                 occluded,
                 shadow_verdicts,

@@ -6,7 +6,6 @@
 use crate::error::{Error, Result};
 use crate::scene::Scene;
 use glam::UVec2;
-use twinray_shared::bindings::T_MIN;
 use twinray_shared::layout::{FrameUniform, ProbeRay};
 use twinray_shared::{camera, random};
 
@@ -46,7 +45,7 @@ impl Camera {
     }
 
     /// Sample `index` of `pixel` (inside the image), as the stage makes it.
-    fn sample(&self, pixel: (u32, u32), index: u32) -> PrimarySample {
+    pub fn sample(&self, pixel: (u32, u32), index: u32) -> PrimarySample {
         let (size, m, frame) = (self.size, self.samples_per_side, &self.frame);
         let pixel = UVec2::new(pixel.0, pixel.1);
         let pixel_index = pixel.y * size.x + pixel.x;
@@ -58,7 +57,7 @@ impl Camera {
             (0.5, 0.5)
         };
         let ray = camera::primary_ray(frame, pixel, size, camera::sample_offset(sx, sy, m, r1, r2));
-        let ray = ProbeRay { origin: ray.origin.extend(T_MIN), direction: ray.direction.extend(frame.reach.x) };
+        let ray = ProbeRay { origin: ray.origin.extend(frame.reach.z), direction: ray.direction.extend(frame.reach.x) };
         PrimarySample { index, stratum: (sx, sy), ray }
     }
 

@@ -192,6 +192,11 @@ fn sample_lines(px: &PixelRays) -> String {
         for set in &px.sets {
             let ss = &set.samples[k];
             let h = &ss.hit;
+            if ss.outcome == crate::probe::report::Outcome::NoPayload {
+                // What the payload holds is the poison, or the last ray's: no answer to print.
+                let _ = writeln!(s, "  {}: no payload (the stage that took the ray wrote none)", set.label);
+                continue;
+            }
             let normals = if h.ids.w == twinray_shared::bindings::NO_HIT {
                 String::new()
             } else {

@@ -46,7 +46,9 @@ pub fn trace(
     }
     let results = trace_and_release(ctx, scene, set, (size, module), rays)?;
     ctx.check_validation()?;
-    if let Some(i) = results.iter().position(|r| !record_written(r)) {
+    // A primary ray's payload may come back poisoned (its hit or miss stage wrote none): the
+    // explain stage still wrote the record, whose `occluded` it always writes.
+    if let Some(i) = results.iter().position(|r| !record_written(&r.occluded)) {
         return Err(Error::Output(format!(
             "{set}'s {module} stage left the result of ray {i} (of {}) unwritten",
             rays.len()

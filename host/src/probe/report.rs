@@ -3,13 +3,14 @@
 
 use super::case::Generated;
 use super::case::ProbeCase;
-use super::run::{count_written, record_written};
+use super::run::{count_written, judgeable, no_payload};
 use super::split::{relative, split, AgreedHit, TErrorSplit};
 use crate::reference::scene::SceneVerdict;
+use crate::reference::stage::{lines, stage_of};
 use crate::render::Written;
 use crate::util::stats::Quantiles;
 use serde::Serialize;
-use twinray_shared::bindings::NO_HIT;
+use twinray_shared::bindings::{NO_HIT, PROBE_NO_PAYLOAD};
 use twinray_shared::layout::{ProbeRay, ProbeResult};
 
 /// The accuracy of one probe run against the reference; serialised as `probe --json` prints it.
@@ -68,6 +69,8 @@ pub enum Outcome {
     WrongObject,
     /// The set never wrote this ray's record.
     Unwritten,
+    /// The ray's hit or miss stage wrote no payload.
+    NoPayload,
 }
 
 impl Outcome {
@@ -80,6 +83,7 @@ impl Outcome {
             Outcome::FalseMiss => "false_miss",
             Outcome::WrongObject => "wrong_object",
             Outcome::Unwritten => "unwritten",
+            Outcome::NoPayload => "no_payload",
         }
     }
 }
@@ -95,6 +99,7 @@ pub struct Judged {
 pub fn outcome(verdict: SceneVerdict, written: bool, ids: glam::UVec4) -> Outcome {
     let got_hit = ids.w != NO_HIT;
     match verdict {
+        _ if ids.w == PROBE_NO_PAYLOAD => Outcome::NoPayload,
         _ if !written => Outcome::Unwritten,
         SceneVerdict::Ambiguous => Outcome::Ambiguous,
         SceneVerdict::Miss if got_hit => Outcome::FalseHit,
@@ -114,7 +119,7 @@ pub fn judge(case: &ProbeCase, results: &[ProbeResult]) -> Vec<Judged> {
             let o = ray.origin.truncate().as_dvec3();
             let d = ray.direction.truncate().as_dvec3();
             let verdict = case.reference.trace(o, d, f64::from(ray.origin.w), f64::from(ray.direction.w));
-            let outcome = outcome(verdict, record_written(result), result.ids);
+            let outcome = outcome(verdict, super::run::record_written(result), result.ids);
             Judged { ray: *ray, verdict, outcome }
         })
         .collect()
@@ -160,7 +165,7 @@ pub fn evaluate(
             Outcome::FalseHit => report.false_hits += 1,
             Outcome::FalseMiss => report.false_misses += 1,
             Outcome::WrongObject => report.wrong_object += 1,
-            Outcome::Unwritten => {}
+            Outcome::Unwritten | Outcome::NoPayload => {}
             Outcome::Agrees => {
                 if let SceneVerdict::Hit { t, normal, .. } = judged.verdict {
                     let got_t = f64::from(result.normal_t.w);
@@ -172,10 +177,13 @@ pub fn evaluate(
             }
         }
     }
-    report.decided = report.rays - report.ambiguous - report.written.unwritten as usize;
+    let unjudged = report.written.unwritten + report.written.no_payload_rays;
+    report.decided = report.rays - report.ambiguous - unjudged as usize;
+    let stages = judged.iter().zip(results).filter(|(_, r)| no_payload(r)).map(|(j, _)| &j.verdict);
+    report.failures.extend(no_payload_lines(&case.scene, stages, set));
     for (generated, judged) in report.generators.iter_mut().zip(generator_spans(case)) {
         let hits = |range: std::ops::Range<usize>, results: &[ProbeResult]| {
-            results[range].iter().filter(|r| record_written(*r) && r.ids.w != NO_HIT).count()
+            results[range].iter().filter(|r| judgeable(r) && r.ids.w != NO_HIT).count()
         };
         generated.hit = Some(hits(judged, results));
     }
@@ -190,6 +198,20 @@ pub fn evaluate(
     report.ulp_error_p99 = Quantiles::of(ulps).p99;
     report.normal_angle_error_p99 = Quantiles::of(angles).p99;
     report
+}
+
+/// The lines naming the stage each ray with no payload went to, by the reference's `verdicts`.
+fn no_payload_lines<'a>(
+    scene: &crate::scene::Scene,
+    verdicts: impl Iterator<Item = &'a SceneVerdict>,
+    set: &str,
+) -> Vec<String> {
+    let data = scene.build();
+    let mut counts = std::collections::BTreeMap::new();
+    for v in verdicts {
+        *counts.entry(stage_of(&data, v)).or_insert(0) += 1;
+    }
+    lines(&counts, set, "by where the f64 reference sends each")
 }
 
 /// The index range of each generator's rays among the case's rays (explicit rays first).
@@ -229,7 +251,7 @@ pub fn write_rays_csv(
         };
         for ((_, results), judged) in sets.iter().zip(&judged) {
             let r = results[i];
-            row += &if r.ids.w == NO_HIT || !record_written(&r) {
+            row += &if r.ids.w == NO_HIT || !judgeable(&r) {
                 ",0,,,,,".into()
             } else {
                 let n = r.normal_t;

@@ -46,12 +46,26 @@ pub fn record_written<T: bytemuck::Pod>(r: &T) -> bool {
     !words.iter().any(|&w| sentinel::unwritten(w))
 }
 
-/// Records never written, and hits written with a NaN or infinite t or normal.
+/// Whether the probe stage marked the record's ray as one whose hit or miss stage wrote no
+/// payload (`PROBE_NO_PAYLOAD`).
+pub fn no_payload(r: &ProbeResult) -> bool {
+    r.ids.w == b::PROBE_NO_PAYLOAD
+}
+
+/// Whether a record can be judged: written by the probe stage, with the payload its ray's
+/// hit or miss stage wrote.
+pub fn judgeable(r: &ProbeResult) -> bool {
+    !no_payload(r) && record_written(r)
+}
+
+/// Records never written, rays whose payload no stage wrote, and hits written with a NaN or
+/// infinite t or normal.
 pub fn count_written(results: &[ProbeResult]) -> Written {
-    let unwritten = results.iter().filter(|r| !record_written(*r)).count() as u64;
+    let no_payload_rays = results.iter().filter(|r| no_payload(r)).count() as u64;
+    let unwritten = results.iter().filter(|r| !no_payload(r) && !record_written(*r)).count() as u64;
     let non_finite =
-        results.iter().filter(|r| record_written(*r) && r.ids.w != b::NO_HIT && !r.normal_t.is_finite()).count() as u64;
-    Written { unwritten, non_finite, ..Written::default() }
+        results.iter().filter(|r| judgeable(r) && r.ids.w != b::NO_HIT && !r.normal_t.is_finite()).count() as u64;
+    Written { unwritten, non_finite, no_payload_rays, ..Written::default() }
 }
 
 /// The module that probes `scene`: `probe`, through the pipeline's stages; or for a scene the

@@ -26,6 +26,28 @@ pub struct StabilityRow {
     pub failures: Vec<String>,
 }
 
+/// A case (or scene) a suite did not run, and why: a module it needs declares what the device
+/// lacks (`Error::DeviceLacks`). The rest of the suite is judged without it.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct Skipped {
+    pub name: String,
+    pub why: String,
+}
+
+impl Skipped {
+    /// The one line a suite prints for it.
+    pub fn line(&self) -> String {
+        format!("skipped {}: {}", self.name, self.why)
+    }
+}
+
+/// The rows of a suite run, and the cases it skipped.
+#[derive(Clone, Debug, Default)]
+pub struct Suite {
+    pub rows: Vec<StabilityRow>,
+    pub skipped: Vec<Skipped>,
+}
+
 /// The case files of `dir`, sorted by name.
 pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
     let entries =
@@ -52,33 +74,56 @@ pub struct Timing {
 }
 
 /// Runs every case with every set and formula, in one probe each: accuracy from the first
-/// copy of the case's rays, GPU time as `timing` says.
+/// copy of the case's rays, GPU time as `timing` says. A case that needs what the device lacks
+/// is skipped (with `skipped(line)` called as it is), and the others run.
 pub fn run(
     ctx: &Arc<Context>,
     files: &[PathBuf],
     sets: &[ShaderSet],
     formulas: &[Formula],
     timing: Timing,
-) -> Result<Vec<StabilityRow>> {
-    let mut rows = Vec::new();
+    mut skipped: impl FnMut(&Skipped),
+) -> Result<Suite> {
+    let mut suite = Suite::default();
     for file in files {
         let mut case = ProbeCase::load(file)?;
-        // A case whose shapes have no naive variant and no surface rays runs robust only.
-        let has_naive = case.has_naive();
-        let variant = variant(&case);
-        for &formula in formulas.iter().filter(|&&f| f == Formula::Robust || has_naive) {
-            case.set_formula(formula);
-            for set in sets {
-                let (out, gpu_ms) = measure(ctx, &case, set, timing)?;
-                let report = evaluate(&case, out.records(), &set.to_string(), &ctx.info.name, gpu_ms);
-                // A set that leaves records unwritten fails with either formula.
-                let mut failures = report.failures.clone();
-                if formula == Formula::Robust {
-                    failures.extend(self::failures(&case, &report));
-                }
-                let formula = if formula == Formula::Robust { "robust" } else { "naive" };
-                rows.push(StabilityRow { formula, variant: variant.clone(), report, failures });
+        match run_case(ctx, &mut case, sets, formulas, timing) {
+            Ok(rows) => suite.rows.extend(rows),
+            Err(e) if e.device_lacks() => {
+                let skip = Skipped { name: case.file.name.clone(), why: e.to_string() };
+                skipped(&skip);
+                suite.skipped.push(skip);
             }
+            Err(e) => return Err(e),
+        }
+    }
+    Ok(suite)
+}
+
+/// Every set and formula of one case.
+fn run_case(
+    ctx: &Arc<Context>,
+    case: &mut ProbeCase,
+    sets: &[ShaderSet],
+    formulas: &[Formula],
+    timing: Timing,
+) -> Result<Vec<StabilityRow>> {
+    let mut rows = Vec::new();
+    // A case whose shapes have no naive variant and no surface rays runs robust only.
+    let has_naive = case.has_naive();
+    let variant = variant(case);
+    for &formula in formulas.iter().filter(|&&f| f == Formula::Robust || has_naive) {
+        case.set_formula(formula);
+        for set in sets {
+            let (out, gpu_ms) = measure(ctx, case, set, timing)?;
+            let report = evaluate(case, out.records(), &set.to_string(), &ctx.info.name, gpu_ms);
+            // A set that leaves records unwritten fails with either formula.
+            let mut failures = report.failures.clone();
+            if formula == Formula::Robust {
+                failures.extend(self::failures(case, &report));
+            }
+            let formula = if formula == Formula::Robust { "robust" } else { "naive" };
+            rows.push(StabilityRow { formula, variant: variant.clone(), report, failures });
         }
     }
     Ok(rows)

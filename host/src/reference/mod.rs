@@ -6,5 +6,6 @@ pub mod image;
 mod ray;
 pub mod scene;
 pub mod shapes;
+pub mod stage;
 pub mod surface;
 mod traced;

@@ -18,7 +18,9 @@ mod upload;
 pub(crate) use barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
 pub use frames::{AsWork, Frame, FrameRange, TlasKind, TlasMode, DEFAULT_TLAS};
 pub use moving::{render_frames, FrameRenderer};
-pub use output::{hit_id, to_rgba8, RayCounts, RenderOptions, RenderOutput, Written, NOT_A_NUMBER_RGB, NO_HIT_ID};
+pub use output::{
+    hit_id, to_rgba8, NoPayloadPixel, RayCounts, RenderOptions, RenderOutput, Written, NOT_A_NUMBER_RGB, NO_HIT_ID,
+};
 pub use placement::{PlacementTimes, DEFAULT_PLACEMENTS};
 pub use prepare::MIN_WARM_MS;
 pub(crate) use prepare::{prepare, storage_buffer, Prepared};

@@ -53,6 +53,9 @@ pub struct RenderOutput {
     pub raygen_stack_bytes: u64,
     /// What the set left unwritten, or wrote as NaN or infinity.
     pub written: Written,
+    /// Pixels with primary rays whose hit or miss stage wrote no payload, for naming the stage
+    /// (`explain::no_payload`).
+    pub no_payload: Vec<NoPayloadPixel>,
 }
 
 /// What a set left of the sentinel its outputs started as (see `render::sentinel`), and
@@ -65,14 +68,20 @@ pub struct Written {
     /// shadow-ray count) were not.
     pub unwritten_color: u64,
     pub unwritten_ids: u64,
-    /// Pixels (or probe rays that hit) written with a NaN or an infinity.
+    /// Pixels (or probe rays that hit) written with a NaN or an infinity (not counting pixels
+    /// with rays that got no payload, which ray generation writes as NaN).
     pub non_finite: u64,
+    /// Primary rays (or probe rays) that came back with the payload ray generation poisoned:
+    /// their hit or miss stage wrote no payload. See `RenderOutput::no_payload` for which.
+    pub no_payload_rays: u64,
+    /// Pixels with such rays.
+    pub no_payload_pixels: u64,
 }
 
 impl Written {
     /// Whether every output was written, with finite numbers.
     pub fn is_clean(&self) -> bool {
-        self.unwritten == 0 && self.non_finite == 0
+        self.unwritten == 0 && self.non_finite == 0 && self.no_payload_rays == 0
     }
 
     /// An error naming `doing` and the set when anything was left unwritten or non-finite:
@@ -101,6 +110,15 @@ impl Written {
         }
         if self.non_finite > 0 {
             lines.push(format!("{} {items} non-finite in {set}", self.non_finite));
+        }
+        if self.no_payload_rays > 0 {
+            let pixels =
+                if items == "pixels" { format!(" in {} pixels", self.no_payload_pixels) } else { String::new() };
+            lines.push(format!(
+                "{} rays{pixels} whose hit or miss stage wrote no payload in {set} (ray generation poisoned it before \
+                 the trace; it came back unchanged)",
+                self.no_payload_rays
+            ));
         }
         lines
     }
@@ -185,24 +203,52 @@ pub(crate) struct ReadBack {
     /// Shadow rays the pixels counted (pixels whose count is unwritten add none).
     pub shadow: u64,
     pub written: Written,
+    pub no_payload: Vec<NoPayloadPixel>,
+}
+
+/// A pixel with primary rays whose hit or miss stage wrote no payload.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct NoPayloadPixel {
+    /// Row-major pixel index.
+    pub pixel: u32,
+    /// The sample index of its first such ray.
+    pub first_sample: u32,
+    /// How many of its primary rays got no payload.
+    pub rays: u32,
 }
 
 /// Reads an rgba32f image and the hit-id words of the same pixels ([`b::HIT_IDS_PER_PIXEL`]
-/// each: object, primitive, shadow-ray count), counting what still holds the sentinel.
+/// each: object, primitive, shadow-ray count, rays with no payload), counting what still holds
+/// the sentinel and the rays whose payload came back poisoned.
 pub(crate) fn read_back(image: &[u8], ids: &[u8]) -> ReadBack {
     let floats: &[u32] = bytemuck::cast_slice(image);
     let words: &[u32] = bytemuck::cast_slice(ids);
     let per_pixel = b::HIT_IDS_PER_PIXEL as usize;
-    let mut out = ReadBack { linear: Vec::new(), hit_ids: Vec::new(), shadow: 0, written: Written::default() };
-    for (p, w) in floats.chunks_exact(4).zip(words.chunks_exact(per_pixel)) {
+    let mut out = ReadBack {
+        linear: Vec::new(),
+        hit_ids: Vec::new(),
+        shadow: 0,
+        written: Written::default(),
+        no_payload: Vec::new(),
+    };
+    for (i, (p, w)) in floats.chunks_exact(4).zip(words.chunks_exact(per_pixel)).enumerate() {
         let color_unwritten = p.iter().any(|&x| sentinel::unwritten(x));
         let ids_unwritten = w.iter().any(|&x| sentinel::unwritten(x));
         let rgba = [p[0], p[1], p[2], p[3]].map(f32::from_bits);
+        let no_payload = if ids_unwritten { 0 } else { w[3] };
         let written = &mut out.written;
         written.unwritten += u64::from(color_unwritten || ids_unwritten);
         written.unwritten_color += u64::from(color_unwritten);
         written.unwritten_ids += u64::from(ids_unwritten);
-        written.non_finite += u64::from(!color_unwritten && !rgba.iter().all(|x| x.is_finite()));
+        let finite = rgba.iter().all(|x| x.is_finite());
+        written.non_finite += u64::from(!color_unwritten && !finite && no_payload == 0);
+        if no_payload != 0 {
+            let rays = no_payload & ((1 << b::NO_PAYLOAD_FIRST_SHIFT) - 1);
+            written.no_payload_pixels += 1;
+            written.no_payload_rays += u64::from(rays);
+            let first_sample = no_payload >> b::NO_PAYLOAD_FIRST_SHIFT;
+            out.no_payload.push(NoPayloadPixel { pixel: i as u32, first_sample, rays });
+        }
         out.linear.push([rgba[0], rgba[1], rgba[2]]);
         out.hit_ids.push(hit_id(w[0], w[1]));
         out.shadow += if sentinel::unwritten(w[2]) { 0 } else { u64::from(w[2]) };

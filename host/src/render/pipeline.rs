@@ -8,7 +8,7 @@
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
 use crate::scene::{HitGroup, PipelinePlan, EXPLAIN_QUERY, PROBE_QUERY, RENDER_COMPUTE};
-use crate::shaders::{ShaderSet, Stage, StageModule};
+use crate::shaders::{capabilities, ShaderSet, Stage, StageModule};
 use crate::util::activity;
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
@@ -204,24 +204,21 @@ impl ScenePipeline {
     }
 }
 
-/// An error naming what the device lacks, if a module needs it: ray queries
-/// (`VK_KHR_ray_query`) for a module that declares them.
+/// An error naming the module, what it declares and the device, when a module declares a
+/// capability or extension the device does not have enabled (`shaders::capabilities`): ray
+/// queries where the device lacks VK_KHR_ray_query, or anything twinray does not turn on.
 fn require_device_features(ctx: &Context, modules: &[StageModule]) -> Result<()> {
     for m in modules {
         let info =
             twinray_shared::spirv_info::parse(&m.spirv).map_err(|e| Error::Input(format!("{}: {e}", m.spec.name)))?;
-        if info.capabilities.contains(&twinray_shared::spirv_info::CAPABILITY_RAY_QUERY) && !ctx.info.ray_query {
-            return Err(Error::Unsupported(format!(
-                "the {} stage traces ray queries, which need VK_KHR_ray_query, and {} lacks it{}",
-                m.spec.name,
-                ctx.info.name,
-                match m.spec.name {
-                    "raygen_query" => " (the scene sets shadow_method = \"query\")",
-                    RENDER_COMPUTE | PROBE_QUERY => " (the scene sets renderer = \"compute\")",
-                    EXPLAIN_QUERY => " (the scene sets renderer = \"compute\" or shadow_method = \"query\")",
-                    _ => "",
-                }
-            )));
+        if let Some(missing) = capabilities::missing(m.spec.name, &m.origin, &info, &ctx.info) {
+            let why = match m.spec.name {
+                "raygen_query" => " (the scene sets shadow_method = \"query\")",
+                RENDER_COMPUTE | PROBE_QUERY => " (the scene sets renderer = \"compute\")",
+                EXPLAIN_QUERY => " (the scene sets renderer = \"compute\" or shadow_method = \"query\")",
+                _ => "",
+            };
+            return Err(Error::DeviceLacks(format!("{missing}{why}")));
         }
     }
     Ok(())

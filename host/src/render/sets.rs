@@ -225,6 +225,7 @@ impl SetRender {
             warmup_traces,
             raygen_stack_bytes: self.prepared.pipeline.raygen_stack_bytes(),
             written: read.written,
+            no_payload: read.no_payload,
         })
     }
 }

@@ -178,6 +178,12 @@ pub fn frame_data(scene: &SceneFile, width: u32, height: u32, object_bounds: &[A
 }
 
 impl SceneData {
+    /// The hit group of `object` (its TLAS instance's SBT record); none for an object the scene
+    /// does not have.
+    pub fn hit_group_of(&self, object: u32) -> Option<HitGroup> {
+        self.instances.get(object as usize).map(|i| self.plan.hit_groups[i.hit_group as usize])
+    }
+
     /// Each object's world-space bounds, as built.
     pub fn world_boxes(&self) -> Vec<Aabb> {
         let transforms: Vec<Mat4> = self.instances.iter().map(|i| i.object_to_world).collect();
@@ -212,6 +218,7 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32, boxes: &[Aabb])
     let c = &scene.camera;
     let view = glam::camera::rh::view::look_at_mat4(c.eye.into(), c.target.into(), c.up.into());
     let aspect = width as f32 / height as f32;
+    // Its near and far planes set no reach (`reach` does): rays take only their direction from it.
     let proj = glam::camera::rh::proj::vulkan::perspective(c.fov_y_degrees.to_radians(), aspect, 0.1, 1000.0);
     FrameUniform {
         view_inverse: view.inverse(),

@@ -126,10 +126,19 @@ impl Scene {
     }
 
     /// An error when f32 cannot resolve an object where it stands (at frame 0), a warning
-    /// on the log when it resolves it only coarsely (see `reach`).
+    /// on the log when it resolves it only coarsely, or comes nearer the eye than primary rays'
+    /// near reach (see `reach`).
     fn check_resolution(&self) -> std::result::Result<(), String> {
         let boxes = self.build().world_boxes();
-        let Some((i, steps)) = reach::coarsest(&boxes, self.file.camera.eye.into()) else { return Ok(()) };
+        let eye = Vec3::from(self.file.camera.eye);
+        let near = reach::reach(&boxes, eye).z;
+        if let Some((i, d)) = reach::within_near(&boxes, eye, near) {
+            log::warn!(
+                "scene {}: object {i} comes within {d:e} units of the camera, nearer than primary rays start                  ({near:e}, 2^-20 of their reach): that part of it is not seen",
+                self.source
+            );
+        }
+        let Some((i, steps)) = reach::coarsest(&boxes, eye) else { return Ok(()) };
         let b = &boxes[i];
         let size = (b.max - b.min).max_element();
         let magnitude =
@@ -137,7 +146,7 @@ impl Scene {
         let what = format!(
             "object {i} (shape {:?}) is {size:e} units wide at {magnitude:e} units from the origin (or the camera's \
              distance), where f32 steps by {:e}: {steps:.1} steps across it",
-            self.file.objects[i].shape,
+            self.file.objects.get(i).map_or("of a grid", |o| o.shape.as_str()),
             reach::step(magnitude)
         );
         if steps < reach::UNRESOLVED_STEPS {

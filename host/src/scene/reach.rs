@@ -1,11 +1,12 @@
 //! How far rays must reach, from the scene's extent: primary rays past the scene's farthest
-//! point from the camera, a directional light's shadow rays across the whole scene. A fixed
-//! reach (1000 units, once) rendered a scene seen from farther away as empty background and
-//! let occluders beyond it cast no shadow. Also whether f32 can resolve each object where it
-//! stands: a scene far from the origin can put an object within a few f32 steps.
+//! point from the camera, a directional light's shadow rays across the whole scene, and
+//! primary rays' near reach a fixed fraction of their far one. Nothing is a constant in scene
+//! units: a fixed far reach (1000 units, once) rendered a scene seen from farther away as
+//! empty background, and a fixed near reach (0.1 units, once) rendered the same scene modelled
+//! 1/100 as large as background. Also whether f32 can resolve each object where it stands: a
+//! scene far from the origin can put an object within a few f32 steps.
 
 use glam::{Mat4, Vec3, Vec4};
-use twinray_shared::bindings::T_MIN;
 use twinray_shared::shapes::spec::Aabb;
 
 /// Slack on every reach: t of a hit is rounded in f32, and the shadow ray's origin is offset
@@ -40,19 +41,42 @@ pub fn world_boxes(object_bounds: &[Aabb], transforms: &[Mat4]) -> Vec<Aabb> {
         .collect()
 }
 
+/// Primary rays' t_min as a fraction of their t_max. A camera ray needs no gap to leave a
+/// surface (it starts at the eye); the near reach only keeps t_min above 0, where an eye lying
+/// on a surface would hit it at t = 0 in one set and not the other. 2^-20 of the far reach is
+/// a few f32 steps of t there, and nearer than any object f32 resolves from the eye.
+pub const NEAR_FRACTION: f64 = 1.0 / (1u64 << 20) as f64;
+
 /// `FrameUniform::reach` for a camera at `eye` and objects in `boxes`: x, primary rays' t_max
 /// (the farthest corner of the scene from the eye); y, directional shadow rays' (the scene's
-/// diagonal). Computed in f64, with 1% slack; never below twice `T_MIN`.
+/// diagonal); z, primary rays' t_min ([`NEAR_FRACTION`] of x). Computed in f64, with 1% slack.
+/// A scene with no extent (no objects, or all at the eye) reaches 1 unit: any reach is right.
 pub fn reach(boxes: &[Aabb], eye: Vec3) -> Vec4 {
-    let floor = 2.0 * f64::from(T_MIN);
     let Some(scene) = enclose(boxes.iter().flat_map(|b| [b.min, b.max])) else {
-        return Vec4::new(floor as f32, floor as f32, 0.0, 0.0);
+        return from_far(1.0, 1.0);
     };
     let eye = eye.as_dvec3();
     let farthest = corners(&scene).iter().map(|c| (c.as_dvec3() - eye).length()).fold(0.0, f64::max);
     let across = (scene.max.as_dvec3() - scene.min.as_dvec3()).length();
-    let reach = |d: f64| (d * SLACK).max(floor) as f32;
-    Vec4::new(reach(farthest), reach(across), 0.0, 0.0)
+    let positive = |d: f64| if d > 0.0 && d.is_finite() { d * SLACK } else { 1.0 };
+    from_far(positive(farthest), positive(across))
+}
+
+/// The reach of a scene whose primary rays reach `far` and directional shadow rays `across`.
+fn from_far(far: f64, across: f64) -> Vec4 {
+    Vec4::new(far as f32, across as f32, (far * NEAR_FRACTION) as f32, 0.0)
+}
+
+/// The first object whose box comes nearer the eye than primary rays' near reach `near`, with
+/// its distance: the part of it that near is not seen. None for a scene seen from outside, and
+/// boxes holding the eye are not judged (the eye inside a box need not be inside the object).
+pub fn within_near(boxes: &[Aabb], eye: Vec3, near: f32) -> Option<(usize, f64)> {
+    let eye = eye.as_dvec3();
+    boxes.iter().enumerate().find_map(|(i, b)| {
+        let nearest = eye.clamp(b.min.as_dvec3(), b.max.as_dvec3());
+        let d = (nearest - eye).length();
+        (d > 0.0 && d < f64::from(near)).then_some((i, d))
+    })
 }
 
 /// Fewer f32 steps than this across an object, where it stands: f32 cannot resolve it (its
@@ -99,7 +123,34 @@ mod tests {
         assert!(f64::from(r.x) >= far && f64::from(r.x) <= far * 1.02, "{r}");
         let across = (3.0f64 * 200.0 * 200.0).sqrt();
         assert!(f64::from(r.y) >= across && f64::from(r.y) <= across * 1.02, "{r}");
-        assert_eq!(reach(&[], Vec3::ZERO).x, 2.0 * T_MIN, "an empty scene still has a valid ray interval");
+        assert!(r.z > 0.0 && f64::from(r.z) == (f64::from(r.x) * NEAR_FRACTION) as f32 as f64, "{r}");
+        let empty = reach(&[], Vec3::ZERO);
+        assert!(empty.z > 0.0 && empty.z < empty.x, "an empty scene still has a valid ray interval: {empty}");
+    }
+
+    #[test]
+    fn every_reach_scales_with_the_scene() {
+        let eye = Vec3::new(0.3, 4.5, 11.0);
+        let boxes = [cube(Vec3::new(0.5, 0.0, -1.0), 2.0), cube(Vec3::ZERO, 20.0)];
+        let at = |s: f32| {
+            let scaled: Vec<Aabb> = boxes.iter().map(|b| Aabb { min: b.min * s, max: b.max * s }).collect();
+            reach(&scaled, eye * s)
+        };
+        for k in -4..=4 {
+            let s = 10f32.powi(k);
+            let (r, one) = (at(s), at(1.0));
+            for (a, b) in [(r.x, one.x), (r.y, one.y), (r.z, one.z)] {
+                assert!((a / s / b - 1.0).abs() < 1e-5, "10^{k}: {r} against {one}");
+            }
+        }
+    }
+
+    #[test]
+    fn names_an_object_nearer_the_eye_than_the_near_reach() {
+        let boxes = [cube(Vec3::new(0.0, 0.0, -50.0), 1.0), cube(Vec3::new(0.0, 0.0, 1e-7), 1e-8)];
+        let near = reach(&boxes, Vec3::ZERO).z;
+        assert_eq!(within_near(&boxes, Vec3::ZERO, near).map(|(i, _)| i), Some(1));
+        assert_eq!(within_near(&boxes[..1], Vec3::ZERO, near), None, "a scene seen from outside");
     }
 
     #[test]

@@ -6,6 +6,7 @@
 //! is the same code that no driver cache can take for the original.
 
 mod builtin;
+pub mod capabilities;
 mod module;
 mod salt;
 mod set;

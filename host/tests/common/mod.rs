@@ -80,3 +80,21 @@ pub fn planted_include(stage: &str, edited: &str, edit: (&str, &str), dir: &Path
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
     spv
 }
+
+/// `spirv` with one more `OpCapability capability` and `OpExtension extension` declared (at
+/// the first instruction that is not a capability, where SPIR-V wants both): a valid module
+/// that asks the device for more than it uses.
+pub fn with_capability(spirv: &[u8], capability: u32, extension: &str) -> Vec<u8> {
+    let words: Vec<u32> = spirv.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let mut at = 5;
+    while at < words.len() && words[at] & 0xffff == 17 {
+        at += (words[at] >> 16) as usize;
+    }
+    let mut name = extension.as_bytes().to_vec();
+    name.resize((name.len() / 4 + 1) * 4, 0);
+    let name: Vec<u32> = name.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let mut added = vec![(2 << 16) | 17, capability, ((1 + name.len() as u32) << 16) | 10];
+    added.extend(name);
+    let out: Vec<u32> = words[..at].iter().chain(&added).chain(&words[at..]).copied().collect();
+    out.iter().flat_map(|w| w.to_le_bytes()).collect()
+}

@@ -16,7 +16,10 @@ use spirv_std::glam::{UVec2, UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4, Vec4S
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image};
-use twinray_shared::bindings::{EXPLAIN_SHADOW, HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, SHADOW_SAMPLER_STRATIFIED};
+use twinray_shared::bindings::{
+    no_payload_word, EXPLAIN_SHADOW, HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, PROBE_NO_PAYLOAD,
+    SHADOW_SAMPLER_STRATIFIED,
+};
 use twinray_shared::layout::{
     ExplainRay, ExplainResult, FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive,
     ProbeRay, ProbeResult, ShadowPayload, Vertex,
@@ -26,7 +29,9 @@ use twinray_shared::{camera, random, shading};
 /// Defines a renderer's entry point `$name`, of stage `$stage` with built-ins `$builtins`: M x M
 /// primary samples for pixel `$pixel` of an image of `$size`; each traced by `$primary` (given
 /// `$payload` and the resources `$pres`) and shaded by `$shade` (given the resources `$sres`);
-/// writes the mean colour and the ids of what the first sample hit. The entry also declares
+/// writes the mean colour and the ids of what the first sample hit. The payload is poisoned
+/// before each trace; a ray whose hit or miss stage left it so is not shaded but counted in the
+/// pixel's fourth hit-id word, and the pixel's colour is NaN. The entry also declares
 /// `$params`, and runs `$setup` first. Names the caller's expressions use (`$frame`,
 /// `$payload`) come from the caller, as macro hygiene asks.
 ///
@@ -62,6 +67,7 @@ pub fn $name(
     let mut sum = Vec3::ZERO;
     let mut first_hit = (NO_HIT, NO_HIT);
     let mut shadow_rays = 0;
+    let mut no_payload = 0;
     // Counted `while` loops rather than `for` over ranges: see trace.rs.
     let mut sy = 0;
     while sy < samples_per_side {
@@ -76,22 +82,27 @@ pub fn $name(
             };
             let offset = camera::sample_offset(sx, sy, samples_per_side, r1, r2);
             let ray = camera::primary_ray($frame, pixel, size, offset);
-            $primary(tlas, ray, $frame.reach.x, $payload, $($pres),*);
-            if sample == 0 {
-                first_hit = ($payload.ids.x, $payload.ids.y);
+            $payload.poison();
+            $primary(tlas, ray, ($frame.reach.z, $frame.reach.x), $payload, $($pres),*);
+            if $payload.unwritten(true) {
+                no_payload = no_payload_word(no_payload, sample);
+            } else {
+                if sample == 0 {
+                    first_hit = ($payload.ids.x, $payload.ids.y);
+                }
+                sum += $shade(
+                    tlas,
+                    $frame,
+                    lights,
+                    shadows != 0,
+                    shadow_sampler == SHADOW_SAMPLER_STRATIFIED,
+                    $payload,
+                    $($sres,)*
+                    pixel_index,
+                    sample,
+                    &mut shadow_rays,
+                );
             }
-            sum += $shade(
-                tlas,
-                $frame,
-                lights,
-                shadows != 0,
-                shadow_sampler == SHADOW_SAMPLER_STRATIFIED,
-                $payload,
-                $($sres,)*
-                pixel_index,
-                sample,
-                &mut shadow_rays,
-            );
             sx += 1;
         }
         sy += 1;
@@ -102,7 +113,8 @@ pub fn $name(
     hit_ids[base] = first_hit.0;
     hit_ids[base + 1] = first_hit.1;
     hit_ids[base + 2] = shadow_rays;
-    let color = sum / (samples_per_side * samples_per_side) as f32;
+    hit_ids[base + 3] = no_payload;
+    let color = if no_payload == 0 { sum / (samples_per_side * samples_per_side) as f32 } else { Vec3::splat(f32::NAN) };
     // SAFETY: the pixel lies inside the image, which the host sizes to the launch.
     unsafe { image.write(pixel, color.extend(1.0)) };
 }
@@ -171,7 +183,8 @@ renderer!(
 
 /// The probe: one ray per launch index from the ray buffer, traced through the same pipeline
 /// as renders (so it measures the very intersection and hit stages images use); writes what
-/// the closest-hit stage described, or NO_HIT.
+/// the closest-hit stage described, or NO_HIT (and a zero normal and t), or `PROBE_NO_PAYLOAD`
+/// where the stage that took the ray left the poisoned payload as it was.
 #[spirv(ray_generation)]
 pub fn probe(
     #[spirv(launch_id)] launch_id: UVec3,
@@ -182,6 +195,7 @@ pub fn probe(
 ) {
     let i = launch_id.x as usize;
     let ray = rays[i];
+    payload.poison();
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
         tlas.trace_ray(
@@ -197,7 +211,11 @@ pub fn probe(
             payload,
         );
     }
-    results[i] = ProbeResult { normal_t: payload.shading_normal.xyz().extend(payload.position.w), ids: payload.ids };
+    // A miss writes no normal or t: zeros, not the poison.
+    let normal_t =
+        if payload.ids.w == NO_HIT { Vec4::ZERO } else { payload.shading_normal.xyz().extend(payload.position.w) };
+    let ids = if payload.unwritten(false) { UVec4::splat(PROBE_NO_PAYLOAD) } else { payload.ids };
+    results[i] = ProbeResult { normal_t, ids };
 }
 
 /// The probe's witness: a closest-hit stage twinray puts in place of a hit group's own (same
@@ -239,7 +257,8 @@ pub fn explain(
         let lit = trace::visible(tlas, ray.origin, ray.direction, r.direction.w, shadow);
         ExplainResult { hit: HitPayload::NONE, occluded: UVec4::new(if lit { 0 } else { 1 }, 0, 0, 0) }
     } else {
-        trace::primary(tlas, ray, frame.reach.x, payload);
+        payload.poison();
+        trace::primary(tlas, ray, (frame.reach.z, frame.reach.x), payload);
         ExplainResult { hit: *payload, occluded: UVec4::ZERO }
     };
 }
@@ -274,8 +293,8 @@ pub fn explain_query(
         ExplainResult { hit: HitPayload::NONE, occluded: UVec4::new(if lit { 0 } else { 1 }, 0, 0, 0) }
     } else {
         let mut hit = HitPayload::NONE;
-        let t_max = frame.reach.x;
-        query::primary_query(tlas, ray, t_max, &mut hit, frame, objects, primitives, materials, vertices, indices);
+        let reach = (frame.reach.z, frame.reach.x);
+        query::primary_query(tlas, ray, reach, &mut hit, frame, objects, primitives, materials, vertices, indices);
         ExplainResult { hit, occluded: UVec4::ZERO }
     };
 }

@@ -11,7 +11,7 @@ use core::arch::asm;
 use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
-use twinray_shared::bindings::{HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT, T_MIN};
+use twinray_shared::bindings::{HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT};
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
 use twinray_shared::shading;
@@ -96,7 +96,7 @@ pub fn visible_query(
 pub fn primary_query(
     tlas: &AccelerationStructure,
     ray: Ray,
-    t_max: f32,
+    reach: (f32, f32),
     payload: &mut HitPayload,
     frame: &FrameUniform,
     objects: &[ObjectData],
@@ -106,7 +106,7 @@ pub fn primary_query(
     indices: &[u32],
 ) {
     let hit_buffers = (objects, primitives, materials);
-    trace_query(tlas, ray, (T_MIN, t_max), payload, frame.background, hit_buffers, vertices, indices);
+    trace_query(tlas, ray, reach, payload, frame.background, hit_buffers, vertices, indices);
 }
 
 /// `ray` over `(t_min, t_max)`, traced inline: each candidate decided by `candidate_hit` and

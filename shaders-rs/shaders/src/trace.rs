@@ -6,17 +6,15 @@
 use crate::query::visible_query;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
-use twinray_shared::bindings::{
-    LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT, T_MIN,
-};
+use twinray_shared::bindings::{LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT};
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
 use twinray_shared::{lighting, offset, random};
 
-/// Traces a primary ray as far as `t_max` into `payload`. No ray is traced `OPAQUE`: instances
+/// Traces a primary ray over `(t_min, t_max)` (the frame's near and far reach) into `payload`. No ray is traced `OPAQUE`: instances
 /// say whether they are (cutouts are not, and their any-hit stage runs), so scenes without
 /// cutouts run none.
-pub fn primary(tlas: &AccelerationStructure, ray: Ray, t_max: f32, payload: &mut HitPayload) {
+pub fn primary(tlas: &AccelerationStructure, ray: Ray, (t_min, t_max): (f32, f32), payload: &mut HitPayload) {
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
         tlas.trace_ray(
@@ -26,7 +24,7 @@ pub fn primary(tlas: &AccelerationStructure, ray: Ray, t_max: f32, payload: &mut
             0,
             MISS_PRIMARY as i32,
             ray.origin,
-            T_MIN,
+            t_min,
             ray.direction,
             t_max,
             payload,

@@ -22,10 +22,24 @@ pub const BINDING_MATERIALS: u32 = 5;
 /// `[Light]`, `FrameUniform::light_count` of them.
 pub const BINDING_LIGHTS: u32 = 6;
 /// `[u32]`, [`HIT_IDS_PER_PIXEL`] per pixel: object and primitive hit by the first primary ray
-/// (or [`NO_HIT`]), and how many shadow rays the pixel traced (so that rays/s count the rays
-/// actually traced).
+/// (or [`NO_HIT`]), how many shadow rays the pixel traced (so that rays/s count the rays
+/// actually traced), and its primary rays whose payload no hit or miss stage wrote (see
+/// [`no_payload_word`]).
 pub const BINDING_HIT_IDS: u32 = 7;
-pub const HIT_IDS_PER_PIXEL: u32 = 3;
+pub const HIT_IDS_PER_PIXEL: u32 = 4;
+/// The fourth hit-id word of a pixel holds `count | first << NO_PAYLOAD_FIRST_SHIFT`: how many
+/// of its primary rays came back with the payload ray generation poisoned, and the sample
+/// index of the first (0 when none did).
+pub const NO_PAYLOAD_FIRST_SHIFT: u32 = 16;
+
+/// The fourth hit-id word after one more primary ray, sample `sample`, came back with no payload.
+pub const fn no_payload_word(word: u32, sample: u32) -> u32 {
+    if word == 0 {
+        1 | (sample << NO_PAYLOAD_FIRST_SHIFT)
+    } else {
+        word + 1
+    }
+}
 /// `[Vertex]` of every mesh, from each object's `vertex_base`.
 pub const BINDING_VERTICES: u32 = 8;
 /// `[u32]`, three per triangle, from each object's `index_base`, relative to `vertex_base`.
@@ -99,6 +113,7 @@ pub const NO_HIT: u32 = 0xffff_ffff;
 /// written. As an f32 it is a signalling NaN with a payload, which no arithmetic produces; as
 /// a u32 it is no object, primitive or kind index and no shadow-ray count a scene reaches.
 pub const UNWRITTEN: u32 = 0x7fa5_dead;
-/// t_min of primary rays. Their t_max, and directional shadow rays', come from the scene's
-/// extent: `FrameUniform::reach`.
-pub const T_MIN: f32 = 0.1;
+/// What the probe stage writes in every word of a record's `ids` when the ray's hit or miss
+/// stage left the payload poisoned: the record was written (so it is not [`UNWRITTEN`]), the
+/// payload was not. No object, primitive or hit kind a scene reaches.
+pub const PROBE_NO_PAYLOAD: u32 = 0x7fa5_0bad;

@@ -178,6 +178,9 @@ pub fn layout_include() -> Result<String, String> {
         ("LIGHT_POINT", LIGHT_POINT),
         ("LIGHT_RECT", LIGHT_RECT),
         ("NO_HIT", NO_HIT),
+        ("UNWRITTEN", UNWRITTEN),
+        ("PROBE_NO_PAYLOAD", PROBE_NO_PAYLOAD),
+        ("NO_PAYLOAD_FIRST_SHIFT", NO_PAYLOAD_FIRST_SHIFT),
         ("SHAPE_NAIVE", crate::shapes::SHAPE_NAIVE),
     ];
     for (name, value) in uints {
@@ -188,7 +191,6 @@ pub fn layout_include() -> Result<String, String> {
         writeln!(s, "#define HIT_KIND_{} {}u", shape.name.to_uppercase(), shape.hit_kind).map_err(|e| e.to_string())?;
     }
     let floats = [
-        ("T_MIN", T_MIN),
         ("OFFSET_ORIGIN", OFFSET_ORIGIN),
         ("OFFSET_FLOAT_SCALE", OFFSET_FLOAT_SCALE),
         ("OFFSET_INT_SCALE", OFFSET_INT_SCALE),

@@ -36,10 +36,15 @@ pub fn offset_ray(p: Vec3, n: Vec3) -> Vec3 {
 /// origin and far from the eye the two differ: `twinray crosscheck` found a disk 9 units from
 /// the eye shadowing itself where |z| was in [1/32, 1/16), 256 ULPs of z being 1e-6 and the
 /// hit point's error 2e-6 (docs/shading-model.md).
+///
+/// Near the origin it takes no fixed step (`OFFSET_FLOAT_SCALE`, a length in scene units), only
+/// the reach's: the same scene modelled 1e4 times smaller has every point within 1/32 of the
+/// origin, and a fixed step of 1/65536 there let shadow rays start past thin occluders. So the
+/// offset scales with the scene, whatever its unit.
 pub fn offset_hit(p: Vec3, n: Vec3, t: f32) -> Vec3 {
     let step = (p.abs().max_element() + t.abs()) * OFFSET_REACH_SCALE;
     let component = |p: f32, n: f32| {
-        let ulps = offset_component(p, n);
+        let ulps = if p.abs() < OFFSET_ORIGIN { p } else { offset_component(p, n) };
         let reach = p + step * n;
         if n >= 0.0 {
             ulps.max(reach)
@@ -53,6 +58,19 @@ pub fn offset_hit(p: Vec3, n: Vec3, t: f32) -> Vec3 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The step off the surface is the same fraction of the scene at any unit: a point near
+    /// the origin, seen from 10 units, scaled by 10^k.
+    #[test]
+    fn offset_hit_scales_with_the_scene() {
+        let (p, n, t) = (Vec3::new(0.01, -0.02, 0.005), Vec3::new(0.0, 0.6, 0.8), 10.0);
+        let one = offset_hit(p, n, t) - p;
+        for k in -4..=4 {
+            let s = 10f32.powi(k);
+            let moved = (offset_hit(p * s, n, t * s) - p * s) / s;
+            assert!((moved - one).length() < 1e-3 * one.length(), "10^{k}: {moved} against {one}");
+        }
+    }
 
     #[test]
     fn moves_to_the_normal_side_at_any_magnitude() {

@@ -170,6 +170,8 @@ pub struct ModuleInfo {
     pub version: (u32, u32),
     /// Capability numbers as declared.
     pub capabilities: Vec<u32>,
+    /// SPIR-V extensions as declared (`OpExtension`).
+    pub extensions: Vec<String>,
     /// (execution model, name) of each entry point.
     pub entry_points: Vec<(u32, String)>,
     /// (descriptor set, binding) of every decorated variable, sorted.
@@ -203,6 +205,7 @@ pub fn parse(bytes: &[u8]) -> Result<ModuleInfo, String> {
             .ok_or_else(|| format!("truncated instruction at word {at}"))?;
         match (opcode, operands) {
             (OP_CAPABILITY, [cap, ..]) => info.capabilities.push(*cap),
+            (OP_EXTENSION, name) => info.extensions.push(literal_string(name)),
             (OP_ENTRY_POINT, [model, _function, name @ ..]) => info.entry_points.push((*model, literal_string(name))),
             (OP_DECORATE, [target, DECORATION_DESCRIPTOR_SET, value, ..]) => {
                 sets.insert(*target, *value);

@@ -9,6 +9,6 @@ layout(location = 0) rayPayloadInEXT HitPayload payload;
 layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;
 hitAttributeEXT vec3 normal;
 void main() {
-    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_SHADOW, gl_WorldRayOriginEXT, T_MIN, normal, 10.0, 1);
+    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_SHADOW, gl_WorldRayOriginEXT, 0.0, normal, 10.0, 1);
     payload.ids = uvec4(NO_HIT);
 }

@@ -1,0 +1,25 @@
+#version 460
+// The procedural closest-hit stage, writing no payload for the rays of the left half of the
+// launch: only those rays are counted, and the stage is named.
+#extension GL_EXT_ray_tracing : require
+#extension GL_GOOGLE_include_directive : require
+#include "twinray_layout.glsl"
+#include "shading.glsl"
+
+layout(set = DESCRIPTOR_SET, binding = BINDING_OBJECTS, std430) readonly buffer Objects { ObjectData objects[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { Primitive primitives[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials { Material materials[]; };
+
+layout(location = 0) rayPayloadInEXT HitPayload payload;
+hitAttributeEXT vec3 normal;
+
+#include "procedural_hit.glsl"
+
+void main() {
+    if (gl_LaunchIDEXT.x < gl_LaunchSizeEXT.x / 2u) {
+        return;
+    }
+    procedural_hit(gl_InstanceID, gl_InstanceCustomIndexEXT + gl_PrimitiveID, gl_PrimitiveID, gl_HitKindEXT,
+                   gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT, gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT,
+                   gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal);
+}
