@@ -206,6 +206,11 @@ fn no_payload_lines<'a>(
     verdicts: impl Iterator<Item = &'a SceneVerdict>,
     set: &str,
 ) -> Vec<String> {
+    let mut verdicts = verdicts.peekable();
+    // Most probes have none: build the scene's data only for those that do.
+    if verdicts.peek().is_none() {
+        return Vec::new();
+    }
     let data = scene.build();
     let mut counts = std::collections::BTreeMap::new();
     for v in verdicts {
