@@ -6,6 +6,7 @@ mod new_shape;
 mod process;
 mod setup;
 mod shaders;
+mod suite;
 mod watch;
 
 use anyhow::{Context, Result};
@@ -74,9 +75,19 @@ enum Task {
         #[arg(long)]
         animated: bool,
     },
-    /// What CI runs: setup, fmt check, clippy and rustdoc (warnings denied), shaders --check,
-    /// all tests.
+    /// What CI runs: setup, fmt check, clippy and rustdoc (warnings denied), shaders --check
+    /// (beside the builds), all tests as `cargo xtask test` runs them.
     Ci,
+    /// Every test of the workspace, as `cargo test --workspace --release` has them, built once
+    /// and run several test binaries at a time; prints each binary's time. Logs go to
+    /// target/ci-tests/.
+    Test {
+        /// Test binaries run at once [default: the number of cores].
+        #[arg(long)]
+        jobs: Option<usize>,
+        /// Run only the binaries whose source path contains one of these (e.g. golden, host/tests).
+        only: Vec<String>,
+    },
     /// twinray's references against Mitsuba 3 renders of the same scenes (docs/shading-model.md):
     /// makes, once, a Python virtual environment in target/crosscheck/venv with Mitsuba pinned,
     /// and runs `twinray crosscheck` with it (default scenes: every analytic shape and meshes
@@ -116,6 +127,7 @@ fn main() -> Result<()> {
         }),
         Task::Demo { animated } => demo(animated),
         Task::Ci => ci(),
+        Task::Test { jobs, only } => suite::run(suite::build()?, jobs.unwrap_or_else(default_jobs), &only),
         Task::Crosscheck { scenes, refresh, twinray_args } => crosscheck::run(&scenes, refresh, &twinray_args),
         Task::Bundle { out } => bundle::run_bundle(&repo_root().join(out)),
     }
@@ -158,6 +170,7 @@ fn demo(animated: bool) -> Result<()> {
 }
 
 fn ci() -> Result<()> {
+    let started = std::time::Instant::now();
     setup::run(Scope::Full)?;
     process::step("rustfmt", || {
         cargo(&["fmt", "--all", "--", "--check"], &[])?;
@@ -166,11 +179,31 @@ fn ci() -> Result<()> {
             &["--check", "--edition", "2021", "shaders-rs/shaders/src/lib.rs", "shaders-rs/builder/src/main.rs"],
         )
     })?;
-    process::step("clippy", || cargo(&["clippy", "--workspace", "--all-targets", "--", "-D", "warnings"], &[]))?;
-    // The library's public API is documented, and its doc links resolve.
-    process::step("docs", || {
-        cargo(&["doc", "--no-deps", "-p", "twinray", "-p", "twinray-shared"], &[("RUSTDOCFLAGS", "-D warnings")])
+    // The shader check builds rust-gpu on the pinned nightly in target folders of its own: on a
+    // cold machine, minutes that the workspace's build shares the cores with.
+    let shaders = process::Background::start("shaders --check", process::xtask_command(&["shaders", "--check"])?)?;
+    let mut binaries = Vec::new();
+    process::step("build tests, clippy", || {
+        binaries = suite::build()?;
+        // Doc tests are not binaries: cargo runs them itself (the libraries are built by now).
+        cargo(&["test", "--workspace", "--release", "--doc"], &suite::CLIPPY)
     })?;
-    process::step("shaders --check", || shaders::run(true))?;
-    process::step("tests", || cargo(&["test", "--workspace", "--release"], &[]))
+    shaders.wait()?;
+    // The library's public API is documented and its doc links resolve. rustdoc checks the
+    // dependencies in the debug profile, whose lock the release tests do not take; it fills
+    // the cores the tests leave while lavapipe compiles a pipeline on one.
+    let rustdoc = [("RUSTDOCFLAGS", "-D warnings")];
+    let doc = process::cargo_command(&["doc", "--no-deps", "-p", "twinray", "-p", "twinray-shared"], &rustdoc);
+    let docs = process::Background::start("docs", doc)?;
+    let tests = process::step("tests", || suite::run(binaries, default_jobs(), &[]));
+    docs.wait()?;
+    tests?;
+    println!("ci: every step passed in {:.0} s", started.elapsed().as_secs_f64());
+    Ok(())
+}
+
+/// One test binary per core: run one at a time, the tests kept 1.4 of 2 cores busy on average
+/// (lavapipe compiles a pipeline on one); with more, CPU-bound tests only wait on each other.
+fn default_jobs() -> usize {
+    std::thread::available_parallelism().map_or(2, |n| n.get())
 }

@@ -16,13 +16,22 @@ pub use twinray_build::{output, run};
 
 /// `cargo ARGS` in the repository root, with extra environment variables.
 pub fn cargo(args: &[&str], env: &[(&str, &str)]) -> Result<()> {
+    run(&mut cargo_command(args, env))
+}
+
+/// The command `cargo` runs.
+pub fn cargo_command(args: &[&str], env: &[(&str, &str)]) -> Command {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut command = Command::new(cargo);
+    command.args(args).current_dir(repo_root()).envs(env.iter().copied());
+    command
+}
+
+/// `cargo xtask ARGS` as this very program, so that no cargo lock is taken to start it.
+pub fn xtask_command(args: &[&str]) -> Result<Command> {
+    let mut command = Command::new(std::env::current_exe()?);
     command.args(args).current_dir(repo_root());
-    for (k, v) in env {
-        command.env(k, v);
-    }
-    run(&mut command)
+    Ok(command)
 }
 
 /// A tool on PATH, run in the repository root.
@@ -37,4 +46,44 @@ pub fn step(name: &str, body: impl FnOnce() -> Result<()>) -> Result<()> {
     let result = body().with_context(|| format!("CI step '{name}' failed"));
     println!("<== {name}: {} in {:.1} s", if result.is_ok() { "ok" } else { "FAILED" }, start.elapsed().as_secs_f64());
     result
+}
+
+/// A CI step run by this same program in a child process beside the others, its output kept
+/// in `target/ci-tests/` and shown, with its time, when it is waited for.
+pub struct Background {
+    name: String,
+    log: PathBuf,
+    /// The step's exit status and time, from a thread that waits for it.
+    ended: std::thread::JoinHandle<std::io::Result<(std::process::ExitStatus, f64)>>,
+}
+
+impl Background {
+    /// Starts `command` as step `name`.
+    pub fn start(name: &str, mut command: Command) -> Result<Background> {
+        let dir = repo_root().join("target/ci-tests");
+        std::fs::create_dir_all(&dir).with_context(|| format!("creating {}", dir.display()))?;
+        let log = dir.join(format!("{}.log", name.replace(|c: char| !c.is_ascii_alphanumeric(), "-")));
+        let file = std::fs::File::create(&log).with_context(|| format!("creating {}", log.display()))?;
+        let start = Instant::now();
+        let mut child = command
+            .stdout(file.try_clone()?)
+            .stderr(file)
+            .spawn()
+            .with_context(|| format!("starting step '{name}'"))?;
+        let ended = std::thread::spawn(move || Ok((child.wait()?, start.elapsed().as_secs_f64())));
+        println!("==> {name} (beside the next steps, output in {})", log.display());
+        Ok(Background { name: name.to_string(), log, ended })
+    }
+
+    /// Waits for the step, prints its output and time, and fails if it failed.
+    pub fn wait(self) -> Result<()> {
+        let (status, took) = self.ended.join().map_err(|_| anyhow::anyhow!("waiting for step '{}'", self.name))??;
+        println!("==> {} (output)\n{}", self.name, std::fs::read_to_string(&self.log).unwrap_or_default().trim_end());
+        let verdict = if status.success() { "ok" } else { "FAILED" };
+        println!("<== {}: {verdict} in {took:.1} s", self.name);
+        if !status.success() {
+            anyhow::bail!("CI step '{}' failed with {status}", self.name);
+        }
+        Ok(())
+    }
 }

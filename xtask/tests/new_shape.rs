@@ -1,8 +1,8 @@
 //! `cargo xtask new-shape` in a scratch copy of the repository: the scaffold builds, its scene
 //! passes parity with both shader sets, its CPU tests pass, and it touches exactly the files
 //! the README says a new shape touches. The scratch copy builds in its own target folder, kept
-//! in ~/.cache/twinray/scaffold-target so that later runs are incremental (the first one builds
-//! the host in release mode: about 3 minutes on 2 cores).
+//! in ~/.cache/twinray/scaffold-target/new_shape so that later runs are incremental; the first
+//! one starts from a copy of the workspace's release build (`common::seed`).
 
 mod common;
 
@@ -45,6 +45,7 @@ fn free_name() -> String {
 
 #[test]
 fn new_shape_scaffolds_a_shape_that_builds_passes_parity_and_touches_four_files() {
+    let _only_user = common::lock_scaffold_target();
     let scratch = tempfile::tempdir().unwrap();
     let dir = scratch.path();
     copy_repo(dir);

@@ -8,7 +8,7 @@
 //!   replaces the first line containing TEXT, with `after="TEXT"` it goes after it.
 //!
 //! A block of any other kind fails the test, so nothing the reader is told to do is skipped.
-//! The copy builds in the target folder new_shape.rs uses (~/.cache/twinray/scaffold-target).
+//! The copy builds in ~/.cache/twinray/scaffold-target/tutorial, kept between runs.
 
 mod common;
 
@@ -96,6 +96,7 @@ fn run(dir: &Path, block: &Block) -> String {
 #[test]
 fn the_tutorial_runs_as_written() {
     let markdown = std::fs::read_to_string(repo().join("docs/tutorial.md")).expect("docs/tutorial.md");
+    let _only_user = common::lock_scaffold_target();
     let scratch = tempfile::tempdir().unwrap();
     let dir = scratch.path();
     copy_repo(dir);

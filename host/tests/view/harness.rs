@@ -5,6 +5,7 @@ use crate::common;
 use fantoccini::{Client, ClientBuilder, Locator};
 use serde_json::Value;
 use std::io::{BufRead, BufReader, Read, Write};
+use std::os::unix::process::CommandExt;
 use std::path::Path;
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
@@ -105,7 +106,9 @@ pub struct Browser {
 impl Browser {
     pub async fn start(profile: &Path) -> Browser {
         let port = std::net::TcpListener::bind("127.0.0.1:0").unwrap().local_addr().unwrap().port();
+        // Its own process group, so that a failing test ends the browser it started too.
         let driver = Command::new("chromedriver")
+            .process_group(0)
             .arg(format!("--port={port}"))
             .stdout(Stdio::null())
             .stderr(Stdio::null())
@@ -170,6 +173,11 @@ impl Browser {
 
 impl Drop for Browser {
     fn drop(&mut self) {
-        let _ = self.driver.kill();
+        // chromedriver and the chromium it started: left behind, chromium kept a core busy.
+        if let Ok(group) = i32::try_from(self.driver.id()) {
+            // SAFETY: kill(2) on the process group this browser's chromedriver leads.
+            unsafe { libc::kill(-group, libc::SIGKILL) };
+        }
+        let _ = self.driver.wait();
     }
 }

@@ -11,12 +11,67 @@ pub fn repo() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
 
+/// The target folder of this test binary's scratch copies, kept between runs: one per test
+/// binary, so that `cargo xtask test` can run new_shape and the tutorial side by side.
 pub fn scaffold_target() -> PathBuf {
     let cache = std::env::var_os("XDG_CACHE_HOME")
         .map(PathBuf::from)
         .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
         .unwrap_or_else(|| repo().join("target"));
-    cache.join("twinray/scaffold-target")
+    let exe = std::env::current_exe().expect("the test binary's path");
+    let stem = exe.file_stem().unwrap_or_default().to_string_lossy().into_owned();
+    let test = stem.split('-').next().unwrap_or("scratch").to_string();
+    cache.join("twinray/scaffold-target").join(test)
+}
+
+/// The scaffold target for this test alone, until the returned file is dropped, seeded if it is
+/// new. Two scratch copies building in one target at once would run each other's `cargo xtask`:
+/// cargo puts the binary of every copy's xtask at the same path.
+pub fn lock_scaffold_target() -> std::fs::File {
+    let dir = scaffold_target();
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = std::fs::File::create(dir.join("twinray-test.lock")).expect("creating the scaffold target's lock");
+    file.lock().expect("locking the scaffold target");
+    seed(&dir.join("release"));
+    file
+}
+
+/// Fills an empty scaffold target's release folder with a copy of the libraries, build script
+/// outputs and fingerprints of the release build this test belongs to. The scratch copy's
+/// dependencies are the same crates in the same profile, so cargo reuses those its fingerprints
+/// find unchanged and builds the rest (the copy's own crates at least): on a cold machine that
+/// saves building every dependency of the host a second time. A copy, not links: cargo
+/// rewrites fingerprint files in place.
+fn seed(to: &Path) {
+    let Some(from) = std::env::current_exe().ok().and_then(|exe| Some(exe.parent()?.parent()?.to_path_buf())) else {
+        return;
+    };
+    if to.exists() || !from.join(".fingerprint").is_dir() {
+        return;
+    }
+    let partial = to.with_extension("seeding");
+    let _ = std::fs::remove_dir_all(&partial);
+    for folder in [".fingerprint", "build", "deps"] {
+        copy_tree(&from.join(folder), &partial.join(folder));
+    }
+    std::fs::rename(&partial, to).expect("placing the seeded scaffold target");
+}
+
+/// Copies a folder, leaving out executables without an extension (the test binaries in deps/).
+fn copy_tree(from: &Path, to: &Path) {
+    std::fs::create_dir_all(to).unwrap();
+    for entry in std::fs::read_dir(from).unwrap().map(Result::unwrap) {
+        let (path, kind) = (entry.path(), entry.file_type().unwrap());
+        let target = to.join(entry.file_name());
+        if kind.is_dir() {
+            copy_tree(&path, &target);
+        } else if kind.is_file() && !(from.ends_with("deps") && path.extension().is_none()) {
+            std::fs::copy(&path, &target).unwrap_or_else(|e| panic!("copying {}: {e}", path.display()));
+            // cargo compares these times with each other's.
+            let modified = entry.metadata().and_then(|m| m.modified()).unwrap();
+            std::fs::File::options().write(true).open(&target).and_then(|f| f.set_modified(modified)).unwrap();
+        }
+    }
 }
 
 /// The repository's files as a checkout has them (tracked, and new files not ignored).

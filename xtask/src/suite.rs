@@ -1,0 +1,221 @@
+//! `cargo xtask test`: the tests `cargo test --workspace --release` runs, built once and then run
+//! several test binaries at a time. On lavapipe most of a test's time is LLVM compiling a
+//! pipeline on one core, so one binary at a time leaves the other cores idle; binaries are
+//! separate processes, so running them side by side changes nothing a test can see but time.
+//! Each binary's output goes to `target/ci-tests/LABEL.log` and is shown when it fails; the
+//! times of the last run (`target/ci-tests/times.tsv`) order the next one, longest first.
+
+use crate::process::repo_root;
+use anyhow::{bail, Context, Result};
+use std::collections::{BTreeMap, VecDeque};
+use std::io::{BufRead, BufReader};
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+use std::sync::Mutex;
+use std::time::{Duration, Instant};
+
+/// One test executable, named by its source file relative to the repository root.
+#[derive(Clone, Debug)]
+pub struct Binary {
+    pub label: String,
+    path: PathBuf,
+    package_dir: PathBuf,
+}
+
+/// The slowest binaries of a cold run on 2 cores (docs/testing.md), so that a first run, with
+/// no times of its own yet, starts them first and does not end on one of them alone.
+const SLOW_FIRST: [&str; 8] = [
+    "xtask/tests/tutorial.rs",
+    "tests/animation.rs",
+    "tests/explain.rs",
+    "tests/crosscheck.rs",
+    "tests/stability.rs",
+    "host/tests/bench.rs",
+    "host/tests/hostile_stages.rs",
+    "xtask/tests/new_shape.rs",
+];
+
+/// clippy's lints, warnings denied, on every target of the workspace, from the one release build
+/// the tests need: `cargo clippy` is `cargo check` with clippy-driver as the workspace's rustc
+/// wrapper and its arguments in CLIPPY_ARGS, so the same wrapper on the test build lints the
+/// same targets (the workspace has no benches or examples) without building the workspace twice.
+pub const CLIPPY: [(&str, &str); 2] =
+    [("RUSTC_WORKSPACE_WRAPPER", "clippy-driver"), ("CLIPPY_ARGS", "-D__CLIPPY_HACKERY__warnings__CLIPPY_HACKERY__")];
+
+/// Builds every test binary of the workspace (release, as CI tests), linted by clippy, and
+/// lists them.
+pub fn build() -> Result<Vec<Binary>> {
+    let root = repo_root();
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let mut child = Command::new(cargo)
+        .args(["test", "--workspace", "--release", "--no-run", "--message-format=json-render-diagnostics"])
+        .envs(CLIPPY)
+        .current_dir(&root)
+        .stdout(Stdio::piped())
+        .spawn()
+        .context("starting cargo test --no-run")?;
+    let mut binaries = Vec::new();
+    for line in BufReader::new(child.stdout.take().context("cargo's piped stdout")?).lines() {
+        if let Some(binary) = test_binary(&root, &line?) {
+            binaries.push(binary);
+        }
+    }
+    if !child.wait()?.success() {
+        bail!("cargo test --workspace --release --no-run failed");
+    }
+    Ok(binaries)
+}
+
+/// The test executable a line of cargo's JSON messages announces, if it announces one.
+fn test_binary(root: &Path, line: &str) -> Option<Binary> {
+    let message: serde_json::Value = serde_json::from_str(line).ok()?;
+    let is_test = message["reason"] == "compiler-artifact" && message["profile"]["test"] == true;
+    let path = PathBuf::from(message["executable"].as_str().filter(|_| is_test)?);
+    let source = Path::new(message["target"]["src_path"].as_str()?);
+    let package_dir = Path::new(message["manifest_path"].as_str()?).parent()?.to_path_buf();
+    let label = source.strip_prefix(root).unwrap_or(source).to_string_lossy().into_owned();
+    Some(Binary { label, path, package_dir })
+}
+
+/// What one binary did.
+struct Outcome {
+    label: String,
+    passed: bool,
+    took: Duration,
+    summary: String,
+}
+
+/// Runs `binaries` (those whose label contains one of `only`, or all), `jobs` at a time, and
+/// fails naming every binary that failed.
+pub fn run(binaries: Vec<Binary>, jobs: usize, only: &[String]) -> Result<()> {
+    let logs = repo_root().join("target/ci-tests");
+    std::fs::create_dir_all(&logs).with_context(|| format!("creating {}", logs.display()))?;
+    let times = read_times(&logs.join("times.tsv"));
+    let mut queue: Vec<Binary> =
+        binaries.into_iter().filter(|b| only.is_empty() || only.iter().any(|o| b.label.contains(o.as_str()))).collect();
+    if queue.is_empty() {
+        bail!("no test binary's source matches {only:?}");
+    }
+    queue.sort_by(|a, b| expected(&times, &b.label).total_cmp(&expected(&times, &a.label)));
+    let total = queue.len();
+    println!("tests: {total} binaries, {jobs} at a time (logs in {})", logs.display());
+    let queue = Mutex::new(VecDeque::from(queue));
+    let outcomes = Mutex::new(Vec::new());
+    let started = Instant::now();
+    std::thread::scope(|scope| {
+        for _ in 0..jobs.max(1) {
+            scope.spawn(|| {
+                loop {
+                    // Its own statement: a guard in the `while let` would be held through the run.
+                    let Some(binary) = queue.lock().unwrap().pop_front() else { break };
+                    let outcome = run_one(&binary, &logs);
+                    let mut all = outcomes.lock().unwrap();
+                    report(&outcome, all.len() + 1, total, &logs);
+                    all.push(outcome);
+                }
+            });
+        }
+    });
+    let outcomes = outcomes.into_inner().unwrap();
+    summarize(&outcomes, started.elapsed(), &logs)
+}
+
+/// How long a binary took last time, or a rank for the slow ones when there is no last time.
+fn expected(times: &BTreeMap<String, f64>, label: &str) -> f64 {
+    let rank = SLOW_FIRST.iter().position(|s| *s == label).map_or(0.0, |i| (SLOW_FIRST.len() - i) as f64);
+    times.get(label).copied().unwrap_or(rank)
+}
+
+fn run_one(binary: &Binary, logs: &Path) -> Outcome {
+    let log = logs.join(format!("{}.log", binary.label.replace('/', "_")));
+    let start = Instant::now();
+    let passed = std::fs::File::create(&log)
+        .and_then(|file| {
+            let err = file.try_clone()?;
+            // What cargo test sets for a test binary at run time.
+            Command::new(&binary.path)
+                .current_dir(&binary.package_dir)
+                .env("CARGO_MANIFEST_DIR", &binary.package_dir)
+                .env("CARGO", std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+                .stdout(file)
+                .stderr(err)
+                .status()
+        })
+        .is_ok_and(|status| status.success());
+    let text = std::fs::read_to_string(&log).unwrap_or_default();
+    let summary = text.lines().rfind(|l| l.starts_with("test result:")).unwrap_or("no test result").to_string();
+    Outcome { label: binary.label.clone(), passed, took: start.elapsed(), summary }
+}
+
+fn report(outcome: &Outcome, done: usize, total: usize, logs: &Path) {
+    let verdict = if outcome.passed { "ok" } else { "FAILED" };
+    println!(
+        "[{done}/{total}] {}: {verdict} in {:.1} s ({})",
+        outcome.label,
+        outcome.took.as_secs_f64(),
+        outcome.summary
+    );
+    if !outcome.passed {
+        let log = logs.join(format!("{}.log", outcome.label.replace('/', "_")));
+        let text = std::fs::read_to_string(&log).unwrap_or_default();
+        let lines: Vec<&str> = text.lines().collect();
+        // The end of the log holds the failures cargo's harness prints.
+        let tail = &lines[lines.len().saturating_sub(300)..];
+        println!("---- {} (last {} lines of {}) ----\n{}", outcome.label, tail.len(), log.display(), tail.join("\n"));
+    }
+}
+
+fn summarize(outcomes: &[Outcome], wall: Duration, logs: &Path) -> Result<()> {
+    let mut sorted: Vec<&Outcome> = outcomes.iter().collect();
+    sorted.sort_by_key(|o| std::cmp::Reverse(o.took));
+    println!("tests: time per binary, longest first");
+    for o in &sorted {
+        println!("  {:>7.1} s  {}{}", o.took.as_secs_f64(), o.label, if o.passed { "" } else { "  FAILED" });
+    }
+    let sum: f64 = outcomes.iter().map(|o| o.took.as_secs_f64()).sum();
+    println!("tests: {sum:.0} s of binaries ran in {:.0} s", wall.as_secs_f64());
+    let times: String = outcomes.iter().map(|o| format!("{}\t{:.1}\n", o.label, o.took.as_secs_f64())).collect();
+    let _ = std::fs::write(logs.join("times.tsv"), times); // only orders the next run
+    let failed: Vec<&str> = sorted.iter().filter(|o| !o.passed).map(|o| o.label.as_str()).collect();
+    if !failed.is_empty() {
+        bail!("{} of {} test binaries failed: {}", failed.len(), outcomes.len(), failed.join(", "));
+    }
+    Ok(())
+}
+
+fn read_times(path: &Path) -> BTreeMap<String, f64> {
+    let text = std::fs::read_to_string(path).unwrap_or_default();
+    text.lines()
+        .filter_map(|l| l.split_once('\t'))
+        .filter_map(|(label, secs)| Some((label.to_string(), secs.parse().ok()?)))
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_a_test_binary_from_cargos_messages_and_nothing_else() {
+        let root = Path::new("/r");
+        let test = r#"{"reason":"compiler-artifact","manifest_path":"/r/host/Cargo.toml","target":{"src_path":"/r/host/tests/cli.rs"},"profile":{"test":true},"executable":"/r/target/release/deps/cli-1"}"#;
+        let binary = test_binary(root, test).unwrap();
+        assert_eq!(binary.label, "host/tests/cli.rs");
+        assert_eq!(binary.path, Path::new("/r/target/release/deps/cli-1"));
+        assert_eq!(binary.package_dir, Path::new("/r/host"));
+        let program = test.replace(r#""test":true"#, r#""test":false"#);
+        assert!(test_binary(root, &program).is_none(), "a program built for the tests is not a test");
+        let library = test.replace(r#""/r/target/release/deps/cli-1""#, "null");
+        assert!(test_binary(root, &library).is_none());
+        assert!(test_binary(root, r#"{"reason":"build-finished","success":true}"#).is_none());
+        assert!(test_binary(root, "Compiling twinray").is_none());
+    }
+
+    #[test]
+    fn orders_by_last_times_and_by_rank_without_them() {
+        let times = BTreeMap::from([("a.rs".to_string(), 40.0)]);
+        assert_eq!(expected(&times, "a.rs"), 40.0);
+        assert!(expected(&times, SLOW_FIRST[0]) > expected(&times, SLOW_FIRST[1]));
+        assert_eq!(expected(&times, "unknown.rs"), 0.0);
+    }
+}
