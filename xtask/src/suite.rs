@@ -2,8 +2,12 @@
 //! several test binaries at a time. On lavapipe most of a test's time is LLVM compiling a
 //! pipeline on one core, so one binary at a time leaves the other cores idle; binaries are
 //! separate processes, so running them side by side changes nothing a test can see but time.
-//! Each binary's output goes to `target/ci-tests/LABEL.log` and is shown when it fails; the
-//! times of the last run (`target/ci-tests/times.tsv`) order the next one, longest first.
+//! When a binary ends, its harness's report (its stdout: `running N tests`, a line per test,
+//! failures, `test result:`) is printed whole, as `cargo test` prints it, so a reader or a tool
+//! that counts tests sees every one. Its stderr (what child processes and C libraries write past
+//! the harness's capture) goes to `target/ci-tests/LABEL.err`, and its tail is shown when the
+//! binary fails. The times of the last run (`target/ci-tests/times.tsv`) order the next one,
+//! longest first.
 
 use crate::process::repo_root;
 use anyhow::{bail, Context, Result};
@@ -82,7 +86,14 @@ struct Outcome {
     label: String,
     passed: bool,
     took: Duration,
-    summary: String,
+    /// The harness's report: its stdout.
+    report: String,
+}
+
+impl Outcome {
+    fn summary(&self) -> &str {
+        self.report.lines().rfind(|l| l.starts_with("test result:")).unwrap_or("no test result")
+    }
 }
 
 /// Runs `binaries` (those whose label contains one of `only`, or all), `jobs` at a time, and
@@ -127,42 +138,61 @@ fn expected(times: &BTreeMap<String, f64>, label: &str) -> f64 {
 }
 
 fn run_one(binary: &Binary, logs: &Path) -> Outcome {
-    let log = logs.join(format!("{}.log", binary.label.replace('/', "_")));
+    let (out, err) = log_paths(logs, &binary.label);
     let start = Instant::now();
-    let passed = std::fs::File::create(&log)
-        .and_then(|file| {
-            let err = file.try_clone()?;
+    let passed = std::fs::File::create(&out)
+        .and_then(|stdout| {
+            let stderr = std::fs::File::create(&err)?;
             // What cargo test sets for a test binary at run time.
             Command::new(&binary.path)
                 .current_dir(&binary.package_dir)
                 .env("CARGO_MANIFEST_DIR", &binary.package_dir)
                 .env("CARGO", std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
-                .stdout(file)
-                .stderr(err)
+                .stdout(stdout)
+                .stderr(stderr)
                 .status()
         })
         .is_ok_and(|status| status.success());
-    let text = std::fs::read_to_string(&log).unwrap_or_default();
-    let summary = text.lines().rfind(|l| l.starts_with("test result:")).unwrap_or("no test result").to_string();
-    Outcome { label: binary.label.clone(), passed, took: start.elapsed(), summary }
+    let report = std::fs::read_to_string(&out).unwrap_or_default();
+    Outcome { label: binary.label.clone(), passed, took: start.elapsed(), report }
+}
+
+/// Where a binary's stdout and stderr go.
+fn log_paths(logs: &Path, label: &str) -> (PathBuf, PathBuf) {
+    let stem = label.replace('/', "_");
+    (logs.join(format!("{stem}.out")), logs.join(format!("{stem}.err")))
 }
 
 fn report(outcome: &Outcome, done: usize, total: usize, logs: &Path) {
     let verdict = if outcome.passed { "ok" } else { "FAILED" };
-    println!(
-        "[{done}/{total}] {}: {verdict} in {:.1} s ({})",
-        outcome.label,
-        outcome.took.as_secs_f64(),
-        outcome.summary
-    );
+    println!("     Running {} [{done}/{total}]", outcome.label);
+    println!("{}", outcome.report.trim_end());
+    println!("[{done}/{total}] {}: {verdict} in {:.1} s", outcome.label, outcome.took.as_secs_f64());
     if !outcome.passed {
-        let log = logs.join(format!("{}.log", outcome.label.replace('/', "_")));
-        let text = std::fs::read_to_string(&log).unwrap_or_default();
+        let err = log_paths(logs, &outcome.label).1;
+        let text = std::fs::read_to_string(&err).unwrap_or_default();
         let lines: Vec<&str> = text.lines().collect();
-        // The end of the log holds the failures cargo's harness prints.
-        let tail = &lines[lines.len().saturating_sub(300)..];
-        println!("---- {} (last {} lines of {}) ----\n{}", outcome.label, tail.len(), log.display(), tail.join("\n"));
+        let tail = &lines[lines.len().saturating_sub(200)..];
+        println!(
+            "---- {} stderr (last {} lines of {}) ----\n{}",
+            outcome.label,
+            tail.len(),
+            err.display(),
+            tail.join("\n")
+        );
     }
+}
+
+/// The counts of every binary's `test result:` line, added up.
+fn counts(outcomes: &[Outcome]) -> [u64; 3] {
+    let mut sum = [0; 3];
+    for line in outcomes.iter().map(Outcome::summary) {
+        for (i, word) in ["passed", "failed", "ignored"].iter().enumerate() {
+            let before = line.split(&format!(" {word}")).next().unwrap_or("");
+            sum[i] += before.rsplit([' ', '.']).next().and_then(|n| n.parse::<u64>().ok()).unwrap_or(0);
+        }
+    }
+    sum
 }
 
 fn summarize(outcomes: &[Outcome], wall: Duration, logs: &Path) -> Result<()> {
@@ -174,6 +204,8 @@ fn summarize(outcomes: &[Outcome], wall: Duration, logs: &Path) -> Result<()> {
     }
     let sum: f64 = outcomes.iter().map(|o| o.took.as_secs_f64()).sum();
     println!("tests: {sum:.0} s of binaries ran in {:.0} s", wall.as_secs_f64());
+    let [passed, failed, ignored] = counts(outcomes);
+    println!("tests: {passed} passed, {failed} failed, {ignored} ignored in {} binaries", outcomes.len());
     let times: String = outcomes.iter().map(|o| format!("{}\t{:.1}\n", o.label, o.took.as_secs_f64())).collect();
     let _ = std::fs::write(logs.join("times.tsv"), times); // only orders the next run
     let failed: Vec<&str> = sorted.iter().filter(|o| !o.passed).map(|o| o.label.as_str()).collect();
@@ -217,5 +249,15 @@ mod tests {
         assert_eq!(expected(&times, "a.rs"), 40.0);
         assert!(expected(&times, SLOW_FIRST[0]) > expected(&times, SLOW_FIRST[1]));
         assert_eq!(expected(&times, "unknown.rs"), 0.0);
+    }
+
+    #[test]
+    fn adds_up_the_harness_counts() {
+        let outcome =
+            |report: &str| Outcome { label: "a.rs".into(), passed: true, took: Duration::ZERO, report: report.into() };
+        let ok = "running 3 tests\ntest a ... ok\n\ntest result: ok. 3 passed; 0 failed; 1 ignored; 0 measured; 0 filtered out; finished in 0.01s\n";
+        let bad = "test result: FAILED. 2 passed; 1 failed; 0 ignored; 0 measured; 0 filtered out; finished in 1.00s";
+        assert_eq!(counts(&[outcome(ok), outcome(bad), outcome("no harness here")]), [5, 1, 1]);
+        assert_eq!(outcome("").summary(), "no test result");
     }
 }
