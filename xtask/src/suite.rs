@@ -28,7 +28,7 @@ pub struct Binary {
 
 /// The slowest binaries of a cold run on 2 cores (docs/testing.md), so that a first run, with
 /// no times of its own yet, starts them first and does not end on one of them alone.
-const SLOW_FIRST: [&str; 8] = [
+const SLOW_FIRST: [&str; 7] = [
     "xtask/tests/tutorial.rs",
     "tests/animation.rs",
     "tests/explain.rs",
@@ -36,7 +36,6 @@ const SLOW_FIRST: [&str; 8] = [
     "tests/stability.rs",
     "host/tests/bench.rs",
     "host/tests/hostile_stages.rs",
-    "xtask/tests/new_shape.rs",
 ];
 
 /// clippy's lints, warnings denied, on every target of the workspace, from the one release build

@@ -8,11 +8,18 @@
 //!   replaces the first line containing TEXT, with `after="TEXT"` it goes after it.
 //!
 //! A block of any other kind fails the test, so nothing the reader is told to do is skipped.
-//! The copy builds in ~/.cache/twinray/scaffold-target/tutorial, kept between runs.
+//! The copy builds in ~/.cache/twinray/scaffold-target/tutorial, kept between runs; the first
+//! run starts from a copy of the workspace's release build (`common::seed`).
+//!
+//! The tutorial's first step is `cargo xtask new-shape`, so the same copy also checks what
+//! new-shape promises (`common::scaffold`): right after that step, the files it touched, its
+//! registry line, its CPU tests and its refusal of a taken name; after the last step, `cargo
+//! xtask watch` on the new scene.
 
 mod common;
 
 use common::docs::{fenced, Block};
+use common::scaffold::{check_new_shape, files, watch_sees_an_edit_of_the_twin};
 use common::{copy_repo, repo, scaffold_target};
 use std::path::Path;
 use std::process::Command;
@@ -100,14 +107,21 @@ fn the_tutorial_runs_as_written() {
     let scratch = tempfile::tempdir().unwrap();
     let dir = scratch.path();
     copy_repo(dir);
+    let before = files(dir);
     let started = Instant::now();
     let mut last_output: Option<String> = None;
+    let mut scaffolded = None;
     for block in fenced(&markdown).0 {
         let words = words(&block.info);
         let get = |key: &str| words.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str());
         let language = words.first().map_or("", |(k, _)| k.as_str());
         if language == "sh" {
-            last_output = Some(run(dir, &block));
+            let output = run(dir, &block);
+            if let Some(name) = block.text.trim().strip_prefix("cargo xtask new-shape ") {
+                check_new_shape(dir, name, &before, &output);
+                scaffolded = Some(name.to_string());
+            }
+            last_output = Some(output);
         } else if language == "text" {
             let output =
                 last_output.take().unwrap_or_else(|| panic!("line {}: output quoted after no command", block.line));
@@ -127,6 +141,8 @@ fn the_tutorial_runs_as_written() {
         }
     }
     eprintln!("tutorial: every step ran in {:.0} s", started.elapsed().as_secs_f64());
+    let name = scaffolded.expect("the tutorial starts with `cargo xtask new-shape NAME`, alone in its block");
+    watch_sees_an_edit_of_the_twin(dir, &name);
 }
 
 #[test]

@@ -3,6 +3,7 @@
 #![allow(dead_code)] // each test crate that includes this module uses a part of it
 
 pub mod docs;
+pub mod scaffold;
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -12,7 +13,7 @@ pub fn repo() -> PathBuf {
 }
 
 /// The target folder of this test binary's scratch copies, kept between runs: one per test
-/// binary, so that `cargo xtask test` can run new_shape and the tutorial side by side.
+/// binary, so that `cargo xtask test` can run two such binaries side by side.
 pub fn scaffold_target() -> PathBuf {
     let cache = std::env::var_os("XDG_CACHE_HOME")
         .map(PathBuf::from)

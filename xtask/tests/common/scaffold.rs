@@ -1,18 +1,14 @@
-//! `cargo xtask new-shape` in a scratch copy of the repository: the scaffold builds, its scene
-//! passes parity with both shader sets, its CPU tests pass, and it touches exactly the files
-//! the README says a new shape touches. The scratch copy builds in its own target folder, kept
-//! in ~/.cache/twinray/scaffold-target/new_shape so that later runs are incremental; the first
-//! one starts from a copy of the workspace's release build (`common::seed`).
+//! What `cargo xtask new-shape` promises, checked in the tutorial's scratch copy right after
+//! the tutorial's first step runs it (`xtask/tests/tutorial.rs`): one scratch copy builds the
+//! shader sets and the host once for both, where a second copy cost CI about 260 s on 2 cores.
 
-mod common;
-
-use common::{cargo, copy_repo, repo, scaffold_target, text};
+use super::{cargo, scaffold_target, text};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
 
 /// Every file under `dir` but its build folder, with its contents.
-fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
+pub fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     let mut out = BTreeMap::new();
     let mut stack = vec![dir.to_path_buf()];
     while let Some(d) = stack.pop() {
@@ -33,27 +29,11 @@ fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
     out
 }
 
-/// "capsule", or if a capsule has been added since, the first free "capsule_N".
-fn free_name() -> String {
-    let taken =
-        |n: &str| twinray_shared::shapes::shape(n).is_some() || repo().join(format!("scenes/{n}.toml")).exists();
-    std::iter::once("capsule".to_string())
-        .chain((2..).map(|i| format!("capsule_{i}")))
-        .find(|n| !taken(n))
-        .unwrap_or_default()
-}
-
-#[test]
-fn new_shape_scaffolds_a_shape_that_builds_passes_parity_and_touches_four_files() {
-    let _only_user = common::lock_scaffold_target();
-    let scratch = tempfile::tempdir().unwrap();
-    let dir = scratch.path();
-    copy_repo(dir);
-    let before = files(dir);
-    let name = free_name();
-    let out = cargo(&["xtask", "new-shape", &name], dir);
-    let said = text(&out);
-    assert!(out.status.success(), "new-shape failed:\n{said}");
+/// After `cargo xtask new-shape NAME` printed `said` in `dir`, whose files were `before`: the
+/// scaffold built, its scene passed parity with both sets, it added and changed exactly the
+/// files [Adding stages](docs/adding-stages.md) lists, registered the next hit kind, its CPU
+/// tests pass, and a second run refuses the taken name.
+pub fn check_new_shape(dir: &Path, name: &str, before: &BTreeMap<String, Vec<u8>>, said: &str) {
     let scene = format!("scene {name} ");
     assert!(said.contains(&scene) && said.contains("PASS: within the scene's parity tolerance"), "{said}");
     let after = files(dir);
@@ -97,16 +77,15 @@ fn new_shape_scaffolds_a_shape_that_builds_passes_parity_and_touches_four_files(
     assert!(tests.status.success(), "the scaffold's CPU tests fail:\n{said}");
     let far_test = format!("shapes::{name}::tests::a_far_ray_keeps_its_accuracy ... ok");
     assert!(said.contains(&far_test), "{said}");
-    let again = cargo(&["xtask", "new-shape", &name], dir);
+    let again = cargo(&["xtask", "new-shape", name], dir);
     assert!(!again.status.success() && text(&again).contains("already registered"), "{}", text(&again));
-    watch_sees_an_edit_of_the_twin(dir, &name);
 }
 
 /// `cargo xtask watch` on the new scene: after its first verdict, a one-line edit of the GLSL
-/// twin rebuilds the GLSL set only and prints a verdict and the time from the save; a save
+/// twin (a comment added at its end, whatever the twin says by then) rebuilds the GLSL set only and prints a verdict and the time from the save; a save
 /// whose ray generation stage never returns ends in a verdict line within the deadline, and
 /// the save that fixes it passes again, without a restart.
-fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
+pub fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
     use std::io::{BufRead, BufReader};
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let mut child = Command::new(cargo)
@@ -131,8 +110,7 @@ fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
     wait_for("watch: watching", &mut seen);
     let twin = dir.join(format!("shaders-glsl/shapes/{name}.glsl"));
     let text = std::fs::read_to_string(&twin).unwrap();
-    std::fs::write(&twin, text.replace("float radius = primitive.a.x;", "float radius = primitive.a.x; // edited"))
-        .unwrap();
+    std::fs::write(&twin, text + "// edited while watched\n").unwrap();
     wait_for("watch: save to verdict", &mut seen);
     let first = seen.len();
     // A ray generation stage that never returns (its store keeps the loop from being removed).
