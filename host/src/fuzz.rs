@@ -25,6 +25,17 @@ pub fn obj(bytes: &[u8]) {
     }
 }
 
+/// A glTF file (JSON or GLB; buffer files would be looked for in a folder that does not
+/// exist): parsed, its meshes read, and the scene it makes checked and built.
+pub fn gltf(bytes: &[u8]) {
+    if let Ok(model) = crate::scene::gltf::parse(bytes, std::path::Path::new("/nonexistent/fuzz")) {
+        if let Ok(scene) = Scene::from_model(model, "fuzz.gltf") {
+            let _ = scene.build();
+            let _ = SceneReference::new(&scene);
+        }
+    }
+}
+
 /// A SPIR-V module from disk, as a damaged or hostile one reaches twinray: read, and checked
 /// as every module of the catalog (entry point, bindings, what it passes between stages), and
 /// its unused ray query declaration dropped. (SPIRV-Tools' validator runs before these in

@@ -37,3 +37,8 @@ fn module_seeds() {
 fn probe_case_seeds() {
     run_seeds("probe_case", twinray::fuzz::probe_case);
 }
+
+#[test]
+fn gltf_seeds() {
+    run_seeds("gltf", twinray::fuzz::gltf);
+}

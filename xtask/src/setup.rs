@@ -31,6 +31,8 @@ pub fn run(scope: Scope) -> Result<()> {
         packages.extend(["glslang-tools", "spirv-tools", "vulkan-validationlayers"]);
         // The browser tests of `twinray view` drive Debian's chromium through chromedriver.
         packages.extend(["chromium", "chromium-driver"]);
+        // Models no one here made: the glTF tests load every one (docs/gltf.md).
+        packages.push("assimp-testmodels");
     }
     ensure_packages(&packages)?;
     if scope == Scope::Full {

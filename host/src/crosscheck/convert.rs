@@ -4,7 +4,7 @@
 use crate::error::{Error, Result};
 use crate::scene::file::{LightDesc, MaterialDesc};
 use crate::scene::shape::ShapeDesc;
-use crate::scene::{object_transform, Scene};
+use crate::scene::Scene;
 use glam::{Mat4, Vec3};
 use serde_json::{json, Value};
 use std::f32::consts::PI;
@@ -48,7 +48,7 @@ pub fn convert(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Result<M
     for (i, object) in file.objects.iter().enumerate() {
         let albedo = albedo(scene, &object.material)?;
         let emissive = matches!(file.materials.get(&object.material), Some(MaterialDesc::Emissive { .. }));
-        let world = object_transform(object.translate, object.rotate, object.scale.axes());
+        let world = object.transform();
         for (k, part) in parts(scene, &object.shape, &mut notes)?.into_iter().enumerate() {
             let to_world = world * part.to_object;
             let shape = shape(part.kind, to_world, &format!("o{i}-{k}"), &mut meshes, &mut notes);

@@ -10,7 +10,7 @@ use super::mesh::MeshData;
 use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
 use super::reach;
 use super::shape::{Formula, ShapeDesc};
-use glam::{EulerRot, Mat4, Quat, Vec3, Vec4};
+use glam::{Mat4, Vec3, Vec4};
 use std::collections::BTreeMap;
 use twinray_shared::bindings as b;
 use twinray_shared::layout::{FrameUniform, Light, Material, ObjectData, Primitive, Vertex};
@@ -127,7 +127,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         let emissive = matches!(scene.materials[material_name], MaterialDesc::Emissive { .. });
         instances.push(InstanceDesc {
             blas: slot.blas,
-            object_to_world: object_transform(object.translate, object.rotate, object.scale.axes()),
+            object_to_world: object.transform(),
             object: i as u32,
             custom_index: slot.primitive_base,
             mask: if emissive { b::MASK_EMITTER } else { b::MASK_OCCLUDER },
@@ -171,8 +171,7 @@ pub struct FrameData {
 /// The transforms, lights and frame constants of `scene` as it stands, its objects' own
 /// bounds being `object_bounds` (see `reach::object_bounds`).
 pub fn frame_data(scene: &SceneFile, width: u32, height: u32, object_bounds: &[Aabb]) -> FrameData {
-    let transforms: Vec<Mat4> =
-        scene.objects.iter().map(|o| object_transform(o.translate, o.rotate, o.scale.axes())).collect();
+    let transforms: Vec<Mat4> = scene.objects.iter().map(|o| o.transform()).collect();
     let boxes = reach::world_boxes(object_bounds, &transforms);
     FrameData { uniform: frame_uniform(scene, width, height, &boxes), transforms, lights: lights(scene) }
 }
@@ -248,13 +247,6 @@ fn hit_group(scene: &SceneFile, shape: &ShapeDesc, material: &MaterialDesc) -> H
         (MaterialShading::Inline, _) => Colour::Inline,
     };
     HitGroup { geometry, cutout: matches!(material, MaterialDesc::Cutout { .. }), colour }
-}
-
-/// Scale, then rotation about x, y and z (degrees), then translation.
-pub fn object_transform(translate: [f32; 3], rotate_degrees: [f32; 3], scale: [f32; 3]) -> Mat4 {
-    let [x, y, z] = rotate_degrees.map(f32::to_radians);
-    let rotation = Quat::from_euler(EulerRot::ZYX, z, y, x);
-    Mat4::from_scale_rotation_translation(scale.into(), rotation, translate.into())
 }
 
 /// The primitives of a shape and their boxes, in object space (a mesh has none).

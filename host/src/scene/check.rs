@@ -260,6 +260,26 @@ pub(super) fn check_placement(object: &ObjectDesc) -> Checked {
             "scale must be in [{low:e}, {high:e}] in magnitude on every axis (got {s:e}): beyond, the object's transform overflows or degenerates in f32"
         ));
     }
+    object.matrix.as_ref().map_or(Ok(()), check_matrix)
+}
+
+/// An object's `matrix`: finite, affine (last row 0 0 0 1), and each axis it maps scaled
+/// within `SCALE_RANGE`, with a volume that f32 resolves (not flattened to a plane).
+fn check_matrix(m: &[f32; 16]) -> Checked {
+    finite("matrix", m)?;
+    let m = glam::Mat4::from_cols_array(m);
+    if m.row(3) != glam::Vec4::W {
+        return Err(format!("matrix must be affine: its last row must be 0 0 0 1 (got {})", m.row(3)));
+    }
+    let (low, high) = SCALE_RANGE;
+    let axes = [m.x_axis, m.y_axis, m.z_axis].map(|a| a.truncate().length());
+    if let Some(s) = axes.iter().find(|s| !(low..=high).contains(*s)) {
+        return Err(format!("matrix scales an axis by {s:e}, outside [{low:e}, {high:e}]"));
+    }
+    let volume = m.determinant().abs() / axes.iter().product::<f32>();
+    if volume < 1e-6 {
+        return Err(format!("matrix flattens space (its axes span a volume {volume:e} of their lengths' product)"));
+    }
     Ok(())
 }
 
@@ -283,6 +303,7 @@ fn check_grid(scene: &SceneFile, grid: &GridDesc) -> Checked {
             translate: grid.origin,
             rotate: [0.0; 3],
             scale: grid.scale,
+            matrix: None,
         };
         check_object(scene, &object)?;
     }

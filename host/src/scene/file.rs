@@ -67,11 +67,11 @@ pub struct SceneFile {
     pub animation: Option<AnimationDesc>,
 }
 
-fn default_background() -> [f32; 3] {
+pub(super) fn default_background() -> [f32; 3] {
     [0.3; 3]
 }
 
-fn default_shadow_samples() -> u32 {
+pub(super) fn default_shadow_samples() -> u32 {
     4
 }
 
@@ -179,6 +179,25 @@ pub struct ObjectDesc {
     pub rotate: [f32; 3],
     #[serde(default)]
     pub scale: Scale,
+    /// A 4x4 matrix, column by column as glTF writes it, applied before `scale`, `rotate`
+    /// and `translate`: a glTF node's world transform (which may shear) lands here.
+    #[serde(default)]
+    pub matrix: Option<[f32; 16]>,
+}
+
+impl ObjectDesc {
+    /// Object space to world space: `matrix`, then scale, rotation and translation.
+    pub fn transform(&self) -> glam::Mat4 {
+        let placed = object_transform(self.translate, self.rotate, self.scale.axes());
+        self.matrix.map_or(placed, |m| placed * glam::Mat4::from_cols_array(&m))
+    }
+}
+
+/// Scale, then rotation about x, y and z (degrees), then translation.
+pub fn object_transform(translate: [f32; 3], rotate_degrees: [f32; 3], scale: [f32; 3]) -> glam::Mat4 {
+    let [x, y, z] = rotate_degrees.map(f32::to_radians);
+    let rotation = glam::Quat::from_euler(glam::EulerRot::ZYX, z, y, x);
+    glam::Mat4::from_scale_rotation_translation(scale.into(), rotation, translate.into())
 }
 
 /// `count[0] x count[1] x count[2]` objects of one shape, `spacing` apart from `origin`, each
@@ -215,6 +234,7 @@ impl GridDesc {
                         translate: std::array::from_fn(|k| self.origin[k] + self.spacing[k] * at[k]),
                         rotate: self.rotate_step.map(|r| (r * step) % 360.0),
                         scale: self.scale,
+                        matrix: None,
                     });
                 }
             }

@@ -19,9 +19,9 @@ pub struct MeshData {
 }
 
 /// Positions and triangles before normals are chosen.
-struct Polyhedron {
-    positions: Vec<Vec3>,
-    triangles: Vec<[u32; 3]>,
+pub(super) struct Polyhedron {
+    pub positions: Vec<Vec3>,
+    pub triangles: Vec<[u32; 3]>,
 }
 
 /// A generated mesh, with flat or smooth normals.
@@ -80,22 +80,27 @@ fn from_models(models: &[tobj::Model], name: &str, normals: Normals) -> Result<M
         p.positions.extend(m.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
         p.triangles.extend(m.indices.chunks_exact(3).map(|t| [base + t[0], base + t[1], base + t[2]]));
     }
+    checked(&p, &format!("mesh file {path}"))?;
+    Ok(with_normals(&p, normals))
+}
+
+/// Whether `p` is a mesh the GPU can take: some triangles, not too many, every vertex finite
+/// and within `MAX_LENGTH`, every index naming a vertex. `what` starts the error.
+pub(super) fn checked(p: &Polyhedron, what: &str) -> Result<(), String> {
     if p.triangles.is_empty() {
-        return Err(format!("mesh file {path} has no triangles"));
+        return Err(format!("{what} has no triangles"));
     }
     if p.triangles.len() > MAX_PRIMITIVES as usize {
-        return Err(format!("mesh file {path} has {} triangles (at most {MAX_PRIMITIVES})", p.triangles.len()));
+        return Err(format!("{what} has {} triangles (at most {MAX_PRIMITIVES})", p.triangles.len()));
     }
     let far = p.positions.iter().find(|v| !v.is_finite() || v.abs().max_element() > MAX_LENGTH);
     if let Some(v) = far {
-        return Err(format!(
-            "mesh file {path} has a vertex at {v}: coordinates must be finite, at most {MAX_LENGTH:e}"
-        ));
+        return Err(format!("{what} has a vertex at {v}: coordinates must be finite, at most {MAX_LENGTH:e}"));
     }
-    if p.triangles.iter().flatten().any(|&i| i as usize >= p.positions.len()) {
-        return Err(format!("mesh file {path} indexes a vertex it does not have"));
+    if let Some(i) = p.triangles.iter().flatten().find(|&&i| i as usize >= p.positions.len()) {
+        return Err(format!("{what} indexes vertex {i}, past its {} vertices", p.positions.len()));
     }
-    Ok(with_normals(&p, normals))
+    Ok(())
 }
 
 fn face_normal(p: &Polyhedron, t: [u32; 3]) -> Vec3 {
@@ -103,7 +108,7 @@ fn face_normal(p: &Polyhedron, t: [u32; 3]) -> Vec3 {
     (b - a).cross(c - a)
 }
 
-fn with_normals(p: &Polyhedron, normals: Normals) -> MeshData {
+pub(super) fn with_normals(p: &Polyhedron, normals: Normals) -> MeshData {
     let vertex = |position: Vec3, normal: Vec3| Vertex {
         position: position.extend(1.0),
         normal: normal.normalize_or_zero().extend(0.0),

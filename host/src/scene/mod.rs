@@ -6,6 +6,7 @@ mod build;
 mod builtin;
 mod check;
 pub mod file;
+pub mod gltf;
 pub mod mesh;
 pub mod plan;
 pub mod reach;
@@ -14,10 +15,10 @@ pub mod shape;
 use crate::error::{Error, Result};
 use crate::util::input::{read_text, MAX_TEXT_BYTES};
 pub use animation::Animation;
-pub use build::{frame_data, frame_uniform, object_transform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
+pub use build::{frame_data, frame_uniform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
 pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
 pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE, MAX_SIDE};
-pub use file::{HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMethod};
+pub use file::{object_transform, HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMethod};
 use glam::Vec3;
 pub use mesh::MeshData;
 pub use plan::{
@@ -44,8 +45,28 @@ pub struct Scene {
 impl Scene {
     /// Loads `arg` as a file path, or else as a built-in scene name; `None` is the default scene.
     pub fn load(arg: Option<&str>) -> Result<Scene> {
+        if let Some(path) = arg.map(Path::new).filter(|p| gltf::is_gltf(p) && p.exists()) {
+            return Scene::load_gltf(path);
+        }
         let (text, source, mesh_files) = Scene::read(arg)?;
         Scene::parse(&text, &source, mesh_files)
+    }
+
+    /// A glTF 2.0 model (`.gltf` or `.glb`) as a scene (see `gltf`); what twinray ignored
+    /// in it is said in one notice.
+    pub fn load_gltf(path: &Path) -> Result<Scene> {
+        let source = path.display().to_string();
+        let model = gltf::load(path).map_err(|message| Error::Scene { path: source.clone(), message })?;
+        if !model.ignored.is_empty() {
+            let list: Vec<&str> = model.ignored.iter().map(String::as_str).collect();
+            log::warn!("{source}: not modelled, ignored: {}", list.join(", "));
+        }
+        Scene::from_model(model, &source)
+    }
+
+    /// The scene of a glTF model read from `source`, checked as a scene file is.
+    pub fn from_model(model: gltf::Model, source: &str) -> Result<Scene> {
+        Scene::from_file(model.file, source, MeshFiles::Given(model.meshes))
     }
 
     /// The text of the scene `load` would load, the name it goes by in errors, and where its
@@ -89,7 +110,7 @@ impl Scene {
     }
 
     /// Checks a parsed scene, expands its grids and loads its meshes.
-    fn from_file(mut file: SceneFile, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
+    fn from_file(mut file: SceneFile, source: &str, mut mesh_files: MeshFiles) -> Result<Scene> {
         let scene_error = |message: String| Error::Scene { path: source.into(), message };
         if file.name.is_empty() {
             let stem = Path::new(source).file_stem().map(|s| s.to_string_lossy().into_owned());
@@ -246,11 +267,14 @@ pub enum MeshFiles {
     Folder(PathBuf),
     /// Inside the binary ([`BUILTIN_MESH_FILES`]), for built-in scenes.
     Builtin,
+    /// Made already (a glTF model's primitives), by name; each is taken once.
+    Given(BTreeMap<String, MeshData>),
 }
 
 impl MeshFiles {
-    fn load(&self, name: &str, normals: shape::Normals) -> std::result::Result<MeshData, String> {
+    fn load(&mut self, name: &str, normals: shape::Normals) -> std::result::Result<MeshData, String> {
         match self {
+            MeshFiles::Given(meshes) => meshes.remove(name).ok_or_else(|| format!("no mesh {name:?} in the model")),
             MeshFiles::Folder(folder) => mesh::load_obj(&folder.join(name), normals),
             MeshFiles::Builtin => match BUILTIN_MESH_FILES.iter().find(|(n, _)| *n == name) {
                 Some((_, text)) => mesh::parse_obj(text.as_bytes(), name, normals),

@@ -1,0 +1,148 @@
+//! A glTF primitive's triangles as a twinray mesh. Every accessor is checked against its
+//! buffer view before it is read (type, count, and the last element within the view), so a
+//! malformed file is refused with the accessor named, never read out of bounds.
+
+use super::super::mesh::{checked, with_normals, MeshData, Polyhedron};
+use super::super::shape::Normals;
+use glam::Vec3;
+use gltf::accessor::{DataType, Dimensions};
+use gltf::mesh::Mode;
+use twinray_shared::layout::Vertex;
+use twinray_shared::shapes::spec::MAX_PRIMITIVES;
+
+/// Most elements one accessor may have: three vertices per triangle of the largest mesh.
+const MAX_ELEMENTS: usize = 3 * MAX_PRIMITIVES as usize;
+
+/// What became of a primitive.
+pub enum Outcome {
+    Mesh(MeshData),
+    /// Not made of triangles (points or lines): its mode, for the notice.
+    NotTriangles(Mode),
+}
+
+/// The triangles of `primitive` (`what` names it in errors), with the file's normals where it
+/// has usable ones and flat normals where it does not; `bad_normals` is set when it had
+/// normals that were not finite or had no length.
+pub fn primitive(
+    primitive: &gltf::Primitive,
+    buffers: &[Vec<u8>],
+    what: &str,
+    bad_normals: &mut bool,
+) -> Result<Outcome, String> {
+    let mode = primitive.mode();
+    if matches!(mode, Mode::Points | Mode::Lines | Mode::LineLoop | Mode::LineStrip) {
+        return Ok(Outcome::NotTriangles(mode));
+    }
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    let position = primitive.get(&gltf::Semantic::Positions).ok_or_else(|| format!("{what} has no POSITION"))?;
+    check(&position, what, "POSITION", &[Dimensions::Vec3], &[DataType::F32])?;
+    let positions: Vec<Vec3> = reader.read_positions().into_iter().flatten().map(Vec3::from).collect();
+    read_all(positions.len(), &position, what, "POSITION")?;
+    let order: Vec<u32> = match primitive.indices() {
+        Some(indices) => {
+            check(&indices, what, "indices", &[Dimensions::Scalar], &[DataType::U8, DataType::U16, DataType::U32])?;
+            let read: Vec<u32> = reader.read_indices().map(|i| i.into_u32().collect()).unwrap_or_default();
+            read_all(read.len(), &indices, what, "indices")?;
+            read
+        }
+        None => (0..positions.len() as u32).collect(),
+    };
+    let p = Polyhedron { positions, triangles: triangles(mode, &order) };
+    checked(&p, what)?;
+    let normals = match primitive.get(&gltf::Semantic::Normals) {
+        Some(n) => {
+            check(&n, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
+            let normals: Vec<Vec3> = reader.read_normals().into_iter().flatten().map(Vec3::from).collect();
+            read_all(normals.len(), &n, what, "NORMAL")?;
+            let usable =
+                normals.len() == p.positions.len() && normals.iter().all(|n| n.is_finite() && n.length() > 1e-6);
+            *bad_normals |= !usable;
+            usable.then_some(normals)
+        }
+        None => None,
+    };
+    Ok(Outcome::Mesh(match normals {
+        Some(normals) => MeshData {
+            vertices: p
+                .positions
+                .iter()
+                .zip(&normals)
+                .map(|(p, n)| Vertex { position: p.extend(1.0), normal: n.normalize().extend(0.0) })
+                .collect(),
+            indices: p.triangles.iter().flatten().copied().collect(),
+        },
+        None => with_normals(&p, Normals::Flat),
+    }))
+}
+
+/// The triangles of a triangle list, strip or fan, as the spec orders them.
+fn triangles(mode: Mode, order: &[u32]) -> Vec<[u32; 3]> {
+    match mode {
+        Mode::TriangleStrip => (2..order.len())
+            .map(|i| {
+                let (a, b, c) = (order[i - 2], order[i - 1], order[i]);
+                if i % 2 == 0 {
+                    [a, b, c]
+                } else {
+                    [b, a, c]
+                }
+            })
+            .collect(),
+        Mode::TriangleFan => (2..order.len()).map(|i| [order[i - 1], order[i], order[0]]).collect(),
+        _ => order.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
+    }
+}
+
+/// An accessor of a type `semantic` allows, with a count twinray takes, whose every element
+/// lies within its buffer view, and whose view lies within its buffer.
+fn check(
+    a: &gltf::Accessor,
+    what: &str,
+    semantic: &str,
+    dimensions: &[Dimensions],
+    types: &[DataType],
+) -> Result<(), String> {
+    let name = format!("{what}: {semantic} (accessor {})", a.index());
+    if !dimensions.contains(&a.dimensions()) || !types.contains(&a.data_type()) {
+        return Err(format!("{name} is {:?} of {:?}, which glTF does not allow there", a.dimensions(), a.data_type()));
+    }
+    if a.count() == 0 || a.count() > MAX_ELEMENTS {
+        return Err(format!("{name} has {} elements (1 to {MAX_ELEMENTS})", a.count()));
+    }
+    let Some(view) = a.view() else { return Ok(()) }; // all zeros, or sparse only
+    let size = a.size();
+    let stride = view.stride().unwrap_or(size);
+    let end = (a.count() - 1).checked_mul(stride).and_then(|n| n.checked_add(a.offset() + size));
+    if end.is_none_or(|end| end > view.length()) {
+        return Err(format!("{name} reaches past the end of its buffer view {}", view.index()));
+    }
+    if view.offset().checked_add(view.length()).is_none_or(|end| end > view.buffer().length()) {
+        return Err(format!("{name}: buffer view {} reaches past the end of its buffer", view.index()));
+    }
+    Ok(())
+}
+
+/// That `read` elements came out of accessor `a`: all of them, or the data was not there.
+fn read_all(read: usize, a: &gltf::Accessor, what: &str, semantic: &str) -> Result<(), String> {
+    if read != a.count() {
+        return Err(format!(
+            "{what}: {semantic} (accessor {}) gave {read} of its {} elements: its data is missing or out of bounds",
+            a.index(),
+            a.count()
+        ));
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn strips_and_fans_become_triangles_as_the_spec_orders_them() {
+        assert_eq!(triangles(Mode::Triangles, &[0, 1, 2, 3, 4, 5, 6]), [[0, 1, 2], [3, 4, 5]]);
+        assert_eq!(triangles(Mode::TriangleStrip, &[0, 1, 2, 3]), [[0, 1, 2], [2, 1, 3]]);
+        assert_eq!(triangles(Mode::TriangleFan, &[0, 1, 2, 3]), [[1, 2, 0], [2, 3, 0]]);
+        assert!(triangles(Mode::TriangleFan, &[0, 1]).is_empty());
+    }
+}

@@ -1,0 +1,211 @@
+//! glTF 2.0 models (`.gltf` with separate or embedded buffers, `.glb`) as twinray scenes: one
+//! more way to fill the scene model TOML fills. Each triangle primitive of a mesh becomes a
+//! mesh shape (one BLAS, shared by every node that uses the mesh), each node that holds a mesh
+//! an object per primitive, placed by the node's world matrix; each material a diffuse
+//! material of its base colour factor. The model's first camera is the scene's camera (else
+//! one framing its bounds) and its KHR_lights_punctual lights its lights (else one key light
+//! over the camera's shoulder): see docs/gltf.md. What the model has that twinray does not
+//! model is named in one notice per model; an extension the model requires and twinray lacks
+//! refuses it.
+
+mod buffers;
+pub use buffers::SUPPORTED_EXTENSIONS;
+mod framing;
+mod geometry;
+
+use super::file::{MaterialDesc, ObjectDesc, SceneFile};
+use super::mesh::MeshData;
+use super::shape::{MeshDesc, ShapeDesc};
+use glam::Mat4;
+use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
+
+/// Nodes deeper than this are refused: a hierarchy this deep is a cycle or an attack.
+const MAX_DEPTH: usize = 256;
+/// Material of primitives that name none: glTF's default (white, here a light grey).
+pub const DEFAULT_MATERIAL: &str = "default";
+
+/// Whether `path` names a glTF file, by its extension.
+pub fn is_gltf(path: &Path) -> bool {
+    path.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case("gltf") || e.eq_ignore_ascii_case("glb"))
+}
+
+/// Where Debian's assimp-testmodels (installed by `cargo xtask setup`) keeps its glTF 2.0
+/// models: the tests' models that no one here made.
+pub const ASSIMP_TEST_MODELS: &str = "/usr/share/assimp/models/glTF2";
+
+/// Every glTF file under `dir` (by extension), in folders below it too, sorted; none when it
+/// cannot be read.
+pub fn models_under(dir: &Path) -> Vec<std::path::PathBuf> {
+    let mut out = Vec::new();
+    for path in std::fs::read_dir(dir).into_iter().flatten().flatten().map(|e| e.path()) {
+        if path.is_dir() {
+            out.extend(models_under(&path));
+        } else if is_gltf(&path) {
+            out.push(path);
+        }
+    }
+    out.sort();
+    out
+}
+
+/// A glTF model as a scene file and its meshes by shape name, and what it has that twinray
+/// ignored (for the notice).
+pub struct Model {
+    pub file: SceneFile,
+    pub meshes: BTreeMap<String, MeshData>,
+    pub ignored: BTreeSet<String>,
+}
+
+/// Reads the model at `path`; the error says what in it is wrong.
+pub fn load(path: &Path) -> Result<Model, String> {
+    model(buffers::load(path)?)
+}
+
+/// The model of a glTF file's `bytes`, its buffer files (if any) relative to `folder`: what
+/// the fuzz target feeds.
+pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
+    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?)
+}
+
+fn model(loaded: buffers::Loaded) -> Result<Model, String> {
+    let doc = &loaded.gltf.document;
+    let mut ignored = BTreeSet::new();
+    ignored
+        .extend(doc.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)).map(|e| format!("extension {e}")));
+    let scene = doc.default_scene().or_else(|| doc.scenes().next()).ok_or("it has no scene")?;
+    let mut placed = Vec::new();
+    for node in scene.nodes() {
+        walk(node, Mat4::IDENTITY, 0, &mut placed)?;
+    }
+    let meshes = meshes(doc, &loaded.buffers, &mut ignored)?;
+    let mut objects = Vec::new();
+    let mut materials = BTreeMap::new();
+    for (node, world) in &placed {
+        let Some(mesh) = node.mesh() else { continue };
+        for primitive in mesh.primitives() {
+            let shape = shape_name(&mesh, primitive.index());
+            if !meshes.contains_key(&shape) {
+                continue; // not triangles
+            }
+            let material = material(&primitive.material(), &mut materials, &mut ignored);
+            objects.push(ObjectDesc {
+                shape,
+                material,
+                translate: [0.0; 3],
+                rotate: [0.0; 3],
+                scale: Default::default(),
+                matrix: Some(world.to_cols_array()),
+            });
+        }
+        ignored.extend(node.skin().map(|_| "skins".to_string()));
+        ignored.extend(node.weights().map(|_| "morph target weights".to_string()));
+    }
+    if objects.is_empty() {
+        let list: Vec<&str> = ignored.iter().map(String::as_str).collect();
+        return Err(format!("its scene places no triangles (ignored: {})", list.join(", ")));
+    }
+    ignored.extend((doc.animations().len() > 0).then(|| "animations".to_string()));
+    let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
+    let view = framing::view(doc, &placed, &objects, &meshes, &mut ignored)?;
+    let file = framing::scene_file(view, shapes, materials, objects);
+    Ok(Model { file, meshes, ignored })
+}
+
+/// Every node under `node` (itself included) with its world matrix, depth first.
+fn walk<'a>(
+    node: gltf::Node<'a>,
+    parent: Mat4,
+    depth: usize,
+    out: &mut Vec<(gltf::Node<'a>, Mat4)>,
+) -> Result<(), String> {
+    if depth > MAX_DEPTH {
+        return Err(format!("node {} is {MAX_DEPTH} levels deep: its hierarchy has a cycle", node.index()));
+    }
+    let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+    for child in node.children() {
+        walk(child, world, depth + 1, out)?;
+    }
+    out.push((node, world));
+    Ok(())
+}
+
+/// The triangle primitives of every mesh, by shape name.
+fn meshes(
+    doc: &gltf::Document,
+    buffers: &[Vec<u8>],
+    ignored: &mut BTreeSet<String>,
+) -> Result<BTreeMap<String, MeshData>, String> {
+    let mut out = BTreeMap::new();
+    let mut bad_normals = false;
+    for mesh in doc.meshes() {
+        for primitive in mesh.primitives() {
+            let name = shape_name(&mesh, primitive.index());
+            match geometry::primitive(&primitive, buffers, &name, &mut bad_normals)? {
+                geometry::Outcome::Mesh(data) => drop(out.insert(name, data)),
+                geometry::Outcome::NotTriangles(mode) => drop(ignored.insert(format!("{mode:?} primitives"))),
+            }
+            if primitive.morph_targets().len() > 0 {
+                ignored.insert("morph targets".into());
+            }
+            for (semantic, _) in primitive.attributes() {
+                use gltf::Semantic as S;
+                if !matches!(semantic, S::Positions | S::Normals) {
+                    ignored.insert(format!("attribute {}", semantic.to_string()));
+                }
+            }
+        }
+    }
+    if bad_normals {
+        ignored.insert("NORMALs that are not finite or have no length (flat normals used)".into());
+    }
+    Ok(out)
+}
+
+/// The shape of primitive `p` of `mesh`.
+fn shape_name(mesh: &gltf::Mesh, p: usize) -> String {
+    match mesh.name() {
+        Some(name) => format!("mesh {} {name:?} primitive {p}", mesh.index()),
+        None => format!("mesh {} primitive {p}", mesh.index()),
+    }
+}
+
+fn mesh_shape(name: &str) -> ShapeDesc {
+    ShapeDesc::Mesh(MeshDesc { builtin: None, file: Some(name.to_string()), normals: Default::default() })
+}
+
+/// The name of `m`'s twinray material, added to `materials` the first time.
+fn material(
+    m: &gltf::Material,
+    materials: &mut BTreeMap<String, MaterialDesc>,
+    ignored: &mut BTreeSet<String>,
+) -> String {
+    let Some(index) = m.index() else {
+        materials.insert(DEFAULT_MATERIAL.into(), MaterialDesc::Diffuse { color: [0.8; 3] });
+        return DEFAULT_MATERIAL.into();
+    };
+    let name = match m.name() {
+        Some(n) => format!("material {index} {n:?}"),
+        None => format!("material {index}"),
+    };
+    let pbr = m.pbr_metallic_roughness();
+    let [r, g, b, _] = pbr.base_color_factor();
+    materials.insert(name.clone(), MaterialDesc::Diffuse { color: [r, g, b] });
+    let mut note = |has: bool, what: &str| {
+        if has {
+            ignored.insert(what.into());
+        }
+    };
+    note(pbr.base_color_texture().is_some(), "base colour textures");
+    note(true, "metallic-roughness (shaded as diffuse)");
+    note(m.normal_texture().is_some(), "normal maps");
+    note(m.occlusion_texture().is_some(), "occlusion maps");
+    note(m.emissive_factor() != [0.0; 3] || m.emissive_texture().is_some(), "emission");
+    note(m.alpha_mode() != gltf::material::AlphaMode::Opaque, "alpha modes MASK and BLEND");
+    name
+}
+
+#[cfg(test)]
+mod tests;

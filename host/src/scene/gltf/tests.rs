@@ -1,0 +1,174 @@
+//! glTF documents written here, each testing one rule of `load`; the models no one here made
+//! are tests/gltf.rs's.
+
+use super::*;
+use base64::Engine as _;
+
+/// A square of two triangles in z = 0, four vertices.
+const SQUARE: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
+
+/// A glTF file of one buffer (`bytes`, as a data URI), with `rest` (the JSON members after
+/// "buffers": accessors, bufferViews, meshes, nodes, scenes, ...).
+fn document(bytes: &[u8], rest: &str) -> String {
+    let data = base64::engine::general_purpose::STANDARD.encode(bytes);
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": {}, "uri": "data:application/octet-stream;base64,{data}"}}], {rest}}}"#,
+        bytes.len()
+    )
+}
+
+fn floats(v: &[[f32; 3]]) -> Vec<u8> {
+    v.iter().flatten().flat_map(|f| f.to_le_bytes()).collect()
+}
+
+/// The square's positions (view 0, accessor 0) and, when given, indices of `component`
+/// (5121, 5123 or 5125) as view 1, accessor 1; `mesh` is the primitive's extra members.
+fn square(indices: Option<(&[u32], u32)>, nodes: &str, mesh: &str) -> String {
+    let mut bytes = floats(&SQUARE);
+    let mut views = format!(r#"{{"buffer": 0, "byteOffset": 0, "byteLength": {}}}"#, bytes.len());
+    let mut accessors =
+        r#"{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}"#
+            .to_string();
+    let mut primitive = r#""attributes": {"POSITION": 0}"#.to_string();
+    if let Some((list, component)) = indices {
+        let start = bytes.len();
+        for &i in list {
+            match component {
+                5121 => bytes.push(i as u8),
+                5123 => bytes.extend((i as u16).to_le_bytes()),
+                _ => bytes.extend(i.to_le_bytes()),
+            }
+        }
+        while !bytes.len().is_multiple_of(4) {
+            bytes.push(0);
+        }
+        views += &format!(r#", {{"buffer": 0, "byteOffset": {start}, "byteLength": {}}}"#, bytes.len() - start);
+        accessors += &format!(
+            r#", {{"bufferView": 1, "componentType": {component}, "count": {}, "type": "SCALAR"}}"#,
+            list.len()
+        );
+        primitive += r#", "indices": 1"#;
+    }
+    document(
+        &bytes,
+        &format!(
+            r#""bufferViews": [{views}], "accessors": [{accessors}], "meshes": [{{"primitives": [{{{primitive}{mesh}}}]}}], "nodes": [{nodes}], "scenes": [{{"nodes": [0]}}]"#
+        ),
+    )
+}
+
+fn load_text(text: &str) -> Result<Model, String> {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("model.gltf");
+    std::fs::write(&path, text).unwrap();
+    load(&path)
+}
+
+const ONE_NODE: &str = r#"{"mesh": 0}"#;
+
+#[test]
+fn every_index_type_and_none_give_the_same_triangles() {
+    let list = [0, 1, 2, 0, 2, 3];
+    let unindexed = load_text(&square(None, ONE_NODE, r#", "mode": 6"#)).unwrap(); // a fan
+    let mut triangles = Vec::new();
+    for component in [5121, 5123, 5125] {
+        let model = load_text(&square(Some((&list, component)), ONE_NODE, "")).unwrap();
+        let mesh = model.meshes.values().next().unwrap();
+        let corners: Vec<[f32; 3]> =
+            mesh.indices.iter().map(|&i| mesh.vertices[i as usize].position.truncate().into()).collect();
+        triangles.push(corners);
+    }
+    assert!(triangles.windows(2).all(|w| w[0] == w[1]), "{triangles:?}");
+    let fan = unindexed.meshes.values().next().unwrap();
+    assert_eq!(fan.indices.len(), 6, "a fan of four vertices is two triangles");
+    // Without NORMAL, flat normals: the square faces +z.
+    assert!(fan.vertices.iter().all(|v| v.normal.truncate() == glam::Vec3::Z), "{:?}", fan.vertices);
+}
+
+#[test]
+fn nodes_compose_their_transforms_and_share_their_mesh() {
+    let nodes = r#"{"translation": [10, 0, 0], "children": [1, 2]}, {"mesh": 0, "scale": [2, 2, 2]}, {"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,5,0,1]}"#;
+    let model = load_text(&square(None, nodes, "")).unwrap();
+    assert_eq!(model.meshes.len(), 1, "one mesh shape for both nodes");
+    assert_eq!(model.file.objects.len(), 2);
+    let at = |o: &ObjectDesc, p: glam::Vec3| o.transform().transform_point3(p);
+    let [a, b] = [&model.file.objects[0], &model.file.objects[1]];
+    assert_eq!(at(a, glam::Vec3::ONE), glam::Vec3::new(12.0, 2.0, 2.0), "child scaled, then parent moved");
+    assert_eq!(at(b, glam::Vec3::ZERO), glam::Vec3::new(10.0, 5.0, 0.0));
+    assert_eq!(a.shape, b.shape);
+}
+
+#[test]
+fn a_camera_node_is_the_camera_and_sets_the_aspect() {
+    let nodes = r#"{"children": [1, 2]}, {"mesh": 0}, {"camera": 0, "translation": [0.5, 0.5, 4]}"#;
+    let text = square(None, nodes, "").replacen(
+        r#""scenes""#,
+        r#""cameras": [{"type": "perspective", "perspective": {"yfov": 0.5, "aspectRatio": 2.0, "znear": 0.1}}], "scenes""#,
+        1,
+    );
+    let model = load_text(&text).unwrap();
+    let c = model.file.camera;
+    assert_eq!(c.eye, [0.5, 0.5, 4.0]);
+    assert!((c.fov_y_degrees - 0.5f32.to_degrees()).abs() < 1e-4);
+    assert_eq!((model.file.image.width, model.file.image.height), (960, 480));
+    assert!(c.target[2] < c.eye[2], "looks down its -z");
+}
+
+#[test]
+fn without_camera_or_lights_the_model_is_framed_and_lit() {
+    let model = load_text(&square(None, ONE_NODE, "")).unwrap();
+    let c = model.file.camera;
+    assert_eq!(c.target, [0.5, 0.5, 0.0], "the bounds' centre");
+    assert!(c.eye[2] > 0.0, "from in front");
+    assert_eq!(model.file.lights.len(), 2, "key and fill");
+    assert!(model.file.materials.contains_key(DEFAULT_MATERIAL));
+    assert!(model.ignored.is_empty(), "{:?}", model.ignored);
+}
+
+#[test]
+fn what_is_not_modelled_is_named() {
+    let text = square(None, ONE_NODE, r#", "material": 0"#).replacen(
+        r#""scenes""#,
+        r#""materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]}, "alphaMode": "MASK"}], "extensionsUsed": ["EXT_made_up"], "scenes""#,
+        1,
+    );
+    let model = load_text(&text).unwrap();
+    let ignored: Vec<&str> = model.ignored.iter().map(String::as_str).collect();
+    for want in ["alpha modes MASK and BLEND", "extension EXT_made_up", "metallic-roughness (shaded as diffuse)"] {
+        assert!(ignored.contains(&want), "{ignored:?}");
+    }
+    let red = model.file.materials.values().next().unwrap();
+    assert!(matches!(red, MaterialDesc::Diffuse { color: [1.0, 0.0, 0.0] }), "{red:?}");
+}
+
+/// `load` refuses `text`, saying `why`.
+fn refused(text: &str, why: &str) {
+    match load_text(text) {
+        Ok(_) => panic!("loaded, though {why}"),
+        Err(e) => assert!(e.contains(why), "{e:?} does not say {why:?}"),
+    }
+}
+
+#[test]
+fn malformed_models_are_refused_with_their_fault_named() {
+    let good = square(Some((&[0, 1, 2, 0, 2, 3], 5123)), ONE_NODE, "");
+    refused(
+        &good.replacen("{\"asset\"", "{\"extensionsRequired\": [\"KHR_draco_mesh_compression\"], \"asset\"", 1),
+        "requires the extension KHR_draco_mesh_compression",
+    );
+    refused(&square(Some((&[0, 1, 9], 5123)), ONE_NODE, ""), "indexes vertex 9, past its 4 vertices");
+    refused(&good.replacen(r#""count": 4"#, r#""count": 5"#, 1), "reaches past the end of its buffer view");
+    refused(&good.replacen(r#""type": "VEC3""#, r#""type": "VEC2""#, 1), "which glTF does not allow there");
+    refused(&good.replacen(r#""byteLength": 60"#, r#""byteLength": 600"#, 1), "fewer than its byteLength");
+    refused(&square(None, r#"{"mesh": 0, "children": [0]}"#, ""), "has a cycle");
+    refused(&square(None, ONE_NODE, r#", "mode": 1"#), "places no triangles (ignored: Lines primitives)");
+    refused("{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": 7}]}", "not a valid glTF 2.0 file");
+    refused("not json at all", "not a valid glTF 2.0 file");
+    let far = floats(&[[0.0; 3], [1e30, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0; 3]]);
+    let text = square(None, ONE_NODE, "");
+    let square_data = base64::engine::general_purpose::STANDARD.encode(floats(&SQUARE));
+    refused(
+        &text.replace(&square_data, &base64::engine::general_purpose::STANDARD.encode(far)),
+        "coordinates must be finite, at most",
+    );
+}
