@@ -1,7 +1,7 @@
 //! Malformed glTF files no one here wrote (Debian's assimp-testmodels, installed by `cargo
 //! xtask setup`), given to every command that loads a scene: each ends with exit code 2 and
 //! one line naming the file, writes nothing and never panics. Which files are malformed is
-//! what the loader says (tests/gltf.rs pins the known ones); a file that loads is skipped.
+//! what the loader says (tests/assimp.rs pins the known ones); a file that loads is skipped.
 
 mod common;
 

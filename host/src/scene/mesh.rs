@@ -65,10 +65,38 @@ pub fn load_obj(path: &Path, normals: Normals) -> Result<MeshData, String> {
 /// Reads OBJ text (a mesh file shipped in the binary, or one read by `load_obj`); `name` names
 /// it in errors. Material libraries are not read: twinray's materials come from the scene.
 pub fn parse_obj(text: &[u8], name: &str, normals: Normals) -> Result<MeshData, String> {
-    let mut reader = std::io::BufReader::new(text);
+    let text = obj_text(text);
+    let mut reader = std::io::BufReader::new(text.as_bytes());
     let (models, _) = tobj::load_obj_buf(&mut reader, &OBJ_OPTIONS, |_| Err(tobj::LoadError::OpenFileFailed))
         .map_err(|e| format!("cannot read mesh file {name}: {e}"))?;
     from_models(&models, name, normals)
+}
+
+/// The lines of an OBJ file that describe geometry, as UTF-8: UTF-16 with a byte order mark
+/// is decoded, bytes that are not UTF-8 become U+FFFD, and `mtllib` and `usemtl` statements are
+/// dropped, since their names (empty, or in another encoding, in files written elsewhere) would
+/// otherwise fail the parse of geometry twinray reads without them.
+fn obj_text(bytes: &[u8]) -> String {
+    let utf16 = |be: bool| {
+        let units = bytes[2..].chunks_exact(2).map(|c| {
+            if be {
+                u16::from_be_bytes([c[0], c[1]])
+            } else {
+                u16::from_le_bytes([c[0], c[1]])
+            }
+        });
+        char::decode_utf16(units).map(|c| c.unwrap_or(char::REPLACEMENT_CHARACTER)).collect::<String>()
+    };
+    let text = match bytes {
+        [0xfe, 0xff, ..] => utf16(true),
+        [0xff, 0xfe, ..] => utf16(false),
+        _ => String::from_utf8_lossy(bytes).into_owned(),
+    };
+    let material = |l: &str| {
+        let l = l.trim_start();
+        l.starts_with("usemtl") || l.starts_with("mtllib")
+    };
+    text.lines().filter(|l| !material(l)).flat_map(|l| [l, "\n"]).collect()
 }
 
 fn from_models(models: &[tobj::Model], name: &str, normals: Normals) -> Result<MeshData, String> {
@@ -273,5 +301,20 @@ mod tests {
         assert!(missing.contains("nope.obj"), "{missing}");
         std::fs::write(&path, "v 0 0 0\n").unwrap();
         assert!(load_obj(&path, Normals::Flat).unwrap_err().contains("no triangles"));
+    }
+
+    #[test]
+    fn obj_text_in_other_encodings_and_with_odd_material_names_loads() {
+        let plain = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+        let want = parse_obj(plain.as_bytes(), "a.obj", Normals::Flat).unwrap();
+        let odd = "mtllib x.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl \nusemtl Terraind\u{e4}k\nf 1 2 3\n";
+        let mut latin1 = odd.replace('\u{e4}', "?").into_bytes();
+        let at = latin1.iter().position(|&b| b == b'?').unwrap();
+        latin1[at] = 0xe4; // not UTF-8
+        let mut utf16: Vec<u8> = vec![0xfe, 0xff];
+        utf16.extend(plain.encode_utf16().flat_map(u16::to_be_bytes));
+        for (label, bytes) in [("materials", odd.as_bytes().to_vec()), ("latin-1", latin1), ("utf-16", utf16)] {
+            assert_eq!(parse_obj(&bytes, "a.obj", Normals::Flat).as_ref(), Ok(&want), "{label}");
+        }
     }
 }

@@ -1,5 +1,5 @@
 //! glTF documents written here, each testing one rule of `load`; the models no one here made
-//! are tests/gltf.rs's.
+//! are tests/assimp.rs's.
 
 use super::*;
 use base64::Engine as _;

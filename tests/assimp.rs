@@ -1,0 +1,148 @@
+//! Models no one here made: Debian's assimp-testmodels (installed by `cargo xtask setup`).
+//! Every glTF 2.0 file of its glTF2 folder is loaded as a scene. Each one twinray models renders with the Rust
+//! and the GLSL set within the default parity tolerance (no hit mismatch away from a
+//! silhouette), on lavapipe with validation on; each one it cannot render is refused as bad
+//! input with its fault named. Which is which is not decided here: the lists below only pin
+//! the models already known to render and to be malformed, so that neither kind can slip into
+//! the other unnoticed. Every OBJ file of its OBJ folder loads as a mesh or is refused naming
+//! the file, and two of them render alike in both sets.
+
+use std::path::Path;
+use twinray::scene::shape::Normals;
+use twinray::Scene;
+use twinray_tests::{render_scene, validated_context, SCENE_TEST_SIZE};
+
+use twinray::scene::gltf::ASSIMP_TEST_MODELS as MODELS;
+
+/// Models that must render, relative to `MODELS`.
+const RENDERED: [&str; 14] = [
+    "2CylinderEngine-glTF-Binary/2CylinderEngine.glb",
+    "BoxBadNormals-glTF-Binary/BoxBadNormals.glb",
+    "BoxTexcoords-glTF/boxTexcoords.gltf",
+    "BoxTextured-glTF-Binary/BoxTextured.glb",
+    "BoxTextured-glTF-Embedded/BoxTextured.gltf",
+    "BoxTextured-glTF/BoxTextured.gltf",
+    "ClearCoat-glTF/ClearCoatTest.gltf",
+    "cameras/Cameras.gltf",
+    "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_04.gltf",
+    "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_05.gltf",
+    "glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_06.gltf",
+    "glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf",
+    "simple_skin/simple_skin.gltf",
+    "textureTransform/TextureTransformTest.gltf",
+];
+
+/// Models that must be refused, and words of their fault.
+const REFUSED: [(&str, &str); 10] = [
+    ("IndexOutOfRange/IndexOutOfRange.gltf", "indexes vertex 255, past its 24 vertices"),
+    ("IndexOutOfRange/AllIndicesOutOfRange.gltf", "past its 24 vertices"),
+    ("MissingBin/BoxTextured.gltf", "buffer 0: cannot read"),
+    ("RecursiveNodes/RecursiveNodes.gltf", "has a cycle"),
+    ("BoxTextured-glTF-techniqueWebGL/BoxTextured.gltf", "requires the extension KHR_technique_webgl"),
+    ("draco/2CylinderEngine.gltf", "requires the extension KHR_draco_mesh_compression"),
+    ("SchemaFailures/sceneWrongType.gltf", "not a valid glTF 2.0 file"),
+    ("wrongTypes/badNumber.gltf", "not a valid glTF 2.0 file"),
+    ("glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_00.gltf", "places no triangles (ignored: Points"),
+    ("TestNoRootNode/NoScene.gltf", "not a valid glTF 2.0 file"),
+];
+
+/// Rust against GLSL on `scene` at `SCENE_TEST_SIZE`: within its parity, and something hit.
+fn renders_alike(ctx: &std::sync::Arc<twinray::Context>, scene: &Scene, name: &str) {
+    let (rust, glsl) = (render_scene(ctx, scene, "rust"), render_scene(ctx, scene, "glsl"));
+    let parity = scene.file.parity;
+    let d = twinray::compare::diff(&rust, &glsl, parity.pixel_threshold);
+    let failures = twinray::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
+    eprintln!("{name}: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
+    assert!(failures.is_empty(), "{name}: rust against glsl: {failures:?}");
+    assert!(twinray::compare::hit_count(&rust) > 0, "{name}: the model is not in the picture");
+}
+
+#[test]
+fn every_model_renders_alike_in_both_sets_or_is_refused_with_its_fault_named() {
+    let files = twinray::scene::gltf::models_under(Path::new(MODELS));
+    assert!(
+        files.len() >= 40,
+        "{MODELS} holds {} glTF files: run `cargo xtask setup` (assimp-testmodels)",
+        files.len()
+    );
+    let ctx = validated_context();
+    let (mut rendered, mut refused) = (Vec::new(), Vec::new());
+    for path in &files {
+        let name = path.strip_prefix(MODELS).unwrap().display().to_string();
+        let scene = match Scene::load(path.to_str()) {
+            Ok(scene) => scene,
+            Err(e) => {
+                assert!(matches!(e, twinray::Error::Scene { .. }), "{name}: not bad input: {e}");
+                eprintln!("{name}: refused: {e}");
+                refused.push((name, e.to_string()));
+                continue;
+            }
+        };
+        renders_alike(&ctx, &scene, &name);
+        rendered.push(name);
+    }
+    for want in RENDERED {
+        assert!(rendered.iter().any(|r| r == want), "{want} did not render: {refused:?}");
+    }
+    for (want, fault) in REFUSED {
+        let Some((_, e)) = refused.iter().find(|(r, _)| r == want) else { panic!("{want} was not refused") };
+        assert!(e.contains(fault) && e.contains(want), "{want}: {e:?} does not name {fault:?} and the file");
+    }
+}
+
+const OBJ_MODELS: &str = "/usr/share/assimp/models/OBJ";
+
+/// OBJ files that must load (odd encodings and material names included), and that must not.
+const OBJ_LOADED: [&str; 7] =
+    ["WusonOBJ.obj", "spider.obj", "regr01.obj", "empty_mat.obj", "box_UTF16BE.obj", "concave_polygon.obj", "box.obj"];
+const OBJ_REFUSED: [(&str, &str); 3] = [
+    ("number_formats.obj", "position parse error"),
+    ("point_cloud.obj", "has no triangles"),
+    ("testpoints.obj", "has no triangles"),
+];
+
+/// A scene of one OBJ mesh from `OBJ_MODELS`, framed by hand: the models are about 10 units wide.
+fn obj_scene(file: &str) -> Scene {
+    let text = format!(
+        "[image]\nwidth = 160\nheight = 120\n[camera]\neye = [10.0, 8.0, 30.0]\ntarget = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov_y_degrees = 45.0\n\
+         [materials.m]\nkind = \"diffuse\"\ncolor = [0.8, 0.8, 0.8]\n[[lights]]\nkind = \"directional\"\ndirection = [1.0, 2.0, 1.5]\ncolor = [1.0, 1.0, 1.0]\nintensity = 1.0\n\
+         [shapes.s]\nkind = \"mesh\"\nfile = \"{file}\"\nnormals = \"smooth\"\n[[objects]]\nshape = \"s\"\nmaterial = \"m\"\n"
+    );
+    Scene::parse(&text, file, twinray::scene::MeshFiles::Folder(OBJ_MODELS.into()))
+        .unwrap_or_else(|e| panic!("{file}: {e}"))
+}
+
+#[test]
+fn every_obj_model_loads_or_is_refused_naming_the_file() {
+    let mut files: Vec<_> = std::fs::read_dir(OBJ_MODELS).into_iter().flatten().flatten().map(|e| e.path()).collect();
+    files.retain(|p| p.extension().is_some_and(|e| e == "obj"));
+    files.sort();
+    assert!(files.len() >= 20, "{OBJ_MODELS} holds {} OBJ files: run `cargo xtask setup`", files.len());
+    let mut loaded = Vec::new();
+    for path in &files {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        match twinray::scene::mesh::load_obj(path, Normals::Smooth) {
+            Ok(mesh) => {
+                assert!(!mesh.indices.is_empty(), "{name}");
+                loaded.push(name);
+            }
+            Err(e) => {
+                eprintln!("{name}: refused: {e}");
+                assert!(e.contains(&name), "{name}: {e:?} does not name the file");
+                if let Some((_, fault)) = OBJ_REFUSED.iter().find(|(f, _)| *f == name) {
+                    assert!(e.contains(fault), "{name}: {e:?} does not say {fault:?}");
+                }
+            }
+        }
+    }
+    for want in OBJ_LOADED {
+        assert!(loaded.iter().any(|l| l == want), "{want} did not load");
+    }
+    for (refused, _) in OBJ_REFUSED {
+        assert!(!loaded.iter().any(|l| l == refused), "{refused} loaded");
+    }
+    let ctx = validated_context();
+    for file in ["WusonOBJ.obj", "spider.obj"] {
+        renders_alike(&ctx, &obj_scene(file), file);
+    }
+}
