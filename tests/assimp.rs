@@ -55,6 +55,11 @@ fn renders_alike(ctx: &std::sync::Arc<twinray::Context>, scene: &Scene, name: &s
     eprintln!("{name}: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
     assert!(failures.is_empty(), "{name}: rust against glsl: {failures:?}");
     assert!(twinray::compare::hit_count(&rust) > 0, "{name}: the model is not in the picture");
+    // Every mesh in one BLAS each, kept no larger than built (compacted where the driver can).
+    let a = rust.accel;
+    let triangles: usize = scene.meshes.values().map(|m| m.indices.len() / 3).sum();
+    assert_eq!((a.blases, a.triangles), (scene.meshes.len(), triangles as u64), "{name}: {a}");
+    assert!(a.blas_bytes > 0 && a.blas_bytes <= a.blas_built_bytes && a.tlas_bytes > 0, "{name}: {a}");
 }
 
 #[test]

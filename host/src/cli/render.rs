@@ -16,7 +16,9 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
         refuse_viewpoint_with_frames(&args.viewpoint)?;
         return crate::frames::render(global, args, range);
     }
+    let loading = std::time::Instant::now();
     let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
+    let load_ms = loading.elapsed().as_secs_f64() * 1e3;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     check_png_target(&args.out)?;
     let ctx = context(global)?;
@@ -43,6 +45,8 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             "cpu_threads": ctx.info.cpu_threads,
             "hit_pixels": hit_count(&out),
             "written": out.written,
+            "load_ms": load_ms,
+            "acceleration_structures": out.accel,
             "pass": problems.is_empty(),
             "failures": problems,
         });
@@ -60,6 +64,7 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             ctx.info.name,
             out.rays
         );
+        println!("  scene loaded in {load_ms:.0} ms; {}", out.accel);
         for problem in &problems {
             println!("FAIL: {problem} (magenta in {})", args.out.display());
         }

@@ -187,6 +187,7 @@ mod tests {
             raygen_stack_bytes: 0,
             written: Written::default(),
             no_payload: vec![],
+            accel: Default::default(),
         }
     }
 

@@ -2,6 +2,7 @@
 
 use super::placement::PlacementTimes;
 use super::sentinel;
+pub use super::upload::AccelStats;
 use crate::util::interval::RatioInterval;
 use crate::util::stats::{median, Spread};
 use twinray_shared::bindings as b;
@@ -56,6 +57,8 @@ pub struct RenderOutput {
     /// Pixels with primary rays whose hit or miss stage wrote no payload, for naming the stage
     /// (`explain::no_payload`).
     pub no_payload: Vec<NoPayloadPixel>,
+    /// The scene's acceleration structures, as uploaded for this render.
+    pub accel: AccelStats,
 }
 
 /// What a set left of the sentinel its outputs started as (see `render::sentinel`), and

@@ -3,7 +3,7 @@
 
 use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE};
 use super::libraries::Libraries;
-use super::output::{read_back, to_rgba8, RayCounts, RenderOptions, RenderOutput};
+use super::output::{read_back, to_rgba8, AccelStats, RayCounts, RenderOptions, RenderOutput};
 use super::placement;
 use super::prepare::{prepare_on, storage_buffer, Prepared};
 use super::sentinel;
@@ -207,7 +207,13 @@ impl SetRender {
         self.prepared.trace(ctx, self.timestamps.as_ref(), size, (warmup, runs))
     }
 
-    pub fn output(&self, scene: &Scene, opts: &RenderOptions, warmup_traces: u32) -> Result<RenderOutput> {
+    pub fn output(
+        &self,
+        scene: &Scene,
+        opts: &RenderOptions,
+        warmup_traces: u32,
+        accel: AccelStats,
+    ) -> Result<RenderOutput> {
         let gpu_ms = self.timestamps.as_ref().map(|t| t.read_ms()).transpose()?.unwrap_or_default();
         let pixels = u64::from(opts.width) * u64::from(opts.height);
         let image = &self.image_readback.mapped()?[..(pixels * PIXEL_BYTES) as usize];
@@ -226,6 +232,7 @@ impl SetRender {
             raygen_stack_bytes: self.prepared.pipeline.raygen_stack_bytes(),
             written: read.written,
             no_payload: read.no_payload,
+            accel,
         })
     }
 }
@@ -254,7 +261,7 @@ fn render_placement(
         let trace = render.timed_trace(ctx, size, (opts.warmup, opts.runs))?;
         let _doing = activity::doing(format!("the timed traces of {}", render.label));
         tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
-        out.push(render.output(scene, opts, trace.warmup)?);
+        out.push(render.output(scene, opts, trace.warmup, uploaded.accel)?);
     }
     Ok(out)
 }

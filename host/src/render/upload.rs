@@ -43,6 +43,7 @@ pub(crate) struct UploadedScene {
     pub resources: Rc<SceneResources>,
     /// The TLAS instances as uploaded: a moving scene rewrites their transforms.
     pub instances: Vec<InstanceRecord>,
+    pub accel: AccelStats,
 }
 
 /// Builds the scene's acceleration structures and buffers, frame constants for `frame` pixels.
@@ -68,6 +69,7 @@ fn upload_scene(
     moving: Option<TlasFlags>,
 ) -> Result<UploadedScene> {
     let _doing = crate::util::activity::doing(format!("building the acceleration structures of {}", scene.name()));
+    let started = std::time::Instant::now();
     let one_shot = &OneShot::new(ctx)?;
     let built = scene.build();
     let data = &built;
@@ -134,8 +136,52 @@ fn upload_scene(
         (b::BINDING_VERTICES, storage, vertices),
         (b::BINDING_INDICES, storage, indices),
     ];
+    let accel = AccelStats {
+        blases: blases.len(),
+        triangles: data.indices.len() as u64 / 3,
+        procedural_primitives: data.primitives.len() as u64,
+        instances: instances.len(),
+        blas_built_bytes: blases.iter().map(|b| b.built_bytes).sum(),
+        blas_bytes: blases.iter().map(|b| b.bytes).sum(),
+        tlas_bytes: tlas.accel.bytes,
+        build_ms: started.elapsed().as_secs_f64() * 1e3,
+    };
+    log::info!("scene {}: {accel}", scene.name());
     let resources = SceneResources { _blases: blases, tlas: RefCell::new(tlas), buffers: RefCell::new(buffers) };
-    Ok(UploadedScene { data: built, resources: Rc::new(resources), instances })
+    Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel })
+}
+
+/// What a scene's acceleration structures hold and took: counts, device memory (bottom-level
+/// structures as built and once compacted), and the host's wall time to build them all
+/// (uploads, builds, compaction, each waited for).
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct AccelStats {
+    pub blases: usize,
+    pub triangles: u64,
+    pub procedural_primitives: u64,
+    pub instances: usize,
+    pub blas_built_bytes: u64,
+    pub blas_bytes: u64,
+    pub tlas_bytes: u64,
+    pub build_ms: f64,
+}
+
+impl std::fmt::Display for AccelStats {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
+        write!(
+            f,
+            "{} BLASes ({} triangles, {} procedural primitives): {:.2} MiB as built, {:.2} MiB compacted; TLAS of {} instances {:.2} MiB; built in {:.0} ms",
+            self.blases,
+            self.triangles,
+            self.procedural_primitives,
+            mib(self.blas_built_bytes),
+            mib(self.blas_bytes),
+            self.instances,
+            mib(self.tlas_bytes),
+            self.build_ms
+        )
+    }
 }
 
 /// A host-visible buffer usable as a uniform or storage buffer; an empty slice still gets a

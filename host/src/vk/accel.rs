@@ -3,6 +3,7 @@
 
 use super::buffer::Buffer;
 use super::commands::{memory_barrier, OneShot, TRACING_STAGES};
+use super::compact;
 use super::context::Context;
 use crate::error::{Result, VkContext};
 use ash::vk;
@@ -15,6 +16,10 @@ pub struct AccelStruct {
     ctx: Arc<Context>,
     pub raw: vk::AccelerationStructureKHR,
     pub address: vk::DeviceAddress,
+    /// Bytes of its storage.
+    pub bytes: u64,
+    /// Bytes of its storage as first built: more than `bytes` once compacted.
+    pub built_bytes: u64,
     _storage: Buffer,
 }
 
@@ -246,24 +251,31 @@ fn allocate(
             &mut sizes,
         )
     };
+    Ok((allocate_sized(ctx, info.ty, sizes.acceleration_structure_size, name)?, sizes))
+}
+
+/// An acceleration structure of type `ty` in `bytes` of new storage, not built yet.
+fn allocate_sized(
+    ctx: &Arc<Context>,
+    ty: vk::AccelerationStructureTypeKHR,
+    bytes: u64,
+    name: &str,
+) -> Result<AccelStruct> {
     let storage = Buffer::new(
         ctx,
         name,
-        sizes.acceleration_structure_size,
+        bytes,
         vk::BufferUsageFlags::ACCELERATION_STRUCTURE_STORAGE_KHR | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS,
         MemoryLocation::GpuOnly,
     )?;
-    let create = vk::AccelerationStructureCreateInfoKHR::default()
-        .buffer(storage.raw)
-        .size(sizes.acceleration_structure_size)
-        .ty(info.ty);
+    let create = vk::AccelerationStructureCreateInfoKHR::default().buffer(storage.raw).size(bytes).ty(ty);
     // SAFETY: the storage buffer is large enough and outlives the structure (held in AccelStruct).
     let raw =
         unsafe { ctx.accel.create_acceleration_structure(&create, None) }.call("vkCreateAccelerationStructureKHR")?;
     let address_info = vk::AccelerationStructureDeviceAddressInfoKHR::default().acceleration_structure(raw);
     // SAFETY: raw is live.
     let address = unsafe { ctx.accel.get_acceleration_structure_device_address(&address_info) };
-    Ok((AccelStruct { ctx: ctx.clone(), raw, address, _storage: storage }, sizes))
+    Ok(AccelStruct { ctx: ctx.clone(), raw, address, bytes, built_bytes: bytes, _storage: storage })
 }
 
 /// A scratch buffer of `size` bytes and its address, aligned to
@@ -281,7 +293,8 @@ fn scratch(ctx: &Arc<Context>, size: u64) -> Result<(Buffer, vk::DeviceAddress)>
     Ok((buffer, address))
 }
 
-/// A bottom-level structure over one geometry, built and waited for.
+/// A bottom-level structure over one geometry, built, waited for and compacted (see
+/// `compact`): a BLAS is built once and traced many times, so its memory is what stays.
 fn build(
     ctx: &Arc<Context>,
     one_shot: &OneShot,
@@ -291,25 +304,49 @@ fn build(
 ) -> Result<AccelStruct> {
     let geometries = [geometry];
     let ty = vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL;
-    let info = build_info(ty, vk::BuildAccelerationStructureFlagsKHR::PREFER_FAST_TRACE, &geometries);
+    type F = vk::BuildAccelerationStructureFlagsKHR;
+    let info = build_info(ty, F::PREFER_FAST_TRACE | F::ALLOW_COMPACTION, &geometries);
     let (accel, sizes) = allocate(ctx, &info, primitive_count, name)?;
     let (_scratch, scratch_address) = scratch(ctx, sizes.build_scratch_size)?;
     let info = info
         .dst_acceleration_structure(accel.raw)
         .scratch_data(vk::DeviceOrHostAddressKHR { device_address: scratch_address });
     let range = [vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(primitive_count)];
+    let size = compact::CompactedSize::new(ctx)?;
     one_shot.run(|device, cmd| {
+        size.reset(cmd);
         // SAFETY: every buffer referenced by `info` is alive until run() has waited.
         unsafe { ctx.accel.cmd_build_acceleration_structures(cmd, &[info], &[&range]) };
-        // The build's writes must land before a later build or trace reads the structure.
-        let written = (
-            vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
-            vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
-        );
-        memory_barrier(device, cmd, written, built_for_reading());
+        written_for_reading(device, cmd);
+        size.write(cmd, accel.raw);
         Ok(())
     })?;
-    Ok(accel)
+    compacted(ctx, one_shot, accel, size.read()?, name)
+}
+
+/// `built` copied into a structure of `size` bytes, its compacted size; the built one is freed
+/// once the copy has completed. An equal size is copied too (lavapipe reports the size as
+/// built), so that what every driver traces is the copy, in CI under validation as well.
+fn compacted(ctx: &Arc<Context>, one_shot: &OneShot, built: AccelStruct, size: u64, name: &str) -> Result<AccelStruct> {
+    if size == 0 || size > built.bytes {
+        return Ok(built);
+    }
+    let mut small = allocate_sized(ctx, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, size, name)?;
+    one_shot.run(|device, cmd| {
+        compact::record_copy(ctx, cmd, built.raw, small.raw);
+        written_for_reading(device, cmd);
+        Ok(())
+    })?;
+    small.built_bytes = built.bytes;
+    Ok(small)
+}
+
+/// A barrier after an acceleration structure is written: a later build, copy, query or trace
+/// reads what was written.
+fn written_for_reading(device: &ash::Device, cmd: vk::CommandBuffer) {
+    let written =
+        (vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR, vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR);
+    memory_barrier(device, cmd, written, built_for_reading());
 }
 
 /// VkAabbPositionsKHR as bytes.

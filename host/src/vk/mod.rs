@@ -3,6 +3,7 @@
 pub mod accel;
 pub mod buffer;
 pub mod commands;
+pub mod compact;
 pub mod context;
 pub mod deferred;
 pub mod descriptors;
