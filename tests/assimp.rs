@@ -151,3 +151,43 @@ fn every_obj_model_loads_or_is_refused_naming_the_file() {
         renders_alike(&ctx, &obj_scene(file), file);
     }
 }
+
+/// The engine of assimp's glTF2 folder (75,730 triangles in 34 primitives).
+const ENGINE: &str = "2CylinderEngine-glTF-Binary/2CylinderEngine.glb";
+
+/// A scene around `body`: the engines' view, a light, and glTF shapes and objects.
+fn engines(body: &str) -> Scene {
+    let text = format!(
+        "[image]\nwidth = 160\nheight = 120\n[camera]\neye = [2500.0, 1800.0, 3500.0]\ntarget = [600.0, 0.0, 600.0]\n\
+         up = [0.0, 1.0, 0.0]\nfov_y_degrees = 45.0\n[[lights]]\nkind = \"directional\"\ndirection = [1.0, 2.0, 1.5]\n\
+         color = [1.0, 1.0, 1.0]\nintensity = 1.0\n{body}"
+    );
+    Scene::parse(&text, "engines.toml", twinray::scene::MeshFiles::Folder(MODELS.into())).expect("the engines' scene")
+}
+
+/// Over a million triangles of a model no one here made, placed by a scene file: 16 instances
+/// of one model in a grid (its BLASes shared), and 14 copies each with BLASes of their own.
+#[test]
+fn a_million_triangles_of_a_real_model_render_alike_instanced_and_not() {
+    let ctx = validated_context();
+    let model = |name: &str| format!("[shapes.{name}]\nkind = \"gltf\"\nfile = \"{ENGINE}\"\n");
+    let grid =
+        "[[grids]]\nshape = \"engine\"\nmaterials = [\"\"]\ncount = [4, 2, 2]\nspacing = [400.0, 300.0, 900.0]\n";
+    let instanced = engines(&format!("{}{grid}", model("engine")));
+    let separate = engines(
+        &(0..14)
+            .map(|i| {
+                let at = [(i % 4) as f32 * 400.0, ((i / 4) % 2) as f32 * 300.0, (i / 8) as f32 * 900.0];
+                format!("{}[[objects]]\nshape = \"e{i}\"\ntranslate = {at:?}\n", model(&format!("e{i}")))
+            })
+            .collect::<String>(),
+    );
+    for (label, scene, blases) in [("instanced", &instanced, 34), ("separate", &separate, 14 * 34)] {
+        let out = render_scene(&ctx, scene, "rust");
+        let a = out.accel;
+        eprintln!("{label}: {a}");
+        assert_eq!(a.blases, blases, "{label}");
+        assert!(a.instanced_triangles >= 1_000_000, "{label}: {a}");
+        renders_alike(&ctx, scene, label);
+    }
+}

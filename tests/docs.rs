@@ -52,6 +52,11 @@ fn every_kind_is_documented_and_used_by_a_builtin_scene() {
                 doc.contains(&format!("`{kind}`")) || doc.contains(&format!("\"{kind}\"")),
                 "{section} kind {kind} is not documented"
             );
+            // Built-in scenes are embedded in the binary and read no model files; the glTF
+            // shape is tested on assimp's models (tests/assimp.rs) instead.
+            if *kind == "gltf" {
+                continue;
+            }
             let used =
                 scenes.contains(&format!("kind = \"{kind}\"")) || scenes.contains(&format!("builtin = \"{kind}\""));
             assert!(used, "{section} kind {kind} is used by no built-in scene");

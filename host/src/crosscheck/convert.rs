@@ -145,7 +145,7 @@ fn parts(scene: &Scene, name: &str, notes: &mut Vec<String>) -> Result<Vec<Mitsu
             }
             Ok(parts)
         }
-        Some(ShapeDesc::Mesh(_)) => {
+        Some(ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_)) => {
             let data =
                 scene.meshes.get(name).ok_or_else(|| Error::Input(format!("no mesh data for shape {name:?}")))?;
             let positions = data.vertices.iter().map(|v| v.position.truncate()).collect();

@@ -139,6 +139,14 @@ fn upload_scene(
     let accel = AccelStats {
         blases: blases.len(),
         triangles: data.indices.len() as u64 / 3,
+        instanced_triangles: data
+            .instances
+            .iter()
+            .map(|i| match &data.blases[i.blas] {
+                BlasDesc::Triangles { index_count, .. } => u64::from(*index_count / 3),
+                BlasDesc::Aabbs(_) => 0,
+            })
+            .sum(),
         procedural_primitives: data.primitives.len() as u64,
         instances: instances.len(),
         blas_built_bytes: blases.iter().map(|b| b.built_bytes).sum(),
@@ -157,7 +165,10 @@ fn upload_scene(
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct AccelStats {
     pub blases: usize,
+    /// Triangles in the BLASes, each once.
     pub triangles: u64,
+    /// Triangles of every instance: what the scene places.
+    pub instanced_triangles: u64,
     pub procedural_primitives: u64,
     pub instances: usize,
     pub blas_built_bytes: u64,
@@ -171,9 +182,10 @@ impl std::fmt::Display for AccelStats {
         let mib = |b: u64| b as f64 / (1u64 << 20) as f64;
         write!(
             f,
-            "{} BLASes ({} triangles, {} procedural primitives): {:.2} MiB as built, {:.2} MiB compacted; TLAS of {} instances {:.2} MiB; built in {:.0} ms",
+            "{} BLASes ({} triangles, {} placed; {} procedural primitives): {:.2} MiB as built, {:.2} MiB compacted; TLAS of {} instances {:.2} MiB; built in {:.0} ms",
             self.blases,
             self.triangles,
+            self.instanced_triangles,
             self.procedural_primitives,
             mib(self.blas_built_bytes),
             mib(self.blas_bytes),

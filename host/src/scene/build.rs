@@ -238,7 +238,7 @@ fn hit_group(scene: &SceneFile, shape: &ShapeDesc, material: &MaterialDesc) -> H
             naive: p.formula == Formula::Naive && p.shape.naive_module.is_some(),
             shape: SHAPES.iter().position(|s| s.name == p.shape.name).unwrap_or(0),
         },
-        ShapeDesc::Mesh(_) => HitGeometry::Triangles,
+        ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_) => HitGeometry::Triangles,
     };
     let flat = !matches!(material, MaterialDesc::Checker { .. });
     let colour = match (scene.material_shading, scene.hit_groups) {
@@ -253,7 +253,7 @@ fn hit_group(scene: &SceneFile, shape: &ShapeDesc, material: &MaterialDesc) -> H
 fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
     match shape {
         ShapeDesc::Procedural(p) => (p.kind.primitives)(&p.values).into_iter().unzip(),
-        ShapeDesc::Mesh(_) => (Vec::new(), Vec::new()),
+        ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_) => (Vec::new(), Vec::new()),
     }
 }
 

@@ -232,6 +232,7 @@ fn check_shape(shape: &ShapeDesc) -> Checked {
             (Some(_), None) | (None, Some(_)) => Ok(()),
             _ => Err("a mesh needs exactly one of builtin and file".into()),
         },
+        ShapeDesc::Gltf(_) => Ok(()),
     }
 }
 
@@ -239,7 +240,10 @@ fn check_object(scene: &SceneFile, object: &ObjectDesc) -> Checked {
     if !scene.shapes.contains_key(&object.shape) {
         return Err(format!("unknown shape {:?} (shapes: {})", object.shape, names(scene.shapes.keys())));
     }
-    if !scene.materials.contains_key(&object.material) {
+    // An object of a glTF model takes the model's materials unless it names one for all.
+    let model = matches!(scene.shapes.get(&object.shape), Some(ShapeDesc::Gltf(_)));
+    let takes_the_models = model && object.material.is_empty();
+    if !takes_the_models && !scene.materials.contains_key(&object.material) {
         return Err(format!("unknown material {:?} (materials: {})", object.material, names(scene.materials.keys())));
     }
     check_placement(object)

@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 pub fn kinds() -> [(&'static str, Vec<&'static str>); 4] {
     [
         ("shapes", super::shape::kind_names()),
-        ("meshes", vec!["box", "pyramid", "prism", "icosahedron", "(file = OBJ)"]),
+        ("meshes", vec!["box", "pyramid", "prism", "icosahedron", "(file = OBJ)", "(kind = gltf)"]),
         ("materials", vec!["diffuse", "emissive", "checker", "cutout"]),
         ("lights", vec!["directional", "point", "rect"]),
     ]
@@ -171,6 +171,9 @@ pub enum LightDesc {
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
     pub shape: String,
+    /// Required, but for an object of a glTF model, which takes the model's materials when
+    /// this is empty.
+    #[serde(default)]
     pub material: String,
     #[serde(default)]
     pub translate: [f32; 3],

@@ -8,6 +8,7 @@ mod check;
 pub mod file;
 pub mod gltf;
 pub mod mesh;
+mod models;
 pub mod plan;
 pub mod reach;
 pub mod shape;
@@ -56,11 +57,8 @@ impl Scene {
     /// in it is said in one notice.
     pub fn load_gltf(path: &Path) -> Result<Scene> {
         let source = path.display().to_string();
-        let model = gltf::load(path).map_err(|message| Error::Scene { path: source.clone(), message })?;
-        if !model.ignored.is_empty() {
-            let list: Vec<&str> = model.ignored.iter().map(String::as_str).collect();
-            log::warn!("{source}: not modelled, ignored: {}", list.join(", "));
-        }
+        let model = gltf::load(path, None).map_err(|message| Error::Scene { path: source.clone(), message })?;
+        gltf::notice(&source, &model.ignored);
         Scene::from_model(model, &source)
     }
 
@@ -124,6 +122,7 @@ impl Scene {
             grids.push(start..start + grid.count.iter().map(|&c| c as usize).product::<usize>());
         }
         file.objects.extend(grid_objects);
+        let mut placed = models::place(&mut file, mesh_files.folder()).map_err(scene_error)?;
         let animation = file.animation.as_ref().map(|a| animation::resolve(a, &file, &grids)).transpose();
         let animation = animation.map_err(scene_error)?;
         // Whatever reads `file` (a still render, the reference, a probe) sees frame 0.
@@ -132,7 +131,9 @@ impl Scene {
         }
         let mut meshes = BTreeMap::new();
         for (name, shape) in &file.shapes {
-            if let ShapeDesc::Mesh(m) = shape {
+            if let Some(mesh) = placed.remove(name) {
+                meshes.insert(name.clone(), mesh);
+            } else if let ShapeDesc::Mesh(m) = shape {
                 let mesh = match (m.builtin, &m.file) {
                     (Some(kind), _) => Ok(mesh::builtin(kind, m.normals)),
                     (None, Some(f)) => mesh_files.load(f, m.normals),
@@ -272,6 +273,14 @@ pub enum MeshFiles {
 }
 
 impl MeshFiles {
+    /// The folder files are read from, if they are read from one.
+    fn folder(&self) -> Option<&Path> {
+        match self {
+            MeshFiles::Folder(folder) => Some(folder),
+            MeshFiles::Builtin | MeshFiles::Given(_) => None,
+        }
+    }
+
     fn load(&mut self, name: &str, normals: shape::Normals) -> std::result::Result<MeshData, String> {
         match self {
             MeshFiles::Given(meshes) => meshes.remove(name).ok_or_else(|| format!("no mesh {name:?} in the model")),

@@ -27,6 +27,18 @@ pub enum ShapeDesc {
     /// A triangle mesh: a generated one (`builtin`) or an OBJ file (`file`, relative to the
     /// scene file's folder), with flat or smooth normals.
     Mesh(MeshDesc),
+    /// A glTF 2.0 model (`file`, relative to the scene file's folder): each object of it
+    /// becomes the model's objects, placed by the object (see `gltf::place`), before the scene
+    /// is built.
+    Gltf(GltfDesc),
+}
+
+/// A glTF model as a shape: its file, and which of its scenes (its default one if not given).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GltfDesc {
+    pub file: String,
+    pub scene: Option<usize>,
 }
 
 /// A procedural shape: its kind, every key's value (given or default), and the formula.
@@ -81,10 +93,10 @@ pub enum Normals {
     Smooth,
 }
 
-/// Every shape kind a scene can name: the registry's, then `mesh`.
+/// Every shape kind a scene can name: the registry's, then `mesh` and `gltf`.
 pub fn kind_names() -> Vec<&'static str> {
     let mut names: Vec<_> = SHAPES.iter().flat_map(|s| s.spec.kinds.iter().map(|k| k.name)).collect();
-    names.push("mesh");
+    names.extend(["mesh", "gltf"]);
     names
 }
 
@@ -98,6 +110,9 @@ impl<'de> Deserialize<'de> for ShapeDesc {
         };
         if kind == "mesh" {
             return toml::Value::Table(table).try_into().map(ShapeDesc::Mesh).map_err(D::Error::custom);
+        }
+        if kind == "gltf" {
+            return toml::Value::Table(table).try_into().map(ShapeDesc::Gltf).map_err(D::Error::custom);
         }
         let Some((shape, spec)) = shapes::kind(&kind) else {
             let kinds = kind_names().join(", ");
@@ -189,7 +204,7 @@ impl ShapeDesc {
     pub fn primitive_count(&self) -> u64 {
         match self {
             ShapeDesc::Procedural(p) => (p.kind.count)(&p.values),
-            ShapeDesc::Mesh(_) => 0,
+            ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_) => 0,
         }
     }
 }

@@ -59,23 +59,35 @@ pub struct Model {
     pub ignored: BTreeSet<String>,
 }
 
-/// Reads the model at `path`; the error says what in it is wrong.
-pub fn load(path: &Path) -> Result<Model, String> {
-    model(buffers::load(path)?)
+/// Reads the model at `path` (its scene `scene`, else its default one); the error says what in
+/// it is wrong.
+pub fn load(path: &Path, scene: Option<usize>) -> Result<Model, String> {
+    model(buffers::load(path)?, scene)
 }
 
 /// The model of a glTF file's `bytes`, its buffer files (if any) relative to `folder`: what
 /// the fuzz target feeds.
 pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
-    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?)
+    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, None)
 }
 
-fn model(loaded: buffers::Loaded) -> Result<Model, String> {
+/// One notice line of what a model read from `source` has that twinray ignored, if anything.
+pub fn notice(source: &str, ignored: &BTreeSet<String>) {
+    if !ignored.is_empty() {
+        let list: Vec<&str> = ignored.iter().map(String::as_str).collect();
+        log::warn!("{source}: not modelled, ignored: {}", list.join(", "));
+    }
+}
+
+fn model(loaded: buffers::Loaded, scene: Option<usize>) -> Result<Model, String> {
     let doc = &loaded.gltf.document;
     let mut ignored = BTreeSet::new();
     ignored
         .extend(doc.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)).map(|e| format!("extension {e}")));
-    let scene = doc.default_scene().or_else(|| doc.scenes().next()).ok_or("it has no scene")?;
+    let scene = match scene {
+        Some(i) => doc.scenes().nth(i).ok_or_else(|| format!("it has no scene {i} ({} scenes)", doc.scenes().len()))?,
+        None => doc.default_scene().or_else(|| doc.scenes().next()).ok_or("it has no scene")?,
+    };
     let mut placed = Vec::new();
     for node in scene.nodes() {
         walk(node, Mat4::IDENTITY, 0, &mut placed)?;
@@ -172,7 +184,8 @@ fn shape_name(mesh: &gltf::Mesh, p: usize) -> String {
     }
 }
 
-fn mesh_shape(name: &str) -> ShapeDesc {
+/// A mesh shape whose triangles are given, under `name`, rather than read from a file.
+pub(super) fn mesh_shape(name: &str) -> ShapeDesc {
     ShapeDesc::Mesh(MeshDesc { builtin: None, file: Some(name.to_string()), normals: Default::default() })
 }
 

@@ -61,7 +61,7 @@ fn load_text(text: &str) -> Result<Model, String> {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("model.gltf");
     std::fs::write(&path, text).unwrap();
-    load(&path)
+    load(&path, None)
 }
 
 const ONE_NODE: &str = r#"{"mesh": 0}"#;

@@ -1,0 +1,66 @@
+//! glTF models placed by a scene file (`[shapes.NAME] kind = "gltf"`): every object of such a
+//! shape becomes the model's objects, each placed first by its node's world matrix, then by
+//! the object's own transform; the model's meshes and materials join the scene's, named
+//! `NAME/...`. An object that names a material gives it to every part of the model. This runs
+//! after grids are expanded, so a grid of a model is a grid of its parts.
+
+use super::check;
+use super::file::{ObjectDesc, SceneFile};
+use super::gltf::{load, mesh_shape, notice};
+use super::mesh::MeshData;
+use super::shape::ShapeDesc;
+use std::collections::BTreeMap;
+use std::path::Path;
+
+/// Places every glTF shape's model in `file` (files relative to `folder`); the models' meshes
+/// by the names of their shapes in `file`.
+pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<BTreeMap<String, MeshData>, String> {
+    let models: Vec<_> = file
+        .shapes
+        .iter()
+        .filter_map(|(name, shape)| match shape {
+            ShapeDesc::Gltf(g) => Some((name.clone(), g.clone())),
+            _ => None,
+        })
+        .collect();
+    let mut meshes = BTreeMap::new();
+    if models.is_empty() {
+        return Ok(meshes);
+    }
+    let folder = folder.ok_or("a built-in scene places no glTF files")?;
+    if file.animation.is_some() {
+        return Err("a scene with [animation] cannot place glTF models yet: their parts would move apart".into());
+    }
+    for (name, desc) in models {
+        let path = folder.join(&desc.file);
+        let model = load(&path, desc.scene).map_err(|e| format!("shape {name:?}: {}: {e}", path.display()))?;
+        notice(&path.display().to_string(), &model.ignored);
+        file.shapes.remove(&name);
+        // Its grids are objects by now, and name a shape that is gone.
+        file.grids.retain(|g| g.shape != name);
+        let part = |s: &str| format!("{name}/{s}");
+        for (shape, data) in model.meshes {
+            file.shapes.insert(part(&shape), mesh_shape(&part(&shape)));
+            meshes.insert(part(&shape), data);
+        }
+        for (material, desc) in model.file.materials {
+            file.materials.insert(part(&material), desc);
+        }
+        let objects = std::mem::take(&mut file.objects);
+        for object in objects {
+            if object.shape != name {
+                file.objects.push(object);
+                continue;
+            }
+            let own = object.matrix.map_or(glam::Mat4::IDENTITY, |m| glam::Mat4::from_cols_array(&m));
+            file.objects.extend(model.file.objects.iter().map(|p| ObjectDesc {
+                shape: part(&p.shape),
+                material: if object.material.is_empty() { part(&p.material) } else { object.material.clone() },
+                matrix: Some((own * p.transform()).to_cols_array()),
+                ..object.clone()
+            }));
+        }
+    }
+    check::check(file)?;
+    Ok(meshes)
+}
