@@ -91,7 +91,9 @@ fn check_name(name: &str, root: &Path) -> Result<()> {
 /// than the largest so far).
 fn register(registry: &str, name: &str) -> Result<(String, u32)> {
     let lines: Vec<&str> = registry.lines().collect();
-    let entries: Vec<usize> = (0..lines.len()).filter(|&i| lines[i].trim_start().starts_with('"')).collect();
+    // `"name" => module (kind): entry;`, and no other line that starts with a quote.
+    let is_entry = |l: &str| l.trim_start().starts_with('"') && l.contains("=>") && l.trim_end().ends_with(';');
+    let entries: Vec<usize> = (0..lines.len()).filter(|&i| is_entry(lines[i])).collect();
     let (Some(&last_entry), Some(last_mod)) = (entries.last(), lines.iter().rposition(|l| l.starts_with("pub mod ")))
     else {
         bail!("{REGISTRY}: cannot find the registry lines of procedural_shapes! and the module list");
@@ -124,6 +126,11 @@ mod tests {
         assert!(out.contains(&format!("\"capsule\" => capsule ({kind}): capsule_intersection;\n")), "{out}");
         assert!(out.contains("pub mod capsule;\n"));
         assert_eq!(out.lines().count(), registry.lines().count() + 2);
+        // A string that rustfmt wraps onto its own line later in the file is no entry.
+        let wrapped = format!("{registry}fn f() {{\n    g(\n        \"| `x` | a long row |\".into(),\n    );\n}}\n");
+        let (out, _) = register(&wrapped, "capsule").unwrap();
+        let at = |needle: &str| out.find(needle).unwrap();
+        assert!(at("\"capsule\" =>") < at("fn f()"), "{out}");
     }
 
     #[test]

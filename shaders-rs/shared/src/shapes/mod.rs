@@ -160,9 +160,7 @@ pub fn docs_table() -> String {
         }
     }
     rows.push("| `mesh` | `builtin` or `file`, `normals` | triangles | a triangle mesh (below) |".into());
-    rows.push(
-        "| `gltf` | `file`, `scene` | triangles | a glTF 2.0 model, placed whole by each object (below) |".into(),
-    );
+    rows.push("| `gltf` | `file`, `scene` | triangles | a glTF 2.0 model's parts (below) |".into());
     rows.push(String::new());
     rows.push(format!("Kinds that also take `formula` (`\"robust\"` or `\"naive\"`): {}.", naive.join(", ")));
     rows.push(DOCS_END.to_string());
