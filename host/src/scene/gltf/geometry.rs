@@ -109,10 +109,26 @@ fn check(
     if a.count() == 0 || a.count() > MAX_ELEMENTS {
         return Err(format!("{name} has {} elements (1 to {MAX_ELEMENTS})", a.count()));
     }
-    let Some(view) = a.view() else { return Ok(()) }; // all zeros, or sparse only
-    let size = a.size();
+    if let Some(sparse) = a.sparse() {
+        let count = sparse.count();
+        if count == 0 || count > a.count() {
+            return Err(format!("{name} has {count} sparse elements (1 to its {} elements)", a.count()));
+        }
+        let (indices, values) = (sparse.indices(), sparse.values());
+        within(&indices.view(), indices.offset(), count, indices.index_type().size(), &name)?;
+        within(&values.view(), values.offset(), count, a.size(), &name)?;
+    }
+    match a.view() {
+        Some(view) => within(&view, a.offset(), a.count(), a.size(), &name),
+        None => Ok(()), // all zeros, or sparse only
+    }
+}
+
+/// That `count` elements of `size` bytes from `offset` in `view` (at its stride) lie within the
+/// view, and the view within its buffer.
+fn within(view: &gltf::buffer::View, offset: usize, count: usize, size: usize, name: &str) -> Result<(), String> {
     let stride = view.stride().unwrap_or(size);
-    let end = (a.count() - 1).checked_mul(stride).and_then(|n| n.checked_add(a.offset() + size));
+    let end = (count - 1).checked_mul(stride).and_then(|n| n.checked_add(offset)).and_then(|n| n.checked_add(size));
     if end.is_none_or(|end| end > view.length()) {
         return Err(format!("{name} reaches past the end of its buffer view {}", view.index()));
     }

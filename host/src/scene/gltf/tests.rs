@@ -172,3 +172,32 @@ fn malformed_models_are_refused_with_their_fault_named() {
         "coordinates must be finite, at most",
     );
 }
+
+/// The square with vertex 2 moved to (2, 2, 0) by a sparse accessor: `sparse` is its JSON.
+fn sparse_square(sparse: &str) -> String {
+    let mut bytes = floats(&SQUARE);
+    bytes.extend([2u16, 0].iter().flat_map(|i| i.to_le_bytes())); // the index, padded to 4 bytes
+    bytes.extend(floats(&[[2.0, 2.0, 0.0]]));
+    document(
+        &bytes,
+        &format!(
+            r#""bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 4}}, {{"buffer": 0, "byteOffset": 52, "byteLength": 12}}],
+            "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [2, 2, 0], "sparse": {sparse}}}],
+            "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "mode": 6}}]}}], "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}]"#
+        ),
+    )
+}
+
+#[test]
+fn sparse_accessors_are_read_and_checked() {
+    let good = r#"{"count": 1, "indices": {"bufferView": 1, "componentType": 5123}, "values": {"bufferView": 2}}"#;
+    let model = load_text(&sparse_square(good)).unwrap();
+    let mesh = model.meshes.values().next().unwrap();
+    let moved = mesh.vertices.iter().any(|v| v.position.truncate() == glam::Vec3::new(2.0, 2.0, 0.0));
+    assert!(moved, "{:?}", mesh.vertices);
+    refused(&sparse_square(&good.replace(r#""count": 1"#, r#""count": 0"#)), "0 sparse elements");
+    refused(
+        &sparse_square(&good.replace(r#""count": 1"#, r#""count": 3"#)),
+        "reaches past the end of its buffer view 1",
+    );
+}
