@@ -74,9 +74,13 @@ pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
 /// One notice line of what a model read from `source` has that twinray ignored, if anything.
 pub fn notice(source: &str, ignored: &BTreeSet<String>) {
     if !ignored.is_empty() {
-        let list: Vec<&str> = ignored.iter().map(String::as_str).collect();
-        log::warn!("{source}: not modelled, ignored: {}", list.join(", "));
+        log::warn!("{source}: not modelled, ignored: {}", listed(ignored));
     }
+}
+
+/// What was ignored, in one comma-separated list.
+fn listed(ignored: &BTreeSet<String>) -> String {
+    ignored.iter().map(String::as_str).collect::<Vec<_>>().join(", ")
 }
 
 fn model(loaded: buffers::Loaded, scene: Option<usize>) -> Result<Model, String> {
@@ -116,8 +120,7 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>) -> Result<Model, String>
         ignored.extend(node.weights().map(|_| "morph target weights".to_string()));
     }
     if objects.is_empty() {
-        let list: Vec<&str> = ignored.iter().map(String::as_str).collect();
-        return Err(format!("its scene places no triangles (ignored: {})", list.join(", ")));
+        return Err(format!("its scene places no triangles (ignored: {})", listed(&ignored)));
     }
     ignored.extend((doc.animations().len() > 0).then(|| "animations".to_string()));
     let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
