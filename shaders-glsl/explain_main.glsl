@@ -18,6 +18,7 @@ layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buff
 layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials { Material materials[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_VERTICES, std430) readonly buffer Vertices { Vertex vertices[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_TEXTURES) uniform sampler2D textures[];
 #define EXPLAIN_INDEX gl_GlobalInvocationID.x
 #else
 layout(location = 0) rayPayloadEXT HitPayload payload;

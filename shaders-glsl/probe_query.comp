@@ -4,6 +4,7 @@
 // described, or NO_HIT.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
 #define RENDER_COMPUTE
 #include "twinray_layout.glsl"
 
@@ -15,6 +16,7 @@ layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buff
 layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials { Material materials[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_VERTICES, std430) readonly buffer Vertices { Vertex vertices[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_TEXTURES) uniform sampler2D textures[];
 layout(set = DESCRIPTOR_SET, binding = BINDING_PROBE_RAYS, std430) readonly buffer Rays { ProbeRay rays[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_PROBE_RESULTS, std430) buffer Results { ProbeResult results[]; };
 
@@ -30,6 +32,7 @@ void main() {
     }
     ProbeRay ray = rays[i];
     payload = HitPayload(vec4(0.0), vec4(0.0), vec4(0.0), vec4(0.0), uvec4(0u));
-    trace_query(ray.origin.xyz, ray.origin.w, ray.direction.xyz, ray.direction.w, vec4(0.0));
+    // No cone: probes judge geometry, and their rays come from no camera.
+    trace_query(ray.origin.xyz, ray.origin.w, ray.direction.xyz, ray.direction.w, vec4(0.0), 0.0);
     results[i] = ProbeResult(vec4(payload.shading_normal.xyz, payload.position.w), payload.ids);
 }

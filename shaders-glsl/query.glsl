@@ -2,7 +2,7 @@
 // pipeline's stages would (a procedural candidate by its shape's routine, a cutout's holes by
 // its pattern) and describing the committed hit as its closest-hit stage would. Included after
 // the includer declares tlas, objects, primitives and materials; with RENDER_COMPUTE defined,
-// also vertices, indices and `payload` (a plain HitPayload), for trace_query.
+// also vertices, indices, textures and `payload` (a plain HitPayload), for trace_query.
 #ifndef TWINRAY_QUERY_GLSL
 #define TWINRAY_QUERY_GLSL
 #include "shading.glsl"
@@ -63,8 +63,9 @@ bool visible(vec3 origin, vec3 direction, float distance) {
 // Twin of twinray_shaders::query::trace_query: the ray over [t_min, t_max] traced inline, each
 // candidate decided by candidate_hit and committed if no farther than the closest so far; the
 // committed hit described into `payload` as the closest-hit stage of its hit group would, or
-// `background` as the miss stage would.
-void trace_query(vec3 origin, float t_min, vec3 direction, float t_max, vec4 background) {
+// `background` as the miss stage would. cone: the spread angle of the ray's cone (0: texture
+// level 0).
+void trace_query(vec3 origin, float t_min, vec3 direction, float t_max, vec4 background, float cone) {
     rayQueryEXT query;
     rayQueryInitializeEXT(query, tlas, gl_RayFlagsNoneEXT, 0xff, origin, t_min, direction, t_max);
     vec3 normal = vec3(0.0);
@@ -98,7 +99,8 @@ void trace_query(vec3 origin, float t_min, vec3 direction, float t_max, vec4 bac
     if (committed == gl_RayQueryCommittedIntersectionTriangleEXT) {
         uint kind = rayQueryGetIntersectionFrontFaceEXT(query, true) ? HIT_KIND_TRIANGLE_FRONT : HIT_KIND_TRIANGLE_BACK;
         triangle_hit(object, primitive_id, kind, origin, direction, object_origin, object_direction, t,
-                     world_to_object, rayQueryGetIntersectionBarycentricsEXT(query, true));
+                     world_to_object, mat3(rayQueryGetIntersectionObjectToWorldEXT(query, true)),
+                     rayQueryGetIntersectionBarycentricsEXT(query, true), cone);
     } else {
         uint primitive = rayQueryGetIntersectionInstanceCustomIndexEXT(query, true) + primitive_id;
         uint kind = objects[object].shape & ~SHAPE_NAIVE;

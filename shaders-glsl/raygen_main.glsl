@@ -21,6 +21,7 @@ layout(constant_id = SPEC_SHADOW_SAMPLER) const uint SHADOW_SAMPLER = SHADOW_SAM
 HitPayload payload;
 layout(set = DESCRIPTOR_SET, binding = BINDING_VERTICES, std430) readonly buffer Vertices { Vertex vertices[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_TEXTURES) uniform sampler2D textures[];
 // Compute has no launch size: the image's, from the frame constants.
 #define LAUNCH_ID gl_GlobalInvocationID.xy
 #define LAUNCH_SIZE uvec2(frame.width, frame.height)

@@ -3,6 +3,7 @@
 // traces primary and shadow rays inline with ray queries, with no pipeline stages or SBT.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
 #define SHADOW_QUERY
 #define RENDER_COMPUTE
 #include "twinray_layout.glsl"

@@ -13,7 +13,7 @@
 #ifdef RENDER_COMPUTE
 // Twin of twinray_shaders::query::primary_query.
 void trace_primary(vec3 origin, vec3 direction) {
-    trace_query(origin, frame.reach.z, direction, frame.reach.x, frame.background);
+    trace_query(origin, frame.reach.z, direction, frame.reach.x, frame.background, frame.cone.x);
 }
 #else
 void trace_primary(vec3 origin, vec3 direction) {

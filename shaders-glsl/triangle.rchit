@@ -4,6 +4,7 @@
 // meshes, normals from the vertices.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_nonuniform_qualifier : require
 #include "twinray_layout.glsl"
 #include "shading.glsl"
 
@@ -11,6 +12,8 @@ layout(set = DESCRIPTOR_SET, binding = BINDING_OBJECTS, std430) readonly buffer 
 layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials { Material materials[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_VERTICES, std430) readonly buffer Vertices { Vertex vertices[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_FRAME) uniform Frame { FrameUniform frame; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_TEXTURES) uniform sampler2D textures[];
 
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec2 barycentrics;
@@ -20,5 +23,5 @@ hitAttributeEXT vec2 barycentrics;
 void main() {
     triangle_hit(gl_InstanceID, gl_PrimitiveID, gl_HitKindEXT, gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT,
                  gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT),
-                 barycentrics);
+                 mat3(gl_ObjectToWorldEXT), barycentrics, frame.cone.x);
 }

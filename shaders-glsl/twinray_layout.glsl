@@ -16,6 +16,7 @@
 #define BINDING_INDICES 9u
 #define BINDING_PROBE_RAYS 10u
 #define BINDING_PROBE_RESULTS 11u
+#define BINDING_TEXTURES 12u
 #define RENDER_GROUP_SIZE 8u
 #define PROBE_GROUP_SIZE 64u
 #define EXPLAIN_PRIMARY 0u
@@ -66,7 +67,7 @@
 #define TORUS_ROOT_TOLERANCE 9.536743e-7
 #define TORUS_SELF_BAND 0.004
 
-// 176 bytes, as twinray_shared::layout::FrameUniform
+// 192 bytes, as twinray_shared::layout::FrameUniform
 struct FrameUniform {
     mat4 view_inverse; // offset 0
     mat4 proj_inverse; // offset 64
@@ -76,6 +77,7 @@ struct FrameUniform {
     uint seed; // offset 164
     uint width; // offset 168
     uint height; // offset 172
+    vec4 cone; // offset 176
 };
 
 // 16 bytes, as twinray_shared::layout::ObjectData
@@ -86,10 +88,12 @@ struct ObjectData {
     uint shape; // offset 12
 };
 
-// 32 bytes, as twinray_shared::layout::Vertex
+// 64 bytes, as twinray_shared::layout::Vertex
 struct Vertex {
     vec4 position; // offset 0
     vec4 normal; // offset 16
+    vec4 uv; // offset 32
+    vec4 color; // offset 48
 };
 
 // 48 bytes, as twinray_shared::layout::Primitive
@@ -99,7 +103,7 @@ struct Primitive {
     vec4 tint; // offset 32
 };
 
-// 48 bytes, as twinray_shared::layout::Material
+// 96 bytes, as twinray_shared::layout::Material
 struct Material {
     uint kind; // offset 0
     uint cutout_pattern; // offset 4
@@ -107,6 +111,9 @@ struct Material {
     float cutout_threshold; // offset 12
     vec4 color_a; // offset 16
     vec4 color_b; // offset 32
+    uvec4 texture; // offset 48
+    vec4 uv_u; // offset 64
+    vec4 uv_v; // offset 80
 };
 
 // 80 bytes, as twinray_shared::layout::Light
@@ -135,12 +142,12 @@ struct ShadowPayload {
     uint occluded; // offset 0
 };
 
-// 96 bytes, as twinray_shared::layout::MaterialCall
+// 144 bytes, as twinray_shared::layout::MaterialCall
 struct MaterialCall {
     Material material; // offset 0
-    vec4 point; // offset 48
-    vec4 normal; // offset 64
-    vec4 color; // offset 80
+    vec4 point; // offset 96
+    vec4 normal; // offset 112
+    vec4 color; // offset 128
 };
 
 // 32 bytes, as twinray_shared::layout::ProbeRay

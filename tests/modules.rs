@@ -69,8 +69,8 @@ fn descriptor_layout_exposes_each_binding_to_the_stages_that_use_it() {
     for spec in MODULES {
         for language in Language::ALL {
             for &(_, binding) in &read(&spec.spirv_path(language)).bindings {
-                let entry = layout.iter().find(|(b, _, _)| *b == binding);
-                let visible = entry.is_some_and(|(_, _, stages)| stages.contains(stage_flag(spec.stage)));
+                let entry = layout.iter().find(|(b, _, _, _)| *b == binding);
+                let visible = entry.is_some_and(|(_, _, _, stages)| stages.contains(stage_flag(spec.stage)));
                 assert!(visible, "{} {} uses binding {binding}, not visible to its stage", language.name(), spec.name);
             }
         }

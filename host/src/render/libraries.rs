@@ -8,7 +8,6 @@ use crate::error::Result;
 use crate::util::checksum::Fnv;
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, Interface, PipelineDesc, RtPipeline, StageDesc};
-use ash::vk;
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -49,7 +48,7 @@ impl Libraries {
     pub(crate) fn link(
         &self,
         ctx: &Arc<Context>,
-        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        bindings: &[crate::vk::pipeline::Binding],
         libraries: &[LibraryDesc],
     ) -> Result<(RtPipeline, Vec<Rc<RtPipeline>>)> {
         let held = libraries.iter().map(|l| self.library(ctx, bindings, l)).collect::<Result<Vec<_>>>()?;
@@ -60,7 +59,7 @@ impl Libraries {
     fn library(
         &self,
         ctx: &Arc<Context>,
-        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        bindings: &[crate::vk::pipeline::Binding],
         desc: &LibraryDesc,
     ) -> Result<Rc<RtPipeline>> {
         let key = key(desc);

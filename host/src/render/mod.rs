@@ -12,6 +12,7 @@ pub mod placement;
 pub(crate) mod prepare;
 pub mod sentinel;
 mod sets;
+mod textures;
 mod tracing;
 mod upload;
 

@@ -49,7 +49,7 @@ fn witnessed(set: &ShaderSet, plan: &PipelinePlan, raygen: &str) -> bool {
 }
 
 /// (binding, type, stages) of every descriptor, from the shared layout.
-pub fn descriptor_bindings() -> Vec<(u32, vk::DescriptorType, vk::ShaderStageFlags)> {
+pub fn descriptor_bindings() -> Vec<crate::vk::pipeline::Binding> {
     LAYOUT
         .iter()
         .map(|l| {
@@ -58,9 +58,11 @@ pub fn descriptor_bindings() -> Vec<(u32, vk::DescriptorType, vk::ShaderStageFla
                 DescriptorKind::StorageImage => vk::DescriptorType::STORAGE_IMAGE,
                 DescriptorKind::UniformBuffer => vk::DescriptorType::UNIFORM_BUFFER,
                 DescriptorKind::StorageBuffer => vk::DescriptorType::STORAGE_BUFFER,
+                DescriptorKind::SampledImageArray => vk::DescriptorType::COMBINED_IMAGE_SAMPLER,
             };
+            let count = if l.kind == DescriptorKind::SampledImageArray { b::TEXTURE_SLOTS } else { 1 };
             let stages = l.stages.iter().fold(vk::ShaderStageFlags::empty(), |f, s| f | stage_flag(*s));
-            (l.binding, ty, stages)
+            (l.binding, ty, count, stages)
         })
         .collect()
 }

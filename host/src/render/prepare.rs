@@ -121,6 +121,7 @@ pub(crate) fn prepare_on(
         image_view: image.view,
         image_binding: b::BINDING_IMAGE,
         buffers,
+        textures: (b::BINDING_TEXTURES, super::textures::slots(&resources.textures)),
     };
     let descriptors = DescriptorSet::new(ctx, pipeline.rt.set_layout, &pool_sizes(&descriptor_bindings()), &targets)?;
     let table = |records: &[Vec<u32>; 4]| ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_count, records);

@@ -1,6 +1,7 @@
 //! Uploading a scene: its acceleration structures (BLASes and the TLAS) and the buffers its
 //! stages read, shared by every pipeline that traces it.
 
+use super::textures::upload_textures;
 use crate::error::Result;
 use crate::scene::{BlasDesc, Scene, SceneData};
 use crate::vk::accel::{
@@ -9,6 +10,7 @@ use crate::vk::accel::{
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
+use crate::vk::texture::Texture;
 use ash::vk;
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -21,6 +23,8 @@ const VERTEX_BYTES: u64 = size_of::<twinray_shared::layout::Vertex>() as u64;
 /// can be rewritten between submissions (moving scenes), never during one.
 pub(crate) struct SceneResources {
     _blases: Vec<AccelStruct>,
+    /// The texture array's slots, slot 0 first (`textures::upload_textures`).
+    pub textures: Vec<Texture>,
     pub tlas: RefCell<Tlas>,
     /// (binding, buffer) of every storage and uniform buffer the scene provides.
     pub buffers: RefCell<Vec<(u32, vk::DescriptorType, Buffer)>>,
@@ -155,7 +159,9 @@ fn upload_scene(
         build_ms: started.elapsed().as_secs_f64() * 1e3,
     };
     log::info!("scene {}: {accel}", scene.name());
-    let resources = SceneResources { _blases: blases, tlas: RefCell::new(tlas), buffers: RefCell::new(buffers) };
+    let textures = upload_textures(ctx, one_shot, &data.textures, ctx.info.max_sampler_anisotropy)?;
+    let resources =
+        SceneResources { _blases: blases, textures, tlas: RefCell::new(tlas), buffers: RefCell::new(buffers) };
     Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel })
 }
 

@@ -2,6 +2,7 @@
 //! one TLAS instance per object, and the pipeline plan — only the hit groups, miss shaders and
 //! specialisation the scene uses.
 
+use super::file::TextureLod;
 use super::file::{
     CutoutPattern, HitGroups, LightDesc, MaterialDesc, MaterialShading, Renderer, SceneFile, ShadowMethod,
     ShadowSampler,
@@ -10,8 +11,10 @@ use super::mesh::MeshData;
 use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
 use super::reach;
 use super::shape::{Formula, ShapeDesc};
+use super::texture::{SamplerDesc, TextureDesc, TextureImage};
 use glam::{Mat4, Vec3, Vec4};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 use twinray_shared::bindings as b;
 use twinray_shared::layout::{FrameUniform, Light, Material, ObjectData, Primitive, Vertex};
 pub use twinray_shared::shapes::spec::Aabb;
@@ -51,6 +54,9 @@ pub struct SceneData {
     pub primitives: Vec<Primitive>,
     pub materials: Vec<Material>,
     pub lights: Vec<Light>,
+    /// The images and samplers of the texture array's slots from 1 (slot 0 is white): each
+    /// distinct pair once.
+    pub textures: Vec<(Arc<TextureImage>, SamplerDesc)>,
 }
 
 /// Where a shape's data lies: its BLAS, and the bases an object of it records.
@@ -135,7 +141,8 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         });
     }
     let lights = lights(scene);
-    let materials: Vec<Material> = scene.materials.values().map(material).collect();
+    let mut textures = Vec::new();
+    let materials: Vec<Material> = scene.materials.values().map(|m| material(m, &mut textures)).collect();
     let plan = PipelinePlan {
         hit_groups: groups,
         shadows: lights.iter().any(|l| l.shadows != 0),
@@ -149,7 +156,7 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneDat
         callable_kinds: if callable { material_kinds(&materials) } else { Vec::new() },
     };
     let Geometry { blases, primitives, vertices, indices } = geometry;
-    SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights }
+    SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures }
 }
 
 /// The kinds of `materials`, each once, in kind order.
@@ -228,6 +235,13 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32, boxes: &[Aabb])
         seed: scene.image.seed,
         width,
         height,
+        cone: match scene.image.texture_lod {
+            TextureLod::Cones => {
+                glam::Vec4::X
+                    * twinray_shared::texture::spread_angle(c.fov_y_degrees.to_radians(), height, scene.image.samples)
+            }
+            TextureLod::Zero => glam::Vec4::ZERO,
+        },
     }
 }
 
@@ -257,10 +271,18 @@ fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
     }
 }
 
-fn material(m: &MaterialDesc) -> Material {
+/// The GPU material of `m`; its texture takes a slot of `textures` (shared with every material
+/// of the same image and sampler).
+fn material(m: &MaterialDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>) -> Material {
     let mut cutout = (b::CUTOUT_NONE, 0.0, 0.0);
+    let mut gpu = Material::default();
     let (kind, a, b) = match *m {
-        MaterialDesc::Diffuse { color } => (b::MATERIAL_DIFFUSE, Vec3::from(color).extend(1.0), Vec4::ZERO),
+        MaterialDesc::Diffuse { color, ref texture } => {
+            if let Some(t) = texture.as_deref() {
+                texture_slot(&mut gpu, t, textures);
+            }
+            (b::MATERIAL_DIFFUSE, Vec3::from(color).extend(1.0), Vec4::ZERO)
+        }
         MaterialDesc::Emissive { color, intensity } => {
             (b::MATERIAL_EMISSIVE, (Vec3::from(color) * intensity).extend(1.0), Vec4::ZERO)
         }
@@ -277,7 +299,22 @@ fn material(m: &MaterialDesc) -> Material {
         }
     };
     let (cutout_pattern, cutout_scale, cutout_threshold) = cutout;
-    Material { kind, cutout_pattern, cutout_scale, cutout_threshold, color_a: a, color_b: b }
+    Material { kind, cutout_pattern, cutout_scale, cutout_threshold, color_a: a, color_b: b, ..gpu }
+}
+
+/// Points `gpu` at `t`'s slot, taking a new one for an image and sampler not seen yet.
+fn texture_slot(gpu: &mut Material, t: &TextureDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>) {
+    let Some(image) = &t.image else { return };
+    let known = textures.iter().position(|(i, s)| Arc::ptr_eq(i, image) && *s == t.sampler);
+    let slot = known.unwrap_or_else(|| {
+        textures.push((image.clone(), t.sampler));
+        textures.len() - 1
+    }) as u32
+        + 1;
+    gpu.texture = glam::UVec4::new(slot, t.uv, 0, 0);
+    let [u, v] = t.transform;
+    gpu.uv_u = Vec3::from(u).extend(0.0);
+    gpu.uv_v = Vec3::from(v).extend(0.0);
 }
 
 fn light(l: &LightDesc, default_samples: u32) -> Light {

@@ -167,7 +167,7 @@ pub(super) fn check_camera(c: &CameraDesc) -> Checked {
 
 fn check_material(m: &MaterialDesc) -> Checked {
     match m {
-        MaterialDesc::Diffuse { color: c } => color("color", *c),
+        MaterialDesc::Diffuse { color: c, .. } => color("color", *c),
         MaterialDesc::Emissive { color: c, intensity } => {
             color("color", *c)?;
             positive("intensity", *intensity)

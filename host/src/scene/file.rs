@@ -95,6 +95,19 @@ pub struct ImageDesc {
     /// Seed of every random sequence (jitter, light samples).
     #[serde(default)]
     pub seed: u32,
+    /// How textures pick their level of detail.
+    #[serde(default)]
+    pub texture_lod: TextureLod,
+}
+
+/// `[image] texture_lod`: by the ray cone's footprint (`"cones"`), or level 0 everywhere
+/// (`"zero"`, to compare against renderers that do not filter, or to see what filtering does).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum TextureLod {
+    #[default]
+    Cones,
+    Zero,
 }
 
 /// `[camera]`: where it is, where it looks, and its vertical field of view.
@@ -111,8 +124,12 @@ pub struct CameraDesc {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum MaterialDesc {
-    /// Lambert reflection with albedo `color`.
-    Diffuse { color: [f32; 3] },
+    /// Lambert reflection with albedo `color`, times its `texture` (on meshes) where it has one.
+    Diffuse {
+        color: [f32; 3],
+        #[serde(default)]
+        texture: Option<Box<super::texture::TextureDesc>>,
+    },
     /// Shows `color` x `intensity`; lights nothing.
     Emissive { color: [f32; 3], intensity: f32 },
     /// Alternating cubes of side `1 / scale` in object space.

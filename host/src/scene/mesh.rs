@@ -138,8 +138,8 @@ fn face_normal(p: &Polyhedron, t: [u32; 3]) -> Vec3 {
 
 pub(super) fn with_normals(p: &Polyhedron, normals: Normals) -> MeshData {
     let vertex = |position: Vec3, normal: Vec3| Vertex {
-        position: position.extend(1.0),
         normal: normal.normalize_or_zero().extend(0.0),
+        ..Vertex::at(position)
     };
     match normals {
         Normals::Flat => {

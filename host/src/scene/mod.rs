@@ -12,6 +12,7 @@ mod models;
 pub mod plan;
 pub mod reach;
 pub mod shape;
+pub mod texture;
 
 use crate::error::{Error, Result};
 use crate::util::input::{read_text, MAX_TEXT_BYTES};

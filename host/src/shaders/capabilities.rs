@@ -7,7 +7,8 @@
 use crate::vk::device::DeviceInfo;
 
 /// What turns a capability or extension on, on a device twinray made (Vulkan 1.2 with the ray
-/// tracing pipeline, acceleration structures, `bufferDeviceAddress` and `vulkanMemoryModel`).
+/// tracing pipeline, acceleration structures, `bufferDeviceAddress`, `vulkanMemoryModel`,
+/// `runtimeDescriptorArray` and `shaderSampledImageArrayNonUniformIndexing`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum Enabled {
     /// Core Vulkan 1.2 with no feature, or a feature twinray always turns on.
@@ -66,8 +67,8 @@ const CAPABILITIES: &[(u32, &str, Enabled)] = &[
     (4478, "RayTraversalPrimitiveCullingKHR", Not("the rayTraversalPrimitiveCulling feature")),
     (4479, "RayTracingKHR", Always),
     (5301, "ShaderNonUniform", Always),
-    (5302, "RuntimeDescriptorArray", Not("the runtimeDescriptorArray feature")),
-    (5307, "SampledImageArrayNonUniformIndexing", Not("the shaderSampledImageArrayNonUniformIndexing feature")),
+    (5302, "RuntimeDescriptorArray", Always),
+    (5307, "SampledImageArrayNonUniformIndexing", Always),
     (5308, "StorageBufferArrayNonUniformIndexing", Not("the shaderStorageBufferArrayNonUniformIndexing feature")),
     (5309, "StorageImageArrayNonUniformIndexing", Not("the shaderStorageImageArrayNonUniformIndexing feature")),
     (5336, "RayTracingPositionFetchKHR", Not("VK_KHR_ray_tracing_position_fetch")),
@@ -184,6 +185,7 @@ mod tests {
             ray_query,
             robustness: Default::default(),
             host_acceleration_structure_commands: false,
+            max_sampler_anisotropy: 16.0,
         }
     }
 

@@ -13,6 +13,9 @@ pub struct DescriptorTargets {
     pub buffers: Vec<(u32, vk::Buffer, vk::DescriptorType)>,
     pub tlas_binding: u32,
     pub image_binding: u32,
+    /// The binding of an array of combined image samplers, and the (view, sampler) of each of
+    /// its elements (in shader-read layout).
+    pub textures: (u32, Vec<(vk::ImageView, vk::Sampler)>),
 }
 
 /// A descriptor set of its own pool.
@@ -66,6 +69,25 @@ impl DescriptorSet {
                 .descriptor_type(vk::DescriptorType::STORAGE_IMAGE)
                 .image_info(&image_info),
         ];
+        let (texture_binding, textures) = &t.textures;
+        let texture_info: Vec<_> = textures
+            .iter()
+            .map(|&(view, sampler)| {
+                vk::DescriptorImageInfo::default()
+                    .image_view(view)
+                    .sampler(sampler)
+                    .image_layout(vk::ImageLayout::SHADER_READ_ONLY_OPTIMAL)
+            })
+            .collect();
+        if !texture_info.is_empty() {
+            writes.push(
+                vk::WriteDescriptorSet::default()
+                    .dst_set(self.raw)
+                    .dst_binding(*texture_binding)
+                    .descriptor_type(vk::DescriptorType::COMBINED_IMAGE_SAMPLER)
+                    .image_info(&texture_info),
+            );
+        }
         for (&(binding, _, ty), info) in t.buffers.iter().zip(&buffer_infos) {
             writes.push(
                 vk::WriteDescriptorSet::default()

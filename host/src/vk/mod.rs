@@ -13,5 +13,6 @@ pub mod image;
 pub mod pipeline;
 pub mod pipeline_cache;
 pub mod sbt;
+pub mod texture;
 pub mod timing;
 pub mod validation;

@@ -10,6 +10,10 @@ use ash::vk;
 use std::ffi::CStr;
 use std::sync::Arc;
 
+/// A descriptor binding: its number, type, how many descriptors (an array's length) and the
+/// stages that see it.
+pub type Binding = (u32, vk::DescriptorType, u32, vk::ShaderStageFlags);
+
 /// One shader stage of a pipeline.
 #[derive(Clone, Copy)]
 pub struct StageDesc<'a> {
@@ -37,7 +41,7 @@ pub enum GroupDesc {
 /// Everything a pipeline is made of.
 pub struct PipelineDesc<'a> {
     /// (binding, type, stages that see it) of every descriptor of set 0.
-    pub bindings: &'a [(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+    pub bindings: &'a [Binding],
     pub stages: &'a [StageDesc<'a>],
     /// In shader binding table order.
     pub groups: &'a [GroupDesc],
@@ -90,7 +94,7 @@ impl RtPipeline {
     /// [`RtPipeline::library`] with `bindings` and `interface`.
     pub fn link(
         ctx: &Arc<Context>,
-        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
+        bindings: &[Binding],
         libraries: &[&RtPipeline],
         interface: Interface,
     ) -> Result<Self> {
@@ -101,11 +105,7 @@ impl RtPipeline {
     }
 
     /// A compute pipeline of `stage` over a set with `bindings`.
-    pub fn compute(
-        ctx: &Arc<Context>,
-        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
-        stage: &StageDesc,
-    ) -> Result<Self> {
+    pub fn compute(ctx: &Arc<Context>, bindings: &[Binding], stage: &StageDesc) -> Result<Self> {
         let mut pipeline = Self::layouts(ctx, bindings, vk::PipelineBindPoint::COMPUTE)?;
         // A driver's compiler may never return on a damaged module: see util::watchdog.
         let _deadline = watchdog::arm(ctx.gpu_timeout());
@@ -127,18 +127,14 @@ impl RtPipeline {
     }
 
     /// The set and pipeline layouts over `bindings`, and no pipeline yet.
-    fn layouts(
-        ctx: &Arc<Context>,
-        bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)],
-        bind_point: vk::PipelineBindPoint,
-    ) -> Result<Self> {
+    fn layouts(ctx: &Arc<Context>, bindings: &[Binding], bind_point: vk::PipelineBindPoint) -> Result<Self> {
         let bindings: Vec<_> = bindings
             .iter()
-            .map(|&(binding, ty, stages)| {
+            .map(|&(binding, ty, count, stages)| {
                 vk::DescriptorSetLayoutBinding::default()
                     .binding(binding)
                     .descriptor_type(ty)
-                    .descriptor_count(1)
+                    .descriptor_count(count)
                     .stage_flags(stages)
             })
             .collect();
@@ -267,8 +263,8 @@ fn create_pipeline(
 }
 
 /// Descriptor pool sizes for one set with these bindings.
-pub fn pool_sizes(bindings: &[(u32, vk::DescriptorType, vk::ShaderStageFlags)]) -> Vec<vk::DescriptorPoolSize> {
-    bindings.iter().map(|&(_, ty, _)| vk::DescriptorPoolSize { ty, descriptor_count: 1 }).collect()
+pub fn pool_sizes(bindings: &[Binding]) -> Vec<vk::DescriptorPoolSize> {
+    bindings.iter().map(|&(_, ty, descriptor_count, _)| vk::DescriptorPoolSize { ty, descriptor_count }).collect()
 }
 
 impl Drop for RtPipeline {

@@ -5,6 +5,7 @@
 
 mod exit;
 mod process;
+pub mod uniformity;
 
 use anyhow::{bail, Context, Result};
 pub use exit::exit_words;
@@ -140,7 +141,8 @@ fn build_rust(root: &Path, out: &Path, output: Output) -> Result<()> {
 
 /// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
 /// is off, so that the committed modules depend only on the code, and the ray query capability
-/// from modules that trace no ray query.
+/// from modules that trace no ray query; decorates non-uniform descriptor accesses
+/// `NonUniform`, which rust-gpu's inliner drops (`uniformity`).
 fn strip_debug_info(dir: &Path) -> Result<()> {
     for spec in MODULES {
         let path = dir.join(format!("{}.spv", spec.name));
@@ -152,7 +154,8 @@ fn strip_debug_info(dir: &Path) -> Result<()> {
         let bytes = std::fs::read(&stripped)?;
         let trimmed =
             spirv_info::without_unused_ray_query(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
-        std::fs::write(&path, trimmed)?;
+        let decorated = uniformity::decorate(&trimmed).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        std::fs::write(&path, decorated)?;
         std::fs::remove_file(&stripped)?;
     }
     Ok(())

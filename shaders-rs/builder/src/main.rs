@@ -34,6 +34,12 @@ fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf) -> Result
         // `cargo xtask shaders` drops it from the modules without a ray query.
         .capability(Capability::RayQueryKHR)
         .extension("SPV_KHR_ray_query")
+        // The texture array (a runtime array of combined image samplers, indexed per hit):
+        // descriptor indexing, core only from SPIR-V 1.5. `cargo xtask shaders` adds the
+        // `NonUniform` decorations rust-gpu cannot yet emit (docs/upstream/non-uniform.md),
+        // with the capabilities they need.
+        .capability(Capability::RuntimeDescriptorArray)
+        .extension("SPV_EXT_descriptor_indexing")
         .multimodule(true)
         // No spirv-opt performance passes: the driver optimises, as it does the GLSL set, which
         // glslang hands over unoptimised. On the H200 the passes cost the Rust ray generation

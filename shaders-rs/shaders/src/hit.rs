@@ -8,6 +8,7 @@ use core::arch::asm;
 use spirv_std::glam::{Mat3, UVec4, Vec2, Vec3, Vec4Swizzles};
 use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Vertex};
 use twinray_shared::shading;
+use twinray_shared::texture::TriangleHit;
 
 /// Defines a closest-hit entry point for every procedural shape, `$name`: the surface from the
 /// reported object-space normal, its colour `$color` of the material `$m`, object-space point
@@ -71,11 +72,14 @@ pub fn $name(
     #[spirv(object_ray_direction)] object_direction: Vec3,
     #[spirv(ray_tmax)] t: f32,
     #[spirv(world_to_object)] world_to_object: Matrix4x3,
+    #[spirv(object_to_world)] object_to_world: Matrix4x3,
     #[spirv(hit_attribute)] barycentrics: &Vec2,
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
     $($params)*
 ) {
@@ -83,9 +87,11 @@ pub fn $name(
     let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let data = objects[object as usize];
     let material = materials[data.material as usize];
-    let (geometric, shading_normal) = hit::triangle_normals(&data, primitive_id, *barycentrics, vertices, indices);
+    let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
+    let (geometric, shading_normal) = hit::triangle_normals(&v, *barycentrics);
     let ($m, $p, $n) = (&material, surface.object_point(), geometric);
-    let color = $color;
+    let cone = hit::cone(&surface, object_to_world.to_mat3(), &v, *barycentrics, frame.cone.x);
+    let color = $color * texture::surface_tint(textures, &material, &v, &cone);
     hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, color);
 }
     };
@@ -152,22 +158,32 @@ impl SurfaceHit {
     }
 }
 
-/// Object-space geometric and shading normals of triangle `primitive_id` of a mesh object at
-/// `barycentrics`, from its vertices.
-pub fn triangle_normals(
-    data: &ObjectData,
-    primitive_id: u32,
-    barycentrics: Vec2,
-    vertices: &[Vertex],
-    indices: &[u32],
-) -> (Vec3, Vec3) {
+/// The vertices of triangle `primitive_id` of a mesh object.
+pub fn triangle_vertices(data: &ObjectData, primitive_id: u32, vertices: &[Vertex], indices: &[u32]) -> [Vertex; 3] {
     let first = (data.index_base + 3 * primitive_id) as usize;
     let v0 = vertices[(data.vertex_base + indices[first]) as usize];
     let v1 = vertices[(data.vertex_base + indices[first + 1]) as usize];
     let v2 = vertices[(data.vertex_base + indices[first + 2]) as usize];
-    let p = [v0.position.xyz(), v1.position.xyz(), v2.position.xyz()];
-    let n = [v0.normal.xyz(), v1.normal.xyz(), v2.normal.xyz()];
+    [v0, v1, v2]
+}
+
+/// Object-space geometric and shading normals of a triangle at `barycentrics`.
+pub fn triangle_normals(v: &[Vertex; 3], barycentrics: Vec2) -> (Vec3, Vec3) {
+    let p = [v[0].position.xyz(), v[1].position.xyz(), v[2].position.xyz()];
+    let n = [v[0].normal.xyz(), v[1].normal.xyz(), v[2].normal.xyz()];
     shading::triangle_normals(p, n, barycentrics.x, barycentrics.y)
+}
+
+/// The ray's cone where `hit` met a triangle of vertices `v`: `spread` (radians; 0 for texture
+/// level 0) times the distance travelled is its width.
+pub fn cone(hit: &SurfaceHit, object_to_world: Mat3, v: &[Vertex; 3], barycentrics: Vec2, spread: f32) -> TriangleHit {
+    TriangleHit {
+        object_to_world,
+        positions: [v[0].position.xyz(), v[1].position.xyz(), v[2].position.xyz()],
+        barycentrics,
+        direction: hit.direction,
+        width: spread * hit.t,
+    }
 }
 
 /// The payload of `hit` on a material of kind `kind`: world normals from the object-space

@@ -10,12 +10,14 @@
 #[macro_use]
 mod hit;
 mod query;
+mod texture;
 mod trace;
 
 use spirv_std::glam::{UVec2, UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
-use spirv_std::{spirv, Image};
+use spirv_std::{spirv, Image, RuntimeArray};
+use texture::Texture;
 use twinray_shared::bindings::{
     no_payload_word, EXPLAIN_SHADOW, HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, PROBE_NO_PAYLOAD,
     SHADOW_SAMPLER_STRATIFIED,
@@ -167,6 +169,7 @@ renderer!(
         #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
         #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
         #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+        #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     ],
     [
         // Whole workgroups cover the image; compute has no launch size, so the frame says it.
@@ -177,7 +180,7 @@ renderer!(
         let payload = &mut hit;
     ],
     (id.xy(), UVec2::new(frame.width, frame.height)),
-    query::primary_query, payload, (frame, objects, primitives, materials, vertices, indices),
+    query::primary_query, payload, (frame, objects, primitives, materials, vertices, indices, textures),
     trace::shade_query, (objects, primitives, materials)
 );
 
@@ -278,6 +281,7 @@ pub fn explain_query(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ExplainRay],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ExplainResult],
 ) {
@@ -294,7 +298,7 @@ pub fn explain_query(
     } else {
         let mut hit = HitPayload::NONE;
         let reach = (frame.reach.z, frame.reach.x);
-        query::primary_query(tlas, ray, reach, &mut hit, frame, objects, primitives, materials, vertices, indices);
+        query::primary_query(tlas, ray, reach, &mut hit, frame, objects, primitives, materials, vertices, indices, textures);
         ExplainResult { hit, occluded: UVec4::ZERO }
     };
 }
@@ -313,6 +317,7 @@ pub fn probe_query(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ProbeRay],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ProbeResult],
 ) {
@@ -326,7 +331,8 @@ pub fn probe_query(
     let range = (probe.origin.w, probe.direction.w);
     let ray = twinray_shared::camera::Ray { origin: probe.origin.xyz(), direction: probe.direction.xyz() };
     let hit_buffers = (objects, primitives, materials);
-    query::trace_query(tlas, ray, range, &mut hit, Vec4::ZERO, hit_buffers, vertices, indices);
+    // No cone: probes judge geometry, and their rays come from no camera.
+    query::trace_query(tlas, ray, range, &mut hit, Vec4::ZERO, hit_buffers, (vertices, indices), textures, 0.0);
     results[i] = ProbeResult { normal_t: hit.shading_normal.xyz().extend(hit.position.w), ids: hit.ids };
 }
 

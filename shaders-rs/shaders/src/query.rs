@@ -7,10 +7,12 @@
 //! bounds-checked.
 
 use crate::hit::{self, SurfaceHit};
+use crate::texture::{self, Texture};
 use core::arch::asm;
 use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
+use spirv_std::RuntimeArray;
 use twinray_shared::bindings::{HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT};
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
@@ -104,14 +106,17 @@ pub fn primary_query(
     materials: &[Material],
     vertices: &[Vertex],
     indices: &[u32],
+    textures: &RuntimeArray<Texture>,
 ) {
     let hit_buffers = (objects, primitives, materials);
-    trace_query(tlas, ray, reach, payload, frame.background, hit_buffers, vertices, indices);
+    trace_query(tlas, ray, reach, payload, frame.background, hit_buffers, (vertices, indices), textures, frame.cone.x);
 }
 
 /// `ray` over `(t_min, t_max)`, traced inline: each candidate decided by `candidate_hit` and
 /// committed if no farther than the closest so far; the committed hit described into `payload`
-/// as the closest-hit stage of its hit group would, or `background` as the miss stage would.
+/// as the closest-hit stage of its hit group would, or `background` as the miss stage would;
+/// meshes with their vertices, indices, textures and the spread angle of the ray's cone (0:
+/// texture level 0).
 #[allow(clippy::too_many_arguments)]
 pub fn trace_query(
     tlas: &AccelerationStructure,
@@ -120,8 +125,9 @@ pub fn trace_query(
     payload: &mut HitPayload,
     background: Vec4,
     (objects, primitives, materials): (&[ObjectData], &[Primitive], &[Material]),
-    vertices: &[Vertex],
-    indices: &[u32],
+    (vertices, indices): (&[Vertex], &[u32]),
+    textures: &RuntimeArray<Texture>,
+    spread: f32,
 ) {
     spirv_std::ray_query!(let mut query);
     // The committed procedural hit's normal: each commit is no farther than the one before.
@@ -161,7 +167,7 @@ pub fn trace_query(
         let object = query.get_committed_intersection_instance_id();
         let primitive_id = query.get_committed_intersection_primitive_index();
         let t = query.get_committed_intersection_t();
-        let world_to_object = committed_world_to_object(query).to_mat3();
+        let world_to_object = committed_transform::<true>(query).to_mat3();
         let data = objects[object as usize];
         let material = materials[data.material as usize];
         if committed == CommittedIntersection::Triangle {
@@ -169,9 +175,12 @@ pub fn trace_query(
             let kind = if front { HIT_KIND_TRIANGLE_FRONT } else { HIT_KIND_TRIANGLE_BACK };
             let surface = SurfaceHit::new(object, primitive_id, kind, rays, t, world_to_object);
             let barycentrics: Vec2 = query.get_committed_intersection_barycentrics();
-            let (geometric, shading_normal) =
-                hit::triangle_normals(&data, primitive_id, barycentrics, vertices, indices);
-            let color = shading::material_color(&material, surface.object_point(), geometric);
+            let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
+            let (geometric, shading_normal) = hit::triangle_normals(&v, barycentrics);
+            let object_to_world = committed_transform::<false>(query).to_mat3();
+            let cone = hit::cone(&surface, object_to_world, &v, barycentrics, spread);
+            let color = shading::material_color(&material, surface.object_point(), geometric)
+                * texture::surface_tint(textures, &material, &v, &cone);
             hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, color);
         } else {
             let surface = SurfaceHit::new(object, primitive_id, data.shape & !SHAPE_NAIVE, rays, t, world_to_object);
@@ -192,20 +201,32 @@ unsafe fn generate_intersection(query: &RayQuery, t: f32) {
     asm!("OpRayQueryGenerateIntersectionKHR {query} {t}", query = in(reg) query, t = in(reg) t);
 }
 
-/// The committed intersection's world-to-object transform
-/// (`OpRayQueryGetIntersectionWorldToObjectKHR`, which spirv-std 0.11 lacks).
+/// The committed intersection's world-to-object transform (`WORLD_TO_OBJECT`) or
+/// object-to-world transform (`OpRayQueryGetIntersectionWorldToObjectKHR` and
+/// `OpRayQueryGetIntersectionObjectToWorldKHR`, which spirv-std 0.11 lacks).
 ///
 /// # Safety
 /// There is a committed intersection.
-unsafe fn committed_world_to_object(query: &RayQuery) -> Matrix4x3 {
+unsafe fn committed_transform<const WORLD_TO_OBJECT: bool>(query: &RayQuery) -> Matrix4x3 {
     let mut result = Matrix4x3::default();
-    asm! {
-        "%u32 = OpTypeInt 32 0",
-        "%committed = OpConstant %u32 1",
-        "%result = OpRayQueryGetIntersectionWorldToObjectKHR typeof*{result} {query} %committed",
-        "OpStore {result} %result",
-        query = in(reg) query,
-        result = in(reg) &mut result,
+    if WORLD_TO_OBJECT {
+        asm! {
+            "%u32 = OpTypeInt 32 0",
+            "%committed = OpConstant %u32 1",
+            "%result = OpRayQueryGetIntersectionWorldToObjectKHR typeof*{result} {query} %committed",
+            "OpStore {result} %result",
+            query = in(reg) query,
+            result = in(reg) &mut result,
+        }
+    } else {
+        asm! {
+            "%u32 = OpTypeInt 32 0",
+            "%committed = OpConstant %u32 1",
+            "%result = OpRayQueryGetIntersectionObjectToWorldKHR typeof*{result} {query} %committed",
+            "OpStore {result} %result",
+            query = in(reg) query,
+            result = in(reg) &mut result,
+        }
     }
     result
 }

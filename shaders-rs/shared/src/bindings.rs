@@ -45,6 +45,14 @@ pub const BINDING_VERTICES: u32 = 8;
 /// `[u32]`, three per triangle, from each object's `index_base`, relative to `vertex_base`.
 pub const BINDING_INDICES: u32 = 9;
 
+/// The scene's textures: a runtime array of combined image samplers, [`TEXTURE_SLOTS`] of
+/// them, indexed per hit by `Material::texture.x` (so non-uniformly: `NonUniform` in SPIR-V,
+/// `nonuniformEXT` in GLSL). Slot 0 is a white texel; slots past the scene's last texture
+/// repeat it, so every slot is written.
+pub const BINDING_TEXTURES: u32 = 12;
+/// How many slots the texture array has: a scene with more textures is refused.
+pub const TEXTURE_SLOTS: u32 = 1024;
+
 /// `[ProbeRay]` read by the probe stage, one per launch index.
 pub const BINDING_PROBE_RAYS: u32 = 10;
 /// `[ProbeResult]` written by the probe stage.

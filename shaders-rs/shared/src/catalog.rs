@@ -222,6 +222,8 @@ pub enum DescriptorKind {
     StorageImage,
     UniformBuffer,
     StorageBuffer,
+    /// An array of [`crate::bindings::TEXTURE_SLOTS`] combined image samplers.
+    SampledImageArray,
 }
 
 /// One binding of the descriptor set: its number, what it holds and the stages that see it.
@@ -234,13 +236,13 @@ pub struct BindingSpec {
 
 /// The descriptor set every pipeline shares (set `bindings::DESCRIPTOR_SET`): every binding a
 /// module may declare, and the stages allowed to use it.
-pub const LAYOUT: [BindingSpec; 12] = {
+pub const LAYOUT: [BindingSpec; 13] = {
     use DescriptorKind::*;
     use Stage::*;
     [
         BindingSpec { binding: b::BINDING_TLAS, kind: AccelerationStructure, stages: &[Raygen, Compute] },
         BindingSpec { binding: b::BINDING_IMAGE, kind: StorageImage, stages: &[Raygen, Compute] },
-        BindingSpec { binding: b::BINDING_FRAME, kind: UniformBuffer, stages: &[Raygen, Miss, Compute] },
+        BindingSpec { binding: b::BINDING_FRAME, kind: UniformBuffer, stages: &[Raygen, Miss, ClosestHit, Compute] },
         BindingSpec {
             binding: b::BINDING_OBJECTS,
             kind: StorageBuffer,
@@ -262,6 +264,7 @@ pub const LAYOUT: [BindingSpec; 12] = {
         BindingSpec { binding: b::BINDING_INDICES, kind: StorageBuffer, stages: &[ClosestHit, Compute] },
         BindingSpec { binding: b::BINDING_PROBE_RAYS, kind: StorageBuffer, stages: &[Raygen, Compute] },
         BindingSpec { binding: b::BINDING_PROBE_RESULTS, kind: StorageBuffer, stages: &[Raygen, Compute] },
+        BindingSpec { binding: b::BINDING_TEXTURES, kind: SampledImageArray, stages: &[ClosestHit, AnyHit, Compute] },
     ]
 };
 

@@ -58,9 +58,10 @@ pub fn structs() -> Vec<GlslStruct> {
             seed: "uint",
             width: "uint",
             height: "uint",
+            cone: "vec4",
         }),
         glsl_struct!(ObjectData { material: "uint", vertex_base: "uint", index_base: "uint", shape: "uint" }),
-        glsl_struct!(Vertex { position: "vec4", normal: "vec4" }),
+        glsl_struct!(Vertex { position: "vec4", normal: "vec4", uv: "vec4", color: "vec4" }),
         glsl_struct!(Primitive { a: "vec4", b: "vec4", tint: "vec4" }),
         glsl_struct!(Material {
             kind: "uint",
@@ -68,7 +69,10 @@ pub fn structs() -> Vec<GlslStruct> {
             cutout_scale: "float",
             cutout_threshold: "float",
             color_a: "vec4",
-            color_b: "vec4"
+            color_b: "vec4",
+            texture: "uvec4",
+            uv_u: "vec4",
+            uv_v: "vec4"
         }),
         glsl_struct!(Light {
             kind: "uint",
@@ -152,6 +156,7 @@ pub fn layout_include() -> Result<String, String> {
         ("BINDING_INDICES", BINDING_INDICES),
         ("BINDING_PROBE_RAYS", BINDING_PROBE_RAYS),
         ("BINDING_PROBE_RESULTS", BINDING_PROBE_RESULTS),
+        ("BINDING_TEXTURES", BINDING_TEXTURES),
         ("RENDER_GROUP_SIZE", crate::bindings::RENDER_GROUP_SIZE),
         ("PROBE_GROUP_SIZE", crate::bindings::PROBE_GROUP_SIZE),
         ("EXPLAIN_PRIMARY", crate::bindings::EXPLAIN_PRIMARY),

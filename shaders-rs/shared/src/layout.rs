@@ -30,8 +30,12 @@ pub struct FrameUniform {
     /// stages have no built-in for (ray generation reads `launch_size`).
     pub width: u32,
     pub height: u32,
+    /// Texture level of detail by ray cones ([`crate::texture`]): x, the spread angle of a
+    /// primary ray's cone in radians (a pixel's angle at the image centre, over the samples per
+    /// side), or 0 for level 0 everywhere (`textures.lod = "zero"`); yzw: unused.
+    pub cone: Vec4,
 }
-const _: () = assert!(core::mem::size_of::<FrameUniform>() == 176);
+const _: () = assert!(core::mem::size_of::<FrameUniform>() == 192);
 
 /// Per object (TLAS instance), indexed by the instance index.
 #[repr(C)]
@@ -66,7 +70,8 @@ pub struct Primitive {
 const _: () = assert!(core::mem::size_of::<Primitive>() == 48);
 
 /// One mesh vertex, in object space. Flat-shaded meshes repeat vertices per face, with the
-/// face normal, so the shaders always interpolate `normal`.
+/// face normal, so the shaders always interpolate `normal`. Position first: the BLAS builds
+/// read it with the struct's size as stride.
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
@@ -76,8 +81,20 @@ pub struct Vertex {
     pub position: Vec4,
     /// xyz: unit normal; w: 0.
     pub normal: Vec4,
+    /// xy: texture coordinate set 0; zw: set 1 (glTF's TEXCOORD_0 and TEXCOORD_1; 0 where absent).
+    pub uv: Vec4,
+    /// Linear RGBA the material's colour is multiplied by (glTF's COLOR_0; 1 where absent).
+    pub color: Vec4,
 }
-const _: () = assert!(core::mem::size_of::<Vertex>() == 32);
+const _: () = assert!(core::mem::size_of::<Vertex>() == 64);
+
+#[cfg(not(target_arch = "spirv"))]
+impl Vertex {
+    /// A vertex at `position` with no normal, texture coordinates 0 and a white colour.
+    pub fn at(position: glam::Vec3) -> Vertex {
+        Vertex { position: position.extend(1.0), normal: Vec4::ZERO, uv: Vec4::ZERO, color: Vec4::ONE }
+    }
+}
 
 /// A material. Diffuse: `color_a` is the albedo. Emissive: `color_a` is the emitted radiance.
 /// Checker: `color_a` and `color_b` alternate in cubes of side `1 / color_b.w` in object space.
@@ -97,8 +114,16 @@ pub struct Material {
     pub cutout_threshold: f32,
     pub color_a: Vec4,
     pub color_b: Vec4,
+    /// The base colour texture, which multiplies `color_a` on meshes: x, its slot in the
+    /// texture array ([`crate::bindings::BINDING_TEXTURES`]), 0 for none; y, the vertex
+    /// texture coordinate set it reads (0 or 1); zw: 0.
+    pub texture: UVec4,
+    /// The texture coordinates' transform (glTF's KHR_texture_transform), rows of a 2x3
+    /// matrix: u' = dot(uv_u.xy, uv) + uv_u.z, v' = dot(uv_v.xy, uv) + uv_v.z; w: 0.
+    pub uv_u: Vec4,
+    pub uv_v: Vec4,
 }
-const _: () = assert!(core::mem::size_of::<Material>() == 48);
+const _: () = assert!(core::mem::size_of::<Material>() == 96);
 
 #[cfg(not(target_arch = "spirv"))]
 impl Material {
@@ -112,6 +137,25 @@ impl Material {
             cutout_threshold: threshold,
             color_a: Vec4::ONE,
             color_b: Vec4::ZERO,
+            ..Material::default()
+        }
+    }
+}
+
+#[cfg(not(target_arch = "spirv"))]
+impl Default for Material {
+    /// A white diffuse material with no texture and the identity texture transform.
+    fn default() -> Material {
+        Material {
+            kind: crate::bindings::MATERIAL_DIFFUSE,
+            cutout_pattern: crate::bindings::CUTOUT_NONE,
+            cutout_scale: 1.0,
+            cutout_threshold: 0.0,
+            color_a: Vec4::ONE,
+            color_b: Vec4::ZERO,
+            texture: UVec4::ZERO,
+            uv_u: Vec4::X,
+            uv_v: Vec4::Y,
         }
     }
 }
@@ -220,7 +264,7 @@ pub struct MaterialCall {
     /// rgb: the albedo (or emitted radiance) the callable computed.
     pub color: Vec4,
 }
-const _: () = assert!(core::mem::size_of::<MaterialCall>() == 96);
+const _: () = assert!(core::mem::size_of::<MaterialCall>() == 144);
 
 /// The payload of shadow rays: 1 until the shadow miss stage clears it.
 #[repr(C)]

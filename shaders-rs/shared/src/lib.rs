@@ -11,6 +11,7 @@ pub mod random;
 pub mod shading;
 pub mod shapes;
 pub mod surface;
+pub mod texture;
 
 #[cfg(not(target_arch = "spirv"))]
 pub mod catalog;

@@ -101,6 +101,7 @@ mod tests {
             cutout_threshold: 0.0,
             color_a: Vec4::new(1.0, 1.0, 1.0, 1.0),
             color_b: Vec4::new(0.0, 0.0, 0.0, 2.0),
+            ..Material::default()
         };
         let colors: Vec<Vec3> =
             [1e-7f32, 0.0, -1e-7].iter().map(|y| material_color(&m, Vec3::new(0.3, *y, 0.3), Vec3::Y)).collect();

@@ -9,12 +9,15 @@ use base64::Engine as _;
 use std::path::Path;
 
 /// Extensions twinray reads, so a model may require them.
-pub const SUPPORTED_EXTENSIONS: [&str; 1] = ["KHR_lights_punctual"];
+pub const SUPPORTED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_texture_transform"];
 
 /// The parsed document and its buffers' bytes, in buffer order.
 pub struct Loaded {
     pub gltf: gltf::Gltf,
     pub buffers: Vec<Vec<u8>>,
+    /// Where image files are read from, and how many more bytes may be read.
+    pub folder: std::path::PathBuf,
+    pub budget: u64,
 }
 
 /// Reads and parses `path` (`.gltf` or `.glb`) and every buffer it names.
@@ -52,7 +55,7 @@ pub fn parse(bytes: &[u8], folder: &Path, limit: u64) -> Result<Loaded, String> 
         budget = budget.saturating_sub(data.len() as u64);
         buffers.push(data);
     }
-    Ok(Loaded { gltf, buffers })
+    Ok(Loaded { gltf, buffers, folder: folder.to_path_buf(), budget })
 }
 
 /// The bytes of a buffer's or image's URI: a base64 `data:` URI, or a file relative to the

@@ -50,7 +50,7 @@ pub fn view(
     }
     let aspect = aspect.filter(|a| a.is_finite() && (0.1..=10.0).contains(a)).unwrap_or(4.0 / 3.0);
     let width = ((IMAGE_HEIGHT as f32 * aspect).round() as u32).max(1);
-    let image = ImageDesc { width, height: IMAGE_HEIGHT, samples: 1, seed: 0 };
+    let image = ImageDesc { width, height: IMAGE_HEIGHT, samples: 1, seed: 0, texture_lod: Default::default() };
     let mut lights = punctual(placed, ignored);
     if lights.is_empty() {
         lights = default_lights(&camera);

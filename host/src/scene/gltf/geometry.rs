@@ -4,7 +4,7 @@
 
 use super::super::mesh::{checked, with_normals, MeshData, Polyhedron};
 use super::super::shape::Normals;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
 use twinray_shared::layout::Vertex;
@@ -61,18 +61,78 @@ pub fn primitive(
         }
         None => None,
     };
-    Ok(Outcome::Mesh(match normals {
+    let attributes = attributes(primitive, buffers, p.positions.len(), what)?;
+    let mut mesh = match normals {
         Some(normals) => MeshData {
             vertices: p
                 .positions
                 .iter()
                 .zip(&normals)
-                .map(|(p, n)| Vertex { position: p.extend(1.0), normal: n.normalize().extend(0.0) })
+                .map(|(p, n)| Vertex { normal: n.normalize().extend(0.0), ..Vertex::at(*p) })
                 .collect(),
             indices: p.triangles.iter().flatten().copied().collect(),
         },
         None => with_normals(&p, Normals::Flat),
-    }))
+    };
+    // Flat normals repeat each triangle's corners, in order.
+    let flat = mesh.vertices.len() != p.positions.len() || p.positions.len() == 3 * p.triangles.len();
+    for (k, v) in mesh.vertices.iter_mut().enumerate() {
+        let source = if flat { p.triangles[k / 3][k % 3] as usize } else { k };
+        (v.uv, v.color) = attributes[source];
+    }
+    Ok(Outcome::Mesh(mesh))
+}
+
+/// Each vertex's texture coordinates (TEXCOORD_0 in xy, TEXCOORD_1 in zw; 0 where absent) and
+/// colour (COLOR_0, alpha 1 for RGB; white where absent), normalized integers as floats.
+fn attributes(
+    primitive: &gltf::Primitive,
+    buffers: &[Vec<u8>],
+    count: usize,
+    what: &str,
+) -> Result<Vec<(Vec4, Vec4)>, String> {
+    let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
+    let mut out = vec![(Vec4::ZERO, Vec4::ONE); count];
+    let normalized = [DataType::F32, DataType::U8, DataType::U16];
+    for set in 0..2u32 {
+        let semantic = format!("TEXCOORD_{set}");
+        let Some(a) = primitive.get(&gltf::Semantic::TexCoords(set)) else { continue };
+        check(&a, what, &semantic, &[Dimensions::Vec2], &normalized)?;
+        let uv: Vec<[f32; 2]> = reader.read_tex_coords(set).map(|t| t.into_f32().collect()).unwrap_or_default();
+        read_all(uv.len(), &a, what, &semantic)?;
+        same_count(uv.len(), count, what, &semantic)?;
+        for (o, [u, v]) in out.iter_mut().zip(uv) {
+            let (u, v) = (finite(u), finite(v));
+            o.0 = if set == 0 { Vec4::new(u, v, o.0.z, o.0.w) } else { Vec4::new(o.0.x, o.0.y, u, v) };
+        }
+    }
+    if let Some(a) = primitive.get(&gltf::Semantic::Colors(0)) {
+        check(&a, what, "COLOR_0", &[Dimensions::Vec3, Dimensions::Vec4], &normalized)?;
+        let colors: Vec<[f32; 4]> = reader.read_colors(0).map(|c| c.into_rgba_f32().collect()).unwrap_or_default();
+        read_all(colors.len(), &a, what, "COLOR_0")?;
+        same_count(colors.len(), count, what, "COLOR_0")?;
+        for (o, c) in out.iter_mut().zip(colors) {
+            o.1 = Vec4::from(c.map(|x| finite(x).clamp(0.0, 1.0)));
+        }
+    }
+    Ok(out)
+}
+
+/// A non-finite attribute value as 0: a texture coordinate of NaN would sample nothing
+/// defined, and the two sets would differ on it.
+fn finite(x: f32) -> f32 {
+    if x.is_finite() {
+        x
+    } else {
+        0.0
+    }
+}
+
+fn same_count(read: usize, positions: usize, what: &str, semantic: &str) -> Result<(), String> {
+    if read != positions {
+        return Err(format!("{what}: {semantic} has {read} elements, its POSITION {positions}"));
+    }
+    Ok(())
 }
 
 /// The triangles of a triangle list, strip or fan, as the spec orders them.

@@ -9,6 +9,7 @@
 //! refuses it.
 
 mod buffers;
+mod textures;
 pub use buffers::SUPPORTED_EXTENSIONS;
 mod framing;
 mod geometry;
@@ -62,13 +63,14 @@ pub struct Model {
 /// Reads the model at `path` (its scene `scene`, else its default one); the error says what in
 /// it is wrong.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<Model, String> {
-    model(buffers::load(path)?, scene)
+    let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
+    model(buffers::load(path)?, scene, &name)
 }
 
 /// The model of a glTF file's `bytes`, its buffer files (if any) relative to `folder`: what
 /// the fuzz target feeds.
 pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
-    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, None)
+    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, None, "model")
 }
 
 /// One notice line of what a model read from `source` has that twinray ignored, if anything.
@@ -83,8 +85,9 @@ fn listed(ignored: &BTreeSet<String>) -> String {
     ignored.iter().map(String::as_str).collect::<Vec<_>>().join(", ")
 }
 
-fn model(loaded: buffers::Loaded, scene: Option<usize>) -> Result<Model, String> {
-    let doc = &loaded.gltf.document;
+fn model(mut loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Model, String> {
+    let document = loaded.gltf.document.clone();
+    let doc = &document;
     let mut ignored = BTreeSet::new();
     ignored
         .extend(doc.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)).map(|e| format!("extension {e}")));
@@ -99,6 +102,7 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>) -> Result<Model, String>
     let meshes = meshes(doc, &loaded.buffers, &mut ignored)?;
     let mut objects = Vec::new();
     let mut materials = BTreeMap::new();
+    let mut images = textures::Images::new();
     for (node, world) in &placed {
         let Some(mesh) = node.mesh() else { continue };
         for primitive in mesh.primitives() {
@@ -106,7 +110,8 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>) -> Result<Model, String>
             if !meshes.contains_key(&shape) {
                 continue; // not triangles
             }
-            let material = material(&primitive.material(), &mut materials, &mut ignored);
+            let mut read = Read { loaded: &mut loaded, images: &mut images, source: name };
+            let material = material(&primitive.material(), &mut materials, &mut read, &mut ignored)?;
             objects.push(ObjectDesc {
                 shape,
                 material,
@@ -167,7 +172,7 @@ fn meshes(
             }
             for (semantic, _) in primitive.attributes() {
                 use gltf::Semantic as S;
-                if !matches!(semantic, S::Positions | S::Normals) {
+                if !matches!(semantic, S::Positions | S::Normals | S::TexCoords(0 | 1) | S::Colors(0)) {
                     ignored.insert(format!("attribute {}", semantic.to_string()));
                 }
             }
@@ -192,35 +197,48 @@ pub(super) fn mesh_shape(name: &str) -> ShapeDesc {
     ShapeDesc::Mesh(MeshDesc { builtin: None, file: Some(name.to_string()), normals: Default::default() })
 }
 
+/// What reading a material's texture needs: the model's buffers and budget, its images decoded
+/// so far, and its name for errors.
+struct Read<'a> {
+    loaded: &'a mut buffers::Loaded,
+    images: &'a mut textures::Images,
+    source: &'a str,
+}
+
 /// The name of `m`'s twinray material, added to `materials` the first time.
 fn material(
     m: &gltf::Material,
     materials: &mut BTreeMap<String, MaterialDesc>,
+    read: &mut Read,
     ignored: &mut BTreeSet<String>,
-) -> String {
+) -> Result<String, String> {
     let Some(index) = m.index() else {
-        materials.insert(DEFAULT_MATERIAL.into(), MaterialDesc::Diffuse { color: [0.8; 3] });
-        return DEFAULT_MATERIAL.into();
+        materials.insert(DEFAULT_MATERIAL.into(), MaterialDesc::Diffuse { color: [0.8; 3], texture: None });
+        return Ok(DEFAULT_MATERIAL.into());
     };
     let name = match m.name() {
         Some(n) => format!("material {index} {n:?}"),
         None => format!("material {index}"),
     };
+    if materials.contains_key(&name) {
+        return Ok(name);
+    }
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, _] = pbr.base_color_factor();
-    materials.insert(name.clone(), MaterialDesc::Diffuse { color: [r, g, b] });
+    let texture = textures::base_color(m, read.loaded, read.images, read.source, ignored)?.map(Box::new);
+    materials.insert(name.clone(), MaterialDesc::Diffuse { color: [r, g, b], texture });
     let mut note = |has: bool, what: &str| {
         if has {
             ignored.insert(what.into());
         }
     };
-    note(pbr.base_color_texture().is_some(), "base colour textures");
     note(true, "metallic-roughness (shaded as diffuse)");
     note(m.normal_texture().is_some(), "normal maps");
     note(m.occlusion_texture().is_some(), "occlusion maps");
     note(m.emissive_factor() != [0.0; 3] || m.emissive_texture().is_some(), "emission");
     note(m.alpha_mode() != gltf::material::AlphaMode::Opaque, "alpha modes MASK and BLEND");
-    name
+    note(!m.double_sided(), "single-sided materials (their back faces are shown)");
+    Ok(name)
 }
 
 #[cfg(test)]

@@ -138,7 +138,7 @@ fn what_is_not_modelled_is_named() {
         assert!(ignored.contains(&want), "{ignored:?}");
     }
     let red = model.file.materials.values().next().unwrap();
-    assert!(matches!(red, MaterialDesc::Diffuse { color: [1.0, 0.0, 0.0] }), "{red:?}");
+    assert!(matches!(red, MaterialDesc::Diffuse { color: [1.0, 0.0, 0.0], .. }), "{red:?}");
 }
 
 /// `load` refuses `text`, saying `why`.

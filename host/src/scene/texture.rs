@@ -1,0 +1,205 @@
+//! Textures: what a material's texture is (an image, the coordinate set and transform it is
+//! read through, how it is sampled), its image decoded at load (PNG or JPEG, bounded) and the
+//! mip chain the upload builds from it.
+
+use crate::error::{Error, Result};
+use serde::Deserialize;
+use std::sync::Arc;
+
+/// Largest texture side accepted: Vulkan guarantees 4096 for 2D images; every device twinray
+/// has run on (lavapipe, NVIDIA) offers 16384.
+pub const MAX_SIDE: u32 = 16384;
+
+/// How a texture coordinate outside [0, 1] is brought back.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Wrap {
+    #[default]
+    Repeat,
+    Clamp,
+    Mirror,
+}
+
+/// How texels are combined: the nearest, or bilinearly.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Filter {
+    #[default]
+    Linear,
+    Nearest,
+}
+
+/// How a texture is sampled: wrap along u and v, the filter within a level and between levels
+/// (`None`: level 0 only, as glTF's minification filters without a mipmap mode ask).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash, Deserialize)]
+#[serde(deny_unknown_fields, default)]
+pub struct SamplerDesc {
+    pub wrap: [Wrap; 2],
+    pub mag: Filter,
+    pub min: Filter,
+    pub mipmap: Option<Filter>,
+}
+
+impl SamplerDesc {
+    /// Repeat, bilinear, trilinear between levels: glTF's default and twinray's.
+    pub const DEFAULT: SamplerDesc =
+        SamplerDesc { wrap: [Wrap::Repeat; 2], mag: Filter::Linear, min: Filter::Linear, mipmap: Some(Filter::Linear) };
+}
+
+/// A material's texture.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TextureDesc {
+    /// The image: a PNG or JPEG file relative to the scene file; for a glTF model's texture,
+    /// the model's file and the image's index (`model.glb#image 2`).
+    pub file: String,
+    /// The vertex texture coordinate set it reads: 0 or 1.
+    #[serde(default)]
+    pub uv: u32,
+    #[serde(default = "default_sampler")]
+    pub sampler: SamplerDesc,
+    /// Rows of the 2x3 matrix the coordinates go through: (u, v) to
+    /// (a u + b v + c, d u + e v + f) for [[a, b, c], [d, e, f]].
+    #[serde(default = "identity")]
+    pub transform: [[f32; 3]; 2],
+    /// The decoded image: filled at load.
+    #[serde(skip)]
+    pub image: Option<Arc<TextureImage>>,
+}
+
+fn default_sampler() -> SamplerDesc {
+    SamplerDesc::DEFAULT
+}
+
+fn identity() -> [[f32; 3]; 2] {
+    [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]]
+}
+
+/// An image as 8-bit RGBA rows, top row first; `srgb` when its values are sRGB-encoded colours
+/// (a base colour texture), decoded to linear by the sampler.
+pub struct TextureImage {
+    pub name: String,
+    pub width: u32,
+    pub height: u32,
+    pub rgba: Vec<u8>,
+    pub srgb: bool,
+}
+
+impl std::fmt::Debug for TextureImage {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "TextureImage({}, {}x{})", self.name, self.width, self.height)
+    }
+}
+
+/// Decodes `bytes` (PNG or JPEG), called `name` in errors, as RGBA: refused with the cause
+/// named if it is neither, damaged, or larger than [`MAX_SIDE`] on a side.
+pub fn decode(name: &str, bytes: &[u8], srgb: bool) -> Result<TextureImage> {
+    let refuse = |why: String| Error::Input(format!("texture {name}: {why}"));
+    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
+        .with_guessed_format()
+        .map_err(|e| refuse(e.to_string()))?;
+    let mut limits = image::Limits::default();
+    limits.max_image_width = Some(MAX_SIDE);
+    limits.max_image_height = Some(MAX_SIDE);
+    limits.max_alloc = Some(u64::from(MAX_SIDE) * u64::from(MAX_SIDE) * 4);
+    reader.limits(limits);
+    if reader.format().is_none() {
+        return Err(refuse("neither a PNG nor a JPEG image".into()));
+    }
+    let decoded = reader.decode().map_err(|e| refuse(e.to_string()))?.into_rgba8();
+    let (width, height) = decoded.dimensions();
+    if width == 0 || height == 0 {
+        return Err(refuse("an image with no pixels".into()));
+    }
+    Ok(TextureImage { name: name.to_string(), width, height, rgba: decoded.into_raw(), srgb })
+}
+
+/// The levels of `image`'s mip chain after level 0, each half the last (rounded down, at least
+/// 1), every texel the mean of the 2x2 (or fewer, at an odd edge) below it; averaged in linear
+/// light for sRGB images, as the sampler's filtering is.
+pub fn mip_chain(image: &TextureImage) -> Vec<(u32, u32, Vec<u8>)> {
+    let srgb = image.srgb;
+    let decode = |v: u8| if srgb { srgb_to_linear(v) } else { f32::from(v) / 255.0 };
+    let encode = |c: f32| if srgb { linear_to_srgb(c) } else { unorm(c) };
+    let mut levels = Vec::new();
+    let (mut w, mut h) = (image.width, image.height);
+    let mut last: Vec<u8> = image.rgba.clone();
+    while w > 1 || h > 1 {
+        let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
+        let mut next = vec![0u8; (nw * nh * 4) as usize];
+        for y in 0..nh {
+            for x in 0..nw {
+                for c in 0..4 {
+                    let (mut sum, mut n) = (0.0, 0.0);
+                    for sy in (2 * y)..(2 * y + 2).min(h) {
+                        for sx in (2 * x)..(2 * x + 2).min(w) {
+                            let v = last[((sy * w + sx) * 4 + c) as usize];
+                            // Alpha is never sRGB-encoded.
+                            sum += if c == 3 { f32::from(v) / 255.0 } else { decode(v) };
+                            n += 1.0;
+                        }
+                    }
+                    let mean = sum / n;
+                    next[((y * nw + x) * 4 + c) as usize] = if c == 3 { unorm(mean) } else { encode(mean) };
+                }
+            }
+        }
+        levels.push((nw, nh, next.clone()));
+        (w, h, last) = (nw, nh, next);
+    }
+    levels
+}
+
+fn unorm(v: f32) -> u8 {
+    (v.clamp(0.0, 1.0) * 255.0).round() as u8
+}
+
+fn srgb_to_linear(v: u8) -> f32 {
+    let c = f32::from(v) / 255.0;
+    if c <= 0.04045 {
+        c / 12.92
+    } else {
+        ((c + 0.055) / 1.055).powf(2.4)
+    }
+}
+
+fn linear_to_srgb(c: f32) -> u8 {
+    let c = c.clamp(0.0, 1.0);
+    unorm(if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn image(width: u32, height: u32, rgba: Vec<u8>, srgb: bool) -> TextureImage {
+        TextureImage { name: "t".into(), width, height, rgba, srgb }
+    }
+
+    /// A 3x2 image: levels 1x1 (rounded down); black and white average to 50% in linear light,
+    /// which sRGB encodes as 188, and to 128 in a linear image; alpha is averaged as is.
+    #[test]
+    fn mips_halve_to_one_texel_averaging_in_linear_light() {
+        let px = |v: u8| [v, v, v, v];
+        let rgba: Vec<u8> = [px(0), px(255), px(0), px(255), px(0), px(255)].concat();
+        let srgb = mip_chain(&image(3, 2, rgba.clone(), true));
+        assert_eq!(srgb.len(), 1);
+        assert_eq!((srgb[0].0, srgb[0].1), (1, 1));
+        assert_eq!(srgb[0].2, vec![188, 188, 188, 128]);
+        let linear = mip_chain(&image(3, 2, rgba, false));
+        assert_eq!(linear[0].2, vec![128; 4]);
+        assert_eq!(mip_chain(&image(8, 1, vec![7; 32], false)).len(), 3, "8x1 -> 4x1, 2x1, 1x1");
+    }
+
+    #[test]
+    fn what_is_not_an_image_is_refused_by_name() {
+        let e = decode("wood.png", b"not an image at all", true).unwrap_err().to_string();
+        assert!(e.contains("wood.png") && e.contains("neither a PNG nor a JPEG"), "{e}");
+        let mut png = Vec::new();
+        image::RgbaImage::new(2, 1).write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
+        let t = decode("ok.png", &png, false).unwrap();
+        assert_eq!((t.width, t.height, t.rgba.len()), (2, 1, 8));
+        let e = decode("cut.png", &png[..png.len() / 2], false).unwrap_err().to_string();
+        assert!(e.contains("cut.png"), "{e}");
+    }
+}

@@ -1,0 +1,68 @@
+// Twin of twinray_shared::texture: texture coordinates of mesh hits and the ray cone's
+// footprint in texture space, and the sampling of the scene's texture array. Included after
+// `textures`.
+#ifndef TWINRAY_TEXTURE_GLSL
+#define TWINRAY_TEXTURE_GLSL
+
+vec4 interpolate(vec4 a0, vec4 a1, vec4 a2, float u, float v) {
+    return a0 * (1.0 - u - v) + a1 * u + a2 * v;
+}
+
+vec2 vertex_uv(Material material, Vertex v) {
+    vec2 uv = material.texture.y == 1u ? v.uv.zw : v.uv.xy;
+    return vec2(dot(material.uv_u.xy, uv) + material.uv_u.z, dot(material.uv_v.xy, uv) + material.uv_v.z);
+}
+
+// Barycentrics of the point `p` away from the hit, along the plane (normal n, edges e1, e2, twice
+// the area), carried to texture space: the uv there less the hit's.
+vec2 footprint_gradient(vec3 p, vec3 n, vec3 e1, vec3 e2, float twice_area, vec2 uv0, vec2 uv1, vec2 uv2) {
+    float u = dot(n, cross(p, e2)) / twice_area;
+    float v = dot(n, cross(e1, p)) / twice_area;
+    return (uv1 - uv0) * u + (uv2 - uv0) * v;
+}
+
+// The hit's texture coordinates `at` and their gradients dx, dy across the cone's footprint
+// (twinray_shared::texture::footprint).
+void footprint(mat3 object_to_world, vec3 p0, vec3 p1, vec3 p2, vec2 barycentrics, vec3 d, float width, vec2 uv0,
+               vec2 uv1, vec2 uv2, out vec2 at, out vec2 dx, out vec2 dy) {
+    float b1 = barycentrics.x, b2 = barycentrics.y;
+    at = uv0 * (1.0 - b1 - b2) + uv1 * b1 + uv2 * b2;
+    dx = vec2(0.0);
+    dy = vec2(0.0);
+    if (width <= 0.0) {
+        return;
+    }
+    vec3 e1 = object_to_world * (p1 - p0);
+    vec3 e2 = object_to_world * (p2 - p0);
+    vec3 c = cross(e1, e2);
+    float twice_area = length(c);
+    if (twice_area <= 0.0) {
+        return;
+    }
+    vec3 n = c / twice_area;
+    vec3 a0 = d - n * dot(n, d);
+    if (dot(a0, a0) <= 1.0e-8) {
+        a0 = cross(n, abs(n.x) < 0.9 ? vec3(1.0, 0.0, 0.0) : vec3(0.0, 1.0, 0.0));
+    }
+    a0 = a0 * (width / max(length(a0 - d * dot(d, a0)), 1.0e-4));
+    vec3 a1 = cross(n, a0);
+    a1 = a1 * (width / max(length(a1 - d * dot(d, a1)), 1.0e-4));
+    dx = footprint_gradient(a0, n, e1, e2, twice_area, uv0, uv1, uv2);
+    dy = footprint_gradient(a1, n, e1, e2, twice_area, uv0, uv1, uv2);
+}
+
+// Twin of twinray_shaders::texture::surface_tint: what the material's colour is multiplied by on
+// a mesh: the vertex colour, times its texture sampled over the cone's footprint.
+vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
+                  vec3 direction, float width) {
+    vec4 color = interpolate(v0.color, v1.color, v2.color, barycentrics.x, barycentrics.y);
+    if (material.texture.x == 0u) {
+        return color.xyz;
+    }
+    vec2 at, dx, dy;
+    footprint(object_to_world, v0.position.xyz, v1.position.xyz, v2.position.xyz, barycentrics, direction, width,
+              vertex_uv(material, v0), vertex_uv(material, v1), vertex_uv(material, v2), at, dx, dy);
+    vec4 texel = textureGrad(textures[nonuniformEXT(material.texture.x)], at, dx, dy);
+    return color.xyz * texel.xyz;
+}
+#endif

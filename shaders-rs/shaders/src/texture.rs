@@ -1,0 +1,53 @@
+//! The scene's textures: one runtime array of combined image samplers, indexed per hit by the
+//! material's slot (so non-uniformly: `cargo xtask shaders` decorates the accesses
+//! `NonUniform`, which rust-gpu cannot yet; see docs/upstream/non-uniform.md), sampled with
+//! the explicit gradients of the ray cone's footprint (`twinray_shared::texture`).
+
+use core::arch::asm;
+use spirv_std::glam::{Vec2, Vec3, Vec4, Vec4Swizzles};
+use spirv_std::image::SampledImage;
+use spirv_std::{Image, RuntimeArray};
+use twinray_shared::layout::{Material, Vertex};
+use twinray_shared::texture::{self, TriangleHit};
+
+/// One texture of the array: 2D, sampled as floats through its own sampler.
+pub type Texture = SampledImage<Image!(2D, type = f32, sampled = true)>;
+
+/// What the material's colour is multiplied by on a mesh: the vertex colour interpolated at the
+/// hit, times the material's texture (if it has one) sampled over the cone's footprint.
+pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], hit: &TriangleHit) -> Vec3 {
+    let b = hit.barycentrics;
+    let color = texture::interpolate([v[0].color, v[1].color, v[2].color], b.x, b.y);
+    if material.texture.x == 0 {
+        return color.xyz();
+    }
+    let uv = [texture::vertex_uv(material, &v[0]), texture::vertex_uv(material, &v[1]), texture::vertex_uv(material, &v[2])];
+    let (at, dx, dy) = texture::footprint(hit, uv);
+    // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
+    let texel = unsafe { sample_grad(textures.index(material.texture.x as usize), at, dx, dy) };
+    color.xyz() * texel.xyz()
+}
+
+/// `texture` at `uv`, its level of detail from the gradients `dx` and `dy`
+/// (`OpImageSampleExplicitLod` with `Grad`: spirv-std 0.11 offers it only for an image and a
+/// separate sampler).
+///
+/// # Safety
+/// `texture` is a bound, written descriptor.
+unsafe fn sample_grad(texture: &Texture, uv: Vec2, dx: Vec2, dy: Vec2) -> Vec4 {
+    let mut result = Vec4::ZERO;
+    asm!(
+        "%texture = OpLoad _ {texture}",
+        "%uv = OpLoad _ {uv}",
+        "%dx = OpLoad _ {dx}",
+        "%dy = OpLoad _ {dy}",
+        "%result = OpImageSampleExplicitLod typeof*{result} %texture %uv Grad %dx %dy",
+        "OpStore {result} %result",
+        texture = in(reg) texture,
+        uv = in(reg) &uv,
+        dx = in(reg) &dx,
+        dy = in(reg) &dy,
+        result = in(reg) &mut result,
+    );
+    result
+}

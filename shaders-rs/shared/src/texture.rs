@@ -1,0 +1,148 @@
+//! Textures on meshes: the vertex attributes a hit interpolates, the material's texture
+//! coordinate transform, and the texture-space footprint of the ray's cone, which picks the
+//! texture's level of detail in stages that have no derivatives.
+//!
+//! Level of detail follows ray cones (Akenine-Möller et al., "Texture Level of Detail
+//! Strategies for Real-Time Ray Tracing", Ray Tracing Gems ch. 20, 2019) with the anisotropic
+//! footprint of "Improved Shader and Texture Level of Detail Using Ray Cones" (Akenine-Möller,
+//! Crassin, Boksansky, Belcour, Panteleev, Wright, JCGT 10(1), 2021): the cone's ellipse on the
+//! triangle's plane, its two axes carried to texture space through the triangle's
+//! barycentrics, sampled with explicit gradients. A floor seen at a grazing angle so gets a
+//! long, thin footprint (sharp across, filtered along) rather than one level for both.
+
+use crate::layout::{Material, Vertex};
+use glam::{Mat3, Vec2, Vec3, Vec4, Vec4Swizzles};
+
+/// `a[0]`, `a[1]`, `a[2]` weighted by the barycentrics `(u, v)` of vertices 1 and 2.
+pub fn interpolate(a: [Vec4; 3], u: f32, v: f32) -> Vec4 {
+    a[0] * (1.0 - u - v) + a[1] * u + a[2] * v
+}
+
+/// The texture coordinates `material`'s texture reads at vertex `v`: its set (0 or 1),
+/// through the material's transform.
+pub fn vertex_uv(material: &Material, v: &Vertex) -> Vec2 {
+    let uv = if material.texture.y == 1 { v.uv.zw() } else { v.uv.xy() };
+    Vec2::new(material.uv_u.xy().dot(uv) + material.uv_u.z, material.uv_v.xy().dot(uv) + material.uv_v.z)
+}
+
+/// Where a ray met a textured triangle, in world space: what the footprint needs.
+#[derive(Clone, Copy)]
+pub struct TriangleHit {
+    /// The object-to-world transform's 3x3 part.
+    pub object_to_world: Mat3,
+    /// The triangle's object-space vertex positions.
+    pub positions: [Vec3; 3],
+    /// The hit's barycentrics of vertices 1 and 2.
+    pub barycentrics: Vec2,
+    /// The world-space unit ray direction.
+    pub direction: Vec3,
+    /// The cone's width at the hit: its spread angle times the distance travelled.
+    pub width: f32,
+}
+
+/// The texture coordinates at the hit and their gradients across the cone's footprint:
+/// `(uv, dx, dy)` for an explicit-gradient sample (zero gradients, level 0, for a cone of
+/// width 0). The footprint's two axes are those of the ellipse the cone cuts from the
+/// triangle's plane, each of the length a pixel's worth of the cone covers there, as a
+/// rasteriser's derivatives across one pixel would be.
+pub fn footprint(hit: &TriangleHit, uv: [Vec2; 3]) -> (Vec2, Vec2, Vec2) {
+    let (b1, b2) = (hit.barycentrics.x, hit.barycentrics.y);
+    let at = uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2;
+    if hit.width <= 0.0 {
+        return (at, Vec2::ZERO, Vec2::ZERO);
+    }
+    let m = hit.object_to_world;
+    let e1 = m * (hit.positions[1] - hit.positions[0]);
+    let e2 = m * (hit.positions[2] - hit.positions[0]);
+    let cross = e1.cross(e2);
+    let twice_area = cross.length();
+    if twice_area <= 0.0 {
+        return (at, Vec2::ZERO, Vec2::ZERO);
+    }
+    let n = cross / twice_area;
+    let d = hit.direction;
+    // The ellipse's major axis: the ray projected on the plane (any direction in it for a ray
+    // head-on, where the projection vanishes and the ellipse is a circle), stretched so that
+    // its part across the ray is the cone's width.
+    let a0 = d - n * n.dot(d);
+    let a0 = if a0.dot(a0) > 1.0e-8 { a0 } else { n.cross(if n.x.abs() < 0.9 { Vec3::X } else { Vec3::Y }) };
+    let a0 = a0 * (hit.width / (a0 - d * d.dot(a0)).length().max(1.0e-4));
+    let a1 = n.cross(a0);
+    let a1 = a1 * (hit.width / (a1 - d * d.dot(a1)).length().max(1.0e-4));
+    // Barycentrics of a point `p` away from the hit, along the plane, by areas; the uv there
+    // less the hit's is the gradient.
+    let gradient = |p: Vec3| {
+        let u = n.dot(p.cross(e2)) / twice_area;
+        let v = n.dot(e1.cross(p)) / twice_area;
+        (uv[1] - uv[0]) * u + (uv[2] - uv[0]) * v
+    };
+    (at, gradient(a0), gradient(a1))
+}
+
+/// The spread angle of a primary ray's cone: the angle of one of `samples_per_side` sub-pixel
+/// strata at the centre of an image `height` pixels high under a vertical field of view of
+/// `fov_y` radians. What `FrameUniform::cone` holds.
+#[cfg(not(target_arch = "spirv"))]
+pub fn spread_angle(fov_y: f32, height: u32, samples_per_side: u32) -> f32 {
+    (2.0 * (fov_y / 2.0).tan() / (height.max(1) * samples_per_side.max(1)) as f32).atan()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn floor_hit(direction: Vec3, width: f32) -> TriangleHit {
+        TriangleHit {
+            object_to_world: Mat3::IDENTITY,
+            positions: [Vec3::ZERO, Vec3::X, Vec3::Z],
+            barycentrics: Vec2::new(0.25, 0.25),
+            direction: direction.normalize(),
+            width,
+        }
+    }
+
+    /// A floor whose uv is its x and z: seen from straight above, the footprint is the cone's
+    /// width both ways; at a grazing angle one axis stays that width (nothing blurs across
+    /// the view) and the other grows as 1 / cos (filtered along it, so nothing aliases).
+    #[test]
+    fn the_footprint_is_round_head_on_and_long_at_a_grazing_angle() {
+        let uv = [Vec2::ZERO, Vec2::X, Vec2::Y];
+        let (at, dx, dy) = footprint(&floor_hit(-Vec3::Y, 0.01), uv);
+        assert!((at - Vec2::new(0.25, 0.25)).length() < 1e-6);
+        assert!((dx.length() - 0.01).abs() < 1e-5 && (dy.length() - 0.01).abs() < 1e-5, "{dx} {dy}");
+        let grazing = Vec3::new(1.0, -0.1, 0.0);
+        let cos = grazing.normalize().dot(Vec3::Y).abs();
+        let (_, dx, dy) = footprint(&floor_hit(grazing, 0.01), uv);
+        let (long, short) = (dx.length().max(dy.length()), dx.length().min(dy.length()));
+        assert!((short - 0.01).abs() < 1e-5, "{short}");
+        assert!((long - 0.01 / cos).abs() < 1e-4 * long, "{long} against {}", 0.01 / cos);
+    }
+
+    /// A cone of width 0 (LOD 0 chosen) samples level 0; a scaled object scales the footprint.
+    #[test]
+    fn zero_width_is_level_zero_and_scale_counts() {
+        let uv = [Vec2::ZERO, Vec2::X, Vec2::Y];
+        assert_eq!(footprint(&floor_hit(-Vec3::Y, 0.0), uv).1, Vec2::ZERO);
+        let mut hit = floor_hit(-Vec3::Y, 0.01);
+        hit.object_to_world = Mat3::from_diagonal(Vec3::splat(2.0));
+        let (_, dx, _) = footprint(&hit, uv);
+        assert!((dx.length() - 0.005).abs() < 1e-6, "{dx}");
+    }
+
+    #[test]
+    fn vertex_uv_reads_its_set_through_the_transform() {
+        let v = Vertex { position: Vec4::W, normal: Vec4::Y, uv: Vec4::new(0.5, 0.25, 0.1, 0.2), color: Vec4::ONE };
+        let mut m = Material::default();
+        assert_eq!(vertex_uv(&m, &v), Vec2::new(0.5, 0.25));
+        m.texture.y = 1;
+        m.uv_u = Vec4::new(2.0, 0.0, 1.0, 0.0);
+        assert_eq!(vertex_uv(&m, &v), Vec2::new(1.2, 0.2));
+    }
+
+    #[test]
+    fn a_pixel_of_a_60_degree_view_480_high() {
+        let a = spread_angle(60f32.to_radians(), 480, 1);
+        assert!((a - (2.0 * 30f32.to_radians().tan() / 480.0)).abs() < 1e-7);
+        assert!((spread_angle(60f32.to_radians(), 480, 4) - a / 4.0).abs() < 1e-6);
+    }
+}
