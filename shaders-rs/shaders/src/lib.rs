@@ -298,7 +298,9 @@ pub fn explain_query(
     } else {
         let mut hit = HitPayload::NONE;
         let reach = (frame.reach.z, frame.reach.x);
-        query::primary_query(tlas, ray, reach, &mut hit, frame, objects, primitives, materials, vertices, indices, textures);
+        query::primary_query(
+            tlas, ray, reach, &mut hit, frame, objects, primitives, materials, vertices, indices, textures,
+        );
         ExplainResult { hit, occluded: UVec4::ZERO }
     };
 }

@@ -21,7 +21,8 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
     if material.texture.x == 0 {
         return color.xyz();
     }
-    let uv = [texture::vertex_uv(material, &v[0]), texture::vertex_uv(material, &v[1]), texture::vertex_uv(material, &v[2])];
+    let uv =
+        [texture::vertex_uv(material, &v[0]), texture::vertex_uv(material, &v[1]), texture::vertex_uv(material, &v[2])];
     let (at, dx, dy) = texture::footprint(hit, uv);
     // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
     let texel = unsafe { sample_grad(textures.index(material.texture.x as usize), at, dx, dy) };
