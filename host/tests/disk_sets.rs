@@ -66,6 +66,24 @@ fn compare_takes_a_folder_of_modules_and_a_single_module_file() {
     assert_eq!((json["rmse"].as_f64(), json["hit_mismatches"].as_u64()), (Some(0.0), Some(0)));
 }
 
+/// A closest-hit module as rust-gpu writes it, before the pass that adds NonUniform: it
+/// renders right here (lavapipe reads the right texture anyway), and its texture access is
+/// reported, naming the file, the stage and the access.
+#[test]
+fn a_texture_indexed_per_hit_without_non_uniform_is_reported() {
+    let dir = tempfile::tempdir().unwrap();
+    let module = repo().join("shaders-rs/build/testdata/triangle_closest_hit.undecorated.spv");
+    let set = format!("rust,triangle_closest_hit={}", module.display());
+    let out = twinray(&["render", "meshes", "--shaders", &set, "--width", "32", "--height", "24"], dir.path());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    let line = stderr.lines().find(|l| l.contains("NonUniform")).unwrap_or_else(|| panic!("no report in {stderr}"));
+    assert!(line.contains("triangle_closest_hit.undecorated.spv (closest_hit stage)"), "{line}");
+    assert!(line.contains("OpAccessChain") && line.contains("binding 12") && line.contains("InstanceId"), "{line}");
+    let clean = twinray(&["render", "meshes", "--shaders", "rust", "--width", "32", "--height", "24"], dir.path());
+    assert!(!String::from_utf8_lossy(&clean.stderr).contains("NonUniform"));
+}
+
 #[test]
 fn a_folder_without_a_needed_module_is_named() {
     let dir = tempfile::tempdir().unwrap();

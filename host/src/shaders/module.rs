@@ -34,6 +34,8 @@ pub(crate) struct DiskModule {
     pub path: PathBuf,
     pub spirv: Arc<[u8]>,
     pub entry: String,
+    /// Its accesses of descriptor arrays at non-uniform indices without `NonUniform`, in words.
+    pub non_uniform: Vec<String>,
 }
 
 /// Reads `path` as the module `spec` and checks it; the error names the file and what is wrong.
@@ -46,7 +48,24 @@ pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String>
     let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
     spec.check_module(&info, &entry).map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;
     super::validate::validate(&bytes).map_err(|e| format!("{file}: {e}"))?;
-    Ok(DiskModule { path: path.to_path_buf(), spirv: bytes.into(), entry })
+    let faults = twinray_build::uniformity::check(&bytes).map_err(|e| format!("{file}: {e}"))?;
+    let non_uniform = faults.iter().map(|f| format!("{file} ({} stage): {f}", spec.stage.name())).collect();
+    Ok(DiskModule { path: path.to_path_buf(), spirv: bytes.into(), entry, non_uniform })
+}
+
+/// Says, once per process for each, what `module` indexes without `NonUniform`: every device
+/// twinray has run on reads the right descriptor without the decoration, so no render would
+/// show the fault, and it is said on every device. (When the module is used, not when it is
+/// read: sets are read while the command line is, before the log is set up.)
+fn report_non_uniform(module: &DiskModule) {
+    static SAID: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+    let mut said = SAID.lock().unwrap_or_else(|e| e.into_inner());
+    if !module.non_uniform.is_empty() && !said.contains(&module.path) {
+        said.push(module.path.clone());
+        for line in &module.non_uniform {
+            log::warn!("{line}");
+        }
+    }
 }
 
 impl Origin {
@@ -58,7 +77,10 @@ impl Origin {
                     .ok_or_else(|| format!("no built-in {} module {}", language.name(), spec.name))?;
                 (language.name().into(), spec.entry_point(*language), spirv.into())
             }
-            Origin::Disk(m) => (m.path.display().to_string(), &m.entry, m.spirv.clone()),
+            Origin::Disk(m) => {
+                report_non_uniform(m);
+                (m.path.display().to_string(), &m.entry, m.spirv.clone())
+            }
             Origin::Missing(path) => {
                 return Err(format!("no module {} ({} does not exist)", spec.name, path.display()));
             }

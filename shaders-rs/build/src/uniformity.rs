@@ -34,7 +34,7 @@ impl std::fmt::Display for Fault {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(
             f,
-            "{} indexes the descriptor array at set {} binding {} with a value derived from {}, and what it reads is not decorated NonUniform (undefined on devices that fetch one descriptor per group of invocations)",
+            "{} indexes the descriptor array at set {} binding {} with a value derived from {}, and what it reads is not decorated NonUniform: undefined on devices that fetch one descriptor per group of invocations (GLSL: nonuniformEXT; rust-gpu: twinray_build::uniformity::decorate, docs/rust-stages.md)",
             self.access, self.binding.0, self.binding.1, self.source
         )
     }
