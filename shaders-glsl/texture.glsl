@@ -51,6 +51,21 @@ void footprint(mat3 object_to_world, vec3 p0, vec3 p1, vec3 p2, vec2 barycentric
     dy = footprint_gradient(a1, n, e1, e2, twice_area, uv0, uv1, uv2);
 }
 
+// Twin of twinray_shared::texture::taps: the samples a footprint is filtered with.
+void taps(vec2 at, vec2 dx, vec2 dy, out uint count, out vec2 first, out vec2 step, out vec2 tap_dx,
+          out vec2 tap_dy) {
+    bool x_longer = dot(dx, dx) >= dot(dy, dy);
+    vec2 major = x_longer ? dx : dy;
+    vec2 minor = x_longer ? dy : dx;
+    float long_axis = length(major), short_axis = length(minor);
+    float ratio = short_axis > 0.0 ? long_axis / short_axis : (long_axis > 0.0 ? float(MAX_TAPS) : 1.0);
+    count = clamp(uint(ceil(ratio)), 1u, MAX_TAPS);
+    step = major / float(count);
+    first = at - major * 0.5 + step * 0.5;
+    tap_dx = step;
+    tap_dy = minor;
+}
+
 // Twin of twinray_shaders::texture::surface_tint: what the material's colour is multiplied by on
 // a mesh: the vertex colour, times its texture sampled over the cone's footprint.
 vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
@@ -62,7 +77,14 @@ vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 objec
     vec2 at, dx, dy;
     footprint(object_to_world, v0.position.xyz, v1.position.xyz, v2.position.xyz, barycentrics, direction, width,
               vertex_uv(material, v0), vertex_uv(material, v1), vertex_uv(material, v2), at, dx, dy);
-    vec4 texel = textureGrad(textures[nonuniformEXT(material.texture.x)], at, dx, dy);
+    uint count;
+    vec2 first, step, tap_dx, tap_dy;
+    taps(at, dx, dy, count, first, step, tap_dx, tap_dy);
+    vec4 sum = vec4(0.0);
+    for (uint i = 0u; i < count; i++) {
+        sum += textureGrad(textures[nonuniformEXT(material.texture.x)], first + step * float(i), tap_dx, tap_dy);
+    }
+    vec4 texel = sum / float(count);
     return color.xyz * texel.xyz;
 }
 #endif

@@ -11,12 +11,11 @@ use ash::vk;
 use std::sync::Arc;
 use twinray_shared::bindings::TEXTURE_SLOTS;
 
-/// Uploads slot 0 and `textures` (slots 1 on); `anisotropy` as `DeviceInfo` reports it.
+/// Uploads slot 0 and `textures` (slots 1 on).
 pub(crate) fn upload_textures(
     ctx: &Arc<Context>,
     one_shot: &OneShot,
     textures: &[(Arc<TextureImage>, SamplerDesc)],
-    anisotropy: f32,
 ) -> Result<Vec<Texture>> {
     if textures.len() >= TEXTURE_SLOTS as usize {
         return Err(Error::Input(format!(
@@ -32,14 +31,14 @@ pub(crate) fn upload_textures(
         "white",
         vk::Format::R8G8B8A8_UNORM,
         &white,
-        &sampler_info(&SamplerDesc::DEFAULT, 0, anisotropy),
+        &sampler_info(&SamplerDesc::DEFAULT, 0),
     )?];
     for (image, sampler) in textures {
         let chain = if sampler.mipmap.is_some() { mip_chain(image) } else { Vec::new() };
         let mut levels = vec![(image.width, image.height, image.rgba.as_slice())];
         levels.extend(chain.iter().map(|(w, h, t)| (*w, *h, t.as_slice())));
         let format = if image.srgb { vk::Format::R8G8B8A8_SRGB } else { vk::Format::R8G8B8A8_UNORM };
-        let info = sampler_info(sampler, levels.len() as u32 - 1, anisotropy);
+        let info = sampler_info(sampler, levels.len() as u32 - 1);
         out.push(Texture::new(ctx, one_shot, &image.name, format, &levels, &info)?);
     }
     Ok(out)
@@ -50,8 +49,10 @@ pub(crate) fn slots(textures: &[Texture]) -> Vec<(vk::ImageView, vk::Sampler)> {
     (0..TEXTURE_SLOTS as usize).map(|i| textures.get(i).unwrap_or(&textures[0])).map(|t| (t.view, t.sampler)).collect()
 }
 
-/// The Vulkan sampler of `s` over `max_level` levels after the first.
-fn sampler_info(s: &SamplerDesc, max_level: u32, anisotropy: f32) -> vk::SamplerCreateInfo<'static> {
+/// The Vulkan sampler of `s` over `max_level` levels after the first. No anisotropic
+/// filtering: the stages filter long footprints by taps of their own, alike on every device
+/// (`twinray_shared::texture::taps`).
+fn sampler_info(s: &SamplerDesc, max_level: u32) -> vk::SamplerCreateInfo<'static> {
     let filter = |f: Filter| match f {
         Filter::Linear => vk::Filter::LINEAR,
         Filter::Nearest => vk::Filter::NEAREST,
@@ -65,8 +66,6 @@ fn sampler_info(s: &SamplerDesc, max_level: u32, anisotropy: f32) -> vk::Sampler
         Some(Filter::Linear) => vk::SamplerMipmapMode::LINEAR,
         _ => vk::SamplerMipmapMode::NEAREST,
     };
-    // Anisotropic filtering only where there are levels to filter between.
-    let anisotropic = anisotropy > 1.0 && s.mipmap.is_some() && max_level > 0;
     vk::SamplerCreateInfo::default()
         .mag_filter(filter(s.mag))
         .min_filter(filter(s.min))
@@ -74,8 +73,6 @@ fn sampler_info(s: &SamplerDesc, max_level: u32, anisotropy: f32) -> vk::Sampler
         .address_mode_u(wrap(s.wrap[0]))
         .address_mode_v(wrap(s.wrap[1]))
         .address_mode_w(vk::SamplerAddressMode::REPEAT)
-        .anisotropy_enable(anisotropic)
-        .max_anisotropy(if anisotropic { anisotropy } else { 1.0 })
         .min_lod(0.0)
         .max_lod(if s.mipmap.is_some() { max_level as f32 } else { 0.0 })
 }

@@ -159,7 +159,7 @@ fn upload_scene(
         build_ms: started.elapsed().as_secs_f64() * 1e3,
     };
     log::info!("scene {}: {accel}", scene.name());
-    let textures = upload_textures(ctx, one_shot, &data.textures, ctx.info.max_sampler_anisotropy)?;
+    let textures = upload_textures(ctx, one_shot, &data.textures)?;
     let resources =
         SceneResources { _blases: blases, textures, tlas: RefCell::new(tlas), buffers: RefCell::new(buffers) };
     Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel })

@@ -167,7 +167,15 @@ pub(super) fn check_camera(c: &CameraDesc) -> Checked {
 
 fn check_material(m: &MaterialDesc) -> Checked {
     match m {
-        MaterialDesc::Diffuse { color: c, .. } => color("color", *c),
+        MaterialDesc::Diffuse { color: c, texture } => {
+            color("color", *c)?;
+            match texture.as_deref() {
+                Some(t) if t.uv > 1 => Err(format!("texture.uv must be 0 or 1 (got {})", t.uv)),
+                Some(t) if t.file.is_empty() => Err("texture.file must name an image".into()),
+                Some(t) => finite("texture.transform", &t.transform.concat()),
+                None => Ok(()),
+            }
+        }
         MaterialDesc::Emissive { color: c, intensity } => {
             color("color", *c)?;
             positive("intensity", *intensity)

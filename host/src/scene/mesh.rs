@@ -6,7 +6,7 @@
 
 use super::shape::{MeshBuiltin, Normals};
 use crate::util::input::read_bounded;
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 use std::path::Path;
 use twinray_shared::layout::Vertex;
 use twinray_shared::shapes::spec::{MAX_LENGTH, MAX_PRIMITIVES};
@@ -99,17 +99,28 @@ fn obj_text(bytes: &[u8]) -> String {
     text.lines().filter(|l| !material(l)).flat_map(|l| [l, "\n"]).collect()
 }
 
+/// The triangles of an OBJ file's models, with their texture coordinates (`vt`, v turned to
+/// run down the image as glTF's and Vulkan's do; 0 where a model has none).
 fn from_models(models: &[tobj::Model], name: &str, normals: Normals) -> Result<MeshData, String> {
     let path = name;
     let mut p = Polyhedron { positions: Vec::new(), triangles: Vec::new() };
+    let mut attributes = Vec::new();
     for model in models {
         let base = p.positions.len() as u32;
         let m = &model.mesh;
         p.positions.extend(m.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])));
         p.triangles.extend(m.indices.chunks_exact(3).map(|t| [base + t[0], base + t[1], base + t[2]]));
+        let count = m.positions.len() / 3;
+        let uv = |i: usize| match m.texcoords.get(2 * i..2 * i + 2) {
+            Some(&[u, v]) if m.texcoords.len() == 2 * count && u.is_finite() && v.is_finite() => {
+                Vec4::new(u, 1.0 - v, 0.0, 0.0)
+            }
+            _ => Vec4::ZERO,
+        };
+        attributes.extend((0..count).map(|i| (uv(i), Vec4::ONE)));
     }
     checked(&p, &format!("mesh file {path}"))?;
-    Ok(with_normals(&p, normals))
+    Ok(with_attributes(with_normals(&p, normals), &p, &attributes, normals == Normals::Flat))
 }
 
 /// Whether `p` is a mesh the GPU can take: some triangles, not too many, every vertex finite
@@ -134,6 +145,18 @@ pub(super) fn checked(p: &Polyhedron, what: &str) -> Result<(), String> {
 fn face_normal(p: &Polyhedron, t: [u32; 3]) -> Vec3 {
     let [a, b, c] = t.map(|i| p.positions[i as usize]);
     (b - a).cross(c - a)
+}
+
+/// `mesh` (made of `p`, by [`with_normals`] with flat normals if `flat`, else one vertex per
+/// vertex of `p`) with each vertex's texture coordinates and colour from `attributes`, one per
+/// vertex of `p`.
+pub(super) fn with_attributes(mut mesh: MeshData, p: &Polyhedron, attributes: &[(Vec4, Vec4)], flat: bool) -> MeshData {
+    // Flat normals repeat each triangle's corners, in order.
+    for (k, v) in mesh.vertices.iter_mut().enumerate() {
+        let source = if flat { p.triangles[k / 3][k % 3] as usize } else { k };
+        (v.uv, v.color) = attributes[source];
+    }
+    mesh
 }
 
 pub(super) fn with_normals(p: &Polyhedron, normals: Normals) -> MeshData {

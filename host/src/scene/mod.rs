@@ -124,6 +124,7 @@ impl Scene {
         }
         file.objects.extend(grid_objects);
         let mut placed = models::place(&mut file, mesh_files.folder()).map_err(scene_error)?;
+        load_textures(&mut file, mesh_files.folder()).map_err(scene_error)?;
         let animation = file.animation.as_ref().map(|a| animation::resolve(a, &file, &grids)).transpose();
         let animation = animation.map_err(scene_error)?;
         // Whatever reads `file` (a still render, the reference, a probe) sees frame 0.
@@ -241,6 +242,36 @@ impl Scene {
     pub fn frame_uniform(&self, width: u32, height: u32) -> FrameUniform {
         build::frame_uniform(&self.file, width, height, &self.build().world_boxes())
     }
+}
+
+/// Decodes the image of every material texture a scene file names (PNG or JPEG, relative to
+/// `folder`; read bounded as mesh files are), each file once. Textures of placed glTF models
+/// come decoded.
+fn load_textures(file: &mut SceneFile, folder: Option<&Path>) -> std::result::Result<(), String> {
+    let mut decoded: BTreeMap<String, std::sync::Arc<texture::TextureImage>> = BTreeMap::new();
+    for (name, material) in &mut file.materials {
+        let file::MaterialDesc::Diffuse { texture: Some(t), .. } = material else { continue };
+        if t.image.is_some() {
+            continue;
+        }
+        let image = match decoded.get(&t.file) {
+            Some(image) => image.clone(),
+            None => {
+                let folder =
+                    folder.ok_or_else(|| format!("material {name:?}: a built-in scene has no texture files"))?;
+                let path = folder.join(&t.file);
+                let limit = mesh::max_mesh_bytes()?;
+                let bytes = crate::util::input::read_bounded(&path, limit)
+                    .map_err(|e| format!("material {name:?}: cannot read texture {}: {e}", path.display()))?;
+                let image = texture::decode(&t.file, &bytes, true).map_err(|e| format!("material {name:?}: {e}"))?;
+                let image = std::sync::Arc::new(image);
+                decoded.insert(t.file.clone(), image.clone());
+                image
+            }
+        };
+        t.image = Some(image);
+    }
+    Ok(())
 }
 
 /// A TOML error as one line: where (line, column and that line's text) and what.

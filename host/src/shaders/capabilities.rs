@@ -185,7 +185,6 @@ mod tests {
             ray_query,
             robustness: Default::default(),
             host_acceleration_structure_commands: false,
-            max_sampler_anisotropy: 16.0,
         }
     }
 

@@ -36,10 +36,6 @@ pub struct DeviceInfo {
     pub ray_query: bool,
     /// Robust access twinray turned on (see [`Robustness`]).
     pub robustness: Robustness,
-    /// The anisotropy twinray's texture samplers use: the device's limit up to 16, or 0 where
-    /// it has no `samplerAnisotropy` (textures are then filtered by their footprint's longer
-    /// axis alone).
-    pub max_sampler_anisotropy: f32,
     /// Whether the device can build acceleration structures on the host
     /// (`accelerationStructureHostCommands`); twinray builds them on the device either way.
     pub host_acceleration_structure_commands: bool,
@@ -93,11 +89,7 @@ pub(super) fn create_device(
     let mut accel = vk::PhysicalDeviceAccelerationStructureFeaturesKHR::default().acceleration_structure(true);
     let mut rt = vk::PhysicalDeviceRayTracingPipelineFeaturesKHR::default().ray_tracing_pipeline(true);
     let mut query = vk::PhysicalDeviceRayQueryFeaturesKHR::default().ray_query(true);
-    // SAFETY: plain query on a live physical device.
-    let offered = unsafe { instance.get_physical_device_features(candidate.physical) };
-    let core = vk::PhysicalDeviceFeatures::default()
-        .robust_buffer_access(robust.buffer_access2)
-        .sampler_anisotropy(offered.sampler_anisotropy == vk::TRUE);
+    let core = vk::PhysicalDeviceFeatures::default().robust_buffer_access(robust.buffer_access2);
     let mut robust2 = vk::PhysicalDeviceRobustness2FeaturesEXT::default()
         .robust_buffer_access2(robust.buffer_access2)
         .robust_image_access2(robust.image_access2);
@@ -137,7 +129,6 @@ pub(super) fn device_info(
     // SAFETY: the chained struct lives until the call returns; the device was chosen for having
     // VK_KHR_acceleration_structure.
     unsafe { instance.get_physical_device_features2(physical, &mut features) };
-    let anisotropic = features.features.sampler_anisotropy == vk::TRUE;
     // SAFETY: physical comes from this instance.
     let families = unsafe { instance.get_physical_device_queue_family_properties(physical) };
     let text = |c: Result<&std::ffi::CStr, _>| c.map(|s| s.to_string_lossy().into_owned()).unwrap_or_default();
@@ -149,7 +140,6 @@ pub(super) fn device_info(
         ray_query: false,
         robustness: Robustness::default(),
         host_acceleration_structure_commands: accel_features.acceleration_structure_host_commands == vk::TRUE,
-        max_sampler_anisotropy: if anisotropic { props.limits.max_sampler_anisotropy.min(16.0) } else { 0.0 },
         api_version: format!(
             "{}.{}.{}",
             vk::api_version_major(props.api_version),

@@ -14,7 +14,8 @@ use twinray_shared::texture::{self, TriangleHit};
 pub type Texture = SampledImage<Image!(2D, type = f32, sampled = true)>;
 
 /// What the material's colour is multiplied by on a mesh: the vertex colour interpolated at the
-/// hit, times the material's texture (if it has one) sampled over the cone's footprint.
+/// hit, times the material's texture (if it has one) filtered over the cone's footprint by
+/// its taps (`twinray_shared::texture::taps`).
 pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], hit: &TriangleHit) -> Vec3 {
     let b = hit.barycentrics;
     let color = texture::interpolate([v[0].color, v[1].color, v[2].color], b.x, b.y);
@@ -24,8 +25,17 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
     let uv =
         [texture::vertex_uv(material, &v[0]), texture::vertex_uv(material, &v[1]), texture::vertex_uv(material, &v[2])];
     let (at, dx, dy) = texture::footprint(hit, uv);
+    let taps = texture::taps(at, dx, dy);
     // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
-    let texel = unsafe { sample_grad(textures.index(material.texture.x as usize), at, dx, dy) };
+    let image = unsafe { textures.index(material.texture.x as usize) };
+    let mut sum = Vec4::ZERO;
+    let mut i = 0;
+    while i < taps.count {
+        // SAFETY: as above.
+        sum += unsafe { sample_grad(image, taps.first + taps.step * i as f32, taps.dx, taps.dy) };
+        i += 1;
+    }
+    let texel = sum / taps.count as f32;
     color.xyz() * texel.xyz()
 }
 

@@ -157,6 +157,7 @@ pub fn layout_include() -> Result<String, String> {
         ("BINDING_PROBE_RAYS", BINDING_PROBE_RAYS),
         ("BINDING_PROBE_RESULTS", BINDING_PROBE_RESULTS),
         ("BINDING_TEXTURES", BINDING_TEXTURES),
+        ("MAX_TAPS", crate::texture::MAX_TAPS),
         ("RENDER_GROUP_SIZE", crate::bindings::RENDER_GROUP_SIZE),
         ("PROBE_GROUP_SIZE", crate::bindings::PROBE_GROUP_SIZE),
         ("EXPLAIN_PRIMARY", crate::bindings::EXPLAIN_PRIMARY),

@@ -7,11 +7,16 @@
 //! footprint of "Improved Shader and Texture Level of Detail Using Ray Cones" (Akenine-Möller,
 //! Crassin, Boksansky, Belcour, Panteleev, Wright, JCGT 10(1), 2021): the cone's ellipse on the
 //! triangle's plane, its two axes carried to texture space through the triangle's
-//! barycentrics, sampled with explicit gradients. A floor seen at a grazing angle so gets a
-//! long, thin footprint (sharp across, filtered along) rather than one level for both.
+//! barycentrics. A floor seen at a grazing angle so gets a long, thin footprint (sharp across,
+//! filtered along) rather than one level for both. The footprint is filtered by up to
+//! [`MAX_TAPS`] samples along its long axis, each at the level of its short one ([`taps`]),
+//! rather than by the sampler's anisotropic filtering, which devices implement differently
+//! (lavapipe 22.3 offers it and ignores it): every device then filters alike.
 
 use crate::layout::{Material, Vertex};
 use glam::{Mat3, Vec2, Vec3, Vec4, Vec4Swizzles};
+#[cfg(target_arch = "spirv")]
+use spirv_std::num_traits::Float;
 
 /// `a[0]`, `a[1]`, `a[2]` weighted by the barycentrics `(u, v)` of vertices 1 and 2.
 pub fn interpolate(a: [Vec4; 3], u: f32, v: f32) -> Vec4 {
@@ -79,6 +84,40 @@ pub fn footprint(hit: &TriangleHit, uv: [Vec2; 3]) -> (Vec2, Vec2, Vec2) {
     (at, gradient(a0), gradient(a1))
 }
 
+/// Most samples a footprint is filtered with: footprints longer than this many times their
+/// width are filtered at a coarser level.
+pub const MAX_TAPS: u32 = 8;
+
+/// Where and how a footprint is sampled: `count` samples at `first + step * i`, each with the
+/// explicit gradients `dx` and `dy`, averaged.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Taps {
+    pub count: u32,
+    pub first: Vec2,
+    pub step: Vec2,
+    pub dx: Vec2,
+    pub dy: Vec2,
+}
+
+/// The taps of the footprint at `at` with axes `dx` and `dy` (as [`footprint`] gives them): as
+/// many as the long axis is times the short one (up to [`MAX_TAPS`]), spread evenly along the
+/// long axis, each with gradients of one tap's share of it and of the short axis, so each is
+/// filtered at the level the short axis asks for (or coarser, past `MAX_TAPS`).
+pub fn taps(at: Vec2, dx: Vec2, dy: Vec2) -> Taps {
+    let (major, minor) = if dx.length_squared() >= dy.length_squared() { (dx, dy) } else { (dy, dx) };
+    let (long, short) = (major.length(), minor.length());
+    let ratio = if short > 0.0 {
+        long / short
+    } else if long > 0.0 {
+        MAX_TAPS as f32
+    } else {
+        1.0
+    };
+    let count = (ratio.ceil() as u32).clamp(1, MAX_TAPS);
+    let step = major / count as f32;
+    Taps { count, first: at - major * 0.5 + step * 0.5, step, dx: step, dy: minor }
+}
+
 /// The spread angle of a primary ray's cone: the angle of one of `samples_per_side` sub-pixel
 /// strata at the centre of an image `height` pixels high under a vertical field of view of
 /// `fov_y` radians. What `FrameUniform::cone` holds.
@@ -127,6 +166,25 @@ mod tests {
         hit.object_to_world = Mat3::from_diagonal(Vec3::splat(2.0));
         let (_, dx, _) = footprint(&hit, uv);
         assert!((dx.length() - 0.005).abs() < 1e-6, "{dx}");
+    }
+
+    /// A round footprint is one sample; a long one as many as it is times its width, along it,
+    /// each filtered at its width; past `MAX_TAPS`, coarser.
+    #[test]
+    fn taps_spread_along_the_long_axis() {
+        let at = Vec2::new(0.5, 0.5);
+        let round = taps(at, Vec2::new(0.01, 0.0), Vec2::new(0.0, 0.01));
+        assert_eq!((round.count, round.first, round.dx, round.dy), (1, at, Vec2::new(0.01, 0.0), Vec2::new(0.0, 0.01)));
+        let long = taps(at, Vec2::new(0.0, 0.001), Vec2::new(0.004, 0.0));
+        assert_eq!(long.count, 4);
+        assert!((long.step - Vec2::new(0.001, 0.0)).length() < 1e-9);
+        assert!((long.first - Vec2::new(0.4985, 0.5)).length() < 1e-6, "{}", long.first);
+        let mid = long.first + long.step * 1.5;
+        assert!((mid - at).length() < 1e-6, "centred on the hit");
+        let very = taps(at, Vec2::new(0.1, 0.0), Vec2::new(0.0, 0.001));
+        assert_eq!(very.count, MAX_TAPS);
+        assert!(very.dx.length() > very.dy.length(), "each tap coarser than the width");
+        assert_eq!(taps(at, Vec2::ZERO, Vec2::ZERO).count, 1, "level 0: one sample");
     }
 
     #[test]

@@ -2,7 +2,7 @@
 //! buffer view before it is read (type, count, and the last element within the view), so a
 //! malformed file is refused with the accessor named, never read out of bounds.
 
-use super::super::mesh::{checked, with_normals, MeshData, Polyhedron};
+use super::super::mesh::{checked, with_attributes, with_normals, MeshData, Polyhedron};
 use super::super::shape::Normals;
 use glam::{Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
@@ -62,7 +62,8 @@ pub fn primitive(
         None => None,
     };
     let attributes = attributes(primitive, buffers, p.positions.len(), what)?;
-    let mut mesh = match normals {
+    let flat = normals.is_none();
+    let mesh = match normals {
         Some(normals) => MeshData {
             vertices: p
                 .positions
@@ -74,13 +75,7 @@ pub fn primitive(
         },
         None => with_normals(&p, Normals::Flat),
     };
-    // Flat normals repeat each triangle's corners, in order.
-    let flat = mesh.vertices.len() != p.positions.len() || p.positions.len() == 3 * p.triangles.len();
-    for (k, v) in mesh.vertices.iter_mut().enumerate() {
-        let source = if flat { p.triangles[k / 3][k % 3] as usize } else { k };
-        (v.uv, v.color) = attributes[source];
-    }
-    Ok(Outcome::Mesh(mesh))
+    Ok(Outcome::Mesh(with_attributes(mesh, &p, &attributes, flat)))
 }
 
 /// Each vertex's texture coordinates (TEXCOORD_0 in xy, TEXCOORD_1 in zw; 0 where absent) and
