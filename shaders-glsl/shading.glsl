@@ -48,6 +48,9 @@ float cutout_alpha(Material material, vec3 object_point) {
         return parity == 0 ? 1.0 : 0.0;
     } else if (material.cutout_pattern == CUTOUT_DISCS) {
         return min(length((q - cell - vec2(0.5)) * 2.0), 1.0);
+    } else if (material.cutout_pattern == CUTOUT_TEXTURE) {
+        // Its opacity: the triangle any-hit stage multiplies in the texture's and the vertices'.
+        return material.color_a.w;
     }
     return 1.0;
 }

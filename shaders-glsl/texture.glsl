@@ -13,6 +13,10 @@ vec2 vertex_uv(Material material, Vertex v) {
     return vec2(dot(material.uv_u.xy, uv) + material.uv_u.z, dot(material.uv_v.xy, uv) + material.uv_v.z);
 }
 
+vec2 uv_at(vec2 uv0, vec2 uv1, vec2 uv2, vec2 b) {
+    return uv0 * (1.0 - b.x - b.y) + uv1 * b.x + uv2 * b.y;
+}
+
 // Barycentrics of the point `p` away from the hit, along the plane (normal n, edges e1, e2, twice
 // the area), carried to texture space: the uv there less the hit's.
 vec2 footprint_gradient(vec3 p, vec3 n, vec3 e1, vec3 e2, float twice_area, vec2 uv0, vec2 uv1, vec2 uv2) {
@@ -25,8 +29,7 @@ vec2 footprint_gradient(vec3 p, vec3 n, vec3 e1, vec3 e2, float twice_area, vec2
 // (twinray_shared::texture::footprint).
 void footprint(mat3 object_to_world, vec3 p0, vec3 p1, vec3 p2, vec2 barycentrics, vec3 d, float width, vec2 uv0,
                vec2 uv1, vec2 uv2, out vec2 at, out vec2 dx, out vec2 dy) {
-    float b1 = barycentrics.x, b2 = barycentrics.y;
-    at = uv0 * (1.0 - b1 - b2) + uv1 * b1 + uv2 * b2;
+    at = uv_at(uv0, uv1, uv2, barycentrics);
     dx = vec2(0.0);
     dy = vec2(0.0);
     if (width <= 0.0) {
@@ -86,5 +89,17 @@ vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 objec
     }
     vec4 texel = sum / float(count);
     return color.xyz * texel.xyz;
+}
+
+// Twin of twinray_shaders::texture::surface_alpha: the alpha a mesh's vertex colours and
+// texture (at level 0) give the surface at the hit.
+float surface_alpha(Material material, Vertex v0, Vertex v1, Vertex v2, vec2 barycentrics) {
+    vec4 color = interpolate(v0.color, v1.color, v2.color, barycentrics.x, barycentrics.y);
+    if (material.texture.x == 0u) {
+        return color.w;
+    }
+    vec2 at = uv_at(vertex_uv(material, v0), vertex_uv(material, v1), vertex_uv(material, v2), barycentrics);
+    vec4 texel = textureGrad(textures[nonuniformEXT(material.texture.x)], at, vec2(0.0), vec2(0.0));
+    return color.w * texel.w;
 }
 #endif

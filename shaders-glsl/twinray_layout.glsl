@@ -40,6 +40,7 @@
 #define CUTOUT_NONE 0u
 #define CUTOUT_CHECKER 1u
 #define CUTOUT_DISCS 2u
+#define CUTOUT_TEXTURE 3u
 #define LIGHT_DIRECTIONAL 0u
 #define LIGHT_POINT 1u
 #define LIGHT_RECT 2u

@@ -181,6 +181,8 @@ fn only_cutouts_get_an_any_hit_stage() {
     let floor = data.instances[0].hit_group as usize;
     assert!(!data.plan.hit_groups[floor].cutout);
     assert!(plan_modules(&data.plan, "raygen").contains(&"cutout_any_hit"));
+    // Triangles read their own alpha too: a stage of their own.
+    assert!(plan_modules(&data.plan, "raygen").contains(&"triangle_cutout_any_hit"));
     let opaque = SCENE
         .replace("material = \"checker\"", "material = \"floor\"")
         .replace("material = \"discs\"", "material = \"floor\"");

@@ -142,3 +142,91 @@ fn a_texture_transform_moves_the_texture() {
     assert_eq!(d.hit_mismatches, 0);
     assert!(twinray::compare::verdict(&d, &moved_scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
 }
+
+/// A checker of alpha: opaque white cells and transparent ones.
+fn write_alpha_checker(path: &Path) {
+    let image = image::RgbaImage::from_fn(64, 64, |x, y| {
+        let solid = ((x / 8) + (y / 8)) % 2 == 0;
+        image::Rgba([255, 255, 255, if solid { 255 } else { 0 }])
+    });
+    image.save(path).unwrap();
+}
+
+/// A floor alpha-tested by its texture (glTF's alpha mode MASK: `pattern = "alpha"`) above a
+/// plain one, seen from above, lit from above with shadows.
+fn masked_scene(dir: &Path, opacity: f32) -> Scene {
+    write_alpha_checker(&dir.join("alpha.png"));
+    write_floor(&dir.join("floor.obj"));
+    let text = format!(
+        r#"
+name = "masked-floor"
+[image]
+width = {w}
+height = {h}
+[camera]
+eye = [0.0, 3.0, -5.0]
+target = [0.0, 0.0, -5.0]
+up = [0.0, 0.0, -1.0]
+fov_y_degrees = 60.0
+[shapes.floor]
+kind = "mesh"
+file = "floor.obj"
+normals = "flat"
+[materials.mask]
+kind = "cutout"
+color = [1.0, 0.2, 0.2]
+pattern = "alpha"
+threshold = 0.5
+opacity = {opacity}
+texture = {{ file = "alpha.png" }}
+[materials.under]
+kind = "diffuse"
+color = [0.2, 0.2, 1.0]
+[[objects]]
+shape = "floor"
+material = "mask"
+[[objects]]
+shape = "floor"
+material = "under"
+translate = [0.0, -1.0, 0.0]
+[[lights]]
+kind = "directional"
+direction = [0.3, 1.0, 0.2]
+color = [1.0, 1.0, 1.0]
+intensity = 1.0
+"#,
+        w = SIZE.0,
+        h = SIZE.1
+    );
+    let path = dir.join(format!("masked-{opacity}.toml"));
+    std::fs::write(&path, text).unwrap();
+    Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// What share of the pixels see object `object` first.
+fn share(out: &RenderOutput, object: u64) -> f64 {
+    out.hit_ids.iter().filter(|&&id| id != twinray::render::NO_HIT_ID && id >> 32 == object).count() as f64
+        / out.hit_ids.len() as f64
+}
+
+/// Through the transparent half of the texture, rays (primary and shadow alike) reach the
+/// floor below; both sets agree; an opacity under the threshold makes the floor all hole.
+#[test]
+fn a_texture_s_alpha_cuts_holes_for_every_ray() {
+    let dir = tempfile::tempdir().unwrap();
+    let scene = masked_scene(dir.path(), 1.0);
+    let (rust, glsl) = (render(&scene, "rust"), render(&scene, "glsl"));
+    let (upper, lower) = (share(&rust, 0), share(&rust, 1));
+    eprintln!("upper floor {upper:.3}, lower {lower:.3}");
+    assert!((0.4..0.6).contains(&upper) && (upper + lower - 1.0).abs() < 1e-9, "{upper} {lower}");
+    // Light reaches the lower floor through the holes only: lit and shadowed pixels both.
+    let lower_pixels: Vec<f32> =
+        (0..rust.hit_ids.len()).filter(|&i| rust.hit_ids[i] >> 32 == 1).map(|i| rust.linear[i][2]).collect();
+    let lit = lower_pixels.iter().filter(|&&b| b > 0.1).count() as f64 / lower_pixels.len() as f64;
+    assert!((0.2..0.8).contains(&lit), "share of the lower floor lit through the holes: {lit}");
+    let d = twinray::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
+    assert_eq!(d.hit_mismatches, 0);
+    assert!(twinray::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+    let clear = render(&masked_scene(dir.path(), 0.4), "glsl");
+    assert_eq!(share(&clear, 0), 0.0, "opacity 0.4 under a threshold of 0.5: no surface");
+}

@@ -2,7 +2,7 @@
 //! whether a hit is in a hole, solid, or within float noise of a hole's edge.
 
 use glam::{DVec2, DVec3};
-use twinray_shared::bindings::{CUTOUT_CHECKER, CUTOUT_DISCS, MATERIAL_CUTOUT};
+use twinray_shared::bindings::{CUTOUT_CHECKER, CUTOUT_DISCS, CUTOUT_TEXTURE, MATERIAL_CUTOUT};
 use twinray_shared::layout::Material;
 
 /// A cutout's pattern, in f64.
@@ -57,7 +57,12 @@ impl RefCutout {
     /// The coverage at object-space point `p`, where the f32 stages' hit point may lie
     /// anywhere within `band` of it along the surface: an edge when any point that far away
     /// in x or z answers otherwise.
+    /// A surface's own alpha (`CUTOUT_TEXTURE`: its texture and vertex colours) is not
+    /// modelled here: every hit on it is an edge, either answer right.
     pub fn coverage(&self, p: DVec3, band: f64) -> Coverage {
+        if self.pattern == CUTOUT_TEXTURE {
+            return Coverage::Edge;
+        }
         let here = self.solid(p);
         let nudges = [DVec3::X * band, -DVec3::X * band, DVec3::Z * band, -DVec3::Z * band];
         if nudges.iter().any(|d| self.solid(p + *d) != here) {

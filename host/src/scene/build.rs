@@ -289,13 +289,17 @@ fn material(m: &MaterialDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc
         MaterialDesc::Checker { colors, scale } => {
             (b::MATERIAL_CHECKER, Vec3::from(colors[0]).extend(1.0), Vec3::from(colors[1]).extend(scale))
         }
-        MaterialDesc::Cutout { color, pattern, scale, threshold } => {
+        MaterialDesc::Cutout { color, pattern, scale, threshold, opacity, ref texture } => {
             let pattern = match pattern {
                 CutoutPattern::Checker => b::CUTOUT_CHECKER,
                 CutoutPattern::Discs => b::CUTOUT_DISCS,
+                CutoutPattern::Alpha => b::CUTOUT_TEXTURE,
             };
+            if let Some(t) = texture.as_deref() {
+                texture_slot(&mut gpu, t, textures);
+            }
             cutout = (pattern, scale, threshold);
-            (b::MATERIAL_CUTOUT, Vec3::from(color).extend(1.0), Vec4::ZERO)
+            (b::MATERIAL_CUTOUT, Vec3::from(color).extend(opacity), Vec4::ZERO)
         }
     };
     let (cutout_pattern, cutout_scale, cutout_threshold) = cutout;

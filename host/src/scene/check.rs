@@ -131,7 +131,20 @@ pub fn check(scene: &SceneFile) -> Checked {
 }
 
 /// The compute renderer has no SBT: no callables, and no hit groups to divide objects among.
+/// Neither it nor shadow rays traced by ray queries read a surface's own alpha yet.
 fn check_renderer(scene: &SceneFile) -> Checked {
+    let alpha = scene
+        .materials
+        .iter()
+        .find(|(_, m)| matches!(m, MaterialDesc::Cutout { pattern: super::file::CutoutPattern::Alpha, .. }));
+    let inline = scene.renderer == Renderer::Compute || scene.shadow_method == super::file::ShadowMethod::Query;
+    if let (Some((name, _)), true) = (alpha, inline) {
+        return Err(format!(
+            "material {name:?}: a surface's own alpha (pattern = \"alpha\", glTF's alpha modes) is tested by \
+             the triangle any-hit stage, which rays traced inline (renderer = \"compute\", shadow_method = \
+             \"query\") do not run yet"
+        ));
+    }
     if scene.renderer != Renderer::Compute {
         return Ok(());
     }
@@ -169,12 +182,7 @@ fn check_material(m: &MaterialDesc) -> Checked {
     match m {
         MaterialDesc::Diffuse { color: c, texture } => {
             color("color", *c)?;
-            match texture.as_deref() {
-                Some(t) if t.uv > 1 => Err(format!("texture.uv must be 0 or 1 (got {})", t.uv)),
-                Some(t) if t.file.is_empty() => Err("texture.file must name an image".into()),
-                Some(t) => finite("texture.transform", &t.transform.concat()),
-                None => Ok(()),
-            }
+            check_texture(texture.as_deref())
         }
         MaterialDesc::Emissive { color: c, intensity } => {
             color("color", *c)?;
@@ -185,14 +193,27 @@ fn check_material(m: &MaterialDesc) -> Checked {
             color("colors[1]", colors[1])?;
             positive("scale", *scale)
         }
-        MaterialDesc::Cutout { color: c, scale, threshold, .. } => {
+        MaterialDesc::Cutout { color: c, scale, threshold, opacity, texture, .. } => {
             color("color", *c)?;
             positive("scale", *scale)?;
+            if !(0.0..=1.0).contains(opacity) {
+                return Err(format!("opacity must be in [0, 1] (got {opacity})"));
+            }
+            check_texture(texture.as_deref())?;
             if !(*threshold > 0.0 && *threshold <= 1.0) {
                 return Err(format!("threshold must be in (0, 1] (got {threshold})"));
             }
             Ok(())
         }
+    }
+}
+
+fn check_texture(texture: Option<&super::texture::TextureDesc>) -> Checked {
+    match texture {
+        Some(t) if t.uv > 1 => Err(format!("texture.uv must be 0 or 1 (got {})", t.uv)),
+        Some(t) if t.file.is_empty() => Err("texture.file must name an image".into()),
+        Some(t) => finite("texture.transform", &t.transform.concat()),
+        None => Ok(()),
     }
 }
 

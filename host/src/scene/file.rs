@@ -79,6 +79,10 @@ fn one() -> u32 {
     1
 }
 
+fn unit() -> f32 {
+    1.0
+}
+
 fn yes() -> bool {
     true
 }
@@ -136,7 +140,19 @@ pub enum MaterialDesc {
     Checker { colors: [[f32; 3]; 2], scale: f32 },
     /// Diffuse `color` with holes: where `pattern`'s alpha, over object-space x and z in cells
     /// of side `1 / scale`, is below `threshold`, rays pass through (the any-hit stage).
-    Cutout { color: [f32; 3], pattern: CutoutPattern, scale: f32, threshold: f32 },
+    /// With `pattern = "alpha"`, the holes are where the surface's own alpha (`opacity` times
+    /// its `texture`'s alpha times its vertex colours' alpha; meshes only) is below `threshold`.
+    Cutout {
+        color: [f32; 3],
+        pattern: CutoutPattern,
+        #[serde(default = "unit")]
+        scale: f32,
+        threshold: f32,
+        #[serde(default = "unit")]
+        opacity: f32,
+        #[serde(default)]
+        texture: Option<Box<super::texture::TextureDesc>>,
+    },
 }
 
 /// A cutout's alpha pattern.
@@ -148,6 +164,8 @@ pub enum CutoutPattern {
     /// Alpha from 0 at each cell's centre to 1 half a cell away: round holes of radius
     /// `threshold` half-cells.
     Discs,
+    /// The surface's own alpha (meshes, through their texture coordinates and colours).
+    Alpha,
 }
 
 /// A light, by `kind`.

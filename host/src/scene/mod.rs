@@ -250,7 +250,11 @@ impl Scene {
 fn load_textures(file: &mut SceneFile, folder: Option<&Path>) -> std::result::Result<(), String> {
     let mut decoded: BTreeMap<String, std::sync::Arc<texture::TextureImage>> = BTreeMap::new();
     for (name, material) in &mut file.materials {
-        let file::MaterialDesc::Diffuse { texture: Some(t), .. } = material else { continue };
+        let (file::MaterialDesc::Diffuse { texture: Some(t), .. }
+        | file::MaterialDesc::Cutout { texture: Some(t), .. }) = material
+        else {
+            continue;
+        };
         if t.image.is_some() {
             continue;
         }

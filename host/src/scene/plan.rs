@@ -48,8 +48,10 @@ pub const EXPLAIN: &str = "explain";
 /// them and `raygen_query` traces shadow rays.
 pub const EXPLAIN_QUERY: &str = "explain_query";
 
-/// The any-hit module of cutout hit groups.
+/// The any-hit module of procedural cutout hit groups.
 pub const CUTOUT_ANY_HIT: &str = "cutout_any_hit";
+/// The any-hit module of triangle cutout hit groups (which also reads the surface's alpha).
+pub const TRIANGLE_CUTOUT_ANY_HIT: &str = "triangle_cutout_any_hit";
 
 impl HitGroup {
     /// "triangles", or the shape's name, with " (naive)" for a naive variant, " (flat)" for a
@@ -104,7 +106,8 @@ impl HitGroup {
 
     /// The any-hit module, for cutout groups.
     pub fn any_hit_module(self) -> Option<&'static str> {
-        self.cutout.then_some(CUTOUT_ANY_HIT)
+        let module = if self.geometry == HitGeometry::Triangles { TRIANGLE_CUTOUT_ANY_HIT } else { CUTOUT_ANY_HIT };
+        self.cutout.then_some(module)
     }
 }
 

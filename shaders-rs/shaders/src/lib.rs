@@ -19,7 +19,7 @@ use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image, RuntimeArray};
 use texture::Texture;
 use twinray_shared::bindings::{
-    no_payload_word, EXPLAIN_SHADOW, HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, PROBE_NO_PAYLOAD,
+    no_payload_word, CUTOUT_TEXTURE, EXPLAIN_SHADOW, HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, PROBE_NO_PAYLOAD,
     SHADOW_SAMPLER_STRATIFIED,
 };
 use twinray_shared::layout::{
@@ -456,6 +456,37 @@ pub fn flat_material(#[spirv(incoming_callable_data)] call: &mut MaterialCall) {
 #[spirv(callable)]
 pub fn checker_material(#[spirv(incoming_callable_data)] call: &mut MaterialCall) {
     call.color = shading::material_color(&call.material, call.point.xyz(), call.normal.xyz()).extend(1.0);
+}
+
+/// Cutouts on meshes: as `cutout_any_hit`, and with the alpha pattern (glTF's alpha mode
+/// MASK) the surface's own alpha at the hit: its opacity times its vertex colours' and its
+/// texture's (at level 0).
+#[spirv(any_hit)]
+#[allow(clippy::too_many_arguments)]
+pub fn triangle_cutout_any_hit(
+    #[spirv(instance_id)] object: u32,
+    #[spirv(primitive_id)] primitive_id: u32,
+    #[spirv(object_ray_origin)] object_origin: Vec3,
+    #[spirv(object_ray_direction)] object_direction: Vec3,
+    #[spirv(ray_tmax)] t: f32,
+    #[spirv(hit_attribute)] barycentrics: &Vec2,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
+) {
+    let data = objects[object as usize];
+    let material = materials[data.material as usize];
+    let mut alpha = shading::cutout_alpha(&material, object_origin + object_direction * t);
+    if material.cutout_pattern == CUTOUT_TEXTURE {
+        let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
+        alpha *= texture::surface_alpha(textures, &material, &v, *barycentrics);
+    }
+    if alpha < material.cutout_threshold {
+        // SAFETY: called from an any-hit stage, as OpIgnoreIntersectionKHR requires.
+        unsafe { spirv_std::arch::ignore_intersection() };
+    }
 }
 
 /// Cutouts, for primary and shadow rays alike: a candidate hit in a hole of the object's

@@ -39,6 +39,22 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
     color.xyz() * texel.xyz()
 }
 
+/// The alpha a mesh's vertex colours and texture (at level 0) give the surface at
+/// barycentrics `b`: what alpha-tested cutouts (glTF's alpha mode MASK) test.
+pub fn surface_alpha(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], b: Vec2) -> f32 {
+    let color = texture::interpolate([v[0].color, v[1].color, v[2].color], b.x, b.y);
+    if material.texture.x == 0 {
+        return color.w;
+    }
+    let uv =
+        [texture::vertex_uv(material, &v[0]), texture::vertex_uv(material, &v[1]), texture::vertex_uv(material, &v[2])];
+    // SAFETY: as in `surface_tint`.
+    let texel = unsafe {
+        sample_grad(textures.index(material.texture.x as usize), texture::uv_at(uv, b), Vec2::ZERO, Vec2::ZERO)
+    };
+    color.w * texel.w
+}
+
 /// `texture` at `uv`, its level of detail from the gradients `dx` and `dy`
 /// (`OpImageSampleExplicitLod` with `Grad`: spirv-std 0.11 offers it only for an image and a
 /// separate sampler).

@@ -108,6 +108,9 @@ pub const CUTOUT_CHECKER: u32 = 1;
 /// Alpha rising from 0 at each cell's centre to 1 at half a cell from it: round holes of
 /// radius `threshold` half-cells.
 pub const CUTOUT_DISCS: u32 = 2;
+/// Alpha of the surface itself, on meshes: `color_a.w` times the vertex colour's alpha times
+/// the base colour texture's (glTF's alpha mode MASK), at texture level 0.
+pub const CUTOUT_TEXTURE: u32 = 3;
 
 /// Light kinds (`Light::kind`).
 pub const LIGHT_DIRECTIONAL: u32 = 0;

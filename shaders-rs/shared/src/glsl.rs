@@ -180,6 +180,7 @@ pub fn layout_include() -> Result<String, String> {
         ("CUTOUT_NONE", CUTOUT_NONE),
         ("CUTOUT_CHECKER", CUTOUT_CHECKER),
         ("CUTOUT_DISCS", CUTOUT_DISCS),
+        ("CUTOUT_TEXTURE", CUTOUT_TEXTURE),
         ("LIGHT_DIRECTIONAL", LIGHT_DIRECTIONAL),
         ("LIGHT_POINT", LIGHT_POINT),
         ("LIGHT_RECT", LIGHT_RECT),

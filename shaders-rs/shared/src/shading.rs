@@ -1,6 +1,6 @@
 //! Surfaces: world-space normals of transformed objects, and material colours.
 
-use crate::bindings::{CUTOUT_CHECKER, CUTOUT_DISCS, MATERIAL_CHECKER};
+use crate::bindings::{CUTOUT_CHECKER, CUTOUT_DISCS, CUTOUT_TEXTURE, MATERIAL_CHECKER};
 use crate::layout::Material;
 use glam::{Mat3, Vec2, Vec3, Vec4Swizzles};
 
@@ -76,6 +76,10 @@ pub fn cutout_alpha(material: &Material, object_point: Vec3) -> f32 {
         }
     } else if material.cutout_pattern == CUTOUT_DISCS {
         ((q - cell - Vec2::splat(0.5)) * 2.0).length().min(1.0)
+    } else if material.cutout_pattern == CUTOUT_TEXTURE {
+        // The part of the surface's own alpha known without its vertices: its opacity. The
+        // triangle any-hit stage multiplies in the texture's and the vertex colours'.
+        material.color_a.w
     } else {
         1.0
     }

@@ -30,6 +30,11 @@ pub fn vertex_uv(material: &Material, v: &Vertex) -> Vec2 {
     Vec2::new(material.uv_u.xy().dot(uv) + material.uv_u.z, material.uv_v.xy().dot(uv) + material.uv_v.z)
 }
 
+/// The texture coordinates at barycentrics `b` of a triangle whose vertices have `uv`.
+pub fn uv_at(uv: [Vec2; 3], b: Vec2) -> Vec2 {
+    uv[0] * (1.0 - b.x - b.y) + uv[1] * b.x + uv[2] * b.y
+}
+
 /// Where a ray met a textured triangle, in world space: what the footprint needs.
 #[derive(Clone, Copy)]
 pub struct TriangleHit {
@@ -51,8 +56,7 @@ pub struct TriangleHit {
 /// triangle's plane, each of the length a pixel's worth of the cone covers there, as a
 /// rasteriser's derivatives across one pixel would be.
 pub fn footprint(hit: &TriangleHit, uv: [Vec2; 3]) -> (Vec2, Vec2, Vec2) {
-    let (b1, b2) = (hit.barycentrics.x, hit.barycentrics.y);
-    let at = uv[0] * (1.0 - b1 - b2) + uv[1] * b1 + uv[2] * b2;
+    let at = uv_at(uv, hit.barycentrics);
     if hit.width <= 0.0 {
         return (at, Vec2::ZERO, Vec2::ZERO);
     }

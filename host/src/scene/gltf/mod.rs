@@ -14,10 +14,11 @@ pub use buffers::SUPPORTED_EXTENSIONS;
 mod framing;
 mod geometry;
 
-use super::file::{MaterialDesc, ObjectDesc, SceneFile};
+use super::file::{CutoutPattern, MaterialDesc, ObjectDesc, SceneFile};
 use super::mesh::MeshData;
 use super::shape::{MeshDesc, ShapeDesc};
 use glam::Mat4;
+use gltf::material::AlphaMode;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
@@ -224,9 +225,33 @@ fn material(
         return Ok(name);
     }
     let pbr = m.pbr_metallic_roughness();
-    let [r, g, b, _] = pbr.base_color_factor();
+    let [r, g, b, a] = pbr.base_color_factor();
     let texture = textures::base_color(m, read.loaded, read.images, read.source, ignored)?.map(Box::new);
-    materials.insert(name.clone(), MaterialDesc::Diffuse { color: [r, g, b], texture });
+    let color = [r, g, b];
+    // MASK: alpha-tested at the cutoff. BLEND is drawn the same way at 0.5 (a surface is
+    // there where it is at least half opaque): twinray traces no transparency.
+    let cutoff = match m.alpha_mode() {
+        AlphaMode::Opaque => None,
+        AlphaMode::Mask => Some(m.alpha_cutoff().unwrap_or(0.5)),
+        AlphaMode::Blend => {
+            ignored.insert("alpha mode BLEND (alpha-tested at 0.5)".into());
+            Some(0.5)
+        }
+    };
+    let material = match cutoff {
+        // A cutoff of 0 or below keeps every hit: opaque.
+        Some(c) if c > 0.0 => MaterialDesc::Cutout {
+            color,
+            pattern: CutoutPattern::Alpha,
+            scale: 1.0,
+            // A cutoff above 1 (a surface all hole) acts as 1: only full opacity passes.
+            threshold: c.min(1.0),
+            opacity: a.clamp(0.0, 1.0),
+            texture,
+        },
+        _ => MaterialDesc::Diffuse { color, texture },
+    };
+    materials.insert(name.clone(), material);
     let mut note = |has: bool, what: &str| {
         if has {
             ignored.insert(what.into());
@@ -236,7 +261,6 @@ fn material(
     note(m.normal_texture().is_some(), "normal maps");
     note(m.occlusion_texture().is_some(), "occlusion maps");
     note(m.emissive_factor() != [0.0; 3] || m.emissive_texture().is_some(), "emission");
-    note(m.alpha_mode() != gltf::material::AlphaMode::Opaque, "alpha modes MASK and BLEND");
     note(!m.double_sided(), "single-sided materials (their back faces are shown)");
     Ok(name)
 }

@@ -129,16 +129,42 @@ fn without_camera_or_lights_the_model_is_framed_and_lit() {
 fn what_is_not_modelled_is_named() {
     let text = square(None, ONE_NODE, r#", "material": 0"#).replacen(
         r#""scenes""#,
-        r#""materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]}, "alphaMode": "MASK"}], "extensionsUsed": ["EXT_made_up"], "scenes""#,
+        r#""materials": [{"pbrMetallicRoughness": {"baseColorFactor": [1, 0, 0, 1]}, "alphaMode": "BLEND"}], "extensionsUsed": ["EXT_made_up"], "scenes""#,
         1,
     );
     let model = load_text(&text).unwrap();
     let ignored: Vec<&str> = model.ignored.iter().map(String::as_str).collect();
-    for want in ["alpha modes MASK and BLEND", "extension EXT_made_up", "metallic-roughness (shaded as diffuse)"] {
+    for want in
+        ["alpha mode BLEND (alpha-tested at 0.5)", "extension EXT_made_up", "metallic-roughness (shaded as diffuse)"]
+    {
         assert!(ignored.contains(&want), "{ignored:?}");
     }
     let red = model.file.materials.values().next().unwrap();
-    assert!(matches!(red, MaterialDesc::Diffuse { color: [1.0, 0.0, 0.0], .. }), "{red:?}");
+    assert!(matches!(red, MaterialDesc::Cutout { color: [1.0, 0.0, 0.0], threshold: 0.5, .. }), "{red:?}");
+}
+
+/// MASK is an alpha-tested cutout at the material's cutoff, of its base colour's alpha;
+/// OPAQUE, and a cutoff of 0, are plain diffuse.
+#[test]
+fn alpha_modes_become_alpha_tested_cutouts() {
+    let with = |material: &str| {
+        let text = square(None, ONE_NODE, r#", "material": 0"#).replacen(
+            r#""scenes""#,
+            &format!(r#""materials": [{material}], "scenes""#),
+            1,
+        );
+        load_text(&text).unwrap().file.materials.into_values().next().unwrap()
+    };
+    let mask = with(
+        r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.7]}, "alphaMode": "MASK", "alphaCutoff": 0.3}"#,
+    );
+    assert!(
+        matches!(mask, MaterialDesc::Cutout { pattern: CutoutPattern::Alpha, threshold: 0.3, opacity: 0.7, .. }),
+        "{mask:?}"
+    );
+    assert!(matches!(with(r#"{"alphaMode": "MASK"}"#), MaterialDesc::Cutout { threshold: 0.5, .. }));
+    assert!(matches!(with(r#"{"alphaMode": "MASK", "alphaCutoff": 0}"#), MaterialDesc::Diffuse { .. }));
+    assert!(matches!(with(r#"{"alphaMode": "OPAQUE"}"#), MaterialDesc::Diffuse { .. }));
 }
 
 /// `load` refuses `text`, saying `why`.

@@ -104,3 +104,22 @@ fn rust_gpu_output_without_the_pass_is_found() {
     assert!(found[0].source.contains("InstanceId"), "{}", found[0]);
     assert_eq!(faults(&decorate(&bytes).unwrap()), []);
 }
+
+/// The reproducer of docs/upstream/non-uniform.md as rust-gpu 0.11 writes it: no NonUniform
+/// anywhere; the check names the access and the built-in, and the pass adds exactly the
+/// decorations of the access chain and the load, and two capabilities.
+#[test]
+fn the_upstream_reproducer_is_found_and_fixed_as_the_note_says() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("testdata/textured_hit.rust-gpu.spv");
+    let bytes = std::fs::read(path).unwrap();
+    let found = faults(&bytes);
+    assert_eq!(found.len(), 1);
+    assert!(found[0].to_string().starts_with("%27 = OpAccessChain indexes the descriptor array at set 0 binding 0 with a value derived from the built-in InstanceId"), "{}", found[0]);
+    let fixed = decorate(&bytes).unwrap();
+    let module = load(&fixed).unwrap();
+    let mut decorated: Vec<Word> = Facts::of(&module).non_uniform.into_iter().collect();
+    decorated.sort_unstable();
+    assert_eq!(decorated, [27, 29]);
+    let before = twinray_shared::spirv_info::parse(&bytes).unwrap().capabilities.len();
+    assert_eq!(twinray_shared::spirv_info::parse(&fixed).unwrap().capabilities.len(), before + 2);
+}
