@@ -176,6 +176,7 @@ normals = "flat"
 kind = "cutout"
 color = [1.0, 0.2, 0.2]
 pattern = "alpha"
+scale = 1.0
 threshold = 0.5
 opacity = {opacity}
 texture = {{ file = "alpha.png" }}

@@ -145,7 +145,6 @@ pub enum MaterialDesc {
     Cutout {
         color: [f32; 3],
         pattern: CutoutPattern,
-        #[serde(default = "unit")]
         scale: f32,
         threshold: f32,
         #[serde(default = "unit")]

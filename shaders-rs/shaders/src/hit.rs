@@ -5,7 +5,7 @@
 //! "callable"`).
 
 use core::arch::asm;
-use spirv_std::glam::{Mat3, UVec4, Vec2, Vec3, Vec4Swizzles};
+use spirv_std::glam::{Mat3, UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Vertex};
 use twinray_shared::shading;
 use twinray_shared::texture::TriangleHit;
@@ -165,6 +165,21 @@ pub fn triangle_vertices(data: &ObjectData, primitive_id: u32, vertices: &[Verte
     let v1 = vertices[(data.vertex_base + indices[first + 1]) as usize];
     let v2 = vertices[(data.vertex_base + indices[first + 2]) as usize];
     [v0, v1, v2]
+}
+
+/// The texture coordinates and colours of the corners of triangle `primitive_id` of a mesh
+/// object: all the alpha test reads of them, each field read from the buffer on its own.
+pub fn corner_attributes(
+    data: &ObjectData,
+    primitive_id: u32,
+    vertices: &[Vertex],
+    indices: &[u32],
+) -> ([Vec4; 3], [Vec4; 3]) {
+    let first = (data.index_base + 3 * primitive_id) as usize;
+    let a = (data.vertex_base + indices[first]) as usize;
+    let b = (data.vertex_base + indices[first + 1]) as usize;
+    let c = (data.vertex_base + indices[first + 2]) as usize;
+    ([vertices[a].uv, vertices[b].uv, vertices[c].uv], [vertices[a].color, vertices[b].color, vertices[c].color])
 }
 
 /// Object-space geometric and shading normals of a triangle at `barycentrics`.

@@ -480,8 +480,12 @@ pub fn triangle_cutout_any_hit(
     let material = materials[data.material as usize];
     let mut alpha = shading::cutout_alpha(&material, object_origin + object_direction * t);
     if material.cutout_pattern == CUTOUT_TEXTURE {
-        let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
-        alpha *= texture::surface_alpha(textures, &material, &v, *barycentrics);
+        let corners = hit::corner_attributes(&data, primitive_id, vertices, indices);
+        // Indexed here, not in `surface_alpha`: handed the array, that function read wrong
+        // texels on NVIDIA's driver 580 (every hit a hole), not on lavapipe (docs/rust-stages.md).
+        // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
+        let image = unsafe { textures.index(material.texture.x as usize) };
+        alpha *= texture::surface_alpha(image, &material, corners, *barycentrics);
     }
     if alpha < material.cutout_threshold {
         // SAFETY: called from an any-hit stage, as OpIgnoreIntersectionKHR requires.

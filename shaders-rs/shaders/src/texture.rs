@@ -40,19 +40,22 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
 }
 
 /// The alpha a mesh's vertex colours and texture (at level 0) give the surface at
-/// barycentrics `b`: what alpha-tested cutouts (glTF's alpha mode MASK) test.
-pub fn surface_alpha(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], b: Vec2) -> f32 {
-    let color = texture::interpolate([v[0].color, v[1].color, v[2].color], b.x, b.y);
+/// barycentrics `b`, from its corners' texture coordinates `uv` and colours `color` (as
+/// `hit::corner_attributes` reads them) and the material's texture `image` (indexed by the
+/// caller): what alpha-tested cutouts (glTF's alpha mode MASK) test.
+pub fn surface_alpha(image: &Texture, material: &Material, (uv, color): ([Vec4; 3], [Vec4; 3]), b: Vec2) -> f32 {
+    let alpha = texture::interpolate(color, b.x, b.y).w;
     if material.texture.x == 0 {
-        return color.w;
+        return alpha;
     }
-    let uv =
-        [texture::vertex_uv(material, &v[0]), texture::vertex_uv(material, &v[1]), texture::vertex_uv(material, &v[2])];
-    // SAFETY: as in `surface_tint`.
-    let texel = unsafe {
-        sample_grad(textures.index(material.texture.x as usize), texture::uv_at(uv, b), Vec2::ZERO, Vec2::ZERO)
-    };
-    color.w * texel.w
+    let uv = [
+        texture::material_uv(material, uv[0]),
+        texture::material_uv(material, uv[1]),
+        texture::material_uv(material, uv[2]),
+    ];
+    // SAFETY: `image` is a written slot of the texture array.
+    let texel = unsafe { sample_grad(image, texture::uv_at(uv, b), Vec2::ZERO, Vec2::ZERO) };
+    alpha * texel.w
 }
 
 /// `texture` at `uv`, its level of detail from the gradients `dx` and `dy`

@@ -26,7 +26,12 @@ pub fn interpolate(a: [Vec4; 3], u: f32, v: f32) -> Vec4 {
 /// The texture coordinates `material`'s texture reads at vertex `v`: its set (0 or 1),
 /// through the material's transform.
 pub fn vertex_uv(material: &Material, v: &Vertex) -> Vec2 {
-    let uv = if material.texture.y == 1 { v.uv.zw() } else { v.uv.xy() };
+    material_uv(material, v.uv)
+}
+
+/// The texture coordinates `material`'s texture reads of a vertex's `uv` (both sets).
+pub fn material_uv(material: &Material, uv: Vec4) -> Vec2 {
+    let uv = if material.texture.y == 1 { uv.zw() } else { uv.xy() };
     Vec2::new(material.uv_u.xy().dot(uv) + material.uv_u.z, material.uv_v.xy().dot(uv) + material.uv_v.z)
 }
 
