@@ -8,6 +8,8 @@
 #![cfg_attr(target_arch = "spirv", feature(asm_experimental_arch))]
 
 #[macro_use]
+mod any_hit;
+#[macro_use]
 mod hit;
 mod query;
 mod texture;
@@ -458,55 +460,4 @@ pub fn checker_material(#[spirv(incoming_callable_data)] call: &mut MaterialCall
     call.color = shading::material_color(&call.material, call.point.xyz(), call.normal.xyz()).extend(1.0);
 }
 
-/// Cutouts on meshes: as `cutout_any_hit`, and with the alpha pattern (glTF's alpha mode
-/// MASK) the surface's own alpha at the hit: its opacity times its vertex colours' and its
-/// texture's (at level 0).
-#[spirv(any_hit)]
-#[allow(clippy::too_many_arguments)]
-pub fn triangle_cutout_any_hit(
-    #[spirv(instance_id)] object: u32,
-    #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(object_ray_origin)] object_origin: Vec3,
-    #[spirv(object_ray_direction)] object_direction: Vec3,
-    #[spirv(ray_tmax)] t: f32,
-    #[spirv(hit_attribute)] barycentrics: &Vec2,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
-    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
-) {
-    let data = objects[object as usize];
-    let material = materials[data.material as usize];
-    let mut alpha = shading::cutout_alpha(&material, object_origin + object_direction * t);
-    if material.cutout_pattern == CUTOUT_TEXTURE {
-        let corners = hit::corner_attributes(&data, primitive_id, vertices, indices);
-        // Indexed here, not in `surface_alpha`: handed the array, that function read wrong
-        // texels on NVIDIA's driver 580 (every hit a hole), not on lavapipe (docs/rust-stages.md).
-        // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
-        let image = unsafe { textures.index(material.texture.x as usize) };
-        alpha *= texture::surface_alpha(image, &material, corners, *barycentrics);
-    }
-    if alpha < material.cutout_threshold {
-        // SAFETY: called from an any-hit stage, as OpIgnoreIntersectionKHR requires.
-        unsafe { spirv_std::arch::ignore_intersection() };
-    }
-}
-
-/// Cutouts, for primary and shadow rays alike: a candidate hit in a hole of the object's
-/// alpha pattern is ignored, and the ray goes on.
-#[spirv(any_hit)]
-pub fn cutout_any_hit(
-    #[spirv(instance_id)] object: u32,
-    #[spirv(object_ray_origin)] object_origin: Vec3,
-    #[spirv(object_ray_direction)] object_direction: Vec3,
-    #[spirv(ray_tmax)] t: f32,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
-) {
-    let material = materials[objects[object as usize].material as usize];
-    if !shading::cutout_solid(&material, object_origin + object_direction * t) {
-        // SAFETY: called from an any-hit stage, as OpIgnoreIntersectionKHR requires.
-        unsafe { spirv_std::arch::ignore_intersection() };
-    }
-}
+any_hit_stages!();
