@@ -102,8 +102,9 @@ impl Outcome {
 }
 
 /// Runs `binaries` (those whose label contains one of `only`, or all), `jobs` at a time, and
-/// fails naming every binary that failed.
-pub fn run(binaries: Vec<Binary>, jobs: usize, only: &[String]) -> Result<()> {
+/// fails naming every binary that failed. `after_alone` runs once the binaries that assert on
+/// GPU timings are done: work that may share the cores with the rest (CI's rustdoc).
+pub fn run(binaries: Vec<Binary>, jobs: usize, only: &[String], after_alone: impl FnOnce()) -> Result<()> {
     let logs = repo_root().join("target/ci-tests");
     std::fs::create_dir_all(&logs).with_context(|| format!("creating {}", logs.display()))?;
     let times = read_times(&logs.join("times.tsv"));
@@ -123,6 +124,7 @@ pub fn run(binaries: Vec<Binary>, jobs: usize, only: &[String]) -> Result<()> {
     let outcomes = Mutex::new(Vec::new());
     let started = Instant::now();
     run_pool(alone, 1, total, &logs, &outcomes);
+    after_alone();
     run_pool(shared, jobs, total, &logs, &outcomes);
     summarize(&outcomes.into_inner().unwrap(), started.elapsed(), &logs)
 }
