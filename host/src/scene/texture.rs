@@ -121,10 +121,10 @@ pub fn mip_chain(image: &TextureImage) -> Vec<(u32, u32, Vec<u8>)> {
     let srgb = image.srgb;
     let decode = |v: u8| if srgb { srgb_to_linear(v) } else { f32::from(v) / 255.0 };
     let encode = |c: f32| if srgb { linear_to_srgb(c) } else { unorm(c) };
-    let mut levels = Vec::new();
+    let mut levels: Vec<(u32, u32, Vec<u8>)> = Vec::new();
     let (mut w, mut h) = (image.width, image.height);
-    let mut last: Vec<u8> = image.rgba.clone();
     while w > 1 || h > 1 {
+        let last = levels.last().map_or(image.rgba.as_slice(), |(_, _, t)| t.as_slice());
         let (nw, nh) = ((w / 2).max(1), (h / 2).max(1));
         let mut next = vec![0u8; (nw * nh * 4) as usize];
         for y in 0..nh {
@@ -144,8 +144,8 @@ pub fn mip_chain(image: &TextureImage) -> Vec<(u32, u32, Vec<u8>)> {
                 }
             }
         }
-        levels.push((nw, nh, next.clone()));
-        (w, h, last) = (nw, nh, next);
+        levels.push((nw, nh, next));
+        (w, h) = (nw, nh);
     }
     levels
 }

@@ -86,9 +86,9 @@ fn listed(ignored: &BTreeSet<String>) -> String {
     ignored.iter().map(String::as_str).collect::<Vec<_>>().join(", ")
 }
 
-fn model(mut loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Model, String> {
-    let document = loaded.gltf.document.clone();
-    let doc = &document;
+fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Model, String> {
+    let buffers::Loaded { gltf, buffers, folder, mut budget } = loaded;
+    let doc = &gltf.document;
     let mut ignored = BTreeSet::new();
     ignored
         .extend(doc.extensions_used().filter(|e| !SUPPORTED_EXTENSIONS.contains(e)).map(|e| format!("extension {e}")));
@@ -100,7 +100,7 @@ fn model(mut loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Resul
     for node in scene.nodes() {
         walk(node, Mat4::IDENTITY, 0, &mut placed)?;
     }
-    let meshes = meshes(doc, &loaded.buffers, &mut ignored)?;
+    let meshes = meshes(doc, &buffers, &mut ignored)?;
     let mut objects = Vec::new();
     let mut materials = BTreeMap::new();
     let mut images = textures::Images::new();
@@ -111,7 +111,8 @@ fn model(mut loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Resul
             if !meshes.contains_key(&shape) {
                 continue; // not triangles
             }
-            let mut read = Read { loaded: &mut loaded, images: &mut images, source: name };
+            let files = textures::Files { buffers: &buffers, folder: &folder, budget: &mut budget };
+            let mut read = Read { files, images: &mut images, source: name };
             let material = material(&primitive.material(), &mut materials, &mut read, &mut ignored)?;
             objects.push(ObjectDesc {
                 shape,
@@ -201,7 +202,7 @@ pub(super) fn mesh_shape(name: &str) -> ShapeDesc {
 /// What reading a material's texture needs: the model's buffers and budget, its images decoded
 /// so far, and its name for errors.
 struct Read<'a> {
-    loaded: &'a mut buffers::Loaded,
+    files: textures::Files<'a>,
     images: &'a mut textures::Images,
     source: &'a str,
 }
@@ -226,7 +227,7 @@ fn material(
     }
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, a] = pbr.base_color_factor();
-    let texture = textures::base_color(m, read.loaded, read.images, read.source, ignored)?.map(Box::new);
+    let texture = textures::base_color(m, &mut read.files, read.images, read.source, ignored)?.map(Box::new);
     let color = [r, g, b];
     // MASK: alpha-tested at the cutoff. BLEND is drawn the same way at 0.5 (a surface is
     // there where it is at least half opaque): twinray traces no transparency.

@@ -3,10 +3,19 @@
 //! its sampler's wrap modes and filters, its texture coordinate set and KHR_texture_transform.
 
 use super::super::texture::{self, Filter, SamplerDesc, TextureDesc, TextureImage, Wrap};
-use super::buffers::{read_uri, Loaded};
+use super::buffers::read_uri;
 use gltf::texture::{MagFilter, MinFilter, WrappingMode};
 use std::collections::{BTreeMap, BTreeSet};
+use std::path::Path;
 use std::sync::Arc;
+
+/// Where a model's images are read from: its buffers, its folder, and how many more bytes
+/// may be read.
+pub struct Files<'a> {
+    pub buffers: &'a [Vec<u8>],
+    pub folder: &'a Path,
+    pub budget: &'a mut u64,
+}
 
 /// The model's images decoded so far, by index.
 pub type Images = BTreeMap<usize, Arc<TextureImage>>;
@@ -14,7 +23,7 @@ pub type Images = BTreeMap<usize, Arc<TextureImage>>;
 /// The base colour texture of `m`, if it has one; `source` names the model in errors.
 pub fn base_color(
     m: &gltf::Material,
-    loaded: &mut Loaded,
+    files: &mut Files,
     images: &mut Images,
     source: &str,
     ignored: &mut BTreeSet<String>,
@@ -26,7 +35,7 @@ pub fn base_color(
         Some(i) => i.clone(),
         None => {
             let name = format!("{source}#image {}", image.index());
-            let bytes = image_bytes(&image, loaded).map_err(|e| format!("image {}: {e}", image.index()))?;
+            let bytes = image_bytes(&image, files).map_err(|e| format!("image {}: {e}", image.index()))?;
             let decoded = Arc::new(texture::decode(&name, &bytes, true).map_err(|e| e.to_string())?);
             images.insert(image.index(), decoded.clone());
             decoded
@@ -73,16 +82,16 @@ pub fn base_color(
 }
 
 /// The encoded bytes of `image`, read within what is left of the model's budget.
-fn image_bytes(image: &gltf::Image, loaded: &mut Loaded) -> Result<Vec<u8>, String> {
+fn image_bytes(image: &gltf::Image, files: &mut Files) -> Result<Vec<u8>, String> {
     let bytes = match image.source() {
-        gltf::image::Source::Uri { uri, .. } => read_uri(uri, &loaded.folder, loaded.budget)?,
+        gltf::image::Source::Uri { uri, .. } => read_uri(uri, files.folder, *files.budget)?,
         gltf::image::Source::View { view, .. } => {
-            let buffer = loaded.buffers.get(view.buffer().index()).ok_or("its buffer is missing")?;
+            let buffer = files.buffers.get(view.buffer().index()).ok_or("its buffer is missing")?;
             let end = view.offset().checked_add(view.length()).filter(|&e| e <= buffer.len());
             let end = end.ok_or_else(|| format!("its buffer view {} reaches past its buffer", view.index()))?;
             buffer[view.offset()..end].to_vec()
         }
     };
-    loaded.budget = loaded.budget.saturating_sub(bytes.len() as u64);
+    *files.budget = files.budget.saturating_sub(bytes.len() as u64);
     Ok(bytes)
 }
