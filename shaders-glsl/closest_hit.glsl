@@ -27,11 +27,12 @@ vec3 flat_color(Material material, vec3 object_point, vec3 object_normal) {
 #define SURFACE_COLOR material_color
 #endif
 
-void describe(vec3 point, float t, vec3 geometric, vec3 shading, vec3 color, uvec4 ids) {
+// The emission in the spare w components (HitPayload::emission).
+void describe(vec3 point, float t, vec3 geometric, vec3 shading, vec3 color, vec3 emission, uvec4 ids) {
     payload.position = vec4(point, t);
-    payload.shading_normal = vec4(shading, 0.0);
-    payload.geometric_normal = vec4(geometric, 0.0);
-    payload.color = vec4(color, 1.0);
+    payload.shading_normal = vec4(shading, emission.x);
+    payload.geometric_normal = vec4(geometric, emission.y);
+    payload.color = vec4(color, emission.z);
     payload.ids = ids;
 }
 #endif

@@ -16,6 +16,6 @@ void procedural_hit(uint object, uint primitive, uint primitive_id, uint hit_kin
     vec3 geometric, shading;
     surface_normals(world_to_object, normal, normal, direction, geometric, shading);
     uvec4 ids = uvec4(object, primitive_id, material.kind, hit_kind);
-    describe(origin + direction * t, t, geometric, shading, color, ids);
+    describe(origin + direction * t, t, geometric, shading, color, material.emission.xyz, ids);
 }
 #endif

@@ -8,8 +8,10 @@ vec4 interpolate(vec4 a0, vec4 a1, vec4 a2, float u, float v) {
     return a0 * (1.0 - u - v) + a1 * u + a2 * v;
 }
 
-vec2 vertex_uv(Material material, Vertex v) {
-    vec2 uv = material.texture.y == 1u ? v.uv.zw : v.uv.xy;
+// The coordinates a texture of the material reads from its set (texture.y: base colour, .w:
+// emission), through the material's one transform.
+vec2 vertex_uv(Material material, Vertex v, uint set) {
+    vec2 uv = set == 1u ? v.uv.zw : v.uv.xy;
     return vec2(dot(material.uv_u.xy, uv) + material.uv_u.z, dot(material.uv_v.xy, uv) + material.uv_v.z);
 }
 
@@ -69,6 +71,23 @@ void taps(vec2 at, vec2 dx, vec2 dy, out uint count, out vec2 first, out vec2 st
     tap_dy = minor;
 }
 
+// Twin of twinray_shaders::texture::filtered: texture `slot`'s colour over the cone's
+// footprint, the triangle's corners reading their coordinates from `set`.
+vec3 filtered(uint slot, uint set, Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world,
+              vec2 barycentrics, vec3 direction, float width) {
+    vec2 at, dx, dy;
+    footprint(object_to_world, v0.position.xyz, v1.position.xyz, v2.position.xyz, barycentrics, direction, width,
+              vertex_uv(material, v0, set), vertex_uv(material, v1, set), vertex_uv(material, v2, set), at, dx, dy);
+    uint count;
+    vec2 first, step, tap_dx, tap_dy;
+    taps(at, dx, dy, count, first, step, tap_dx, tap_dy);
+    vec4 sum = vec4(0.0);
+    for (uint i = 0u; i < count; i++) {
+        sum += textureGrad(textures[nonuniformEXT(slot)], first + step * float(i), tap_dx, tap_dy);
+    }
+    return sum.xyz / float(count);
+}
+
 // Twin of twinray_shaders::texture::surface_tint: what the material's colour is multiplied by on
 // a mesh: the vertex colour, times its texture sampled over the cone's footprint.
 vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
@@ -77,18 +96,18 @@ vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 objec
     if (material.texture.x == 0u) {
         return color.xyz;
     }
-    vec2 at, dx, dy;
-    footprint(object_to_world, v0.position.xyz, v1.position.xyz, v2.position.xyz, barycentrics, direction, width,
-              vertex_uv(material, v0), vertex_uv(material, v1), vertex_uv(material, v2), at, dx, dy);
-    uint count;
-    vec2 first, step, tap_dx, tap_dy;
-    taps(at, dx, dy, count, first, step, tap_dx, tap_dy);
-    vec4 sum = vec4(0.0);
-    for (uint i = 0u; i < count; i++) {
-        sum += textureGrad(textures[nonuniformEXT(material.texture.x)], first + step * float(i), tap_dx, tap_dy);
+    return color.xyz * filtered(material.texture.x, material.texture.y, material, v0, v1, v2, object_to_world,
+                                barycentrics, direction, width);
+}
+
+// Twin of twinray_shaders::texture::surface_emission: the radiance a mesh emits at the hit.
+vec3 surface_emission(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
+                      vec3 direction, float width) {
+    if (material.texture.z == 0u) {
+        return material.emission.xyz;
     }
-    vec4 texel = sum / float(count);
-    return color.xyz * texel.xyz;
+    return material.emission.xyz * filtered(material.texture.z, material.texture.w, material, v0, v1, v2,
+                                             object_to_world, barycentrics, direction, width);
 }
 
 // Twin of twinray_shaders::texture::surface_alpha: the alpha a mesh's vertex colours and
@@ -98,7 +117,9 @@ float surface_alpha(Material material, Vertex v0, Vertex v1, Vertex v2, vec2 bar
     if (material.texture.x == 0u) {
         return color.w;
     }
-    vec2 at = uv_at(vertex_uv(material, v0), vertex_uv(material, v1), vertex_uv(material, v2), barycentrics);
+    uint set = material.texture.y;
+    vec2 at = uv_at(vertex_uv(material, v0, set), vertex_uv(material, v1, set), vertex_uv(material, v2, set),
+                    barycentrics);
     vec4 texel = textureGrad(textures[nonuniformEXT(material.texture.x)], at, vec2(0.0), vec2(0.0));
     return color.w * texel.w;
 }

@@ -73,7 +73,9 @@ vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout u
             }
         }
     }
-    return payload.color.xyz * light_sum;
+    // Plus the radiance the surface emits, in the spare w components (HitPayload::emission).
+    vec3 emission = vec3(payload.shading_normal.w, payload.geometric_normal.w, payload.color.w);
+    return payload.color.xyz * light_sum + emission;
 }
 #endif // TRACE_ONLY
 #endif

@@ -23,9 +23,10 @@ void triangle_hit(uint object, uint primitive_id, uint hit_kind, vec3 origin, ve
                      barycentrics.x, barycentrics.y, object_geometric, object_shading);
     vec3 color = SURFACE_COLOR(material, object_origin + object_direction * t, object_geometric) *
                  surface_tint(material, v0, v1, v2, object_to_world, barycentrics, direction, cone * t);
+    vec3 emission = surface_emission(material, v0, v1, v2, object_to_world, barycentrics, direction, cone * t);
     vec3 geometric, shading;
     surface_normals(world_to_object, object_geometric, object_shading, direction, geometric, shading);
     uvec4 ids = uvec4(object, primitive_id, material.kind, hit_kind);
-    describe(origin + direction * t, t, geometric, shading, color, ids);
+    describe(origin + direction * t, t, geometric, shading, color, emission, ids);
 }
 #endif

@@ -105,7 +105,7 @@ struct Primitive {
     vec4 tint; // offset 32
 };
 
-// 96 bytes, as twinray_shared::layout::Material
+// 112 bytes, as twinray_shared::layout::Material
 struct Material {
     uint kind; // offset 0
     uint cutout_pattern; // offset 4
@@ -116,6 +116,7 @@ struct Material {
     uvec4 texture; // offset 48
     vec4 uv_u; // offset 64
     vec4 uv_v; // offset 80
+    vec4 emission; // offset 96
 };
 
 // 80 bytes, as twinray_shared::layout::Light
@@ -144,12 +145,12 @@ struct ShadowPayload {
     uint occluded; // offset 0
 };
 
-// 144 bytes, as twinray_shared::layout::MaterialCall
+// 160 bytes, as twinray_shared::layout::MaterialCall
 struct MaterialCall {
     Material material; // offset 0
-    vec4 point; // offset 96
-    vec4 normal; // offset 112
-    vec4 color; // offset 128
+    vec4 point; // offset 112
+    vec4 normal; // offset 128
+    vec4 color; // offset 144
 };
 
 // 32 bytes, as twinray_shared::layout::ProbeRay

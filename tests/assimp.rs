@@ -5,9 +5,12 @@
 //! input with its fault named. Which is which is not decided here: the lists below only pin
 //! the models already known to render and to be malformed, so that neither kind can slip into
 //! the other unnoticed. Every OBJ file of its OBJ folder loads as a mesh or is refused naming
-//! the file, and two of them render alike in both sets.
+//! the file, and two of them render alike in both sets; opened as scenes of their own, with
+//! their material libraries and textures, they load or are refused the same way, and the
+//! textured spider renders alike in both sets.
 
 use std::path::Path;
+use twinray::scene::file::MaterialDesc;
 use twinray::scene::shape::Normals;
 use twinray::Scene;
 use twinray_tests::{render_scene, validated_context, SCENE_TEST_SIZE};
@@ -150,6 +153,44 @@ fn every_obj_model_loads_or_is_refused_naming_the_file() {
     for file in ["WusonOBJ.obj", "spider.obj"] {
         renders_alike(&ctx, &obj_scene(file), file);
     }
+}
+
+#[test]
+fn every_obj_model_opens_as_a_scene_with_its_materials_or_is_refused_naming_the_file() {
+    let mut opened = Vec::new();
+    for path in std::fs::read_dir(OBJ_MODELS).into_iter().flatten().flatten().map(|e| e.path()) {
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if !name.ends_with(".obj") {
+            continue;
+        }
+        match Scene::load(path.to_str()) {
+            Ok(scene) => opened.push((name, scene)),
+            Err(e) => {
+                let e = e.to_string();
+                assert!(e.contains(&name), "{name}: {e:?} does not name the file");
+                let fault = OBJ_REFUSED.iter().find(|(f, _)| *f == name).map(|(_, fault)| *fault);
+                assert!(fault.is_some(), "{name} refused: {e}");
+            }
+        }
+    }
+    for want in OBJ_LOADED {
+        assert!(opened.iter().any(|(l, _)| l == want), "{want} did not open");
+    }
+    let materials = |scene: &Scene| scene.file.materials.values().cloned().collect::<Vec<_>>();
+    let textured = |m: &MaterialDesc| matches!(m, MaterialDesc::Diffuse { texture: Some(t), .. } if t.image.is_some());
+    let (_, spider) = opened.iter().find(|(n, _)| n == "spider.obj").unwrap();
+    // Its library names five images (one for Brusttex, a material no face uses), as `.\\name.jpg`.
+    assert_eq!(materials(spider).iter().filter(|m| textured(m)).count(), 4, "{:?}", materials(spider));
+    let (_, regr) = opened.iter().find(|(n, _)| n == "regr01.obj").unwrap();
+    let colours: std::collections::BTreeSet<String> = materials(regr)
+        .iter()
+        .map(|m| match m {
+            MaterialDesc::Diffuse { color, .. } => format!("{color:?}"),
+            other => panic!("{other:?}"),
+        })
+        .collect();
+    assert!(colours.len() >= 3, "regr01's library colours its groups: {colours:?}");
+    renders_alike(&validated_context(), spider, "spider.obj as a scene");
 }
 
 /// The engine of assimp's glTF2 folder (75,730 triangles in 34 primitives).

@@ -231,3 +231,91 @@ fn a_texture_s_alpha_cuts_holes_for_every_ray() {
     let clear = render(&masked_scene(dir.path(), 0.4), "glsl");
     assert_eq!(share(&clear, 0), 0.0, "opacity 0.4 under a threshold of 0.5: no surface");
 }
+
+/// The floor and a ball, lit from above, both of material `material` (a TOML table body).
+fn emissive_scene(dir: &Path, name: &str, material: &str) -> Scene {
+    write_checker(&dir.join("checker.png"));
+    write_floor(&dir.join("floor.obj"));
+    let text = format!(
+        r#"
+name = "{name}"
+background = [0.0, 0.0, 0.0]
+[image]
+width = {w}
+height = {h}
+texture_lod = "zero"
+[camera]
+eye = [0.0, 0.6, 2.0]
+target = [0.0, 0.0, -6.0]
+up = [0.0, 1.0, 0.0]
+fov_y_degrees = 60.0
+[shapes.floor]
+kind = "mesh"
+file = "floor.obj"
+normals = "flat"
+[shapes.ball]
+kind = "sphere"
+radius = 0.3
+[materials.glow]
+{material}
+[[objects]]
+shape = "floor"
+material = "glow"
+[[objects]]
+shape = "ball"
+material = "glow"
+translate = [0.0, 0.5, -3.0]
+[[lights]]
+kind = "directional"
+direction = [0.0, 1.0, 0.0]
+color = [1.0, 1.0, 1.0]
+intensity = 1.0
+shadows = false
+"#,
+        w = SIZE.0,
+        h = SIZE.1
+    );
+    let path = dir.join(format!("{name}.toml"));
+    std::fs::write(&path, text).unwrap();
+    Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A material's emission adds to the light it reflects: the factor alone on the ball (an
+/// analytic shape has no texture coordinates), the factor times its texture on the floor
+/// (black cells emit nothing, white ones the factor); both sets alike.
+#[test]
+fn emission_adds_its_factor_times_its_texture() {
+    let dir = tempfile::tempdir().unwrap();
+    let base = "kind = \"diffuse\"\ncolor = [0.5, 0.5, 0.5]";
+    let plain = render(&emissive_scene(dir.path(), "plain", base), "glsl");
+    let e = [0.2f32, 0.3, 0.1];
+    let emission = format!(
+        "{base}\nemission = {{ color = [0.1, 0.15, 0.05], intensity = 2.0, texture = {{ file = \"checker.png\" }} }}"
+    );
+    let glowing = emissive_scene(dir.path(), "glowing", &emission);
+    let (rust, glsl) = (render(&glowing, "rust"), render(&glowing, "glsl"));
+    // What the emission added at each pixel, as a share of the factor (the same in every
+    // channel, or the wrong channel went somewhere).
+    let added = |i: usize| {
+        let s: Vec<f32> = (0..3).map(|c| (rust.linear[i][c] - plain.linear[i][c]) / e[c]).collect();
+        assert!((s[0] - s[1]).abs() < 0.02 && (s[1] - s[2]).abs() < 0.02, "pixel {i}: {s:?}");
+        s[0]
+    };
+    let object = |i: usize, o: u64| rust.hit_ids[i] != twinray::render::NO_HIT_ID && rust.hit_ids[i] >> 32 == o;
+    let ball: Vec<f32> = (0..rust.hit_ids.len()).filter(|&i| object(i, 1)).map(added).collect();
+    assert!(!ball.is_empty() && ball.iter().all(|s| (s - 1.0).abs() < 0.01), "the ball emits its factor: {ball:?}");
+    // The near rows of the floor, where a checker cell spans pixels: many see a cell whole (the
+    // rest, bilinearly filtered across a cell's edge, between the two).
+    let near = (SIZE.1 - SIZE.1 / 4) * SIZE.0..SIZE.1 * SIZE.0;
+    let floor: Vec<f32> = near.map(|i| i as usize).filter(|&i| object(i, 0)).map(added).collect();
+    let (dark, bright) = (
+        floor.iter().filter(|s| s.abs() < 0.01).count() as f64 / floor.len() as f64,
+        floor.iter().filter(|s| (*s - 1.0).abs() < 0.01).count() as f64 / floor.len() as f64,
+    );
+    eprintln!("near floor: {dark:.3} emit nothing, {bright:.3} the factor");
+    assert!(dark > 0.3 && bright > 0.3, "the texture does not shape the emission");
+    assert!(floor.iter().all(|s| (-0.01..=1.01).contains(s)), "emission beyond the factor times [0, 1]");
+    let d = twinray::compare::diff(&rust, &glsl, glowing.file.parity.pixel_threshold);
+    assert_eq!(d.hit_mismatches, 0);
+    assert!(twinray::compare::verdict(&d, &glowing.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+}

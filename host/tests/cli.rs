@@ -43,8 +43,17 @@ fn edited_scene(dir: &Path, from: &str, to: &str, extra: &str) -> String {
 fn impossible_values_in_scene_file_are_named() {
     let mesh = "\n[shapes.pot]\nkind = \"mesh\"\nfile = \"no-such-pot.obj\"\n";
     let rect = "\n[[lights]]\nkind = \"rect\"\ncenter = [0.0, 9.0, 0.0]\nu = [1.0, 0.0, 0.0]\nv = [2.0, 0.0, 0.0]\ncolor = [1.0, 1.0, 1.0]\nintensity = 1.0\n";
+    let glow = |emission: &str| {
+        format!("\n[materials.glow]\nkind = \"diffuse\"\ncolor = [1.0, 1.0, 1.0]\ntexture = {{ file = \"a.png\" }}\nemission = {emission}\n")
+    };
+    let (dim, turned) = (
+        glow("{ color = [1.0, 0.0, 0.0], intensity = -1.0 }"),
+        glow("{ color = [1.0, 0.0, 0.0], texture = { file = \"b.png\", transform = [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]] } }"),
+    );
     let cases = [
         ("radius_min = 0.5", "radius_min = -1.0", "", "shape \"field\": radius_min must be > 0"),
+        ("name = \"spheres\"", "name = \"spheres\"", dim.as_str(), "material \"glow\": emission.intensity must be finite and not negative"),
+        ("name = \"spheres\"", "name = \"spheres\"", turned.as_str(), "material \"glow\": emission.texture.transform [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]] differs from texture.transform"),
         (
             "color = [1.0, 1.0, 1.0]\nintensity = 1.0",
             "color = [nan, 1.0, 1.0]\nintensity = 1.0",

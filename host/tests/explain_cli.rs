@@ -106,6 +106,48 @@ fn explain_prints_every_ray_and_the_parting_in_words() {
     assert!(text.contains("first place they part: all rays agree"), "{text}");
 }
 
+/// On a textured glTF model no one here made, each hit names its node, mesh primitive and
+/// material, and the triangle, texture coordinates and level of detail it reads: the same in
+/// both sets as the f64 reference finds them. Seen small, the 256-texel texture is read at a
+/// coarser level.
+#[test]
+fn a_hit_on_a_model_names_its_node_triangle_texture_and_level() {
+    let model = "/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb";
+    assert!(Path::new(model).exists(), "{model}: run `cargo xtask setup`");
+    let dir = tempfile::tempdir().unwrap();
+    let levels = |size: [&str; 2], pixel: &str| -> Vec<f64> {
+        let args = ["--validate", "explain", model, "--width", size[0], "--height", size[1], "--pixel", pixel];
+        let out = twinray(&[&args[..], &["--b", "glsl", "--json"]].concat(), dir.path());
+        assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
+        let report: Value = serde_json::from_slice(&out.stdout).expect("json");
+        let mut levels = Vec::new();
+        for sample in report["samples"].as_array().unwrap() {
+            let truth = &sample["reference"]["surface"];
+            assert!(truth["object"].as_str().unwrap().starts_with("node "), "{truth}");
+            assert!(truth["shape"].as_str().unwrap().contains("primitive 0"), "{truth}");
+            assert_eq!(truth["material"], "material 0 \"Texture\"", "{truth}");
+            let texel = &truth["textures"][0];
+            assert!(texel["file"].as_str().unwrap().ends_with("BoxTextured.glb#image 0"), "{texel}");
+            for set in sample["sets"].as_array().unwrap() {
+                let on = &set["surface"];
+                assert_eq!((&on["object"], &on["triangle"]), (&truth["object"], &truth["triangle"]), "{on}");
+                let (uv, want) = (&on["textures"][0]["uv"], &texel["uv"]);
+                for c in 0..2 {
+                    let (a, b) = (uv[c].as_f64().unwrap(), want[c].as_f64().unwrap());
+                    assert!((a - b).abs() < 1e-4, "uv {uv} against the reference's {want}");
+                }
+                let level = on["textures"][0]["level"].as_f64().unwrap();
+                assert!((level - texel["level"].as_f64().unwrap()).abs() < 1e-3, "{on} against {texel}");
+                levels.push(texel["level"].as_f64().unwrap());
+            }
+        }
+        levels
+    };
+    let near = levels(["640", "480"], "320,240");
+    let far = levels(["64", "48"], "32,24");
+    assert!(near.iter().all(|&l| l < 0.5) && far.iter().all(|&l| l > 1.5), "near {near:?}, far {far:?}");
+}
+
 #[test]
 fn bad_input_gets_one_line_and_exit_2() {
     assert_bad_input(&["explain", "spheres", "--pixel", "512,3"], &["pixel 512,3", "outside the 512x512 image"]);

@@ -113,7 +113,7 @@ impl Variant {
                     any = true;
                     if let MaterialDesc::Cutout { color, pattern, threshold, .. } = m {
                         if self == Variant::Opaque {
-                            *m = MaterialDesc::Diffuse { color: *color, texture: None };
+                            *m = MaterialDesc::Diffuse { color: *color, texture: None, emission: None };
                         } else {
                             (*pattern, *threshold) = (CutoutPattern::Discs, f32::MIN_POSITIVE);
                         }

@@ -147,7 +147,7 @@ impl AnimationArgs {
 
 #[derive(Args)]
 pub struct RenderArgs {
-    /// Scene file, or the name of a built-in scene [default: spheres].
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
     pub scene: Option<String>,
     /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
     #[arg(long, default_value = "rust")]
@@ -165,7 +165,7 @@ pub struct RenderArgs {
 
 #[derive(Args)]
 pub struct CompareArgs {
-    /// Scene file, or the name of a built-in scene [default: spheres].
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
     pub scene: Option<String>,
     /// First shader set.
     #[arg(long, default_value = "rust")]
@@ -187,7 +187,7 @@ pub struct CompareArgs {
 
 #[derive(Args)]
 pub struct BisectArgs {
-    /// Scene file, or the name of a built-in scene [default: spheres].
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
     #[arg(conflicts_with = "probe")]
     pub scene: Option<String>,
     /// Bisect on a probe case's rays (TOML; see docs/probe-format.md) instead of a scene's
@@ -254,7 +254,7 @@ pub struct StabilityArgs {
 
 #[derive(Args)]
 pub struct ReferenceArgs {
-    /// Scene file, or the name of a built-in scene [default: spheres].
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
     pub scene: Option<String>,
     /// Samples per pixel: a square up to 256, or a multiple of 256.
     #[arg(long, default_value_t = 1024)]
@@ -281,7 +281,7 @@ pub struct ReferenceArgs {
 
 #[derive(Args)]
 pub struct BenchArgs {
-    /// Scene files or built-in names [default: every built-in scene].
+    /// Scene files, models (.gltf, .glb, .obj) or built-in names [default: every built-in scene].
     pub scenes: Vec<String>,
     /// Shader sets, comma-separated; a STAGE=LANGUAGE item changes the set before it, so
     /// "rust,glsl,rust,intersection=glsl" is three sets.

@@ -43,7 +43,7 @@ fn parse_point(text: &str) -> Result<[f32; 3], String> {
 
 #[derive(Args)]
 pub struct ExplainArgs {
-    /// Scene file, or the name of a built-in scene [default: spheres].
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
     pub scene: Option<String>,
     /// The pixel: column X and row Y from the top left, as compare's images number them.
     #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
@@ -94,7 +94,7 @@ fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
 
 #[derive(Args)]
 pub struct ViewArgs {
-    /// Scene file, or the name of a built-in scene [default: spheres].
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
     pub scene: Option<String>,
     /// Set A: rust, glsl, a folder of modules, or a mix (as for compare).
     #[arg(long, default_value = "rust")]

@@ -119,7 +119,11 @@ fn sensor(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Value {
 /// Mitsuba equivalent are refused.
 fn albedo(scene: &Scene, material: &str) -> Result<Vec3> {
     match scene.file.materials.get(material) {
-        Some(MaterialDesc::Diffuse { color, .. }) => Ok(Vec3::from(*color)),
+        Some(MaterialDesc::Diffuse { color, texture: None, emission: None }) => Ok(Vec3::from(*color)),
+        Some(MaterialDesc::Diffuse { .. }) => Err(Error::Input(format!(
+            "{}: material {material:?} has a texture or emission, which the cross-check does not hand to Mitsuba yet",
+            scene.source
+        ))),
         Some(MaterialDesc::Emissive { .. }) => Ok(Vec3::ZERO),
         Some(MaterialDesc::Checker { .. } | MaterialDesc::Cutout { .. }) => Err(Error::Input(format!(
             "{}: material {material:?} is a checker or cutout, which has no Mitsuba equivalent here (docs/shading-model.md)",

@@ -156,7 +156,7 @@ pub fn twinray_side(
     blank.file.lights.clear();
     blank.file.background = [1.0; 3];
     for m in blank.file.materials.values_mut() {
-        *m = MaterialDesc::Diffuse { color: [0.0; 3], texture: None };
+        *m = MaterialDesc::Diffuse { color: [0.0; 3], texture: None, emission: None };
     }
     let coverage = reference(ctx, &blank, set, size, spp.min(256), cache)?;
     Ok((image.linear, coverage.linear.iter().map(|p| p[0]).collect()))

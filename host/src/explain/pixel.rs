@@ -6,6 +6,7 @@
 
 use super::rays::{Camera, PrimarySample};
 use super::shading::{self, LightSample};
+use super::surface::{surface, Hit, Surface};
 use super::trace;
 use crate::error::{Error, Result};
 use crate::probe::report::{outcome, Outcome};
@@ -34,6 +35,8 @@ pub struct SetSample {
     pub shadow_verdicts: Vec<Option<SceneVerdict>>,
     /// The colour the sample adds, as the stage adds it up.
     pub radiance: Vec3,
+    /// What its hit is on (`None` on a miss, or with no payload).
+    pub surface: Option<Surface>,
 }
 
 /// One set's rays of the pixel.
@@ -53,8 +56,9 @@ pub struct PixelRays {
     pub pixel: (u32, u32),
     pub size: (u32, u32),
     pub samples: Vec<PrimarySample>,
-    /// The reference's verdict for each primary sample.
+    /// The reference's verdict for each primary sample, and what its hit is on.
     pub reference: Vec<SceneVerdict>,
+    pub reference_surfaces: Vec<Option<Surface>>,
     pub sets: Vec<SetRays>,
     /// The scene's GPU data and pipeline plan (what names objects and stages).
     pub data: SceneData,
@@ -122,7 +126,17 @@ pub fn explain_pixel(
                 lights.iter().map(|l| if l.traced { answers.next() } else { None }).collect();
             let shadow_verdicts = lights.iter().map(|l| l.traced.then(|| shadow_verdict(&reference, l))).collect();
             let radiance = shading::radiance(&result.hit, &lights, |k| occluded[k] == Some(false));
+            let h = &result.hit;
+            let hit = !h.unwritten(true) && h.ids.w != twinray_shared::bindings::NO_HIT;
+            let at = Hit {
+                object: h.ids.x as usize,
+                triangle: Some(h.ids.y as usize),
+                point: h.position.truncate().as_dvec3(),
+                direction: samples[set_samples.len()].ray.direction.truncate().as_dvec3(),
+                t: f64::from(h.position.w),
+            };
             set_samples.push(SetSample {
+                surface: if hit { surface(scene, &data, frame.cone.x, &at) } else { None },
                 hit: result.hit,
                 outcome: if result.hit.unwritten(true) {
                     Outcome::NoPayload
@@ -141,12 +155,25 @@ pub fn explain_pixel(
         out.push(SetRays { label: label.clone(), samples: set_samples, image, remade });
     }
     let background = frame.background.truncate();
+    let reference_surfaces = samples
+        .iter()
+        .zip(&verdicts)
+        .map(|(s, v)| {
+            let SceneVerdict::Hit { object, t, .. } = *v else { return None };
+            let (o, d) = (s.ray.origin.truncate().as_dvec3(), s.ray.direction.truncate().as_dvec3());
+            let reach = (f64::from(s.ray.origin.w), f64::from(s.ray.direction.w));
+            let (triangle, _) = reference.shape_hit(object, o, d, reach)?;
+            let at = Hit { object, triangle: Some(triangle), point: o + d * t, direction: d, t };
+            surface(scene, &data, frame.cone.x, &at)
+        })
+        .collect();
     Ok(PixelRays {
         scene: scene.name().to_string(),
         pixel,
         size,
         samples,
         reference: verdicts,
+        reference_surfaces,
         sets: out,
         data,
         truth: reference,

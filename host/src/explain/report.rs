@@ -3,6 +3,7 @@
 
 use super::parting::{first_parting, hit_words, rgb, shadow_words, verdict_words, xyz, Parting};
 use super::pixel::{PixelRays, SetSample};
+use super::surface::{self, Surface};
 use crate::reference::scene::SceneVerdict;
 use glam::{Vec3, Vec4Swizzles};
 use serde::Serialize;
@@ -51,6 +52,8 @@ pub struct RefReport {
     pub object: Option<usize>,
     pub t: Option<f64>,
     pub normal: Option<[f64; 3]>,
+    /// What its hit is on.
+    pub surface: Option<Surface>,
 }
 
 #[derive(Serialize)]
@@ -70,6 +73,8 @@ pub struct SetSampleReport {
     pub lights: Vec<LightReport>,
     /// What the sample adds to the pixel (before the mean over samples).
     pub radiance: [f32; 3],
+    /// What its hit is on.
+    pub surface: Option<Surface>,
 }
 
 #[derive(Serialize)]
@@ -109,7 +114,7 @@ impl ExplainReport {
                 stratum: [s.stratum.0, s.stratum.1],
                 origin: s.ray.origin.xyz().to_array(),
                 direction: s.ray.direction.xyz().to_array(),
-                reference: ref_report(&px.reference[k]),
+                reference: RefReport { surface: px.reference_surfaces[k].clone(), ..ref_report(&px.reference[k]) },
                 sets: px.sets.iter().map(|set| set_sample(&set.label, &set.samples[k])).collect(),
             })
             .collect();
@@ -189,6 +194,9 @@ fn sample_lines(px: &PixelRays) -> String {
             xyz(d)
         );
         let _ = writeln!(s, "  {}", verdict_words(data, &px.reference[k]));
+        if let Some(on) = &px.reference_surfaces[k] {
+            let _ = writeln!(s, "    {}", surface::words(on));
+        }
         for set in &px.sets {
             let ss = &set.samples[k];
             let h = &ss.hit;
@@ -215,6 +223,9 @@ fn sample_lines(px: &PixelRays) -> String {
                 ss.outcome.name(),
                 rgb(ss.radiance)
             );
+            if let Some(on) = &ss.surface {
+                let _ = writeln!(s, "    {}", surface::words(on));
+            }
             for (j, l) in ss.lights.iter().enumerate() {
                 let answer = match ss.occluded[j] {
                     Some(true) => "occluded".to_string(),
@@ -241,11 +252,17 @@ fn sample_lines(px: &PixelRays) -> String {
 
 fn ref_report(v: &SceneVerdict) -> RefReport {
     match v {
-        SceneVerdict::Miss => RefReport { verdict: "miss", object: None, t: None, normal: None },
-        SceneVerdict::Ambiguous => RefReport { verdict: "ambiguous", object: None, t: None, normal: None },
-        SceneVerdict::Hit { object, t, normal } => {
-            RefReport { verdict: "hit", object: Some(*object), t: Some(*t), normal: Some(normal.to_array()) }
+        SceneVerdict::Miss => RefReport { verdict: "miss", object: None, t: None, normal: None, surface: None },
+        SceneVerdict::Ambiguous => {
+            RefReport { verdict: "ambiguous", object: None, t: None, normal: None, surface: None }
         }
+        SceneVerdict::Hit { object, t, normal } => RefReport {
+            verdict: "hit",
+            object: Some(*object),
+            t: Some(*t),
+            normal: Some(normal.to_array()),
+            surface: None,
+        },
     }
 }
 
@@ -285,5 +302,6 @@ fn set_sample(label: &str, s: &SetSample) -> SetSampleReport {
             })
             .collect(),
         radiance: s.radiance.to_array(),
+        surface: s.surface.clone(),
     }
 }

@@ -92,7 +92,8 @@ pub fn light_samples(
 
 /// The colour the stage adds for `hit` with its light samples, of which those `lit` (one per
 /// sample; only traced ones are asked) reach their light: the background or an emitter's
-/// radiance as it is, else the albedo times the light that arrives, summed in the stage's order.
+/// radiance as it is, else the albedo times the light that arrives, summed in the stage's order,
+/// plus the radiance the surface emits.
 pub fn radiance(hit: &HitPayload, samples: &[LightSample], lit: impl Fn(usize) -> bool) -> Vec3 {
     if !lit_by_lights(hit) {
         return hit.color.xyz();
@@ -103,5 +104,5 @@ pub fn radiance(hit: &HitPayload, samples: &[LightSample], lit: impl Fn(usize) -
             sum += s.irradiance * s.cosine;
         }
     }
-    hit.color.xyz() * sum
+    hit.color.xyz() * sum + hit.emission()
 }

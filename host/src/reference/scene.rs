@@ -59,26 +59,36 @@ impl RefObject {
     /// shapes (the holes of a cutout skipped), with the object-space normal; ambiguous when
     /// any shape's answer is, or the hit is on the edge of a hole.
     pub fn first_hit(&self, ray: &RefRay) -> Verdict {
-        let mut first: Option<(f64, DVec3)> = None;
-        for shape in &self.shapes {
+        match self.first_shape(ray) {
+            None => Verdict::Ambiguous,
+            Some(None) => Verdict::Miss,
+            Some(Some((_, t, normal))) => Verdict::Hit { t, normal },
+        }
+    }
+
+    /// Which of the object's shapes (a mesh's triangle, by index) `ray` meets first, at what t
+    /// and object-space normal: `Some(None)` for none, `None` where the answer is ambiguous.
+    pub fn first_shape(&self, ray: &RefRay) -> Option<Option<(usize, f64, DVec3)>> {
+        let mut first: Option<(usize, f64, DVec3)> = None;
+        for (k, shape) in self.shapes.iter().enumerate() {
             match intersect(shape, ray) {
-                Verdict::Ambiguous => return Verdict::Ambiguous,
+                Verdict::Ambiguous => return None,
                 Verdict::Miss => {}
                 Verdict::Hit { t, normal } => {
                     if let Some(cutout) = &self.cutout {
                         match cutout.coverage(ray.at(t), ray.edge_band(t, normal)) {
                             Coverage::Hole => continue,
-                            Coverage::Edge => return Verdict::Ambiguous,
+                            Coverage::Edge => return None,
                             Coverage::Solid => {}
                         }
                     }
-                    if first.is_none_or(|(nearest, _)| t < nearest) {
-                        first = Some((t, normal));
+                    if first.is_none_or(|(_, nearest, _)| t < nearest) {
+                        first = Some((k, t, normal));
                     }
                 }
             }
         }
-        first.map_or(Verdict::Miss, |(t, normal)| Verdict::Hit { t, normal })
+        Some(first)
     }
 }
 
@@ -133,6 +143,21 @@ impl SceneReference {
         }
         hits.sort_by(|a, b| a.1.total_cmp(&b.1));
         first_of(&hits, origin, direction)
+    }
+
+    /// The shape of `object` (a mesh's triangle, by index) that a world-space ray meets first,
+    /// and the object-space point where it does; `None` on a miss or an ambiguous answer.
+    pub fn shape_hit(
+        &self,
+        object: usize,
+        origin: DVec3,
+        direction: DVec3,
+        reach: (f64, f64),
+    ) -> Option<(usize, DVec3)> {
+        let o = self.objects.get(object)?;
+        let ray = o.ray(origin, direction, reach);
+        let (k, t, _) = o.first_shape(&ray)??;
+        Some((k, ray.at(t)))
     }
 
     /// The objects (seen by `mask`) whose shapes a world-space ray crosses, holes and all, and

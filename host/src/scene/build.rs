@@ -4,8 +4,8 @@
 
 use super::file::TextureLod;
 use super::file::{
-    CutoutPattern, HitGroups, LightDesc, MaterialDesc, MaterialShading, Renderer, SceneFile, ShadowMethod,
-    ShadowSampler,
+    CutoutPattern, EmissionDesc, HitGroups, LightDesc, MaterialDesc, MaterialShading, Renderer, SceneFile,
+    ShadowMethod, ShadowSampler,
 };
 use super::mesh::MeshData;
 use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
@@ -271,16 +271,14 @@ fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
     }
 }
 
-/// The GPU material of `m`; its texture takes a slot of `textures` (shared with every material
-/// of the same image and sampler).
+/// The GPU material of `m`; each of its textures takes a slot of `textures` (shared with
+/// every material of the same image and sampler).
 fn material(m: &MaterialDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>) -> Material {
     let mut cutout = (b::CUTOUT_NONE, 0.0, 0.0);
     let mut gpu = Material::default();
     let (kind, a, b) = match *m {
-        MaterialDesc::Diffuse { color, ref texture } => {
-            if let Some(t) = texture.as_deref() {
-                texture_slot(&mut gpu, t, textures);
-            }
+        MaterialDesc::Diffuse { color, ref texture, ref emission } => {
+            surface_textures(&mut gpu, texture.as_deref(), emission.as_deref(), textures);
             (b::MATERIAL_DIFFUSE, Vec3::from(color).extend(1.0), Vec4::ZERO)
         }
         MaterialDesc::Emissive { color, intensity } => {
@@ -289,15 +287,13 @@ fn material(m: &MaterialDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc
         MaterialDesc::Checker { colors, scale } => {
             (b::MATERIAL_CHECKER, Vec3::from(colors[0]).extend(1.0), Vec3::from(colors[1]).extend(scale))
         }
-        MaterialDesc::Cutout { color, pattern, scale, threshold, opacity, ref texture } => {
+        MaterialDesc::Cutout { color, pattern, scale, threshold, opacity, ref texture, ref emission } => {
             let pattern = match pattern {
                 CutoutPattern::Checker => b::CUTOUT_CHECKER,
                 CutoutPattern::Discs => b::CUTOUT_DISCS,
                 CutoutPattern::Alpha => b::CUTOUT_TEXTURE,
             };
-            if let Some(t) = texture.as_deref() {
-                texture_slot(&mut gpu, t, textures);
-            }
+            surface_textures(&mut gpu, texture.as_deref(), emission.as_deref(), textures);
             cutout = (pattern, scale, threshold);
             (b::MATERIAL_CUTOUT, Vec3::from(color).extend(opacity), Vec4::ZERO)
         }
@@ -306,16 +302,42 @@ fn material(m: &MaterialDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc
     Material { kind, cutout_pattern, cutout_scale, cutout_threshold, color_a: a, color_b: b, ..gpu }
 }
 
-/// Points `gpu` at `t`'s slot, taking a new one for an image and sampler not seen yet.
-fn texture_slot(gpu: &mut Material, t: &TextureDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>) {
-    let Some(image) = &t.image else { return };
+/// Points `gpu` at its own `texture` (`texture.xy`) and its emission's (`texture.zw`), and
+/// sets its emission and the one transform both read through (the scene check makes sure
+/// they agree).
+fn surface_textures(
+    gpu: &mut Material,
+    texture: Option<&TextureDesc>,
+    emission: Option<&EmissionDesc>,
+    textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>,
+) {
+    if let Some(e) = emission {
+        gpu.emission = (Vec3::from(e.color) * e.intensity).extend(0.0);
+    }
+    let emission_texture = emission.and_then(|e| e.texture.as_deref());
+    if let Some((slot, t)) = texture.and_then(|t| texture_slot(t, textures).map(|s| (s, t))) {
+        (gpu.texture.x, gpu.texture.y) = (slot, t.uv);
+        set_transform(gpu, t);
+    }
+    if let Some((slot, t)) = emission_texture.and_then(|t| texture_slot(t, textures).map(|s| (s, t))) {
+        (gpu.texture.z, gpu.texture.w) = (slot, t.uv);
+        set_transform(gpu, t);
+    }
+}
+
+/// `t`'s slot, a new one for an image and sampler not seen yet (`None` before its image is
+/// decoded).
+fn texture_slot(t: &TextureDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>) -> Option<u32> {
+    let image = t.image.as_ref()?;
     let known = textures.iter().position(|(i, s)| Arc::ptr_eq(i, image) && *s == t.sampler);
     let slot = known.unwrap_or_else(|| {
         textures.push((image.clone(), t.sampler));
         textures.len() - 1
-    }) as u32
-        + 1;
-    gpu.texture = glam::UVec4::new(slot, t.uv, 0, 0);
+    });
+    Some(slot as u32 + 1)
+}
+
+fn set_transform(gpu: &mut Material, t: &TextureDesc) {
     let [u, v] = t.transform;
     gpu.uv_u = Vec3::from(u).extend(0.0);
     gpu.uv_v = Vec3::from(v).extend(0.0);

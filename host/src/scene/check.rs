@@ -1,9 +1,11 @@
 //! Rejects well-formed scene files with impossible values, naming the field or object.
 
 use super::file::{
-    CameraDesc, GridDesc, HitGroups, LightDesc, MaterialDesc, MaterialShading, ObjectDesc, Parity, Renderer, SceneFile,
+    CameraDesc, EmissionDesc, GridDesc, HitGroups, LightDesc, MaterialDesc, MaterialShading, ObjectDesc, Parity,
+    Renderer, SceneFile,
 };
 use super::shape::ShapeDesc;
+use super::texture::TextureDesc;
 use glam::Vec3;
 use twinray_shared::shapes::spec::{MAX_LENGTH, MIN_LENGTH};
 
@@ -180,9 +182,10 @@ pub(super) fn check_camera(c: &CameraDesc) -> Checked {
 
 fn check_material(m: &MaterialDesc) -> Checked {
     match m {
-        MaterialDesc::Diffuse { color: c, texture } => {
+        MaterialDesc::Diffuse { color: c, texture, emission } => {
             color("color", *c)?;
-            check_texture(texture.as_deref())
+            check_texture("texture", texture.as_deref())?;
+            check_emission(emission.as_deref(), texture.as_deref())
         }
         MaterialDesc::Emissive { color: c, intensity } => {
             color("color", *c)?;
@@ -193,13 +196,14 @@ fn check_material(m: &MaterialDesc) -> Checked {
             color("colors[1]", colors[1])?;
             positive("scale", *scale)
         }
-        MaterialDesc::Cutout { color: c, scale, threshold, opacity, texture, .. } => {
+        MaterialDesc::Cutout { color: c, scale, threshold, opacity, texture, emission, .. } => {
             color("color", *c)?;
             positive("scale", *scale)?;
             if !(0.0..=1.0).contains(opacity) {
                 return Err(format!("opacity must be in [0, 1] (got {opacity})"));
             }
-            check_texture(texture.as_deref())?;
+            check_texture("texture", texture.as_deref())?;
+            check_emission(emission.as_deref(), texture.as_deref())?;
             if !(*threshold > 0.0 && *threshold <= 1.0) {
                 return Err(format!("threshold must be in (0, 1] (got {threshold})"));
             }
@@ -208,13 +212,32 @@ fn check_material(m: &MaterialDesc) -> Checked {
     }
 }
 
-fn check_texture(texture: Option<&super::texture::TextureDesc>) -> Checked {
+fn check_texture(name: &str, texture: Option<&TextureDesc>) -> Checked {
     match texture {
-        Some(t) if t.uv > 1 => Err(format!("texture.uv must be 0 or 1 (got {})", t.uv)),
-        Some(t) if t.file.is_empty() => Err("texture.file must name an image".into()),
-        Some(t) => finite("texture.transform", &t.transform.concat()),
+        Some(t) if t.uv > 1 => Err(format!("{name}.uv must be 0 or 1 (got {})", t.uv)),
+        Some(t) if t.file.is_empty() => Err(format!("{name}.file must name an image")),
+        Some(t) => finite(&format!("{name}.transform"), &t.transform.concat()),
         None => Ok(()),
     }
+}
+
+/// A material's emission, beside its own `texture`: both textures go through one transform.
+fn check_emission(emission: Option<&EmissionDesc>, texture: Option<&TextureDesc>) -> Checked {
+    let Some(e) = emission else { return Ok(()) };
+    color("emission.color", e.color)?;
+    if !(e.intensity >= 0.0 && e.intensity.is_finite()) {
+        return Err(format!("emission.intensity must be finite and not negative (got {})", e.intensity));
+    }
+    check_texture("emission.texture", e.texture.as_deref())?;
+    if let (Some(own), Some(t)) = (texture, e.texture.as_deref()) {
+        if own.transform != t.transform {
+            return Err(format!(
+                "emission.texture.transform {:?} differs from texture.transform {:?}: a material's textures share one transform",
+                t.transform, own.transform
+            ));
+        }
+    }
+    Ok(())
 }
 
 pub(super) fn check_light(light: &LightDesc) -> Checked {
@@ -331,6 +354,7 @@ fn check_grid(scene: &SceneFile, grid: &GridDesc) -> Checked {
     // Each material and the shape, checked as one object of the grid would be.
     for material in &grid.materials {
         let object = ObjectDesc {
+            name: None,
             shape: grid.shape.clone(),
             material: material.clone(),
             translate: grid.origin,

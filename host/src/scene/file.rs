@@ -128,11 +128,14 @@ pub struct CameraDesc {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
 pub enum MaterialDesc {
-    /// Lambert reflection with albedo `color`, times its `texture` (on meshes) where it has one.
+    /// Lambert reflection with albedo `color`, times its `texture` (on meshes) where it has one,
+    /// plus its `emission`.
     Diffuse {
         color: [f32; 3],
         #[serde(default)]
         texture: Option<Box<super::texture::TextureDesc>>,
+        #[serde(default)]
+        emission: Option<Box<EmissionDesc>>,
     },
     /// Shows `color` x `intensity`; lights nothing.
     Emissive { color: [f32; 3], intensity: f32 },
@@ -151,7 +154,36 @@ pub enum MaterialDesc {
         opacity: f32,
         #[serde(default)]
         texture: Option<Box<super::texture::TextureDesc>>,
+        #[serde(default)]
+        emission: Option<Box<EmissionDesc>>,
     },
+}
+
+/// Radiance a diffuse or cutout surface emits on top of the light it reflects (glTF's emissive
+/// factor and texture): `color` x `intensity`, times its `texture` (on meshes) where it has
+/// one. Like emissive materials, it lights nothing else.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct EmissionDesc {
+    pub color: [f32; 3],
+    #[serde(default = "unit")]
+    pub intensity: f32,
+    /// Read through the same transform as the material's own texture, if it has one: a
+    /// material has one transform.
+    #[serde(default)]
+    pub texture: Option<Box<super::texture::TextureDesc>>,
+}
+
+impl MaterialDesc {
+    /// The material's textures: its own and its emission's.
+    pub fn textures_mut(&mut self) -> [Option<&mut super::texture::TextureDesc>; 2] {
+        match self {
+            MaterialDesc::Diffuse { texture, emission, .. } | MaterialDesc::Cutout { texture, emission, .. } => {
+                [texture.as_deref_mut(), emission.as_deref_mut().and_then(|e| e.texture.as_deref_mut())]
+            }
+            MaterialDesc::Emissive { .. } | MaterialDesc::Checker { .. } => [None, None],
+        }
+    }
 }
 
 /// A cutout's alpha pattern.
@@ -204,6 +236,10 @@ pub enum LightDesc {
 #[derive(Clone, Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ObjectDesc {
+    /// What reports (`twinray explain`) call it; a glTF model's object is named after its
+    /// node.
+    #[serde(default)]
+    pub name: Option<String>,
     pub shape: String,
     /// Required, but for an object of a glTF model, which takes the model's materials when
     /// this is empty.
@@ -223,6 +259,12 @@ pub struct ObjectDesc {
 }
 
 impl ObjectDesc {
+    /// Shape `shape` of `material`, placed by `matrix` alone (a model's node) or not at all.
+    pub fn placed(shape: String, material: String, matrix: Option<[f32; 16]>) -> ObjectDesc {
+        let (translate, rotate, scale) = ([0.0; 3], [0.0; 3], Default::default());
+        ObjectDesc { name: None, shape, material, translate, rotate, scale, matrix }
+    }
+
     /// Object space to world space: `matrix`, then scale, rotation and translation.
     pub fn transform(&self) -> glam::Mat4 {
         let placed = object_transform(self.translate, self.rotate, self.scale.axes());
@@ -266,6 +308,7 @@ impl GridDesc {
                     let step = i as f32;
                     let at = [x as f32, y as f32, z as f32];
                     objects.push(ObjectDesc {
+                        name: None,
                         shape: self.shape.clone(),
                         material: self.materials[i % self.materials.len().max(1)].clone(),
                         translate: std::array::from_fn(|k| self.origin[k] + self.spacing[k] * at[k]),

@@ -35,7 +35,7 @@ pub fn builtin(kind: MeshBuiltin, normals: Normals) -> MeshData {
     with_normals(&outward(p), normals)
 }
 
-const OBJ_OPTIONS: tobj::LoadOptions =
+pub(super) const OBJ_OPTIONS: tobj::LoadOptions =
     tobj::LoadOptions { triangulate: true, single_index: true, ignore_points: true, ignore_lines: true };
 
 /// Largest mesh file read, in bytes, unless `TWINRAY_MAX_MESH_BYTES` says otherwise.
@@ -65,18 +65,19 @@ pub fn load_obj(path: &Path, normals: Normals) -> Result<MeshData, String> {
 /// Reads OBJ text (a mesh file shipped in the binary, or one read by `load_obj`); `name` names
 /// it in errors. Material libraries are not read: twinray's materials come from the scene.
 pub fn parse_obj(text: &[u8], name: &str, normals: Normals) -> Result<MeshData, String> {
-    let text = obj_text(text);
+    let text = obj_text(text, false);
     let mut reader = std::io::BufReader::new(text.as_bytes());
     let (models, _) = tobj::load_obj_buf(&mut reader, &OBJ_OPTIONS, |_| Err(tobj::LoadError::OpenFileFailed))
         .map_err(|e| format!("cannot read mesh file {name}: {e}"))?;
     from_models(&models, name, normals)
 }
 
-/// The lines of an OBJ file that describe geometry, as UTF-8: UTF-16 with a byte order mark
-/// is decoded, bytes that are not UTF-8 become U+FFFD, and `mtllib` and `usemtl` statements are
-/// dropped, since their names (empty, or in another encoding, in files written elsewhere) would
-/// otherwise fail the parse of geometry twinray reads without them.
-fn obj_text(bytes: &[u8]) -> String {
+/// The lines of an OBJ file, as UTF-8: UTF-16 with a byte order mark is decoded, bytes that
+/// are not UTF-8 become U+FFFD. `usemtl` statements without a name are dropped (they would
+/// fail the parse), and unless `materials`, `mtllib` and every `usemtl` (whose names, in
+/// another encoding in files written elsewhere, would fail the parse of geometry read without
+/// them).
+pub(super) fn obj_text(bytes: &[u8], materials: bool) -> String {
     let utf16 = |be: bool| {
         let units = bytes[2..].chunks_exact(2).map(|c| {
             if be {
@@ -92,16 +93,27 @@ fn obj_text(bytes: &[u8]) -> String {
         [0xff, 0xfe, ..] => utf16(false),
         _ => String::from_utf8_lossy(bytes).into_owned(),
     };
-    let material = |l: &str| {
-        let l = l.trim_start();
-        l.starts_with("usemtl") || l.starts_with("mtllib")
-    };
-    text.lines().filter(|l| !material(l)).flat_map(|l| [l, "\n"]).collect()
+    let mut out = String::with_capacity(text.len());
+    for line in text.lines() {
+        match material_statement(line) {
+            Some((keyword, name)) if materials && !name.is_empty() => out += &format!("{keyword} {name}\n"),
+            Some(_) => {}
+            None => out.extend([line, "\n"]),
+        }
+    }
+    out
+}
+
+/// A `usemtl` or `mtllib` statement's keyword and name (which tobj reads after a single
+/// space).
+fn material_statement(line: &str) -> Option<(&str, &str)> {
+    let keyword = line.split_whitespace().next().filter(|&w| w == "usemtl" || w == "mtllib")?;
+    Some((keyword, line.trim()[keyword.len()..].trim()))
 }
 
 /// The triangles of an OBJ file's models, with their texture coordinates (`vt`, v turned to
 /// run down the image as glTF's and Vulkan's do; 0 where a model has none).
-fn from_models(models: &[tobj::Model], name: &str, normals: Normals) -> Result<MeshData, String> {
+pub(super) fn from_models(models: &[tobj::Model], name: &str, normals: Normals) -> Result<MeshData, String> {
     let path = name;
     let mut p = Polyhedron { positions: Vec::new(), triangles: Vec::new() };
     let mut attributes = Vec::new();

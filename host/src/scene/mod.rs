@@ -6,9 +6,11 @@ mod build;
 mod builtin;
 mod check;
 pub mod file;
+mod framing;
 pub mod gltf;
 pub mod mesh;
 mod models;
+pub mod obj;
 pub mod plan;
 pub mod reach;
 pub mod shape;
@@ -50,6 +52,9 @@ impl Scene {
         if let Some(path) = arg.map(Path::new).filter(|p| gltf::is_gltf(p) && p.exists()) {
             return Scene::load_gltf(path);
         }
+        if let Some(path) = arg.map(Path::new).filter(|p| obj::is_obj(p) && p.exists()) {
+            return Scene::load_obj(path);
+        }
         let (text, source, mesh_files) = Scene::read(arg)?;
         Scene::parse(&text, &source, mesh_files)
     }
@@ -59,6 +64,15 @@ impl Scene {
     pub fn load_gltf(path: &Path) -> Result<Scene> {
         let source = path.display().to_string();
         let model = gltf::load(path, None).map_err(|message| Error::Scene { path: source.clone(), message })?;
+        gltf::notice(&source, &model.ignored);
+        Scene::from_model(model, &source)
+    }
+
+    /// An OBJ file and its material library as a scene (see `obj`); what twinray ignored in
+    /// it is said in one notice.
+    pub fn load_obj(path: &Path) -> Result<Scene> {
+        let source = path.display().to_string();
+        let model = obj::load(path).map_err(|message| Error::Scene { path: source.clone(), message })?;
         gltf::notice(&source, &model.ignored);
         Scene::from_model(model, &source)
     }
@@ -249,12 +263,9 @@ impl Scene {
 /// come decoded.
 fn load_textures(file: &mut SceneFile, folder: Option<&Path>) -> std::result::Result<(), String> {
     let mut decoded: BTreeMap<String, std::sync::Arc<texture::TextureImage>> = BTreeMap::new();
-    for (name, material) in &mut file.materials {
-        let (file::MaterialDesc::Diffuse { texture: Some(t), .. }
-        | file::MaterialDesc::Cutout { texture: Some(t), .. }) = material
-        else {
-            continue;
-        };
+    let textures =
+        file.materials.iter_mut().flat_map(|(name, m)| m.textures_mut().into_iter().flatten().map(move |t| (name, t)));
+    for (name, t) in textures {
         if t.image.is_some() {
             continue;
         }

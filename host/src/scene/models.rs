@@ -54,6 +54,10 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<BTreeMap<Str
             }
             let own = object.matrix.map_or(glam::Mat4::IDENTITY, |m| glam::Mat4::from_cols_array(&m));
             file.objects.extend(model.file.objects.iter().map(|p| ObjectDesc {
+                name: match (&object.name, &p.name) {
+                    (Some(own), Some(node)) => Some(format!("{own}: {node}")),
+                    (own, node) => own.clone().or_else(|| node.clone()),
+                },
                 shape: part(&p.shape),
                 material: if object.material.is_empty() { part(&p.material) } else { object.material.clone() },
                 matrix: Some((own * p.transform()).to_cols_array()),

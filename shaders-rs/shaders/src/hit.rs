@@ -46,7 +46,7 @@ pub fn $name(
     let tint = primitives[(primitive_base + primitive_id) as usize].tint.xyz();
     let ($m, $p, $n) = (&material, surface.object_point(), *normal);
     let color = $color * tint;
-    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, color);
+    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, material.emission.xyz()));
 }
     };
 }
@@ -92,7 +92,8 @@ pub fn $name(
     let ($m, $p, $n) = (&material, surface.object_point(), geometric);
     let cone = hit::cone(&surface, object_to_world.to_mat3(), &v, *barycentrics, frame.cone.x);
     let color = $color * texture::surface_tint(textures, &material, &v, &cone);
-    hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, color);
+    let emission = texture::surface_emission(textures, &material, &v, &cone);
+    hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, (color, emission));
 }
     };
 }
@@ -202,26 +203,21 @@ pub fn cone(hit: &SurfaceHit, object_to_world: Mat3, v: &[Vertex; 3], barycentri
 }
 
 /// The payload of `hit` on a material of kind `kind`: world normals from the object-space
-/// `geometric` and `shading` normals, and the surface's `color`.
+/// `geometric` and `shading` normals, the surface's `color` and the radiance it `emission`s.
 pub fn describe_surface(
     payload: &mut HitPayload,
     hit: &SurfaceHit,
     kind: u32,
     geometric: Vec3,
     shading: Vec3,
-    color: Vec3,
+    (color, emission): (Vec3, Vec3),
 ) {
     let (world_geometric, world_shading) =
         shading::surface_normals(hit.world_to_object, geometric, shading, hit.direction);
-    let ids = UVec4::new(hit.object, hit.primitive_id, kind, hit.hit_kind);
-    describe(payload, hit.origin + hit.direction * hit.t, hit.t, world_geometric, world_shading, color, ids);
-}
-
-/// The payload of a hit at world point `point`, ray parameter `t`.
-fn describe(payload: &mut HitPayload, point: Vec3, t: f32, geometric: Vec3, shading: Vec3, color: Vec3, ids: UVec4) {
-    payload.position = point.extend(t);
-    payload.shading_normal = shading.extend(0.0);
-    payload.geometric_normal = geometric.extend(0.0);
-    payload.color = color.extend(1.0);
-    payload.ids = ids;
+    payload.position = (hit.origin + hit.direction * hit.t).extend(hit.t);
+    // The emission in the spare w components: see `HitPayload::emission`.
+    payload.shading_normal = world_shading.extend(emission.x);
+    payload.geometric_normal = world_geometric.extend(emission.y);
+    payload.color = color.extend(emission.z);
+    payload.ids = UVec4::new(hit.object, hit.primitive_id, kind, hit.hit_kind);
 }

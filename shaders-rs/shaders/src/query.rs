@@ -181,13 +181,14 @@ pub fn trace_query(
             let cone = hit::cone(&surface, object_to_world, &v, barycentrics, spread);
             let color = shading::material_color(&material, surface.object_point(), geometric)
                 * texture::surface_tint(textures, &material, &v, &cone);
-            hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, color);
+            let emission = texture::surface_emission(textures, &material, &v, &cone);
+            hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, (color, emission));
         } else {
             let surface = SurfaceHit::new(object, primitive_id, data.shape & !SHAPE_NAIVE, rays, t, world_to_object);
             let primitive = query.get_committed_intersection_instance_custom_index() + primitive_id;
             let tint = primitives[primitive as usize].tint.xyz();
             let color = shading::material_color(&material, surface.object_point(), normal) * tint;
-            hit::describe_surface(payload, &surface, material.kind, normal, normal, color);
+            hit::describe_surface(payload, &surface, material.kind, normal, normal, (color, material.emission.xyz()));
         }
     }
 }

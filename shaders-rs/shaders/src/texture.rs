@@ -14,20 +14,33 @@ use twinray_shared::texture::{self, TriangleHit};
 pub type Texture = SampledImage<Image!(2D, type = f32, sampled = true)>;
 
 /// What the material's colour is multiplied by on a mesh: the vertex colour interpolated at the
-/// hit, times the material's texture (if it has one) filtered over the cone's footprint by
-/// its taps (`twinray_shared::texture::taps`).
+/// hit, times the material's texture (if it has one) filtered over the cone's footprint.
 pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], hit: &TriangleHit) -> Vec3 {
     let b = hit.barycentrics;
     let color = texture::interpolate([v[0].color, v[1].color, v[2].color], b.x, b.y);
     if material.texture.x == 0 {
         return color.xyz();
     }
-    let uv =
-        [texture::vertex_uv(material, &v[0]), texture::vertex_uv(material, &v[1]), texture::vertex_uv(material, &v[2])];
+    color.xyz() * filtered(textures, material.texture.x, texture::triangle_uv(material, v, material.texture.y), hit)
+}
+
+/// The radiance a mesh emits at the hit: the material's emission, times its emission texture
+/// (if it has one) filtered over the cone's footprint.
+pub fn surface_emission(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], hit: &TriangleHit) -> Vec3 {
+    let emission = material.emission.xyz();
+    if material.texture.z == 0 {
+        return emission;
+    }
+    emission * filtered(textures, material.texture.z, texture::triangle_uv(material, v, material.texture.w), hit)
+}
+
+/// Texture `slot`'s colour over the footprint of `hit`'s cone, the triangle's corners reading
+/// `uv`: the mean of its taps (`twinray_shared::texture::taps`).
+fn filtered(textures: &RuntimeArray<Texture>, slot: u32, uv: [Vec2; 3], hit: &TriangleHit) -> Vec3 {
     let (at, dx, dy) = texture::footprint(hit, uv);
     let taps = texture::taps(at, dx, dy);
-    // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
-    let image = unsafe { textures.index(material.texture.x as usize) };
+    // SAFETY: the host writes every slot of the array, and a material's slots lie within it.
+    let image = unsafe { textures.index(slot as usize) };
     let mut sum = Vec4::ZERO;
     let mut i = 0;
     while i < taps.count {
@@ -35,8 +48,7 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
         sum += unsafe { sample_grad(image, taps.first + taps.step * i as f32, taps.dx, taps.dy) };
         i += 1;
     }
-    let texel = sum / taps.count as f32;
-    color.xyz() * texel.xyz()
+    sum.xyz() / taps.count as f32
 }
 
 /// The alpha a mesh's vertex colours and texture (at level 0) give the surface at
@@ -48,10 +60,11 @@ pub fn surface_alpha(image: &Texture, material: &Material, (uv, color): ([Vec4; 
     if material.texture.x == 0 {
         return alpha;
     }
+    let set = material.texture.y;
     let uv = [
-        texture::material_uv(material, uv[0]),
-        texture::material_uv(material, uv[1]),
-        texture::material_uv(material, uv[2]),
+        texture::material_uv(material, uv[0], set),
+        texture::material_uv(material, uv[1], set),
+        texture::material_uv(material, uv[2], set),
     ];
     // SAFETY: `image` is a written slot of the texture array.
     let texel = unsafe { sample_grad(image, texture::uv_at(uv, b), Vec2::ZERO, Vec2::ZERO) };

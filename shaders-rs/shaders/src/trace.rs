@@ -34,7 +34,8 @@ pub fn primary(tlas: &AccelerationStructure, ray: Ray, (t_min, t_max): (f32, f32
 
 /// Defines `$name`, the colour seen along a primary ray: the background, an emitter's radiance,
 /// or the albedo times the light arriving from every light (with shadows where lights cast
-/// them, and `shadows`, a specialisation constant, is on). Rect lights' shadow samples are
+/// them, and `shadows`, a specialisation constant, is on) plus the radiance the surface emits
+/// (`HitPayload::emission`). Rect lights' shadow samples are
 /// `stratified` (one per cell of an N x N grid) or independent. Adds the shadow rays it traces
 /// to `shadow_rays`. Shadow rays go to `$visible` with the resources `$res`: one body for
 /// `traceRay` and ray-query shadows (a closure would be a struct of references, which rust-gpu
@@ -123,7 +124,7 @@ pub fn $name(
         }
         l += 1;
     }
-    hit.color.xyz() * light_sum
+    hit.color.xyz() * light_sum + hit.emission()
 }
     };
 }

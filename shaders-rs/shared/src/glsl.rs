@@ -72,7 +72,8 @@ pub fn structs() -> Vec<GlslStruct> {
             color_b: "vec4",
             texture: "uvec4",
             uv_u: "vec4",
-            uv_v: "vec4"
+            uv_v: "vec4",
+            emission: "vec4"
         }),
         glsl_struct!(Light {
             kind: "uint",

@@ -23,16 +23,23 @@ pub fn interpolate(a: [Vec4; 3], u: f32, v: f32) -> Vec4 {
     a[0] * (1.0 - u - v) + a[1] * u + a[2] * v
 }
 
-/// The texture coordinates `material`'s texture reads at vertex `v`: its set (0 or 1),
-/// through the material's transform.
-pub fn vertex_uv(material: &Material, v: &Vertex) -> Vec2 {
-    material_uv(material, v.uv)
+/// The texture coordinates a texture of `material` reads at vertex `v` from its `set` (0 or
+/// 1: `texture.y` for the base colour, `texture.w` for emission), through the material's
+/// transform.
+pub fn vertex_uv(material: &Material, v: &Vertex, set: u32) -> Vec2 {
+    material_uv(material, v.uv, set)
 }
 
-/// The texture coordinates `material`'s texture reads of a vertex's `uv` (both sets).
-pub fn material_uv(material: &Material, uv: Vec4) -> Vec2 {
-    let uv = if material.texture.y == 1 { uv.zw() } else { uv.xy() };
+/// The texture coordinates a texture of `material` reads of a vertex's `uv` (both sets) from
+/// its `set`.
+pub fn material_uv(material: &Material, uv: Vec4, set: u32) -> Vec2 {
+    let uv = if set == 1 { uv.zw() } else { uv.xy() };
     Vec2::new(material.uv_u.xy().dot(uv) + material.uv_u.z, material.uv_v.xy().dot(uv) + material.uv_v.z)
+}
+
+/// The texture coordinates of a triangle's vertices `v` in `set`, as [`vertex_uv`] reads them.
+pub fn triangle_uv(material: &Material, v: &[Vertex; 3], set: u32) -> [Vec2; 3] {
+    [vertex_uv(material, &v[0], set), vertex_uv(material, &v[1], set), vertex_uv(material, &v[2], set)]
 }
 
 /// The texture coordinates at barycentrics `b` of a triangle whose vertices have `uv`.
@@ -200,10 +207,10 @@ mod tests {
     fn vertex_uv_reads_its_set_through_the_transform() {
         let v = Vertex { position: Vec4::W, normal: Vec4::Y, uv: Vec4::new(0.5, 0.25, 0.1, 0.2), color: Vec4::ONE };
         let mut m = Material::default();
-        assert_eq!(vertex_uv(&m, &v), Vec2::new(0.5, 0.25));
-        m.texture.y = 1;
+        assert_eq!(vertex_uv(&m, &v, 0), Vec2::new(0.5, 0.25));
         m.uv_u = Vec4::new(2.0, 0.0, 1.0, 0.0);
-        assert_eq!(vertex_uv(&m, &v), Vec2::new(1.2, 0.2));
+        assert_eq!(vertex_uv(&m, &v, 1), Vec2::new(1.2, 0.2));
+        assert_eq!(vertex_uv(&m, &v, 0), Vec2::new(2.0, 0.25), "one transform for both sets");
     }
 
     #[test]

@@ -9,7 +9,8 @@ use base64::Engine as _;
 use std::path::Path;
 
 /// Extensions twinray reads, so a model may require them.
-pub const SUPPORTED_EXTENSIONS: [&str; 2] = ["KHR_lights_punctual", "KHR_texture_transform"];
+pub const SUPPORTED_EXTENSIONS: [&str; 3] =
+    ["KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_emissive_strength"];
 
 /// The parsed document and its buffers' bytes, in buffer order.
 pub struct Loaded {

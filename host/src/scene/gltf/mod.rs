@@ -10,13 +10,16 @@
 
 mod buffers;
 mod textures;
+pub use super::framing::{notice, Model};
 pub use buffers::SUPPORTED_EXTENSIONS;
 mod framing;
 mod geometry;
 
-use super::file::{CutoutPattern, MaterialDesc, ObjectDesc, SceneFile};
+use super::file::{CutoutPattern, EmissionDesc, MaterialDesc, ObjectDesc};
+use super::framing::listed;
 use super::mesh::MeshData;
 use super::shape::{MeshDesc, ShapeDesc};
+use super::texture::TextureDesc;
 use glam::Mat4;
 use gltf::material::AlphaMode;
 use std::collections::{BTreeMap, BTreeSet};
@@ -53,14 +56,6 @@ pub fn models_under(dir: &Path) -> Vec<std::path::PathBuf> {
     out
 }
 
-/// A glTF model as a scene file and its meshes by shape name, and what it has that twinray
-/// ignored (for the notice).
-pub struct Model {
-    pub file: SceneFile,
-    pub meshes: BTreeMap<String, MeshData>,
-    pub ignored: BTreeSet<String>,
-}
-
 /// Reads the model at `path` (its scene `scene`, else its default one); the error says what in
 /// it is wrong.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<Model, String> {
@@ -72,18 +67,6 @@ pub fn load(path: &Path, scene: Option<usize>) -> Result<Model, String> {
 /// the fuzz target feeds.
 pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
     model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, None, "model")
-}
-
-/// One notice line of what a model read from `source` has that twinray ignored, if anything.
-pub fn notice(source: &str, ignored: &BTreeSet<String>) {
-    if !ignored.is_empty() {
-        log::warn!("{source}: not modelled, ignored: {}", listed(ignored));
-    }
-}
-
-/// What was ignored, in one comma-separated list.
-fn listed(ignored: &BTreeSet<String>) -> String {
-    ignored.iter().map(String::as_str).collect::<Vec<_>>().join(", ")
 }
 
 fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Model, String> {
@@ -114,14 +97,12 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
             let files = textures::Files { buffers: &buffers, folder: &folder, budget: &mut budget };
             let mut read = Read { files, images: &mut images, source: name };
             let material = material(&primitive.material(), &mut materials, &mut read, &mut ignored)?;
-            objects.push(ObjectDesc {
-                shape,
-                material,
-                translate: [0.0; 3],
-                rotate: [0.0; 3],
-                scale: Default::default(),
-                matrix: Some(world.to_cols_array()),
+            let mut object = ObjectDesc::placed(shape, material, Some(world.to_cols_array()));
+            object.name = Some(match node.name() {
+                Some(name) => format!("node {} {name:?}", node.index()),
+                None => format!("node {}", node.index()),
             });
+            objects.push(object);
         }
         ignored.extend(node.skin().map(|_| "skins".to_string()));
         ignored.extend(node.weights().map(|_| "morph target weights".to_string()));
@@ -132,7 +113,7 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
     ignored.extend((doc.animations().len() > 0).then(|| "animations".to_string()));
     let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
     let view = framing::view(doc, &placed, &objects, &meshes, &mut ignored)?;
-    let file = framing::scene_file(view, shapes, materials, objects);
+    let file = super::framing::scene_file("a glTF 2.0 model", view, shapes, materials, objects);
     Ok(Model { file, meshes, ignored })
 }
 
@@ -215,7 +196,8 @@ fn material(
     ignored: &mut BTreeSet<String>,
 ) -> Result<String, String> {
     let Some(index) = m.index() else {
-        materials.insert(DEFAULT_MATERIAL.into(), MaterialDesc::Diffuse { color: [0.8; 3], texture: None });
+        materials
+            .insert(DEFAULT_MATERIAL.into(), MaterialDesc::Diffuse { color: [0.8; 3], texture: None, emission: None });
         return Ok(DEFAULT_MATERIAL.into());
     };
     let name = match m.name() {
@@ -227,7 +209,13 @@ fn material(
     }
     let pbr = m.pbr_metallic_roughness();
     let [r, g, b, a] = pbr.base_color_factor();
-    let texture = textures::base_color(m, &mut read.files, read.images, read.source, ignored)?.map(Box::new);
+    let mut texture = |info: Option<gltf::texture::Info>| {
+        info.map(|i| textures::read(i, &mut read.files, read.images, read.source, ignored).map(Box::new)).transpose()
+    };
+    let base = texture(pbr.base_color_texture())?;
+    let emissive = texture(m.emissive_texture())?;
+    let emission = emission(m, emissive, base.as_deref(), ignored);
+    let texture = base;
     let color = [r, g, b];
     // MASK: alpha-tested at the cutoff. BLEND is drawn the same way at 0.5 (a surface is
     // there where it is at least half opaque): twinray traces no transparency.
@@ -249,8 +237,9 @@ fn material(
             threshold: c.min(1.0),
             opacity: a.clamp(0.0, 1.0),
             texture,
+            emission,
         },
-        _ => MaterialDesc::Diffuse { color, texture },
+        _ => MaterialDesc::Diffuse { color, texture, emission },
     };
     materials.insert(name.clone(), material);
     let mut note = |has: bool, what: &str| {
@@ -261,9 +250,32 @@ fn material(
     note(true, "metallic-roughness (shaded as diffuse)");
     note(m.normal_texture().is_some(), "normal maps");
     note(m.occlusion_texture().is_some(), "occlusion maps");
-    note(m.emissive_factor() != [0.0; 3] || m.emissive_texture().is_some(), "emission");
     note(!m.double_sided(), "single-sided materials (their back faces are shown)");
     Ok(name)
+}
+
+/// The emission of `m`: its emissive factor (times KHR_materials_emissive_strength) and
+/// `texture`, none where the factor is black. Its texture is read through the base colour
+/// texture's transform where both have one (a twinray material has one transform).
+fn emission(
+    m: &gltf::Material,
+    texture: Option<Box<TextureDesc>>,
+    base: Option<&TextureDesc>,
+    ignored: &mut BTreeSet<String>,
+) -> Option<Box<EmissionDesc>> {
+    let color = m.emissive_factor();
+    if color == [0.0; 3] {
+        return None;
+    }
+    let intensity = m.emissive_strength().unwrap_or(1.0);
+    let texture = texture.map(|mut t| {
+        if let Some(base) = base.filter(|b| b.transform != t.transform) {
+            ignored.insert("the emissive texture's own KHR_texture_transform (the base colour's used)".into());
+            t.transform = base.transform;
+        }
+        t
+    });
+    Some(Box::new(EmissionDesc { color, intensity, texture }))
 }
 
 #[cfg(test)]

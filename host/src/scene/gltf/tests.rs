@@ -167,6 +167,33 @@ fn alpha_modes_become_alpha_tested_cutouts() {
     assert!(matches!(with(r#"{"alphaMode": "OPAQUE"}"#), MaterialDesc::Diffuse { .. }));
 }
 
+/// The emissive factor, times KHR_materials_emissive_strength, is the material's emission; a
+/// black factor (glTF's default) emits nothing.
+#[test]
+fn emissive_factors_become_emission() {
+    let with = |material: &str| {
+        let text = square(None, ONE_NODE, r#", "material": 0"#).replacen(
+            r#""scenes""#,
+            &format!(r#""materials": [{material}], "scenes""#),
+            1,
+        );
+        load_text(&text).unwrap().file.materials.into_values().next().unwrap()
+    };
+    let emission = |m: MaterialDesc| match m {
+        MaterialDesc::Diffuse { emission, .. } | MaterialDesc::Cutout { emission, .. } => emission,
+        other => panic!("{other:?}"),
+    };
+    let strong = emission(with(
+        r#"{"emissiveFactor": [1, 0.5, 0], "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4}}}"#,
+    ))
+    .expect("emission");
+    assert_eq!((strong.color, strong.intensity), ([1.0, 0.5, 0.0], 4.0));
+    let masked = emission(with(r#"{"emissiveFactor": [0, 0, 1], "alphaMode": "MASK"}"#)).expect("emission");
+    assert_eq!((masked.color, masked.intensity), ([0.0, 0.0, 1.0], 1.0));
+    assert!(emission(with(r#"{"emissiveFactor": [0, 0, 0]}"#)).is_none());
+    assert!(emission(with("{}")).is_none());
+}
+
 /// `load` refuses `text`, saying `why`.
 fn refused(text: &str, why: &str) {
     match load_text(text) {

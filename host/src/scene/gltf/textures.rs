@@ -1,4 +1,4 @@
-//! A glTF material's base colour texture as a twinray texture: its image decoded once per
+//! A glTF material's base colour or emissive texture as a twinray texture: its image decoded once per
 //! model (a file beside it, a `data:` URI or a buffer view, within the model's byte budget),
 //! its sampler's wrap modes and filters, its texture coordinate set and KHR_texture_transform.
 
@@ -20,15 +20,15 @@ pub struct Files<'a> {
 /// The model's images decoded so far, by index.
 pub type Images = BTreeMap<usize, Arc<TextureImage>>;
 
-/// The base colour texture of `m`, if it has one; `source` names the model in errors.
-pub fn base_color(
-    m: &gltf::Material,
+/// The texture `info` refers to (a material's base colour or emissive texture: sRGB colours
+/// both); `source` names the model in errors.
+pub fn read(
+    info: gltf::texture::Info,
     files: &mut Files,
     images: &mut Images,
     source: &str,
     ignored: &mut BTreeSet<String>,
-) -> Result<Option<TextureDesc>, String> {
-    let Some(info) = m.pbr_metallic_roughness().base_color_texture() else { return Ok(None) };
+) -> Result<TextureDesc, String> {
     let t = info.texture();
     let image = t.source();
     let decoded = match images.get(&image.index()) {
@@ -78,7 +78,7 @@ pub fn base_color(
         min,
         mipmap,
     };
-    Ok(Some(TextureDesc { file: decoded.name.clone(), uv, sampler, transform, image: Some(decoded) }))
+    Ok(TextureDesc { file: decoded.name.clone(), uv, sampler, transform, image: Some(decoded) })
 }
 
 /// The encoded bytes of `image`, read within what is left of the model's budget.
