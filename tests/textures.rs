@@ -38,12 +38,14 @@ fn write_floor(path: &Path) {
     std::fs::write(path, obj).unwrap();
 }
 
-fn scene(dir: &Path, samples: u32, lod: &str, transform: &str) -> Scene {
+/// The floor of material `material` (a TOML table's body), lit from above, seen from just above
+/// it with `samples` per pixel and level of detail `lod`; `extra` adds to the scene file.
+fn floor_scene(dir: &Path, name: &str, (samples, lod): (u32, &str), material: &str, extra: &str) -> Scene {
     write_checker(&dir.join("checker.png"));
     write_floor(&dir.join("floor.obj"));
     let text = format!(
         r#"
-name = "textured-floor"
+name = "{name}"
 background = [0.0, 0.0, 0.0]
 [image]
 width = {w}
@@ -59,26 +61,32 @@ fov_y_degrees = 60.0
 kind = "mesh"
 file = "floor.obj"
 normals = "flat"
-[materials.checker]
-kind = "diffuse"
-color = [1.0, 1.0, 1.0]
-texture = {{ file = "checker.png"{transform} }}
+[materials.m]
+{material}
 [[objects]]
 shape = "floor"
-material = "checker"
+material = "m"
 [[lights]]
 kind = "directional"
 direction = [0.0, 1.0, 0.0]
 color = [1.0, 1.0, 1.0]
 intensity = 1.0
 shadows = false
+{extra}
 "#,
         w = SIZE.0,
         h = SIZE.1
     );
-    let path = dir.join(format!("floor-{samples}-{lod}.toml"));
+    let path = dir.join(format!("{name}.toml"));
     std::fs::write(&path, text).unwrap();
     Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The floor textured with the checker, read through `transform` (`, transform = ...` or "").
+fn scene(dir: &Path, samples: u32, lod: &str, transform: &str) -> Scene {
+    let material =
+        format!("kind = \"diffuse\"\ncolor = [1.0, 1.0, 1.0]\ntexture = {{ file = \"checker.png\"{transform} }}");
+    floor_scene(dir, &format!("floor-{samples}-{lod}"), (samples, lod), &material, "")
 }
 
 fn render(scene: &Scene, shaders: &str) -> RenderOutput {
@@ -234,50 +242,9 @@ fn a_texture_s_alpha_cuts_holes_for_every_ray() {
 
 /// The floor and a ball, lit from above, both of material `material` (a TOML table body).
 fn emissive_scene(dir: &Path, name: &str, material: &str) -> Scene {
-    write_checker(&dir.join("checker.png"));
-    write_floor(&dir.join("floor.obj"));
-    let text = format!(
-        r#"
-name = "{name}"
-background = [0.0, 0.0, 0.0]
-[image]
-width = {w}
-height = {h}
-texture_lod = "zero"
-[camera]
-eye = [0.0, 0.6, 2.0]
-target = [0.0, 0.0, -6.0]
-up = [0.0, 1.0, 0.0]
-fov_y_degrees = 60.0
-[shapes.floor]
-kind = "mesh"
-file = "floor.obj"
-normals = "flat"
-[shapes.ball]
-kind = "sphere"
-radius = 0.3
-[materials.glow]
-{material}
-[[objects]]
-shape = "floor"
-material = "glow"
-[[objects]]
-shape = "ball"
-material = "glow"
-translate = [0.0, 0.5, -3.0]
-[[lights]]
-kind = "directional"
-direction = [0.0, 1.0, 0.0]
-color = [1.0, 1.0, 1.0]
-intensity = 1.0
-shadows = false
-"#,
-        w = SIZE.0,
-        h = SIZE.1
-    );
-    let path = dir.join(format!("{name}.toml"));
-    std::fs::write(&path, text).unwrap();
-    Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
+    let ball = "[shapes.ball]\nkind = \"sphere\"\nradius = 0.3\n[[objects]]\nshape = \"ball\"\nmaterial = \"m\"\n\
+                translate = [0.0, 0.5, -3.0]\n";
+    floor_scene(dir, name, (1, "zero"), material, ball)
 }
 
 /// A material's emission adds to the light it reflects: the factor alone on the ball (an
