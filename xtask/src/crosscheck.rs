@@ -14,8 +14,13 @@ const PINS: &[&str] = &["mitsuba==3.9.1", "drjit==1.5.0", "numpy==2.4.6"];
 
 /// The committed Mitsuba data: `(scene, width, height, Mitsuba samples per pixel)`. Scene
 /// names are built-in scenes or files of `tests/crosscheck/` (without `.toml`).
-pub const TEST_SCENES: &[(&str, u32, u32, u32)] =
-    &[("plate", 160, 120, 512), ("sphere", 80, 60, 2048), ("meshes", 80, 60, 2048), ("emitters", 80, 60, 2048)];
+pub const TEST_SCENES: &[(&str, u32, u32, u32)] = &[
+    ("plate", 160, 120, 512),
+    ("sphere", 80, 60, 2048),
+    ("meshes", 80, 60, 2048),
+    ("emitters", 80, 60, 2048),
+    ("textured", 160, 120, 2048),
+];
 
 pub fn run(scenes: &[String], refresh: bool, twinray_args: &[String]) -> Result<()> {
     setup::run(Scope::Vulkan)?;

@@ -1,11 +1,12 @@
 //! A twinray scene as Mitsuba 3 scene dictionaries (docs/shading-model.md): one pass per
 //! light, and the `emitters` pass that finds the pixels the two renderers cannot agree on.
 
+use super::textures;
 use crate::error::{Error, Result};
 use crate::scene::file::{LightDesc, MaterialDesc};
 use crate::scene::shape::ShapeDesc;
 use crate::scene::Scene;
-use glam::{Mat4, Vec3};
+use glam::{Mat4, Vec2, Vec3};
 use serde_json::{json, Value};
 use std::f32::consts::PI;
 use twinray_shared::shapes::mitsuba::{unit_cylinder, unit_sphere, MitsubaKind, MitsubaPart, TriangleMesh};
@@ -13,8 +14,11 @@ use twinray_shared::shapes::mitsuba::{unit_cylinder, unit_sphere, MitsubaKind, M
 /// The Mitsuba side of one scene: its passes and the meshes they name.
 pub struct MitsubaScene {
     pub passes: Vec<Pass>,
-    /// `meshes/NAME.ply` files the passes read, by name.
-    pub meshes: Vec<(String, TriangleMesh)>,
+    /// `meshes/NAME.ply` files the passes read, by name, with each vertex's texture
+    /// coordinates where the mesh is textured (else none).
+    pub meshes: Vec<(String, TriangleMesh, Vec<Vec2>)>,
+    /// `textures/N.png` files the passes read.
+    pub images: Vec<std::sync::Arc<crate::scene::texture::TextureImage>>,
     /// The scene's background, added where Mitsuba's coverage is not full.
     pub background: [f32; 3],
     /// What was drawn with another shape than twinray's (meshes for cones, tori, ...).
@@ -34,7 +38,8 @@ pub const EMITTERS: &str = "emitters";
 /// One placed Mitsuba shape of the scene's objects.
 struct Placed {
     shape: Value,
-    albedo: Vec3,
+    /// Its diffuse reflectance: a colour, or a textured mesh's `bitmap`.
+    reflectance: Value,
     emissive: bool,
 }
 
@@ -45,14 +50,29 @@ pub fn convert(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Result<M
     let mut meshes = Vec::new();
     let mut notes = Vec::new();
     let mut placed = Vec::new();
+    let mut images = textures::Images::default();
     for (i, object) in file.objects.iter().enumerate() {
         let albedo = albedo(scene, &object.material)?;
         let emissive = matches!(file.materials.get(&object.material), Some(MaterialDesc::Emissive { .. }));
         let world = object.transform();
+        // Textures show on meshes only (procedural shapes have no coordinates yet).
+        let texture = textures::texture(scene, &object.material)?.filter(|_| scene.meshes.contains_key(&object.shape));
         for (k, part) in parts(scene, &object.shape, &mut notes)?.into_iter().enumerate() {
             let to_world = world * part.to_object;
-            let shape = shape(part.kind, to_world, &format!("o{i}-{k}"), &mut meshes, &mut notes);
-            placed.push(Placed { shape, albedo: albedo * part.tint, emissive });
+            let id = format!("o{i}-{k}");
+            let shape = shape(part.kind, to_world, &id, &mut meshes, &mut notes);
+            let reflectance = match texture {
+                Some(t) => {
+                    let what = format!("{}: object {i} (shape {:?})", scene.source, object.shape);
+                    let uvs = textures::uvs(&scene.meshes[&object.shape], t, &what)?;
+                    if let Some(mesh) = meshes.iter_mut().find(|(name, ..)| *name == id) {
+                        mesh.2 = uvs;
+                    }
+                    images.bitmap(t, scene, &object.material)?
+                }
+                None => rgb(albedo * part.tint),
+            };
+            placed.push(Placed { shape, reflectance, emissive });
         }
     }
     let sensor = sensor(scene, (width, height), spp);
@@ -61,7 +81,7 @@ pub fn convert(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Result<M
         let mut dict =
             base(&sensor, json!({"type": "direct", "emitter_samples": 1, "bsdf_samples": 0, "hide_emitters": true}));
         for (j, p) in placed.iter().filter(|p| !p.emissive).enumerate() {
-            dict[format!("shape-{j}")] = with_bsdf(&p.shape, diffuse(p.albedo));
+            dict[format!("shape-{j}")] = with_bsdf(&p.shape, diffuse(p.reflectance.clone()));
         }
         for (j, emitter) in light_parts(light, l)?.into_iter().enumerate() {
             dict[format!("light-{j}")] = emitter;
@@ -69,7 +89,7 @@ pub fn convert(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Result<M
         passes.push(Pass { name: format!("light-{l}"), scene: dict });
     }
     passes.push(Pass { name: EMITTERS.into(), scene: emitters_pass(&sensor, &placed, file) });
-    Ok(MitsubaScene { passes, meshes, background: file.background, notes })
+    Ok(MitsubaScene { passes, meshes, images: images.images, background: file.background, notes })
 }
 
 /// The `emitters` pass: emissive surfaces and rect lights' rectangles at radiance 1, every
@@ -78,7 +98,7 @@ fn emitters_pass(sensor: &Value, placed: &[Placed], file: &crate::scene::SceneFi
     let mut dict =
         base(sensor, json!({"type": "direct", "emitter_samples": 1, "bsdf_samples": 0, "hide_emitters": false}));
     for (j, p) in placed.iter().enumerate() {
-        let mut shape = with_bsdf(&p.shape, diffuse(Vec3::ZERO));
+        let mut shape = with_bsdf(&p.shape, diffuse(rgb(Vec3::ZERO)));
         if p.emissive {
             shape["emitter"] = area(Vec3::ONE);
         }
@@ -119,9 +139,9 @@ fn sensor(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Value {
 /// Mitsuba equivalent are refused.
 fn albedo(scene: &Scene, material: &str) -> Result<Vec3> {
     match scene.file.materials.get(material) {
-        Some(MaterialDesc::Diffuse { color, texture: None, emission: None }) => Ok(Vec3::from(*color)),
+        Some(MaterialDesc::Diffuse { color, emission: None, .. }) => Ok(Vec3::from(*color)),
         Some(MaterialDesc::Diffuse { .. }) => Err(Error::Input(format!(
-            "{}: material {material:?} has a texture or emission, which the cross-check does not hand to Mitsuba yet",
+            "{}: material {material:?} emits, which the cross-check does not hand to Mitsuba yet",
             scene.source
         ))),
         Some(MaterialDesc::Emissive { .. }) => Ok(Vec3::ZERO),
@@ -174,7 +194,7 @@ fn shape(
     kind: MitsubaKind,
     to_world: Mat4,
     id: &str,
-    meshes: &mut Vec<(String, TriangleMesh)>,
+    meshes: &mut Vec<(String, TriangleMesh, Vec<Vec2>)>,
     notes: &mut Vec<String>,
 ) -> Value {
     let kind = match kind {
@@ -196,7 +216,7 @@ fn shape(
         MitsubaKind::Cube => json!({"type": "cube", "to_world": matrix}),
         MitsubaKind::Cylinder => json!({"type": "cylinder", "to_world": matrix}),
         MitsubaKind::Mesh(mesh) => {
-            meshes.push((id.to_string(), mesh));
+            meshes.push((id.to_string(), mesh, Vec::new()));
             json!({"type": "ply", "filename": format!("meshes/{id}.ply"), "to_world": matrix, "face_normals": false})
         }
     }
@@ -230,9 +250,9 @@ fn rgb(c: Vec3) -> Value {
     json!({"type": "rgb", "value": c.to_array()})
 }
 
-/// Two-sided Lambert with albedo `c` (Mitsuba's diffuse BSDF is one-sided).
-fn diffuse(c: Vec3) -> Value {
-    json!({"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": rgb(c)}})
+/// Two-sided Lambert of `reflectance` (Mitsuba's diffuse BSDF is one-sided).
+fn diffuse(reflectance: Value) -> Value {
+    json!({"type": "twosided", "bsdf": {"type": "diffuse", "reflectance": reflectance}})
 }
 
 fn area(radiance: Vec3) -> Value {
@@ -241,7 +261,7 @@ fn area(radiance: Vec3) -> Value {
 
 /// A black rectangle at `m` emitting `radiance` from its front.
 fn rectangle(m: Mat4, radiance: Vec3) -> Value {
-    json!({"type": "rectangle", "to_world": matrix(m), "bsdf": diffuse(Vec3::ZERO), "emitter": area(radiance)})
+    json!({"type": "rectangle", "to_world": matrix(m), "bsdf": diffuse(rgb(Vec3::ZERO)), "emitter": area(radiance)})
 }
 
 /// Mitsuba's [-1, 1]^2 rectangle placed as twinray's rect light, facing +(u x v) and -(u x v).

@@ -6,6 +6,7 @@ pub mod compare;
 pub mod convert;
 pub mod report;
 pub mod run;
+mod textures;
 
 use crate::error::{Error, Result};
 use crate::render::to_rgba8;

@@ -9,6 +9,7 @@ use crate::scene::file::MaterialDesc;
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::vk::context::Context;
+use glam::Vec2;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::sync::Arc;
@@ -34,14 +35,25 @@ pub struct Manifest {
 /// Writes `scene`'s Mitsuba passes, meshes, manifest and `render.py` into `dir`.
 pub fn write_mitsuba(scene: &Scene, dir: &Path, size: (u32, u32), spp: u32, variant: &str) -> Result<Manifest> {
     check_mitsuba_spp(spp)?;
-    let MitsubaScene { passes, meshes, background, notes } = convert(scene, size, spp / 2)?;
+    let MitsubaScene { passes, meshes, images, background, notes } = convert(scene, size, spp / 2)?;
     std::fs::create_dir_all(dir.join("meshes")).map_err(|source| Error::Io {
         what: "creating",
         path: dir.into(),
         source,
     })?;
-    for (name, mesh) in &meshes {
-        write(&dir.join("meshes").join(format!("{name}.ply")), ply(mesh))?;
+    for (name, mesh, uvs) in &meshes {
+        write(&dir.join("meshes").join(format!("{name}.ply")), ply(mesh, uvs))?;
+    }
+    for (k, image) in images.iter().enumerate() {
+        let png = dir.join("textures").join(format!("{k}.png"));
+        let rgba = image::RgbaImage::from_raw(image.width, image.height, image.rgba.clone());
+        let saved = rgba.map(|i| {
+            std::fs::create_dir_all(dir.join("textures"))?;
+            i.save(&png).map_err(std::io::Error::other)
+        });
+        saved
+            .unwrap_or_else(|| Err(std::io::Error::other("its pixels do not fill its size")))
+            .map_err(|source| Error::Io { what: "writing", path: png.clone(), source })?;
     }
     for pass in &passes {
         write(&dir.join(format!("{}.json", pass.name)), serde_json::to_string_pretty(&pass.scene).unwrap_or_default())?;
@@ -162,17 +174,20 @@ pub fn twinray_side(
     Ok((image.linear, coverage.linear.iter().map(|p| p[0]).collect()))
 }
 
-/// A binary little-endian PLY file: positions and normals, then triangles.
-fn ply(mesh: &TriangleMesh) -> Vec<u8> {
+/// A binary little-endian PLY file: positions, normals and texture coordinates `uvs` (one
+/// per vertex, or none), then triangles.
+fn ply(mesh: &TriangleMesh, uvs: &[Vec2]) -> Vec<u8> {
+    let uv = if uvs.is_empty() { "" } else { "property float u\nproperty float v\n" };
     let header = format!(
         "ply\nformat binary_little_endian 1.0\nelement vertex {}\nproperty float x\nproperty float y\nproperty float z\n\
-         property float nx\nproperty float ny\nproperty float nz\nelement face {}\nproperty list uchar int vertex_indices\nend_header\n",
+         property float nx\nproperty float ny\nproperty float nz\n{uv}element face {}\nproperty list uchar int vertex_indices\nend_header\n",
         mesh.positions.len(),
         mesh.triangles.len()
     );
     let mut out = header.into_bytes();
-    for (p, n) in mesh.positions.iter().zip(&mesh.normals) {
-        for v in p.to_array().into_iter().chain(n.to_array()) {
+    for (i, (p, n)) in mesh.positions.iter().zip(&mesh.normals).enumerate() {
+        let uv = uvs.get(i).map(|t| t.to_array()).into_iter().flatten();
+        for v in p.to_array().into_iter().chain(n.to_array()).chain(uv) {
             out.extend_from_slice(&v.to_le_bytes());
         }
     }
