@@ -171,3 +171,82 @@ fn the_orbit_scene_agrees_across_tlas_modes_sets_and_its_still_frames() {
     assert!(same(&updated[k as usize].1[0], &still), "frame {k} differs from Scene::at_frame({k})");
     ctx.close().unwrap();
 }
+
+/// A glTF model no one here made (TextureTransformTest: twelve parts, each a node of its own)
+/// placed by an object keyframed along x and by a grid of two that spin: every part of a
+/// model takes its object's motion, so the model moves as one (its parts keep their places
+/// relative to each other) while it moves; both sets agree on every frame, and a frame is
+/// the still scene `Scene::at_frame` makes.
+#[test]
+fn placed_gltf_models_move_as_one() {
+    let model = "/usr/share/assimp/models/glTF2/textureTransform/TextureTransformTest.gltf";
+    assert!(std::path::Path::new(model).exists(), "{model}: run `cargo xtask setup`");
+    let text = format!(
+        r#"
+[image]
+width = 128
+height = 96
+[camera]
+eye = [0.0, 0.0, 9.0]
+target = [0.0, 0.0, 0.0]
+up = [0.0, 1.0, 0.0]
+fov_y_degrees = 50.0
+[[lights]]
+kind = "directional"
+direction = [0.2, 0.5, 1.0]
+color = [1.0, 1.0, 1.0]
+intensity = 1.0
+[shapes.test]
+kind = "gltf"
+file = "{model}"
+[[objects]]
+shape = "test"
+translate = [-1.5, 1.0, 0.0]
+scale = 0.5
+[[grids]]
+shape = "test"
+materials = [""]
+count = [2, 1, 1]
+origin = [-1.0, -1.5, 0.0]
+spacing = [2.5, 0.0, 0.0]
+scale = 0.5
+[animation]
+frames = 4
+fps = 1.0
+[[animation.tracks]]
+target = "object 0"
+property = "translate"
+keys = [{{ time = 0.0, value = [-1.5, 1.0, 0.0] }}, {{ time = 3.0, value = [1.5, 1.0, 0.0] }}]
+[[animation.motions]]
+kind = "spin"
+target = "grid 0"
+degrees_per_second = [0.0, 0.0, 20.0]
+"#
+    );
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("models.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"));
+    let parts = scene.file.objects.len() / 3;
+    assert!(parts >= 12 && scene.file.objects.len() == 3 * parts, "{} objects", scene.file.objects.len());
+    let (first, last) = (scene.at_frame(0), scene.at_frame(3));
+    for model in 0..3 {
+        let at = |s: &Scene, k: usize| s.file.objects[model * parts + k].transform();
+        let moved = (at(&first, 0).w_axis - at(&last, 0).w_axis).length();
+        assert!(moved > 0.1, "model {model} did not move ({moved})");
+        for k in 1..parts {
+            let (before, after) = (at(&first, 0).inverse() * at(&first, k), at(&last, 0).inverse() * at(&last, k));
+            assert!(before.abs_diff_eq(after, 1e-4), "model {model}, part {k} moved against part 0");
+        }
+    }
+    let ctx = validated_context();
+    let rendered = frames(&ctx, &scene, &["rust", "glsl"], 0..4, TlasMode { kind: TlasKind::Update, rebuild_every: 0 });
+    for (k, (_, outputs)) in rendered.iter().enumerate() {
+        let d = diff(&outputs[0], &outputs[1], scene.file.parity.pixel_threshold);
+        assert!(verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty(), "frame {k}: {d:?}");
+    }
+    let still = twinray::render(&ctx, &last, &set("rust"), &opts()).unwrap();
+    assert!(same(&rendered[3].1[0], &still), "frame 3 differs from Scene::at_frame(3)");
+    assert!(!same(&rendered[0].1[0], &rendered[3].1[0]), "nothing moved on screen");
+    ctx.close().unwrap();
+}

@@ -137,10 +137,17 @@ impl Scene {
             grids.push(start..start + grid.count.iter().map(|&c| c as usize).product::<usize>());
         }
         file.objects.extend(grid_objects);
-        let mut placed = models::place(&mut file, mesh_files.folder()).map_err(scene_error)?;
+        // Animations move objects as written: a placed glTF model's parts follow their object.
+        let written = file.animation.is_some().then(|| file.clone());
+        let models::Placed { meshes: mut placed, owners } =
+            models::place(&mut file, mesh_files.folder()).map_err(scene_error)?;
         load_textures(&mut file, mesh_files.folder()).map_err(scene_error)?;
-        let animation = file.animation.as_ref().map(|a| animation::resolve(a, &file, &grids)).transpose();
-        let animation = animation.map_err(scene_error)?;
+        let animation = match (&file.animation, &written) {
+            (Some(a), Some(written)) => {
+                Some(Animation { owners, ..animation::resolve(a, written, &grids).map_err(scene_error)? })
+            }
+            _ => None,
+        };
         // Whatever reads `file` (a still render, the reference, a probe) sees frame 0.
         if let Some(a) = &animation {
             a.pose(0, &mut file);

@@ -12,9 +12,16 @@ use super::shape::ShapeDesc;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// Places every glTF shape's model in `file` (files relative to `folder`); the models' meshes
-/// by the names of their shapes in `file`.
-pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<BTreeMap<String, MeshData>, String> {
+/// What placing the models made: their meshes by the names of their shapes in the scene, and
+/// for each object of the scene the index of the object it came from (`None`: no models, the
+/// objects are as written).
+pub struct Placed {
+    pub meshes: BTreeMap<String, MeshData>,
+    pub owners: Option<Vec<usize>>,
+}
+
+/// Places every glTF shape's model in `file` (files relative to `folder`).
+pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, String> {
     let models: Vec<_> = file
         .shapes
         .iter()
@@ -25,12 +32,10 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<BTreeMap<Str
         .collect();
     let mut meshes = BTreeMap::new();
     if models.is_empty() {
-        return Ok(meshes);
+        return Ok(Placed { meshes, owners: None });
     }
     let folder = folder.ok_or("a built-in scene places no glTF files")?;
-    if file.animation.is_some() {
-        return Err("a scene with [animation] cannot place glTF models yet: their parts would move apart".into());
-    }
+    let mut owners: Vec<usize> = (0..file.objects.len()).collect();
     for (name, desc) in models {
         let path = folder.join(&desc.file);
         let model = load(&path, desc.scene).map_err(|e| format!("shape {name:?}: {}: {e}", path.display()))?;
@@ -47,11 +52,14 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<BTreeMap<Str
             file.materials.insert(part(&material), desc);
         }
         let objects = std::mem::take(&mut file.objects);
-        for object in objects {
+        let mut parts_of = Vec::with_capacity(objects.len());
+        for (object, owner) in objects.into_iter().zip(std::mem::take(&mut owners)) {
             if object.shape != name {
                 file.objects.push(object);
+                parts_of.push(owner);
                 continue;
             }
+            parts_of.extend(std::iter::repeat_n(owner, model.file.objects.len()));
             let own = object.matrix.map_or(glam::Mat4::IDENTITY, |m| glam::Mat4::from_cols_array(&m));
             file.objects.extend(model.file.objects.iter().map(|p| ObjectDesc {
                 name: match (&object.name, &p.name) {
@@ -64,7 +72,8 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<BTreeMap<Str
                 ..object.clone()
             }));
         }
+        owners = parts_of;
     }
     check::check(file)?;
-    Ok(meshes)
+    Ok(Placed { meshes, owners: Some(owners) })
 }

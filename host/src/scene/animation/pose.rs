@@ -109,6 +109,11 @@ pub struct Animation {
     pub motions: Vec<Motion>,
     /// The scene as written, everything at rest: every frame is posed from it.
     pub rest: Box<SceneFile>,
+    /// Where the posed scene's objects are parts of placed glTF models: each object's index
+    /// in `rest` (whose objects are the models' objects as written), whose translation,
+    /// rotation and scale it takes, so that a model's parts move as one. `None`: the
+    /// objects are `rest`'s.
+    pub owners: Option<Vec<usize>>,
 }
 
 impl Animation {
@@ -133,8 +138,21 @@ impl Animation {
 
     /// Writes frame `frame`'s values of everything that moves into `out`, a copy of the scene:
     /// each moving target is reset to its value at rest, its tracks set, then its motions
-    /// applied in file order.
+    /// applied in file order; with `owners`, on the objects as written, whose placement
+    /// each part then takes.
     pub fn pose(&self, frame: u32, out: &mut SceneFile) {
+        let Some(owners) = &self.owners else { return self.pose_written(frame, out) };
+        let mut written = (*self.rest).clone();
+        self.pose_written(frame, &mut written);
+        (out.camera, out.lights) = (written.camera, written.lights);
+        for (part, &owner) in out.objects.iter_mut().zip(owners) {
+            let o = &written.objects[owner];
+            (part.translate, part.rotate, part.scale) = (o.translate, o.rotate, o.scale);
+        }
+    }
+
+    /// `pose` of a scene whose objects are `rest`'s.
+    fn pose_written(&self, frame: u32, out: &mut SceneFile) {
         let base = &self.rest;
         let t = self.time(frame);
         for target in self.targets() {
