@@ -1,24 +1,27 @@
 // Twin of twinray_shaders::query: tracing inline with ray queries, deciding what the
 // pipeline's stages would (a procedural candidate by its shape's routine, a cutout's holes by
 // its pattern) and describing the committed hit as its closest-hit stage would. Included after
-// the includer declares tlas, objects, primitives and materials; with RENDER_COMPUTE defined,
-// also vertices, indices, textures and `payload` (a plain HitPayload), for trace_query.
+// the includer declares tlas, objects, primitives, materials, vertices, indices and textures;
+// with RENDER_COMPUTE defined, also `payload` (a plain HitPayload), for trace_query.
 #ifndef TWINRAY_QUERY_GLSL
 #define TWINRAY_QUERY_GLSL
 #include "shading.glsl"
 #include "shape_dispatch.glsl"
+#include "texture.glsl"
 
 // The ray parameter of the query's candidate if it is a hit, decided as the pipeline's stages
 // would, else -1: a triangle at its t (up to t_max), a procedural primitive by its shape's
 // routine between t_min and t_max, and for cutouts (the only instances not forced opaque) not
-// in a hole. normal: a procedural hit's object-space normal.
+// in a hole: of their pattern, or on meshes of their own alpha, as triangle_cutout_any_hit
+// decides. normal: a procedural hit's object-space normal.
 float candidate_hit(rayQueryEXT query, float t_min, float t_max, out vec3 normal) {
     ObjectData data = objects[rayQueryGetIntersectionInstanceIdEXT(query, false)];
     vec3 o = rayQueryGetIntersectionObjectRayOriginEXT(query, false);
     vec3 d = rayQueryGetIntersectionObjectRayDirectionEXT(query, false);
     float t = -1.0;
     normal = vec3(0.0);
-    if (rayQueryGetIntersectionTypeEXT(query, false) == gl_RayQueryCandidateIntersectionTriangleEXT) {
+    bool triangle = rayQueryGetIntersectionTypeEXT(query, false) == gl_RayQueryCandidateIntersectionTriangleEXT;
+    if (triangle) {
         float candidate = rayQueryGetIntersectionTEXT(query, false);
         if (candidate <= t_max) {
             t = candidate;
@@ -33,8 +36,19 @@ float candidate_hit(rayQueryEXT query, float t_min, float t_max, out vec3 normal
             normal = n;
         }
     }
-    if (t >= 0.0 && !cutout_solid(materials[data.material], o + d * t)) {
-        t = -1.0;
+    if (t >= 0.0) {
+        Material material = materials[data.material];
+        float alpha = cutout_alpha(material, o + d * t);
+        if (triangle && material.cutout_pattern == CUTOUT_TEXTURE) {
+            uint first = data.index_base + 3u * rayQueryGetIntersectionPrimitiveIndexEXT(query, false);
+            Vertex v0 = vertices[data.vertex_base + indices[first]];
+            Vertex v1 = vertices[data.vertex_base + indices[first + 1u]];
+            Vertex v2 = vertices[data.vertex_base + indices[first + 2u]];
+            alpha *= surface_alpha(material, v0, v1, v2, rayQueryGetIntersectionBarycentricsEXT(query, false));
+        }
+        if (alpha < material.cutout_threshold) {
+            t = -1.0;
+        }
     }
     return t;
 }

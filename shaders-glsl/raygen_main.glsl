@@ -3,7 +3,7 @@
 // shaded here; writes the mean colour and the ids of what the first sample hit; the payload is
 // poisoned before each trace, and a ray whose stage left it so is counted, not shaded. With
 // SHADOW_QUERY defined, shadow rays are traced inline by ray queries (trace.glsl), which read the
-// objects, primitives and materials; with RENDER_COMPUTE too, primary rays are, and the payload
+// objects, primitives, materials, and for alpha-tested meshes vertices, indices and textures; with RENDER_COMPUTE too, primary rays are, and the payload
 // is a plain variable that trace.glsl describes hits into as the closest-hit stages would.
 #include "twinray_layout.glsl"
 
@@ -19,9 +19,6 @@ layout(constant_id = SPEC_SHADOW_SAMPLER) const uint SHADOW_SAMPLER = SHADOW_SAM
 
 #ifdef RENDER_COMPUTE
 HitPayload payload;
-layout(set = DESCRIPTOR_SET, binding = BINDING_VERTICES, std430) readonly buffer Vertices { Vertex vertices[]; };
-layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
-layout(set = DESCRIPTOR_SET, binding = BINDING_TEXTURES) uniform sampler2D textures[];
 // Compute has no launch size: the image's, from the frame constants.
 #define LAUNCH_ID gl_GlobalInvocationID.xy
 #define LAUNCH_SIZE uvec2(frame.width, frame.height)
@@ -34,6 +31,9 @@ layout(location = 0) rayPayloadEXT HitPayload payload;
 layout(set = DESCRIPTOR_SET, binding = BINDING_OBJECTS, std430) readonly buffer Objects { ObjectData objects[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_PRIMITIVES, std430) readonly buffer Primitives { Primitive primitives[]; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffer Materials { Material materials[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_VERTICES, std430) readonly buffer Vertices { Vertex vertices[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_INDICES, std430) readonly buffer Indices { uint indices[]; };
+layout(set = DESCRIPTOR_SET, binding = BINDING_TEXTURES) uniform sampler2D textures[];
 #else
 layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;
 #endif

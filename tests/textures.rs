@@ -162,12 +162,14 @@ fn write_alpha_checker(path: &Path) {
 
 /// A floor alpha-tested by its texture (glTF's alpha mode MASK: `pattern = "alpha"`) above a
 /// plain one, seen from above, lit from above with shadows.
-fn masked_scene(dir: &Path, opacity: f32) -> Scene {
+/// `top` adds top-level keys (how rays are traced).
+fn masked_scene(dir: &Path, opacity: f32, top: &str) -> Scene {
     write_alpha_checker(&dir.join("alpha.png"));
     write_floor(&dir.join("floor.obj"));
     let text = format!(
         r#"
 name = "masked-floor"
+{top}
 [image]
 width = {w}
 height = {h}
@@ -207,7 +209,7 @@ intensity = 1.0
         w = SIZE.0,
         h = SIZE.1
     );
-    let path = dir.join(format!("masked-{opacity}.toml"));
+    let path = dir.join(format!("masked-{opacity}-{}.toml", top.len()));
     std::fs::write(&path, text).unwrap();
     Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -223,7 +225,7 @@ fn share(out: &RenderOutput, object: u64) -> f64 {
 #[test]
 fn a_texture_s_alpha_cuts_holes_for_every_ray() {
     let dir = tempfile::tempdir().unwrap();
-    let scene = masked_scene(dir.path(), 1.0);
+    let scene = masked_scene(dir.path(), 1.0, "");
     let (rust, glsl) = (render(&scene, "rust"), render(&scene, "glsl"));
     let (upper, lower) = (share(&rust, 0), share(&rust, 1));
     eprintln!("upper floor {upper:.3}, lower {lower:.3}");
@@ -236,8 +238,27 @@ fn a_texture_s_alpha_cuts_holes_for_every_ray() {
     let d = twinray::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
     assert_eq!(d.hit_mismatches, 0);
     assert!(twinray::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
-    let clear = render(&masked_scene(dir.path(), 0.4), "glsl");
+    let clear = render(&masked_scene(dir.path(), 0.4, ""), "glsl");
     assert_eq!(share(&clear, 0), 0.0, "opacity 0.4 under a threshold of 0.5: no surface");
+}
+
+/// Rays traced inline by ray queries test the same alpha with the same code: shadow rays
+/// (`shadow_method = "query"`) and the compute renderer's primary rays give the pipeline's
+/// image and hits, in both sets.
+#[test]
+fn rays_traced_inline_test_the_same_alpha() {
+    let dir = tempfile::tempdir().unwrap();
+    let pipeline = render(&masked_scene(dir.path(), 1.0, ""), "glsl");
+    for top in ["shadow_method = \"query\"", "renderer = \"compute\""] {
+        let scene = masked_scene(dir.path(), 1.0, top);
+        for language in ["rust", "glsl"] {
+            let inline = render(&scene, language);
+            let d = twinray::compare::diff(&pipeline, &inline, scene.file.parity.pixel_threshold);
+            eprintln!("{top}, {language}: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
+            assert_eq!(d.hit_mismatches, 0, "{top}, {language}");
+            assert!(twinray::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+        }
+    }
 }
 
 /// The floor and a ball, lit from above, both of material `material` (a TOML table body).

@@ -133,20 +133,7 @@ pub fn check(scene: &SceneFile) -> Checked {
 }
 
 /// The compute renderer has no SBT: no callables, and no hit groups to divide objects among.
-/// Neither it nor shadow rays traced by ray queries read a surface's own alpha yet.
 fn check_renderer(scene: &SceneFile) -> Checked {
-    let alpha = scene
-        .materials
-        .iter()
-        .find(|(_, m)| matches!(m, MaterialDesc::Cutout { pattern: super::file::CutoutPattern::Alpha, .. }));
-    let inline = scene.renderer == Renderer::Compute || scene.shadow_method == super::file::ShadowMethod::Query;
-    if let (Some((name, _)), true) = (alpha, inline) {
-        return Err(format!(
-            "material {name:?}: a surface's own alpha (pattern = \"alpha\", glTF's alpha modes) is tested by \
-             the triangle any-hit stage, which rays traced inline (renderer = \"compute\", shadow_method = \
-             \"query\") do not run yet"
-        ));
-    }
     if scene.renderer != Renderer::Compute {
         return Ok(());
     }

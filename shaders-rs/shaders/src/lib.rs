@@ -47,7 +47,7 @@ macro_rules! renderer {
     (
         $(#[$doc:meta])* $name:ident, #[spirv($($stage:tt)*)], [$($builtins:tt)*], $frame:ident,
         [$($params:tt)*], [$($setup:tt)*], ($pixel:expr, $size:expr),
-        $primary:path, $payload:ident, ($($pres:ident),*), $shade:path, ($($sres:ident),*)
+        $primary:path, $payload:ident, ($($pres:ident),*), $shade:path, ($($sres:expr),*)
     ) => {
 $(#[$doc])*
 #[spirv($($stage)*)]
@@ -152,10 +152,13 @@ renderer!(
         #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
         #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
         #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
+        #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
+        #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     ],
     [],
     (launch_id.xy(), launch_size.xy()),
-    trace::primary, payload, (), trace::shade_query, (objects, primitives, materials)
+    trace::primary, payload, (), trace::shade_query, ((objects, primitives, materials), (vertices, indices), textures)
 );
 renderer!(
     /// The compute renderer (`renderer = "compute"`): primary and shadow rays traced inline by
@@ -183,7 +186,7 @@ renderer!(
     ],
     (id.xy(), UVec2::new(frame.width, frame.height)),
     query::primary_query, payload, (frame, objects, primitives, materials, vertices, indices, textures),
-    trace::shade_query, (objects, primitives, materials)
+    trace::shade_query, ((objects, primitives, materials), (vertices, indices), textures)
 );
 
 /// The probe: one ray per launch index from the ray buffer, traced through the same pipeline
@@ -295,7 +298,8 @@ pub fn explain_query(
     let r = rays[i];
     let ray = camera::Ray { origin: r.origin.xyz(), direction: r.direction.xyz() };
     results[i] = if r.kind.x == EXPLAIN_SHADOW {
-        let lit = query::visible_query(tlas, ray.origin, ray.direction, r.direction.w, objects, primitives, materials);
+        let (hit_buffers, mesh) = ((objects, primitives, materials), (vertices, indices));
+        let lit = query::visible_query(tlas, ray.origin, ray.direction, r.direction.w, hit_buffers, mesh, textures);
         ExplainResult { hit: HitPayload::NONE, occluded: UVec4::new(if lit { 0 } else { 1 }, 0, 0, 0) }
     } else {
         let mut hit = HitPayload::NONE;

@@ -13,7 +13,7 @@ use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
 use spirv_std::RuntimeArray;
-use twinray_shared::bindings::{HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT};
+use twinray_shared::bindings::{CUTOUT_TEXTURE, HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT};
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
 use twinray_shared::shading;
@@ -22,27 +22,30 @@ use twinray_shared::shapes::{self, SHAPE_NAIVE};
 /// The ray parameter of the query's candidate if it is a hit, decided as the pipeline's stages
 /// would, else -1: a triangle at its t (up to `t_max`), a procedural primitive by its shape's
 /// routine between `t_min` and `t_max`, and for cutouts (the only instances not forced opaque)
-/// not in a hole. With it, a procedural hit's object-space normal.
+/// not in a hole: of their pattern, or on meshes of their own alpha (its opacity, its vertex
+/// colours' and its texture's at level 0, read from the `mesh` buffers and `textures`), as
+/// `triangle_cutout_any_hit` decides. With it, a procedural hit's object-space normal.
 ///
 /// # Safety
 /// `query` has a current candidate: `proceed` returned true.
 unsafe fn candidate_hit(
     query: &RayQuery,
-    objects: &[ObjectData],
-    primitives: &[Primitive],
-    materials: &[Material],
+    (objects, primitives, materials): (&[ObjectData], &[Primitive], &[Material]),
+    (vertices, indices): Mesh,
+    textures: &RuntimeArray<Texture>,
     t_min: f32,
     t_max: f32,
 ) -> (f32, Vec3) {
     let object = query.get_candidate_intersection_instance_id() as usize;
-    let primitive = (query.get_candidate_intersection_instance_custom_index()
-        + query.get_candidate_intersection_primitive_index()) as usize;
+    let primitive_id = query.get_candidate_intersection_primitive_index();
+    let primitive = (query.get_candidate_intersection_instance_custom_index() + primitive_id) as usize;
     let (mut t, mut normal) = (-1.0, Vec3::ZERO);
     if object < objects.len() {
         let data = *objects.get_unchecked(object);
         let o = query.get_candidate_intersection_object_ray_origin();
         let d = query.get_candidate_intersection_object_ray_direction();
-        if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
+        let triangle = query.get_candidate_intersection_type() == CandidateIntersection::Triangle;
+        if triangle {
             let candidate = query.get_candidate_intersection_t();
             if candidate <= t_max {
                 t = candidate;
@@ -56,7 +59,19 @@ unsafe fn candidate_hit(
         let material = data.material as usize;
         if t >= 0.0 {
             if material < materials.len() {
-                if !shading::cutout_solid(materials.get_unchecked(material), o + d * t) {
+                let m = materials.get_unchecked(material);
+                let mut alpha = shading::cutout_alpha(m, o + d * t);
+                if triangle {
+                    if m.cutout_pattern == CUTOUT_TEXTURE {
+                        let corners = hit::corner_attributes(&data, primitive_id, vertices, indices);
+                        let b: Vec2 = query.get_candidate_intersection_barycentrics();
+                        // Indexed here and the image handed on, as `triangle_cutout_any_hit` does
+                        // (docs/rust-stages.md).
+                        let image = textures.index(m.texture.x as usize);
+                        alpha *= texture::surface_alpha(image, m, corners, b);
+                    }
+                }
+                if alpha < m.cutout_threshold {
                     t = -1.0;
                 }
             }
@@ -65,16 +80,21 @@ unsafe fn candidate_hit(
     (t, normal)
 }
 
+/// The meshes' vertex and index buffers. (The texture array goes beside them, never in a
+/// tuple: a struct may not hold images in Vulkan's SPIR-V.)
+pub type Mesh<'a> = (&'a [Vertex], &'a [u32]);
+
 /// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`
 /// (as `trace::visible`), traced inline: any hit `candidate_hit` takes ends the query.
+#[allow(clippy::too_many_arguments)]
 pub fn visible_query(
     tlas: &AccelerationStructure,
     origin: Vec3,
     direction: Vec3,
     distance: f32,
-    objects: &[ObjectData],
-    primitives: &[Primitive],
-    materials: &[Material],
+    hit_buffers: (&[ObjectData], &[Primitive], &[Material]),
+    mesh: Mesh,
+    textures: &RuntimeArray<Texture>,
 ) -> bool {
     spirv_std::ray_query!(let mut query);
     let mut occluded = false;
@@ -83,7 +103,7 @@ pub fn visible_query(
     unsafe {
         query.initialize(tlas, RayFlags::TERMINATE_ON_FIRST_HIT, MASK_OCCLUDER, origin, 0.0, direction, distance);
         while query.proceed() {
-            if candidate_hit(query, objects, primitives, materials, 0.0, distance).0 >= 0.0 {
+            if candidate_hit(query, hit_buffers, mesh, textures, 0.0, distance).0 >= 0.0 {
                 occluded = true;
                 query.terminate();
             }
@@ -141,7 +161,8 @@ pub fn trace_query(
             } else {
                 query.get_committed_intersection_t()
             };
-            let (t, n) = candidate_hit(query, objects, primitives, materials, t_min, closest);
+            let hit_buffers = (objects, primitives, materials);
+            let (t, n) = candidate_hit(query, hit_buffers, (vertices, indices), textures, t_min, closest);
             if t >= 0.0 {
                 if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
                     query.confirm_intersection();

@@ -3,7 +3,9 @@
 //! Free functions rather than a struct of references: rust-gpu cannot keep references in a
 //! struct (logical SPIR-V has no pointers to pointers).
 
-use crate::query::visible_query;
+use crate::query::{visible_query, Mesh};
+use crate::texture::Texture;
+use spirv_std::RuntimeArray;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use twinray_shared::bindings::{LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT};
@@ -135,7 +137,8 @@ shading!(
 );
 shading!(
     /// Shading with shadows traced inline by ray queries (`shadow_method = "query"`).
-    shade_query, visible_query, objects: &[ObjectData], primitives: &[Primitive], materials: &[Material]
+    shade_query, visible_query, hit_buffers: (&[ObjectData], &[Primitive], &[Material]), mesh: Mesh,
+    textures: &RuntimeArray<Texture>
 );
 
 /// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`.

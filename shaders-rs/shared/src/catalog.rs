@@ -265,11 +265,23 @@ pub const LAYOUT: [BindingSpec; 13] = {
         },
         BindingSpec { binding: b::BINDING_LIGHTS, kind: StorageBuffer, stages: &[Raygen, Compute] },
         BindingSpec { binding: b::BINDING_HIT_IDS, kind: StorageBuffer, stages: &[Raygen, Compute] },
-        BindingSpec { binding: b::BINDING_VERTICES, kind: StorageBuffer, stages: &[ClosestHit, AnyHit, Compute] },
-        BindingSpec { binding: b::BINDING_INDICES, kind: StorageBuffer, stages: &[ClosestHit, AnyHit, Compute] },
+        BindingSpec {
+            binding: b::BINDING_VERTICES,
+            kind: StorageBuffer,
+            stages: &[Raygen, ClosestHit, AnyHit, Compute],
+        },
+        BindingSpec {
+            binding: b::BINDING_INDICES,
+            kind: StorageBuffer,
+            stages: &[Raygen, ClosestHit, AnyHit, Compute],
+        },
         BindingSpec { binding: b::BINDING_PROBE_RAYS, kind: StorageBuffer, stages: &[Raygen, Compute] },
         BindingSpec { binding: b::BINDING_PROBE_RESULTS, kind: StorageBuffer, stages: &[Raygen, Compute] },
-        BindingSpec { binding: b::BINDING_TEXTURES, kind: SampledImageArray, stages: &[ClosestHit, AnyHit, Compute] },
+        BindingSpec {
+            binding: b::BINDING_TEXTURES,
+            kind: SampledImageArray,
+            stages: &[Raygen, ClosestHit, AnyHit, Compute],
+        },
     ]
 };
 
