@@ -21,25 +21,97 @@ pub struct Loaded {
     pub budget: u64,
 }
 
-/// Reads and parses `path` (`.gltf` or `.glb`) and every buffer it names.
+/// Reads and parses `path` (`.gltf` or `.glb`) and every buffer it names. A GLB file is read
+/// chunk by chunk, its binary chunk straight into the buffer it is: the file is never held
+/// whole beside it (the `gltf` crate's own reader of a GLB slice copies its binary chunk).
 pub fn load(path: &Path) -> Result<Loaded, String> {
     let limit = max_mesh_bytes()?;
     let raise = |e: String| if e.contains("limit") { format!("{e} (TWINRAY_MAX_MESH_BYTES raises it)") } else { e };
-    let bytes = read_bounded(path, limit).map_err(|e| format!("cannot read: {}", raise(e)))?;
-    parse(&bytes, path.parent().unwrap_or(Path::new(".")), limit)
+    let folder = path.parent().unwrap_or(Path::new("."));
+    match glb_chunks(path, limit).map_err(|e| format!("cannot read: {}", raise(e)))? {
+        Some((json, bin, size)) => {
+            let mut gltf = gltf::Gltf::from_slice_without_validation(&json).map_err(invalid)?;
+            gltf.blob = bin;
+            with_buffers(gltf, size, folder, limit)
+        }
+        None => {
+            let bytes = read_bounded(path, limit).map_err(|e| format!("cannot read: {}", raise(e)))?;
+            parse(&bytes, folder, limit)
+        }
+    }
+}
+
+fn invalid(e: gltf::Error) -> String {
+    format!("not a valid glTF 2.0 file: {e}")
+}
+
+/// A GLB file's JSON chunk, its binary chunk (if it has one) and its size in bytes.
+type Chunks = (Vec<u8>, Option<Vec<u8>>, u64);
+
+/// The chunks of the GLB file at `path`, each read on its own; `None` for a file that is not
+/// GLB (no `glTF` magic). Chunks of other types are skipped, as the format asks.
+fn glb_chunks(path: &Path, limit: u64) -> Result<Option<Chunks>, String> {
+    use std::io::Read;
+    let meta = std::fs::metadata(path).map_err(|e| e.to_string())?;
+    if !meta.is_file() {
+        return Err("not a regular file".into());
+    }
+    if meta.len() > limit {
+        return Err(format!("{} bytes, over the limit of {limit}", meta.len()));
+    }
+    let mut file = std::fs::File::open(path).map_err(|e| e.to_string())?;
+    let mut header = [0u8; 12];
+    if meta.len() < 12 || file.read_exact(&mut header).is_err() || &header[..4] != b"glTF" {
+        return Ok(None);
+    }
+    let word = |b: &[u8]| u64::from(u32::from_le_bytes([b[0], b[1], b[2], b[3]]));
+    let (version, length) = (word(&header[4..8]), word(&header[8..12]));
+    if version != 2 {
+        return Err(format!("a GLB file of version {version} (glTF 2.0 is version 2)"));
+    }
+    if length > meta.len() {
+        return Err(format!("its GLB header says {length} bytes, the file holds {}", meta.len()));
+    }
+    let (mut json, mut bin, mut at) = (None, None, 12u64);
+    while at + 8 <= length {
+        let mut chunk = [0u8; 8];
+        file.read_exact(&mut chunk).map_err(|e| e.to_string())?;
+        let (size, kind) = (word(&chunk[..4]), &chunk[4..]);
+        at += 8;
+        if at + size > length {
+            return Err(format!("a GLB chunk of {size} bytes at byte {} reaches past its {length} bytes", at - 8));
+        }
+        let mut data = Vec::with_capacity(size as usize);
+        (&mut file).take(size).read_to_end(&mut data).map_err(|e| e.to_string())?;
+        if data.len() as u64 != size {
+            return Err(format!("a GLB chunk of {size} bytes ends early"));
+        }
+        match kind {
+            b"JSON" if json.is_none() => json = Some(data),
+            b"BIN\0" if bin.is_none() => bin = Some(data),
+            _ => {}
+        }
+        at += size;
+    }
+    let json = json.ok_or("a GLB file without a JSON chunk")?;
+    Ok(Some((json, bin, meta.len())))
 }
 
 /// Parses a glTF file's `bytes` and reads every buffer it names, files relative to `folder`,
 /// all of them together at most `limit` bytes.
 pub fn parse(bytes: &[u8], folder: &Path, limit: u64) -> Result<Loaded, String> {
-    let invalid = |e: gltf::Error| format!("not a valid glTF 2.0 file: {e}");
-    let mut gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
+    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
+    with_buffers(gltf, bytes.len() as u64, folder, limit)
+}
+
+/// `gltf` (read from a file of `size` bytes) checked, and every buffer it names read.
+fn with_buffers(mut gltf: gltf::Gltf, size: u64, folder: &Path, limit: u64) -> Result<Loaded, String> {
     // Before validation, which refuses every extension the crate does not know by one message.
     if let Some(ext) = gltf.extensions_required().find(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
         return Err(format!("it requires the extension {ext}, which twinray does not support"));
     }
     gltf.document = gltf::Document::from_json(gltf.document.into_json()).map_err(invalid)?;
-    let mut budget = limit.saturating_sub(bytes.len() as u64);
+    let mut budget = limit.saturating_sub(size);
     let mut buffers = Vec::new();
     let mut blob = gltf.blob.take();
     for buffer in gltf.buffers() {
@@ -107,5 +179,42 @@ mod tests {
         assert!(read_uri("https://example.com/a.bin", folder, 100).unwrap_err().contains("network"));
         assert_eq!(percent_decoded("a%20b.bin").unwrap(), "a b.bin");
         assert!(percent_decoded("a%2").is_err());
+    }
+
+    /// A GLB file read chunk by chunk gives what the `gltf` crate's reader of the whole file
+    /// gives; a chunk of another type is skipped; a file cut short, or whose header claims
+    /// more than it holds, is refused.
+    #[test]
+    fn glb_files_are_read_chunk_by_chunk() {
+        let bytes =
+            std::fs::read(Path::new(env!("CARGO_MANIFEST_DIR")).join("../fuzz/corpus/gltf/square.glb")).unwrap();
+        let dir = tempfile::tempdir().unwrap();
+        let write = |name: &str, b: &[u8]| {
+            let path = dir.path().join(name);
+            std::fs::write(&path, b).unwrap();
+            path
+        };
+        let whole = parse(&bytes, dir.path(), 1 << 20).unwrap();
+        let streamed = load(&write("square.glb", &bytes)).unwrap();
+        assert_eq!(streamed.buffers, whole.buffers);
+        assert!(!streamed.buffers.is_empty());
+        // An unknown chunk between the JSON and the binary chunk.
+        let json_end = 20 + u32::from_le_bytes(bytes[12..16].try_into().unwrap()) as usize;
+        let mut extra = bytes[..json_end].to_vec();
+        extra.extend([4, 0, 0, 0]);
+        extra.extend(b"XTRA");
+        extra.extend([1, 2, 3, 4]);
+        extra.extend(&bytes[json_end..]);
+        let len = extra.len() as u32;
+        extra[8..12].copy_from_slice(&len.to_le_bytes());
+        assert_eq!(load(&write("extra.glb", &extra)).unwrap().buffers, whole.buffers);
+        let cut = &bytes[..bytes.len() - 8];
+        let e = load(&write("cut.glb", cut)).err().unwrap();
+        assert!(e.contains("the file holds"), "{e}");
+        let mut short = cut.to_vec();
+        let len = short.len() as u32;
+        short[8..12].copy_from_slice(&len.to_le_bytes());
+        let e = load(&write("short.glb", &short)).err().unwrap();
+        assert!(e.contains("reaches past"), "{e}");
     }
 }
