@@ -133,6 +133,12 @@ fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
             eprintln!("{}", r.summary());
             assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{} with {set_text}", path.display());
             assert!(r.decided > 0, "{}: nothing decided", path.display());
+            // Rays gone through a first surface: none, but for the watertight case, where
+            // lavapipe's triangle test lets 1 to 3 of its 8000 rays through between the
+            // icosahedron's triangles, a different number each run (docs/probe-format.md).
+            // More would be a new leak.
+            let allowed = if path.ends_with("mesh-edges.toml") { 4 } else { 0 };
+            assert!(r.through <= allowed, "{} with {set_text}: {} rays went through", path.display(), r.through);
         }
     }
 }

@@ -65,6 +65,9 @@ pub struct Generated {
     pub made: usize,
     /// Filled in by `probe::report::evaluate`.
     pub hit: Option<usize>,
+    /// Of those, how many went through the surface the reference hits first (see
+    /// `ProbeReport::through`); filled in with `hit`.
+    pub through: Option<usize>,
 }
 
 /// A loaded case: its scene, rays and the reference for them.
@@ -174,7 +177,7 @@ impl ProbeCase {
             let rays = generate(generator, &reference).map_err(|e| case_error(format!("generators[{i}]: {e}")))?;
             robust_rays.extend(rays.iter().map(|pair| pair.0));
             naive_rays.extend(rays.iter().map(|pair| pair.1));
-            generated.push(Generated { kind: generator.kind().into(), made: rays.len(), hit: None });
+            generated.push(Generated { kind: generator.kind().into(), made: rays.len(), hit: None, through: None });
         }
         if robust_rays.is_empty() {
             return Err(case_error("no rays: give [[rays]] or [[generators]]".into()));

@@ -1,6 +1,6 @@
 //! Ray generators of probe case files (docs/probe-format.md): camera rays through a
-//! silhouette, secondary rays from a surface, grazing rays from far away, and rays lying in
-//! (or just beside) a face plane. Deterministic: the same keys give the same rays.
+//! silhouette, secondary rays from a surface, grazing rays from far away, rays lying in
+//! (or just beside) a face plane, and rays where a mesh's triangles meet (`edges`). Deterministic: the same keys give the same rays.
 
 use crate::reference::scene::{RefObject, SceneReference};
 use crate::reference::shapes::RefShape;
@@ -97,6 +97,18 @@ pub enum Generator {
         #[serde(default)]
         seed: u32,
     },
+    /// `count` rays at the points where a mesh's triangles meet (every other one a vertex):
+    /// each aimed across the surface at a point of an edge two triangles share, or at a vertex
+    /// whose every edge is shared, from `distance` bounding radii away; a gap between the
+    /// triangles lets it through (a watertight test).
+    Edges {
+        object: usize,
+        count: u32,
+        #[serde(default = "plane_distance")]
+        distance: f32,
+        #[serde(default)]
+        seed: u32,
+    },
 }
 
 impl Generator {
@@ -107,6 +119,7 @@ impl Generator {
             Generator::Surface { .. } => "surface",
             Generator::Grazing { .. } => "grazing",
             Generator::FacePlane { .. } => "face_plane",
+            Generator::Edges { .. } => "edges",
         }
     }
 
@@ -143,6 +156,7 @@ impl Generator {
                 }
                 positive("distance", distance)
             }
+            Generator::Edges { distance, .. } => positive("distance", distance),
         }
     }
 
@@ -152,7 +166,8 @@ impl Generator {
             Generator::Silhouette { count, .. } => u64::from(count) * u64::from(count),
             Generator::Surface { count, .. }
             | Generator::Grazing { count, .. }
-            | Generator::FacePlane { count, .. } => u64::from(count),
+            | Generator::FacePlane { count, .. }
+            | Generator::Edges { count, .. } => u64::from(count),
         }
     }
 }
@@ -209,6 +224,9 @@ pub fn generate(generator: &Generator, reference: &SceneReference) -> Result<Vec
         }
         Generator::FacePlane { object, count, offset, distance, seed } => {
             face_plane_rays(reference, object, count, (offset, distance), seed)
+        }
+        Generator::Edges { object, count, distance, seed } => {
+            super::edges::edge_rays(find(reference, object)?, object, count, distance, seed)
         }
     }
 }
@@ -389,7 +407,7 @@ fn face_point(shape: &RefShape, [a, b, c]: [f64; 3]) -> Option<(DVec3, DVec3)> {
 }
 
 /// Random number `d` of stream `k` for `seed`, in [0, 1).
-fn draw(seed: u32, k: u32, d: u32) -> f64 {
+pub(super) fn draw(seed: u32, k: u32, d: u32) -> f64 {
     f64::from(random(seed, k, 0, d))
 }
 

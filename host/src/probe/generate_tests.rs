@@ -124,3 +124,28 @@ fn generators_refuse_counts_they_cannot_make() {
     let err = case(sphere, "", "kind = \"silhouette\"\nobject = 0\nfrom = [0.0, 0.0, 0.0]\ncount = 4").err().unwrap();
     assert!(err.contains("is the object's centre"), "{err}");
 }
+
+/// Rays at the meeting points of a closed mesh's triangles (a rotated icosahedron, and the
+/// builtin box, whose faces are split along a diagonal): each lies on an edge or vertex two
+/// or more triangles share, arrives from outside across them, and the f64 reference, which
+/// calls each triangle alone ambiguous there, decides a hit on the mesh.
+#[test]
+fn edge_rays_cross_where_triangles_meet_and_the_reference_decides_them() {
+    for builtin in ["icosahedron", "box"] {
+        let shape = format!("kind = \"mesh\"\nbuiltin = \"{builtin}\"");
+        let generator = "kind = \"edges\"\nobject = 0\ncount = 200\nseed = 3";
+        let case = case(&shape, "translate = [3.0, 1.0, -2.0]\nrotate = [10.0, 20.0, 30.0]", generator).unwrap();
+        assert_eq!(case.rays.len(), 200);
+        let mut hits = 0;
+        for (k, r) in case.rays.iter().enumerate() {
+            let (o, d) = (r.origin.truncate().as_dvec3(), r.direction.truncate().as_dvec3());
+            match case.reference.trace(o, d, 0.0, 1e30) {
+                crate::reference::scene::SceneVerdict::Hit { object: 0, .. } => hits += 1,
+                other => panic!("{builtin}: ray {k} ({o} along {d}): {other:?}"),
+            }
+        }
+        assert_eq!(hits, 200, "{builtin}");
+    }
+    let err = case("kind = \"sphere\"\nradius = 1.0", "", "kind = \"edges\"\nobject = 0\ncount = 4").err().unwrap();
+    assert!(err.contains("generators[0]: object 0 is not a mesh"), "{err}");
+}

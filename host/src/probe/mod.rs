@@ -2,6 +2,7 @@
 //! f64 reference; probe case files, their ray generators, and the hard-case suite.
 
 pub mod case;
+mod edges;
 pub mod generate;
 #[cfg(test)]
 mod generate_tests;

@@ -9,3 +9,4 @@ pub mod shapes;
 pub mod stage;
 pub mod surface;
 mod traced;
+mod watertight;

@@ -68,10 +68,16 @@ impl RefObject {
 
     /// Which of the object's shapes (a mesh's triangle, by index) `ray` meets first, at what t
     /// and object-space normal: `Some(None)` for none, `None` where the answer is ambiguous.
+    /// Triangles ambiguous alone (the ray passes within noise of their edges) are decided
+    /// together where the mesh is closed (`watertight::across`).
     pub fn first_shape(&self, ray: &RefRay) -> Option<Option<(usize, f64, DVec3)>> {
         let mut first: Option<(usize, f64, DVec3)> = None;
+        let mut unsure = Vec::new();
         for (k, shape) in self.shapes.iter().enumerate() {
             match intersect(shape, ray) {
+                Verdict::Ambiguous if self.cutout.is_none() && matches!(shape, RefShape::Triangle { .. }) => {
+                    unsure.push(k)
+                }
                 Verdict::Ambiguous => return None,
                 Verdict::Miss => {}
                 Verdict::Hit { t, normal } => {
@@ -88,7 +94,28 @@ impl RefObject {
                 }
             }
         }
-        Some(first)
+        if unsure.is_empty() {
+            return Some(first);
+        }
+        match (first, super::watertight::across(&self.shapes, &unsure, ray)) {
+            // Ambiguous where the triangles meet, but behind a hit: the hit is first.
+            (Some(hit), None) if self.behind(&unsure, ray, hit.1) => Some(Some(hit)),
+            (_, None) => None,
+            (first, Some(None)) => Some(first),
+            (Some(hit), Some(Some(crossing))) => Some(Some(if hit.1 < crossing.1 { hit } else { crossing })),
+            (None, Some(crossing)) => Some(crossing),
+        }
+    }
+
+    /// Whether every triangle of `unsure` lies beyond `t` along `ray` by more than noise.
+    fn behind(&self, unsure: &[usize], ray: &RefRay, t: f64) -> bool {
+        let tol = ray.tolerance(t) / ray.direction.length();
+        unsure.iter().all(|&k| match self.shapes[k] {
+            RefShape::Triangle { p } => {
+                p.iter().all(|c| (*c - ray.origin).dot(ray.direction) / ray.direction.length_squared() > t + 4.0 * tol)
+            }
+            _ => false,
+        })
     }
 }
 
