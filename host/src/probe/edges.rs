@@ -4,12 +4,10 @@
 //! so it must hit the mesh there or before: a gap between the triangles lets it through. The
 //! f64 reference decides such rays where the mesh is closed (`reference::watertight`).
 
-use super::generate::{draw, far, ray};
 use crate::reference::scene::RefObject;
 use crate::reference::shapes::RefShape;
-use glam::DVec3;
+use glam::{DVec3, Vec3};
 use std::collections::HashMap;
-use twinray_shared::layout::ProbeRay;
 
 /// Smallest cosine between a ray and the normal of every triangle at its point.
 const FACING: f64 = 0.1;
@@ -66,14 +64,15 @@ fn meetings(triangles: &[[DVec3; 3]]) -> (Vec<Meeting>, Vec<Meeting>) {
 }
 
 /// `count` rays at object `object`'s meetings (every other one a vertex, where there are any),
-/// from `distance` bounding radii away.
+/// from `distance` bounding radii away, as world-space origins and unit directions; `draw(k,
+/// d)` is random number `d` of ray `k`.
 pub(super) fn edge_rays(
     o: &RefObject,
     object: usize,
     count: u32,
     distance: f32,
-    seed: u32,
-) -> Result<Vec<(ProbeRay, ProbeRay)>, String> {
+    draw: impl Fn(u32, u32) -> f64,
+) -> Result<Vec<(Vec3, Vec3)>, String> {
     let triangles: Vec<[DVec3; 3]> = o
         .shapes
         .iter()
@@ -94,7 +93,7 @@ pub(super) fn edge_rays(
     let size = o.shapes.iter().map(crate::reference::shapes::bounding_radius).fold(0.0, f64::max);
     Ok((0..count)
         .map(|k| {
-            let r = |d: u32| draw(seed, k, d);
+            let r = |d: u32| draw(k, d);
             let pool = if k % 2 == 1 && !vertices.is_empty() { &vertices } else { &edges };
             let m = &pool[((r(0) * pool.len() as f64) as usize).min(pool.len() - 1)];
             let point = m.ends[0] + (m.ends[1] - m.ends[0]) * (0.1 + 0.8 * r(1));
@@ -102,8 +101,7 @@ pub(super) fn edge_rays(
             let origin = point - across * f64::from(distance) * size;
             let world_origin = o.object_to_world.transform_point3(origin);
             let world_dir = o.object_to_world.transform_vector3(across).normalize();
-            let r = ray(world_origin.as_vec3(), world_dir.as_vec3(), 0.0, far());
-            (r, r)
+            (world_origin.as_vec3(), world_dir.as_vec3())
         })
         .collect())
 }

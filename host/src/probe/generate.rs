@@ -226,7 +226,9 @@ pub fn generate(generator: &Generator, reference: &SceneReference) -> Result<Vec
             face_plane_rays(reference, object, count, (offset, distance), seed)
         }
         Generator::Edges { object, count, distance, seed } => {
-            super::edges::edge_rays(find(reference, object)?, object, count, distance, seed)
+            let rays =
+                super::edges::edge_rays(find(reference, object)?, object, count, distance, |k, d| draw(seed, k, d))?;
+            Ok(rays.into_iter().map(|(o, d)| same(ray(o, d, 0.0, far()))).collect())
         }
     }
 }
@@ -407,7 +409,7 @@ fn face_point(shape: &RefShape, [a, b, c]: [f64; 3]) -> Option<(DVec3, DVec3)> {
 }
 
 /// Random number `d` of stream `k` for `seed`, in [0, 1).
-pub(super) fn draw(seed: u32, k: u32, d: u32) -> f64 {
+fn draw(seed: u32, k: u32, d: u32) -> f64 {
     f64::from(random(seed, k, 0, d))
 }
 

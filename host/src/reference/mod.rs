@@ -10,3 +10,5 @@ pub mod stage;
 pub mod surface;
 mod traced;
 mod watertight;
+#[cfg(test)]
+mod watertight_tests;
