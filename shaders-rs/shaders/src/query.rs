@@ -13,7 +13,9 @@ use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
 use spirv_std::RuntimeArray;
-use twinray_shared::bindings::{CUTOUT_TEXTURE, HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT};
+use twinray_shared::bindings::{
+    CUTOUT_TEXTURE, HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT,
+};
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
 use twinray_shared::shading;

@@ -26,7 +26,12 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
 
 /// The radiance a mesh emits at the hit: the material's emission, times its emission texture
 /// (if it has one) filtered over the cone's footprint.
-pub fn surface_emission(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], hit: &TriangleHit) -> Vec3 {
+pub fn surface_emission(
+    textures: &RuntimeArray<Texture>,
+    material: &Material,
+    v: &[Vertex; 3],
+    hit: &TriangleHit,
+) -> Vec3 {
     let emission = material.emission.xyz();
     if material.texture.z == 0 {
         return emission;

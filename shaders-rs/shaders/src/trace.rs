@@ -5,9 +5,9 @@
 
 use crate::query::{visible_query, Mesh};
 use crate::texture::Texture;
-use spirv_std::RuntimeArray;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
+use spirv_std::RuntimeArray;
 use twinray_shared::bindings::{LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT};
 use twinray_shared::camera::Ray;
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
