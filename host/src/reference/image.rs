@@ -128,7 +128,14 @@ fn frame_seed(seed: u32, k: u32) -> u32 {
 /// the sample count and the SPIR-V of every module the set resolves to.
 fn key(scene: &Scene, set: &ShaderSet, (width, height): (u32, u32), spp: u32, what: Converge) -> u64 {
     let mut hash = Fnv::default();
-    hash.eat(format!("{:?}{:?}{what:?}", scene.file, scene.meshes).as_bytes());
+    hash.eat(format!("{:?}{what:?}", scene.file).as_bytes());
+    // The meshes' bytes, not their text: a million triangles print to hundreds of megabytes.
+    for (name, mesh) in &scene.meshes {
+        hash.eat(name.as_bytes());
+        hash.eat(&[mesh.vertices.len(), mesh.indices.len()].map(|n| (n as u64).to_le_bytes()).concat());
+        hash.eat(bytemuck::cast_slice(&mesh.vertices));
+        hash.eat(bytemuck::cast_slice(&mesh.indices));
+    }
     hash.eat(&[width, height, spp].map(u32::to_le_bytes).concat());
     for spec in MODULES.iter() {
         if let Ok(module) = set.resolve(spec) {

@@ -229,7 +229,7 @@ fn shapes(data: &SceneData, group: HitGroup, blas: usize, primitive_base: u32) -
     match &data.blases[blas] {
         BlasDesc::Triangles { vertex_base, index_base, index_count, .. } => {
             let vertex = |i: u32| data.vertices[(*vertex_base + i) as usize].position.xyz().as_dvec3();
-            let indices = &data.indices[*index_base as usize..(*index_base + *index_count) as usize];
+            let indices = data.indices.range(*index_base as usize, *index_count as usize).unwrap_or_default();
             Ok(indices
                 .chunks_exact(3)
                 .map(|t| RefShape::Triangle { p: [vertex(t[0]), vertex(t[1]), vertex(t[2])] })

@@ -12,6 +12,7 @@ use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
 use crate::vk::texture::Texture;
 use ash::vk;
+use gpu_allocator::MemoryLocation;
 use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::Arc;
@@ -81,8 +82,8 @@ fn upload_scene(
     let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
         | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
         | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
-    let vertices = upload_with(ctx, "vertices", bytemuck::cast_slice(&data.vertices), mesh_usage)?;
-    let indices = upload_with(ctx, "indices", bytemuck::cast_slice(&data.indices), mesh_usage)?;
+    let vertices = upload_parts(ctx, "vertices", data.vertices.parts().map(bytemuck::cast_slice), mesh_usage)?;
+    let indices = upload_parts(ctx, "indices", data.indices.parts().map(bytemuck::cast_slice), mesh_usage)?;
     let (vertex_address, index_address) = (vertices.device_address(), indices.device_address());
     let blases = data
         .blases
@@ -206,6 +207,23 @@ impl std::fmt::Display for AccelStats {
 /// (zeroed) element's worth of memory, so every binding has a valid buffer.
 fn upload(ctx: &Arc<Context>, name: &str, bytes: &[u8]) -> Result<Buffer> {
     upload_with(ctx, name, bytes, vk::BufferUsageFlags::STORAGE_BUFFER | vk::BufferUsageFlags::UNIFORM_BUFFER)
+}
+
+/// A host-visible buffer holding `parts` end to end, each written straight from where it
+/// lies (a scene's meshes), with no copy of the whole on the host.
+fn upload_parts<'a>(
+    ctx: &Arc<Context>,
+    name: &str,
+    parts: impl Iterator<Item = &'a [u8]> + Clone,
+    usage: vk::BufferUsageFlags,
+) -> Result<Buffer> {
+    let size: usize = parts.clone().map(<[u8]>::len).sum();
+    if size == 0 {
+        return upload_with(ctx, name, &[], usage);
+    }
+    let mut buffer = Buffer::new(ctx, name, size as u64, usage, MemoryLocation::CpuToGpu)?;
+    buffer.write_parts(parts)?;
+    Ok(buffer)
 }
 
 fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUsageFlags) -> Result<Buffer> {

@@ -9,6 +9,7 @@ use super::file::{
 };
 use super::mesh::MeshData;
 use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
+use super::pool::Pooled;
 use super::reach;
 use super::shape::{Formula, ShapeDesc};
 use super::texture::{SamplerDesc, TextureDesc, TextureImage};
@@ -47,8 +48,10 @@ pub enum BlasDesc {
 pub struct SceneData {
     pub plan: PipelinePlan,
     pub blases: Vec<BlasDesc>,
-    pub vertices: Vec<Vertex>,
-    pub indices: Vec<u32>,
+    /// The meshes' vertices and indices end to end, as the GPU's buffers hold them (shared
+    /// with the scene's meshes, not copied).
+    pub vertices: Pooled<Vertex>,
+    pub indices: Pooled<u32>,
     pub instances: Vec<InstanceDesc>,
     pub objects: Vec<ObjectData>,
     pub primitives: Vec<Primitive>,
@@ -69,16 +72,24 @@ struct ShapeSlot {
 }
 
 /// Buffers and BLAS descriptions, filled one shape at a time.
-#[derive(Default)]
 struct Geometry {
     blases: Vec<BlasDesc>,
     primitives: Vec<Primitive>,
-    vertices: Vec<Vertex>,
-    indices: Vec<u32>,
+    vertices: Pooled<Vertex>,
+    indices: Pooled<u32>,
 }
 
 impl Geometry {
-    fn add(&mut self, shape: &ShapeDesc, mesh: Option<&MeshData>) -> ShapeSlot {
+    fn new() -> Self {
+        Geometry {
+            blases: Vec::new(),
+            primitives: Vec::new(),
+            vertices: Pooled::new(|m| &m.vertices),
+            indices: Pooled::new(|m| &m.indices),
+        }
+    }
+
+    fn add(&mut self, shape: &ShapeDesc, mesh: Option<&Arc<MeshData>>) -> ShapeSlot {
         let slot = ShapeSlot {
             blas: self.blases.len(),
             primitive_base: self.primitives.len() as u32,
@@ -87,8 +98,8 @@ impl Geometry {
         };
         match mesh {
             Some(m) => {
-                self.vertices.extend_from_slice(&m.vertices);
-                self.indices.extend_from_slice(&m.indices);
+                self.vertices.push(m.clone());
+                self.indices.push(m.clone());
                 self.blases.push(BlasDesc::Triangles {
                     vertex_base: slot.vertex_base,
                     vertex_count: m.vertices.len() as u32,
@@ -106,11 +117,11 @@ impl Geometry {
     }
 }
 
-pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, MeshData>) -> SceneData {
+pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>) -> SceneData {
     let material_index: BTreeMap<&str, u32> =
         scene.materials.keys().enumerate().map(|(i, n)| (n.as_str(), i as u32)).collect();
     let mut slots: BTreeMap<&str, ShapeSlot> = BTreeMap::new();
-    let mut geometry = Geometry::default();
+    let mut geometry = Geometry::new();
     let callable = scene.material_shading == MaterialShading::Callable;
     let group_of =
         |o: &super::file::ObjectDesc| hit_group(scene, &scene.shapes[&o.shape], &scene.materials[&o.material]);
@@ -206,8 +217,8 @@ impl SceneData {
         let points: Vec<Vec3> = match blas {
             BlasDesc::Aabbs(boxes) => boxes.iter().flat_map(|b| [b.min, b.max]).collect(),
             BlasDesc::Triangles { vertex_base, vertex_count, .. } => {
-                let range = *vertex_base as usize..(*vertex_base + *vertex_count) as usize;
-                self.vertices[range].iter().map(|v| v.position.truncate()).collect()
+                let range = self.vertices.range(*vertex_base as usize, *vertex_count as usize).unwrap_or_default();
+                range.iter().map(|v| v.position.truncate()).collect()
             }
         };
         reach::enclose(points).unwrap_or(Aabb { min: Vec3::ZERO, max: Vec3::ZERO })

@@ -12,6 +12,7 @@ pub mod mesh;
 mod models;
 pub mod obj;
 pub mod plan;
+pub mod pool;
 pub mod reach;
 pub mod shape;
 pub mod texture;
@@ -32,6 +33,7 @@ pub use plan::{
 pub use shape::{Formula, ShapeDesc};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
+use std::sync::Arc;
 use twinray_shared::layout::FrameUniform;
 
 /// A checked scene, ready to render.
@@ -41,7 +43,7 @@ pub struct Scene {
     /// Where it came from: a path, or `builtin:NAME`.
     pub source: String,
     /// The triangles of every mesh shape, by shape name.
-    pub meshes: BTreeMap<String, MeshData>,
+    pub meshes: BTreeMap<String, Arc<MeshData>>,
     /// What moves, checked; `None` for a still scene. `file` holds frame 0's values.
     pub animation: Option<Animation>,
 }
@@ -155,14 +157,15 @@ impl Scene {
         let mut meshes = BTreeMap::new();
         for (name, shape) in &file.shapes {
             if let Some(mesh) = placed.remove(name) {
-                meshes.insert(name.clone(), mesh);
+                meshes.insert(name.clone(), Arc::new(mesh));
             } else if let ShapeDesc::Mesh(m) = shape {
                 let mesh = match (m.builtin, &m.file) {
                     (Some(kind), _) => Ok(mesh::builtin(kind, m.normals)),
                     (None, Some(f)) => mesh_files.load(f, m.normals),
                     (None, None) => Err("a mesh needs exactly one of builtin and file".into()),
                 };
-                meshes.insert(name.clone(), mesh.map_err(|e| scene_error(format!("shape {name:?}: {e}")))?);
+                let mesh = mesh.map_err(|e| scene_error(format!("shape {name:?}: {e}")))?;
+                meshes.insert(name.clone(), Arc::new(mesh));
             }
         }
         let scene = Scene { file, source: source.into(), meshes, animation };

@@ -48,12 +48,22 @@ impl Buffer {
 
     /// Copies `data` to the start of a host-visible buffer large enough for it.
     pub fn write(&mut self, data: &[u8]) -> Result<()> {
+        self.write_parts(std::iter::once(data))
+    }
+
+    /// Copies `parts` end to end from the start of a host-visible buffer large enough for
+    /// them all.
+    pub fn write_parts<'a>(&mut self, parts: impl Iterator<Item = &'a [u8]>) -> Result<()> {
         let mapped = self.mapped_mut()?;
         let capacity = mapped.len();
-        let target = mapped
-            .get_mut(..data.len())
-            .ok_or_else(|| Error::Unsupported(format!("writing {} bytes into a buffer of {capacity}", data.len())))?;
-        target.copy_from_slice(data);
+        let mut at = 0;
+        for data in parts {
+            let target = mapped.get_mut(at..at + data.len()).ok_or_else(|| {
+                Error::Unsupported(format!("writing {} bytes at {at} into a buffer of {capacity}", data.len()))
+            })?;
+            target.copy_from_slice(data);
+            at += data.len();
+        }
         Ok(())
     }
 
