@@ -43,4 +43,36 @@ bool shape_intersect(uint shape, vec3 o, vec3 d, Primitive p, float t_min, float
     n = vec3(0.0);
     return false;
 }
+
+// Twin of twinray_shared::shapes::shape_uv: the texture coordinates of shape `kind` (its hit kind)
+// at the object-space point q, where its intersection reported the normal n.
+void shape_uv(uint kind, Primitive p, vec3 q, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {
+    if (kind == HIT_KIND_SPHERE) {
+        sphere_uv(p, q, n, uv, du, dv);
+        return;
+    }
+    if (kind == HIT_KIND_PLANE) {
+        plane_uv(p, q, n, uv, du, dv);
+        return;
+    }
+    if (kind == HIT_KIND_BOX) {
+        box_uv(p, q, n, uv, du, dv);
+        return;
+    }
+    if (kind == HIT_KIND_CYLINDER) {
+        cylinder_uv(p, q, n, uv, du, dv);
+        return;
+    }
+    if (kind == HIT_KIND_CONE) {
+        cone_uv(p, q, n, uv, du, dv);
+        return;
+    }
+    if (kind == HIT_KIND_TORUS) {
+        torus_uv(p, q, n, uv, du, dv);
+        return;
+    }
+    uv = vec2(0.0);
+    du = vec3(0.0);
+    dv = vec3(0.0);
+}
 #endif

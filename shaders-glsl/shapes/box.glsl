@@ -3,6 +3,7 @@
 #ifndef TWINRAY_BOX_GLSL
 #define TWINRAY_BOX_GLSL
 #include "twinray_layout.glsl"
+#include "shape_uv.glsl"
 
 struct Slabs {
     float near;
@@ -61,4 +62,26 @@ bool box_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min
     }
     return false;
 }
+// The face the intersection's normal n names, seen from outside.
+void box_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {
+    vec3 h = primitive.a.xyz;
+    vec3 m = abs(n);
+    vec3 right, up;
+    if (m.x >= m.y && m.x >= m.z) {
+        right = vec3(0.0, 0.0, n.x < 0.0 ? 1.0 : -1.0);
+        up = vec3(0.0, 1.0, 0.0);
+    } else if (m.z >= m.y) {
+        right = vec3(n.z < 0.0 ? -1.0 : 1.0, 0.0, 0.0);
+        up = vec3(0.0, 1.0, 0.0);
+    } else {
+        right = vec3(1.0, 0.0, 0.0);
+        up = vec3(0.0, 0.0, n.y < 0.0 ? 1.0 : -1.0);
+    }
+    float width = 2.0 * dot(abs(right), h);
+    float height = 2.0 * dot(abs(up), h);
+    uv = vec2(0.5 + dot(p, right) / width, 0.5 - dot(p, up) / height);
+    du = right / width;
+    dv = -up / height;
+}
+
 #endif

@@ -5,6 +5,7 @@
 #ifndef TWINRAY_CONE_GLSL
 #define TWINRAY_CONE_GLSL
 #include "twinray_layout.glsl"
+#include "shape_uv.glsl"
 #include "surface.glsl"
 
 // One Newton step on the implicit function at the hit point, at most CONE_POLISH_LIMIT * t
@@ -66,4 +67,8 @@ bool cone_intersect(vec3 origin, vec3 d, Primitive primitive, float t_min, float
     }
     return found;
 }
+void cone_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {
+    revolved_uv(p, n, primitive.a.x, primitive.a.y, uv, du, dv);
+}
+
 #endif

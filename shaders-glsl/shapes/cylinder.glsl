@@ -3,6 +3,7 @@
 #ifndef TWINRAY_CYLINDER_GLSL
 #define TWINRAY_CYLINDER_GLSL
 #include "twinray_layout.glsl"
+#include "shape_uv.glsl"
 #include "surface.glsl"
 
 void cylinder_side(inout bool found, inout float best_t, inout vec3 best_n, vec3 o, vec3 d, float r, float half_height,
@@ -69,4 +70,8 @@ bool cylinder_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float 
 bool cylinder_naive_intersect(vec3 o, vec3 d, Primitive primitive, float t_min, float t_max, out float t, out vec3 n) {
     return cylinder_solve(o, d, primitive, t_min, t_max, false, t, n);
 }
+void cylinder_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {
+    revolved_uv(p, n, primitive.a.x, primitive.a.y, uv, du, dv);
+}
+
 #endif

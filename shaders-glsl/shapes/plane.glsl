@@ -2,6 +2,7 @@
 #ifndef TWINRAY_PLANE_GLSL
 #define TWINRAY_PLANE_GLSL
 #include "twinray_layout.glsl"
+#include "shape_uv.glsl"
 
 // A ray parallel to the plane never meets it: no division by zero.
 bool plane_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_min, float t_max, out float t,
@@ -22,4 +23,9 @@ bool plane_intersect(vec3 origin, vec3 direction, Primitive primitive, float t_m
     }
     return abs(p.x) <= a.x && abs(p.z) <= a.y;
 }
+void plane_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {
+    vec4 a = primitive.a;
+    flat_uv(p, primitive.b.x == PLANE_DISK ? vec2(a.x) : a.xy, 1.0, uv, du, dv);
+}
+
 #endif

@@ -3,6 +3,7 @@
 #define TWINRAY_SPHERE_GLSL
 
 #include "twinray_layout.glsl"
+#include "shape_uv.glsl"
 
 // Returns false on a miss; otherwise near <= far are the two ray parameters. on_surface: the ray
 // starts on the sphere (|c| <= SPHERE_ON_SURFACE r^2), so one root is its own origin.
@@ -78,4 +79,18 @@ bool sphere_naive_intersect(vec3 origin, vec3 direction, Primitive primitive, fl
     n = (origin + direction * t - s.xyz) / s.w;
     return true;
 }
+// Twin of twinray_shared::shapes::sphere::spherical_uv: a sphere about the origin at q.
+void spherical_uv(vec3 q, out vec2 uv, out vec3 du, out vec3 dv) {
+    float u = around_y(q, du);
+    float r2 = max(dot(q, q), 1.0e-30);
+    float r = sqrt(r2);
+    float rho = sqrt(max(q.x * q.x + q.z * q.z, 1.0e-30));
+    uv = vec2(u, acos(clamp(q.y / r, -1.0, 1.0)) / UV_PI);
+    dv = (q * q.y - vec3(0.0, 1.0, 0.0) * r2) / (r2 * rho * UV_PI);
+}
+
+void sphere_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {
+    spherical_uv(p - primitive.a.xyz, uv, du, dv);
+}
+
 #endif

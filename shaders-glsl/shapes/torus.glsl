@@ -8,6 +8,7 @@
 #ifndef TWINRAY_TORUS_GLSL
 #define TWINRAY_TORUS_GLSL
 #include "twinray_layout.glsl"
+#include "shape_uv.glsl"
 #include "sphere.glsl"
 
 void torus_quartic_roots(vec3 o, vec3 d, float r, out bool valid[4], out float roots[4]) {
@@ -247,4 +248,17 @@ bool torus_naive_intersect(vec3 origin, vec3 direction, Primitive primitive, flo
     torus_consider_quartic(c, found, t, n);
     return found;
 }
+// u by the turn about y, v by the turn about the tube (0.5 on the outer equator).
+void torus_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {
+    float u = around_y(p, du);
+    float rho = sqrt(max(p.x * p.x + p.z * p.z, 1.0e-30));
+    float out_r = rho - primitive.a.x;
+    float psi = atan(p.y, out_r);
+    vec3 d_psi = (vec3(0.0, 1.0, 0.0) * out_r - vec3(p.x, 0.0, p.z) * (p.y / rho)) /
+                 max(out_r * out_r + p.y * p.y, 1.0e-30);
+    float turn = 0.5 / UV_PI;
+    uv = vec2(u, 0.5 - psi * turn);
+    dv = -d_psi * turn;
+}
+
 #endif

@@ -55,8 +55,14 @@ pub fn convert(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Result<M
         let albedo = albedo(scene, &object.material)?;
         let emissive = matches!(file.materials.get(&object.material), Some(MaterialDesc::Emissive { .. }));
         let world = object.transform();
-        // Textures show on meshes only (procedural shapes have no coordinates yet).
-        let texture = textures::texture(scene, &object.material)?.filter(|_| scene.meshes.contains_key(&object.shape));
+        let texture = textures::texture(scene, &object.material)?;
+        if texture.is_some() && !scene.meshes.contains_key(&object.shape) {
+            // Mitsuba's own shapes parametrise their surfaces otherwise than twinray's.
+            return Err(Error::Input(format!(
+                "{}: object {i} (shape {:?}): a texture on a procedural shape has no Mitsuba equivalent (its shapes read other coordinates); use a mesh",
+                scene.source, object.shape
+            )));
+        }
         for (k, part) in parts(scene, &object.shape, &mut notes)?.into_iter().enumerate() {
             let to_world = world * part.to_object;
             let id = format!("o{i}-{k}");

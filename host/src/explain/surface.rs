@@ -2,12 +2,17 @@
 //! glTF mesh's primitive, an OBJ file's group), its material, the triangle of a mesh and where
 //! on it, and each texture the hit reads: the image, the coordinates it reads there and the
 //! level of detail the ray's cone picks, found by the same shared code as the stages'
-//! (`twinray_shared::texture`). For the reference, in f64, from the triangle it finds.
+//! (`twinray_shared::texture`). The coordinates are in f64: on a mesh from the triangle's
+//! barycentrics at the hit, on a procedural shape from the reference's own parametrisation
+//! (`reference::uv`).
 
+use crate::reference::shapes::from_primitive;
+use crate::reference::uv::uv as reference_uv;
 use crate::scene::{BlasDesc, Scene, SceneData};
 use glam::{DVec2, DVec3, Mat3, Vec2, Vec4};
 use serde::Serialize;
 use twinray_shared::layout::{Material, Vertex};
+use twinray_shared::shapes::{self, SHAPE_NAIVE};
 use twinray_shared::texture::{self, TriangleHit};
 
 /// What a hit is on.
@@ -61,7 +66,10 @@ pub fn surface(scene: &Scene, data: &SceneData, spread: f32, hit: &Hit) -> Optio
     let (shape, material_name) = (desc.shape.clone(), desc.material.clone());
     let mut out =
         Surface { object, shape, material: material_name, triangle: None, barycentrics: None, textures: vec![] };
-    let BlasDesc::Triangles { .. } = data.blases.get(instance.blas)? else { return Some(out) };
+    let BlasDesc::Triangles { .. } = data.blases.get(instance.blas)? else {
+        out.textures = shape_texels(data, spread, hit, instance.custom_index).unwrap_or_default();
+        return Some(out);
+    };
     let data_object = data.objects[hit.object];
     let k = hit.triangle?;
     let first = (data_object.index_base + 3 * k as u32) as usize;
@@ -79,6 +87,18 @@ pub fn surface(scene: &Scene, data: &SceneData, spread: f32, hit: &Hit) -> Optio
         direction: hit.direction.as_vec3().normalize(),
         width: spread * hit.t as f32,
     };
+    out.textures = texels(data, &material, |set| {
+        let footprint = texture::footprint(&cone, texture::triangle_uv(&material, &v, set));
+        (footprint, at_f64(&material, &v, set, b))
+    });
+    Some(out)
+}
+
+/// The textures `material` reads at a hit: for each (base colour, emission), its image, the
+/// coordinates read (in f64) and the level its taps sample, from `read(set)`: the footprint of
+/// the cone the stages compute for the texture's coordinate set, and the coordinates in f64.
+fn texels(data: &SceneData, material: &Material, read: impl Fn(u32) -> ((Vec2, Vec2, Vec2), DVec2)) -> Vec<Texel> {
+    let mut out = Vec::new();
     for (role, slot, set) in
         [("base colour", material.texture.x, material.texture.y), ("emission", material.texture.z, material.texture.w)]
     {
@@ -86,24 +106,37 @@ pub fn surface(scene: &Scene, data: &SceneData, spread: f32, hit: &Hit) -> Optio
             continue;
         }
         let Some((image, sampler)) = data.textures.get(slot as usize - 1) else { continue };
-        let uv = texture::triangle_uv(&material, &v, set);
-        let (at, dx, dy) = texture::footprint(&cone, uv);
+        let ((at, dx, dy), uv) = read(set);
         let taps = texture::taps(at, dx, dy);
         let size = Vec2::new(image.width as f32, image.height as f32);
         let rho = (taps.dx * size).length().max((taps.dy * size).length());
         let levels = if sampler.mipmap.is_some() { image.width.max(image.height).ilog2() } else { 0 };
         let level = if rho > 0.0 { rho.log2().clamp(0.0, levels as f32) } else { 0.0 };
-        let uv = at_f64(&material, &v, set, b);
-        out.textures.push(Texel {
-            role,
-            file: image.name.clone(),
-            uv_set: set,
-            uv: uv.to_array(),
-            level,
-            taps: taps.count,
-        });
+        out.push(Texel { role, file: image.name.clone(), uv_set: set, uv: uv.to_array(), level, taps: taps.count });
     }
-    Some(out)
+    out
+}
+
+/// The textures a hit on a procedural shape reads: its coordinates from the f64 reference's
+/// parametrisation at the point (`reference::uv`), the level from the stages' shared code with
+/// the normal of the piece the reference puts the point on. `None` where the hit's primitive
+/// or shape is unknown.
+fn shape_texels(data: &SceneData, spread: f32, hit: &Hit, primitive_base: u32) -> Option<Vec<Texel>> {
+    let object = data.objects.get(hit.object)?;
+    let primitive = *data.primitives.get(primitive_base as usize + hit.triangle?)?;
+    let kind = object.shape & !SHAPE_NAIVE;
+    let name = twinray_shared::shapes::SHAPES.iter().find(|s| s.hit_kind == kind)?.name;
+    let reference = from_primitive(name, &primitive)?;
+    let instance = data.instances.get(hit.object)?;
+    let world_to_object = instance.object_to_world.as_dmat4().inverse();
+    let p = world_to_object.transform_point3(hit.point);
+    let (uv, normal) = reference_uv(&reference, p)?;
+    let material = data.materials[object.material as usize];
+    let s = shapes::shape_uv(kind, &primitive, p.as_vec3(), normal.as_vec3());
+    let to_object = (Mat3::from_mat4(instance.object_to_world).inverse(), hit.direction.as_vec3().normalize());
+    let footprint =
+        texture::shape_footprint(&material, &s, (normal.as_vec3(), to_object.0), to_object.1, spread * hit.t as f32);
+    Some(texels(data, &material, |_| (footprint, transform_f64(&material, uv))))
 }
 
 /// The barycentrics of vertices 1 and 2 at `p`, a point in (or near) the triangle's plane.
@@ -127,10 +160,15 @@ fn at_f64(material: &Material, v: &[Vertex; 3], set: u32, b: DVec2) -> DVec2 {
         } else {
             x.uv.truncate().truncate().as_dvec2()
         };
-        let row = |r: Vec4| r.truncate().truncate().as_dvec2().dot(uv) + f64::from(r.z);
-        DVec2::new(row(material.uv_u), row(material.uv_v))
+        transform_f64(material, uv)
     };
     corner(&v[0]) * (1.0 - b.x - b.y) + corner(&v[1]) * b.x + corner(&v[2]) * b.y
+}
+
+/// `uv` through the material's texture coordinate transform, in f64.
+fn transform_f64(material: &Material, uv: DVec2) -> DVec2 {
+    let row = |r: Vec4| r.truncate().truncate().as_dvec2().dot(uv) + f64::from(r.z);
+    DVec2::new(row(material.uv_u), row(material.uv_v))
 }
 
 /// The surface in words: "node 1 \"Cube\" (shape ..., material ...), triangle 5 at

@@ -9,6 +9,7 @@ pub mod shapes;
 pub mod stage;
 pub mod surface;
 mod traced;
+pub mod uv;
 mod watertight;
 #[cfg(test)]
 mod watertight_tests;

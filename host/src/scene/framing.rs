@@ -33,6 +33,11 @@ pub fn notice(source: &str, ignored: &BTreeSet<String>) {
     }
 }
 
+/// Adds to `ignored` the name of each feature of `found` that a model has: (has it, name).
+pub fn ignore_found(ignored: &mut BTreeSet<String>, found: &[(bool, &str)]) {
+    ignored.extend(found.iter().filter(|(has, _)| *has).map(|(_, what)| what.to_string()));
+}
+
 /// What was ignored, in one comma-separated list.
 pub fn listed(ignored: &BTreeSet<String>) -> String {
     ignored.iter().map(String::as_str).collect::<Vec<_>>().join(", ")

@@ -4,11 +4,13 @@
 //! by the callable its kind selects in the SBT's callable region (`material_shading =
 //! "callable"`).
 
+use crate::texture::Texture;
 use core::arch::asm;
 use spirv_std::glam::{Mat3, UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
-use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Vertex};
-use twinray_shared::shading;
-use twinray_shared::texture::TriangleHit;
+use spirv_std::RuntimeArray;
+use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Primitive, Vertex};
+use twinray_shared::texture::{self as shared_texture, TriangleHit};
+use twinray_shared::{shading, shapes};
 
 /// Defines a closest-hit entry point for every procedural shape, `$name`: the surface from the
 /// reported object-space normal, its colour `$color` of the material `$m`, object-space point
@@ -34,19 +36,22 @@ pub fn $name(
     #[spirv(ray_tmax)] t: f32,
     #[spirv(world_to_object)] world_to_object: Matrix4x3,
     #[spirv(hit_attribute)] normal: &Vec3,
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
+    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
     $($params)*
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let material = materials[objects[object as usize].material as usize];
-    let tint = primitives[(primitive_base + primitive_id) as usize].tint.xyz();
+    let primitive = primitives[(primitive_base + primitive_id) as usize];
+    let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, *normal, frame.cone.x);
     let ($m, $p, $n) = (&material, surface.object_point(), *normal);
     let color = $color * tint;
-    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, material.emission.xyz()));
+    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));
 }
     };
 }
@@ -200,6 +205,28 @@ pub fn cone(hit: &SurfaceHit, object_to_world: Mat3, v: &[Vertex; 3], barycentri
         direction: hit.direction,
         width: spread * hit.t,
     }
+}
+
+/// What the colour of a procedural shape's `material` is multiplied by at `hit` (its
+/// primitive's tint, times the material's texture through the shape's parametrisation) and
+/// the radiance it emits there, its intersection having reported the object-space `normal`;
+/// the ray's cone spreads by `spread` radians (0: texture level 0).
+pub fn procedural_tint(
+    textures: &RuntimeArray<Texture>,
+    (material, primitive): (&Material, &Primitive),
+    hit: &SurfaceHit,
+    normal: Vec3,
+    spread: f32,
+) -> (Vec3, Vec3) {
+    let (tint, emission) = (primitive.tint.xyz(), material.emission.xyz());
+    if material.texture.x == 0 && material.texture.z == 0 {
+        return (tint, emission);
+    }
+    let uv = shapes::shape_uv(hit.hit_kind, primitive, hit.object_point(), normal);
+    let at =
+        shared_texture::shape_footprint(material, &uv, (normal, hit.world_to_object), hit.direction, spread * hit.t);
+    let (color, light) = crate::texture::shape_textures(textures, material, at);
+    (tint * color, emission * light)
 }
 
 /// The payload of `hit` on a material of kind `kind`: world normals from the object-space

@@ -9,7 +9,7 @@
 use crate::hit::{self, SurfaceHit};
 use crate::texture::{self, Texture};
 use core::arch::asm;
-use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
+use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
 use spirv_std::RuntimeArray;
@@ -209,9 +209,10 @@ pub fn trace_query(
         } else {
             let surface = SurfaceHit::new(object, primitive_id, data.shape & !SHAPE_NAIVE, rays, t, world_to_object);
             let primitive = query.get_committed_intersection_instance_custom_index() + primitive_id;
-            let tint = primitives[primitive as usize].tint.xyz();
+            let primitive = primitives[primitive as usize];
+            let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, normal, spread);
             let color = shading::material_color(&material, surface.object_point(), normal) * tint;
-            hit::describe_surface(payload, &surface, material.kind, normal, normal, (color, material.emission.xyz()));
+            hit::describe_surface(payload, &surface, material.kind, normal, normal, (color, emission));
         }
     }
 }

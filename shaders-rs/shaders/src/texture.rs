@@ -21,7 +21,8 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
     if material.texture.x == 0 {
         return color.xyz();
     }
-    color.xyz() * filtered(textures, material.texture.x, texture::triangle_uv(material, v, material.texture.y), hit)
+    let uv = texture::triangle_uv(material, v, material.texture.y);
+    color.xyz() * filtered(textures, material.texture.x, texture::footprint(hit, uv))
 }
 
 /// The radiance a mesh emits at the hit: the material's emission, times its emission texture
@@ -36,13 +37,26 @@ pub fn surface_emission(
     if material.texture.z == 0 {
         return emission;
     }
-    emission * filtered(textures, material.texture.z, texture::triangle_uv(material, v, material.texture.w), hit)
+    let uv = texture::triangle_uv(material, v, material.texture.w);
+    emission * filtered(textures, material.texture.z, texture::footprint(hit, uv))
 }
 
-/// Texture `slot`'s colour over the footprint of `hit`'s cone, the triangle's corners reading
-/// `uv`: the mean of its taps (`twinray_shared::texture::taps`).
-fn filtered(textures: &RuntimeArray<Texture>, slot: u32, uv: [Vec2; 3], hit: &TriangleHit) -> Vec3 {
-    let (at, dx, dy) = texture::footprint(hit, uv);
+/// What a procedural shape's colour and emission are multiplied by: each texture of the
+/// material (1 where it has none) filtered over `footprint`, the one its parametrisation
+/// gives (`twinray_shared::texture::shape_footprint`; a shape has one set of coordinates).
+pub fn shape_textures(
+    textures: &RuntimeArray<Texture>,
+    material: &Material,
+    footprint: (Vec2, Vec2, Vec2),
+) -> (Vec3, Vec3) {
+    let color = if material.texture.x == 0 { Vec3::ONE } else { filtered(textures, material.texture.x, footprint) };
+    let emission = if material.texture.z == 0 { Vec3::ONE } else { filtered(textures, material.texture.z, footprint) };
+    (color, emission)
+}
+
+/// Texture `slot`'s colour over a cone's footprint `(at, dx, dy)`: the mean of its taps
+/// (`twinray_shared::texture::taps`).
+fn filtered(textures: &RuntimeArray<Texture>, slot: u32, (at, dx, dy): (Vec2, Vec2, Vec2)) -> Vec3 {
     let taps = texture::taps(at, dx, dy);
     // SAFETY: the host writes every slot of the array, and a material's slots lie within it.
     let image = unsafe { textures.index(slot as usize) };

@@ -253,7 +253,18 @@ pub fn shape_dispatch_include() -> String {
             );
         }
     }
-    s += "    t = 0.0;\n    n = vec3(0.0);\n    return false;\n}\n#endif\n";
+    s += "    t = 0.0;\n    n = vec3(0.0);\n    return false;\n}\n";
+    s += "\n// Twin of twinray_shared::shapes::shape_uv: the texture coordinates of shape `kind` (its hit kind)\n\
+          // at the object-space point q, where its intersection reported the normal n.\n\
+          void shape_uv(uint kind, Primitive p, vec3 q, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {\n";
+    for shape in SHAPES {
+        let kind = format!("HIT_KIND_{}", shape.name.to_uppercase());
+        s += &format!(
+            "    if (kind == {kind}) {{\n        {}_uv(p, q, n, uv, du, dv);\n        return;\n    }}\n",
+            shape.name
+        );
+    }
+    s += "    uv = vec2(0.0);\n    du = vec3(0.0);\n    dv = vec3(0.0);\n}\n#endif\n";
     s
 }
 

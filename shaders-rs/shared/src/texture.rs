@@ -1,4 +1,5 @@
-//! Textures on meshes: the vertex attributes a hit interpolates, the material's texture
+//! Textures on meshes and procedural shapes: the vertex attributes a hit interpolates, the
+//! coordinates of a shape's parametrisation (`shapes::uv`), the material's texture
 //! coordinate transform, and the texture-space footprint of the ray's cone, which picks the
 //! texture's level of detail in stages that have no derivatives.
 //!
@@ -14,6 +15,7 @@
 //! (lavapipe 22.3 offers it and ignores it): every device then filters alike.
 
 use crate::layout::{Material, Vertex};
+use crate::shapes::ShapeUv;
 use glam::{Mat3, Vec2, Vec3, Vec4, Vec4Swizzles};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
@@ -33,8 +35,17 @@ pub fn vertex_uv(material: &Material, v: &Vertex, set: u32) -> Vec2 {
 /// The texture coordinates a texture of `material` reads of a vertex's `uv` (both sets) from
 /// its `set`.
 pub fn material_uv(material: &Material, uv: Vec4, set: u32) -> Vec2 {
-    let uv = if set == 1 { uv.zw() } else { uv.xy() };
+    transform_uv(material, if set == 1 { uv.zw() } else { uv.xy() })
+}
+
+/// `uv` through the material's texture coordinate transform.
+pub fn transform_uv(material: &Material, uv: Vec2) -> Vec2 {
     Vec2::new(material.uv_u.xy().dot(uv) + material.uv_u.z, material.uv_v.xy().dot(uv) + material.uv_v.z)
+}
+
+/// A change `g` of texture coordinates through the linear part of the material's transform.
+pub fn transform_gradient(material: &Material, g: Vec2) -> Vec2 {
+    Vec2::new(material.uv_u.xy().dot(g), material.uv_v.xy().dot(g))
 }
 
 /// The texture coordinates of a triangle's vertices `v` in `set`, as [`vertex_uv`] reads them.
@@ -81,21 +92,55 @@ pub fn footprint(hit: &TriangleHit, uv: [Vec2; 3]) -> (Vec2, Vec2, Vec2) {
         return (at, Vec2::ZERO, Vec2::ZERO);
     }
     let n = cross / twice_area;
-    let d = hit.direction;
-    // The ellipse's major axis: the ray projected on the plane (any direction in it for a ray
-    // head-on, where the projection vanishes and the ellipse is a circle), stretched so that
-    // its part across the ray is the cone's width.
-    let a0 = d - n * n.dot(d);
-    let a0 = if a0.dot(a0) > 1.0e-8 { a0 } else { n.cross(if n.x.abs() < 0.9 { Vec3::X } else { Vec3::Y }) };
-    let a0 = a0 * (hit.width / (a0 - d * d.dot(a0)).length().max(1.0e-4));
-    let a1 = n.cross(a0);
-    let a1 = a1 * (hit.width / (a1 - d * d.dot(a1)).length().max(1.0e-4));
+    let (a0, a1) = cone_axes(n, hit.direction, hit.width);
     // Barycentrics of a point `p` away from the hit, along the plane, by areas; the uv there
     // less the hit's is the gradient.
     let gradient = |p: Vec3| {
         let u = n.dot(p.cross(e2)) / twice_area;
         let v = n.dot(e1.cross(p)) / twice_area;
         (uv[1] - uv[0]) * u + (uv[2] - uv[0]) * v
+    };
+    (at, gradient(a0), gradient(a1))
+}
+
+/// The two axes, in world space, of the ellipse a cone of `width` along the unit direction `d`
+/// cuts from the plane of unit normal `n` through its apex's hit: each as long as a pixel's
+/// worth of the cone covers on the plane along it.
+pub fn cone_axes(n: Vec3, d: Vec3, width: f32) -> (Vec3, Vec3) {
+    // The ellipse's major axis: the ray projected on the plane (any direction in it for a ray
+    // head-on, where the projection vanishes and the ellipse is a circle), stretched so that
+    // its part across the ray is the cone's width.
+    let a0 = d - n * n.dot(d);
+    let a0 = if a0.dot(a0) > 1.0e-8 { a0 } else { n.cross(if n.x.abs() < 0.9 { Vec3::X } else { Vec3::Y }) };
+    let a0 = a0 * (width / (a0 - d * d.dot(a0)).length().max(1.0e-4));
+    let a1 = n.cross(a0);
+    let a1 = a1 * (width / (a1 - d * d.dot(a1)).length().max(1.0e-4));
+    (a0, a1)
+}
+
+/// The texture coordinates a material reads on a procedural shape at the hit, through its
+/// transform, and their gradients across the cone's footprint, as [`footprint`] gives them on
+/// a triangle: the shape's coordinates `s` there (`shapes::shape_uv`, from the object-space
+/// normal `normal` its intersection reported), the hit's `world_to_object` transform, the
+/// world-space unit ray `direction` and the cone's `width` (0: level 0).
+pub fn shape_footprint(
+    material: &Material,
+    s: &ShapeUv,
+    (normal, world_to_object): (Vec3, Mat3),
+    direction: Vec3,
+    width: f32,
+) -> (Vec2, Vec2, Vec2) {
+    let at = transform_uv(material, s.uv);
+    // Normals go to world space through the inverse transpose of object-to-world.
+    let n = world_to_object.transpose() * normal;
+    let length = n.length();
+    if width <= 0.0 || length <= 0.0 {
+        return (at, Vec2::ZERO, Vec2::ZERO);
+    }
+    let (a0, a1) = cone_axes(n / length, direction, width);
+    let gradient = |a: Vec3| {
+        let o = world_to_object * a;
+        transform_gradient(material, Vec2::new(s.du.dot(o), s.dv.dot(o)))
     };
     (at, gradient(a0), gradient(a1))
 }

@@ -16,7 +16,7 @@ mod framing;
 mod geometry;
 
 use super::file::{CutoutPattern, EmissionDesc, MaterialDesc, ObjectDesc};
-use super::framing::listed;
+use super::framing::{ignore_found, listed};
 use super::mesh::MeshData;
 use super::shape::{MeshDesc, ShapeDesc};
 use super::texture::TextureDesc;
@@ -242,15 +242,13 @@ fn material(
         _ => MaterialDesc::Diffuse { color, texture, emission },
     };
     materials.insert(name.clone(), material);
-    let mut note = |has: bool, what: &str| {
-        if has {
-            ignored.insert(what.into());
-        }
-    };
-    note(true, "metallic-roughness (shaded as diffuse)");
-    note(m.normal_texture().is_some(), "normal maps");
-    note(m.occlusion_texture().is_some(), "occlusion maps");
-    note(!m.double_sided(), "single-sided materials (their back faces are shown)");
+    let found = [
+        (true, "metallic-roughness (shaded as diffuse)"),
+        (m.normal_texture().is_some(), "normal maps"),
+        (m.occlusion_texture().is_some(), "occlusion maps"),
+        (!m.double_sided(), "single-sided materials (their back faces are shown)"),
+    ];
+    ignore_found(ignored, &found);
     Ok(name)
 }
 

@@ -7,7 +7,7 @@
 //! the faces are drawn without it.
 
 use super::file::{EmissionDesc, MaterialDesc, ObjectDesc};
-use super::framing::{self, Model, View};
+use super::framing::{self, ignore_found, Model, View};
 use super::gltf::{mesh_shape, DEFAULT_MATERIAL};
 use super::mesh;
 use super::texture::{self, SamplerDesc, TextureDesc};
@@ -122,15 +122,13 @@ fn material(
     };
     let (texture, color) = (own, mtl.diffuse.unwrap_or([0.8; 3]));
     described.insert(name.clone(), MaterialDesc::Diffuse { color, texture, emission });
-    let mut note = |has: bool, what: &str| {
-        if has {
-            ignored.insert(what.into());
-        }
-    };
-    note(mtl.specular.is_some_and(|s| s != [0.0; 3]) || mtl.specular_texture.is_some(), "specular (shaded as diffuse)");
-    note(mtl.dissolve.is_some_and(|d| d < 1.0) || mtl.dissolve_texture.is_some(), "dissolve (drawn opaque)");
-    note(mtl.normal_texture.is_some() || mtl.unknown_param.contains_key("map_bump"), "bump and normal maps");
-    note(mtl.ambient_texture.is_some() || mtl.shininess_texture.is_some(), "ambient and shininess maps");
+    let found = [
+        (mtl.specular.is_some_and(|s| s != [0.0; 3]) || mtl.specular_texture.is_some(), "specular (shaded as diffuse)"),
+        (mtl.dissolve.is_some_and(|d| d < 1.0) || mtl.dissolve_texture.is_some(), "dissolve (drawn opaque)"),
+        (mtl.normal_texture.is_some() || mtl.unknown_param.contains_key("map_bump"), "bump and normal maps"),
+        (mtl.ambient_texture.is_some() || mtl.shininess_texture.is_some(), "ambient and shininess maps"),
+    ];
+    ignore_found(ignored, &found);
     Ok(name)
 }
 

@@ -3,9 +3,10 @@
 //! axis the ray is parallel to is decided by position, never by 0 * inf, and every min/max is
 //! an explicit comparison (the GPU's FMin/FMax are undefined for NaN).
 
+use super::uv::ShapeUv;
 use crate::layout::Primitive;
 use crate::surface::SurfaceHit;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// gamma_3 = 3 eps / (1 - 3 eps), eps = 2^-24 (pbrt's bound on three rounded operations).
 pub const GAMMA_3: f32 = 3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8);
@@ -61,6 +62,24 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
     } else {
         None
     }
+}
+
+/// The texture coordinates at `p` on the face its intersection's normal `n` names
+/// (`shapes::uv`): each face holds the image once, seen from outside; the four sides with +y
+/// up, the top with -z up and the bottom with +z up.
+pub fn uv(primitive: &Primitive, p: Vec3, n: Vec3) -> ShapeUv {
+    let h = Vec3::new(primitive.a.x, primitive.a.y, primitive.a.z);
+    let (ax, ay, az) = (n.x.abs(), n.y.abs(), n.z.abs());
+    // The face's right and up directions, seen from outside.
+    let (right, up) = if ax >= ay && ax >= az {
+        (Vec3::new(0.0, 0.0, if n.x < 0.0 { 1.0 } else { -1.0 }), Vec3::Y)
+    } else if az >= ay {
+        (Vec3::new(if n.z < 0.0 { -1.0 } else { 1.0 }, 0.0, 0.0), Vec3::Y)
+    } else {
+        (Vec3::X, Vec3::new(0.0, 0.0, if n.y < 0.0 { 1.0 } else { -1.0 }))
+    };
+    let (width, height) = (2.0 * right.abs().dot(h), 2.0 * up.abs().dot(h));
+    ShapeUv { uv: Vec2::new(0.5 + p.dot(right) / width, 0.5 - p.dot(up) / height), du: right / width, dv: -up / height }
 }
 
 /// The box's scene kind: an axis-aligned box centred at the origin.

@@ -10,6 +10,7 @@
 //! Every coefficient is scaled by h^2 + r^2 so that no rounded cos^2 enters (see `intersect`).
 
 use super::sphere::ON_SURFACE;
+use super::uv::{revolved, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::{closer, is_self_root, point_at, self_reach2, stable_roots, SurfaceHit};
 use glam::Vec3;
@@ -99,6 +100,12 @@ fn polish(o: Vec3, apex: Vec3, d: Vec3, (h2, r2): (f32, f32), t: f32) -> f32 {
     } else {
         t
     }
+}
+
+/// The texture coordinates at `p` (`shapes::uv`): the side by the turn about y and the height
+/// from the apex, the base as a disk seen from below.
+pub fn uv(primitive: &Primitive, p: Vec3, n: Vec3) -> ShapeUv {
+    revolved(p, n, primitive.a.x, primitive.a.y)
 }
 
 /// The cone's scene kind: capped, about the object's y axis, centred at its origin.

@@ -4,6 +4,7 @@
 //! inclusive comparisons, so rays through the rim are not lost.
 
 use super::sphere::ON_SURFACE;
+use super::uv::{revolved, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::{closer, is_self_root, self_reach2, stable_roots, SurfaceHit};
 use glam::Vec3;
@@ -101,6 +102,12 @@ fn cap(best: Option<SurfaceHit>, o: Vec3, d: Vec3, r: f32, y: f32, t_min: f32, t
     } else {
         best
     }
+}
+
+/// The texture coordinates at `p` (`shapes::uv`): the side by the turn about y and the height
+/// from the top, each cap as a disk seen from outside.
+pub fn uv(primitive: &Primitive, p: Vec3, n: Vec3) -> ShapeUv {
+    revolved(p, n, primitive.a.x, primitive.a.y)
 }
 
 /// The cylinder's scene kind: capped, about the object's y axis, centred at its origin.

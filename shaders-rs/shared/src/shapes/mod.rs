@@ -13,6 +13,9 @@ pub mod plane;
 pub mod spec;
 pub mod sphere;
 pub mod torus;
+pub mod uv;
+
+pub use uv::ShapeUv;
 
 /// The registry of procedural shapes, one line each, in hit-kind order:
 ///
@@ -21,8 +24,9 @@ pub mod torus;
 /// - `NAME` names the shape in reports; its GLSL twin is `shaders-glsl/shapes/NAME.glsl`, with
 ///   `bool NAME_intersect(..)` (and `NAME_naive_intersect`), and its hit kind is
 ///   `HIT_KIND_NAME` in GLSL.
-/// - `MODULE` is the module of this folder holding `intersect` (and `naive_intersect`) and, on
-///   the CPU, `SHAPE`, the [`spec::ShapeSpec`] with its scene kinds.
+/// - `MODULE` is the module of this folder holding `intersect` (and `naive_intersect`), `uv`
+///   (its texture coordinates, by the conventions of [`uv`]) and, on the CPU, `SHAPE`, the
+///   [`spec::ShapeSpec`] with its scene kinds.
 /// - `HIT_KIND` is what its intersection stage reports: unique, from 1.
 /// - `NAME_intersection` is the Rust entry point and the name of the compiled module in both
 ///   sets; `naive` adds the textbook variant kept on purpose, for shapes that have one.
@@ -74,6 +78,18 @@ macro_rules! dispatch {
                 )?
             )*
             None
+        }
+
+        /// The texture coordinates of shape `kind` (its hit kind: the naive variant's too) at
+        /// the object-space point `p` of `primitive`, where its intersection reported the
+        /// normal `n` (`uv` of its module). Zero for an unknown shape.
+        pub fn shape_uv(kind: u32, primitive: &crate::layout::Primitive, p: glam::Vec3, n: glam::Vec3) -> ShapeUv {
+            $(
+                if kind == $kind {
+                    return $module::uv(primitive, p, n);
+                }
+            )*
+            ShapeUv { uv: glam::Vec2::ZERO, du: glam::Vec3::ZERO, dv: glam::Vec3::ZERO }
         }
     };
 }

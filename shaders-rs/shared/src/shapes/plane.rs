@@ -1,9 +1,10 @@
 //! Bounded planes in object space: the plane y = 0 with normal +y, limited to the rectangle
 //! |x| <= a.x, |z| <= a.y, or, for a disk (b.x = 1), to x^2 + z^2 <= a.x^2.
 
+use super::uv::{flat, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::SurfaceHit;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 
 /// `Primitive::b.x` of a disk.
 pub const DISK: f32 = 1.0;
@@ -27,6 +28,14 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
     } else {
         None
     }
+}
+
+/// The texture coordinates at `p` (`shapes::uv`): the rectangle or the disk's square holds the
+/// image once, u along +x and v along +z (seen from +y, with -z up).
+pub fn uv(primitive: &Primitive, p: Vec3, _n: Vec3) -> ShapeUv {
+    let a = primitive.a;
+    let half = if primitive.b.x == DISK { Vec2::splat(a.x) } else { Vec2::new(a.x, a.y) };
+    flat(p, half, 1.0)
 }
 
 /// The plane's scene kinds: a rectangle and a disk in the object's xz plane, facing +y.

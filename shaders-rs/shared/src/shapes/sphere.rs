@@ -2,9 +2,10 @@
 //! (Haines, Günther, Akenine-Möller); see NUMERICS.md. Valid for any non-zero direction
 //! length, so scaled instances work.
 
+use super::uv::{around_y, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::SurfaceHit;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -104,6 +105,25 @@ pub fn naive_intersect(
     } else {
         None
     }
+}
+
+/// The sphere's texture coordinates at `p` (`shapes::uv`): u about the y axis through its
+/// centre, v from the top pole (0) to the bottom one (1).
+pub fn uv(primitive: &Primitive, p: Vec3, _n: Vec3) -> ShapeUv {
+    spherical_uv(p - Vec3::new(primitive.a.x, primitive.a.y, primitive.a.z))
+}
+
+/// The texture coordinates of a sphere about the origin at `q`: u by [`around_y`], v from the
+/// polar angle, with its gradient (y q - |q|^2 e_y) / (pi |q|^2 rho), rho the distance from
+/// the axis.
+pub fn spherical_uv(q: Vec3) -> ShapeUv {
+    let (u, du) = around_y(q);
+    let r2 = q.dot(q).max(1.0e-30);
+    let r = r2.sqrt();
+    let rho = (q.x * q.x + q.z * q.z).max(1.0e-30).sqrt();
+    let v = (q.y / r).clamp(-1.0, 1.0).acos() / core::f32::consts::PI;
+    let dv = (q * q.y - Vec3::Y * r2) / (r2 * rho * core::f32::consts::PI);
+    ShapeUv { uv: Vec2::new(u, v), du, dv }
 }
 
 /// The sphere's scene kinds: one sphere, and a seeded field of many.

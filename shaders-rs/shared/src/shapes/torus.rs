@@ -21,9 +21,10 @@
 //! an ordinary root, found accurately and then dropped.
 
 use super::sphere;
+use super::uv::{around_y, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::SurfaceHit;
-use glam::Vec3;
+use glam::{Vec2, Vec3};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -304,6 +305,20 @@ pub fn naive_intersect(
     let best = candidate.consider(best, r1);
     let best = candidate.consider(best, r2);
     candidate.consider(best, r3)
+}
+
+/// The texture coordinates at `p` (`shapes::uv`): u by the turn about y, v by the turn about
+/// the tube, 0.5 on the outer equator and growing downwards there (the seam on the inner
+/// equator).
+pub fn uv(primitive: &Primitive, p: Vec3, _n: Vec3) -> ShapeUv {
+    let (u, du) = around_y(p);
+    let rho = (p.x * p.x + p.z * p.z).max(1.0e-30).sqrt();
+    let out = rho - primitive.a.x;
+    let psi = p.y.atan2(out);
+    // The gradient of psi = atan2(y, rho - R).
+    let d_psi = (Vec3::Y * out - Vec3::new(p.x, 0.0, p.z) * (p.y / rho)) / (out * out + p.y * p.y).max(1.0e-30);
+    let turn = 0.5 / core::f32::consts::PI;
+    ShapeUv { uv: Vec2::new(u, 0.5 - psi * turn), du, dv: -d_psi * turn }
 }
 
 /// The torus's scene kind: about the object's y axis, centred at its origin.
