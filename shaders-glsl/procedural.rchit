@@ -14,8 +14,6 @@ layout(set = DESCRIPTOR_SET, binding = BINDING_MATERIALS, std430) readonly buffe
 layout(set = DESCRIPTOR_SET, binding = BINDING_FRAME) uniform Frame { FrameUniform frame; };
 layout(set = DESCRIPTOR_SET, binding = BINDING_TEXTURES) uniform sampler2D textures[];
 
-layout(constant_id = SPEC_TEXTURES) const uint TEXTURES = 1u;
-
 layout(location = 0) rayPayloadInEXT HitPayload payload;
 hitAttributeEXT vec3 normal;
 
@@ -24,6 +22,5 @@ hitAttributeEXT vec3 normal;
 void main() {
     procedural_hit(gl_InstanceID, gl_InstanceCustomIndexEXT + gl_PrimitiveID, gl_PrimitiveID, gl_HitKindEXT,
                    gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT, gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT,
-                   gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal, frame.cone.x,
-                   TEXTURES != 0u);
+                   gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal, frame.cone.x);
 }

@@ -10,14 +10,12 @@
 #include "texture.glsl"
 
 // Twin of twinray_shaders::hit::procedural_tint: what the material's colour is multiplied by
-// (tint) and the radiance emitted (emission) at a hit of shape `kind` on `primitive`; `textured`
-// is false where no material of the scene has a texture (a specialisation constant).
+// (tint) and the radiance emitted (emission) at a hit of shape `kind` on `primitive`.
 void procedural_tint(Material material, Primitive primitive, uint kind, vec3 point, vec3 normal,
-                     mat3 world_to_object, vec3 direction, float width, bool textured, out vec3 tint,
-                     out vec3 emission) {
+                     mat3 world_to_object, vec3 direction, float width, out vec3 tint, out vec3 emission) {
     tint = primitive.tint.xyz;
     emission = material.emission.xyz;
-    if (!textured || (material.texture.x == 0u && material.texture.z == 0u)) {
+    if (material.texture.x == 0u && material.texture.z == 0u) {
         return;
     }
     vec2 uv, at, dx, dy;
@@ -31,15 +29,15 @@ void procedural_tint(Material material, Primitive primitive, uint kind, vec3 poi
 
 // object: the instance id; primitive: custom index + primitive id; origin, direction: the
 // world ray; object_origin, object_direction: the object-space ray; cone: the spread angle of
-// the ray's cone (0: texture level 0); textured: whether any material has a texture.
+// the ray's cone (0: texture level 0).
 void procedural_hit(uint object, uint primitive, uint primitive_id, uint hit_kind, vec3 origin, vec3 direction,
                     vec3 object_origin, vec3 object_direction, float t, mat3 world_to_object, vec3 normal,
-                    float cone, bool textured) {
+                    float cone) {
     Material material = materials[objects[object].material];
     vec3 point = object_origin + object_direction * t;
     vec3 tint, emission;
     procedural_tint(material, primitives[primitive], hit_kind, point, normal, world_to_object, direction, cone * t,
-                    textured, tint, emission);
+                    tint, emission);
     vec3 color = SURFACE_COLOR(material, point, normal) * tint;
     vec3 geometric, shading;
     surface_normals(world_to_object, normal, normal, direction, geometric, shading);

@@ -119,7 +119,7 @@ void trace_query(vec3 origin, float t_min, vec3 direction, float t_max, vec4 bac
         uint primitive = rayQueryGetIntersectionInstanceCustomIndexEXT(query, true) + primitive_id;
         uint kind = objects[object].shape & ~SHAPE_NAIVE;
         procedural_hit(object, primitive, primitive_id, kind, origin, direction, object_origin, object_direction,
-                       t, world_to_object, normal, cone, true);
+                       t, world_to_object, normal, cone);
     }
 }
 #endif

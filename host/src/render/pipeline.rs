@@ -151,13 +151,12 @@ impl ScenePipeline {
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
         (witness, libraries): (bool, Option<&Libraries>),
     ) -> Result<Self> {
-        let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler, u32::from(plan.textured)];
-        let spec_entries: Vec<_> =
-            [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER, b::SPEC_TEXTURES]
-                .iter()
-                .enumerate()
-                .map(|(i, &id)| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i as u32, size: 4 })
-                .collect();
+        let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler];
+        let spec_entries: Vec<_> = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER]
+            .iter()
+            .enumerate()
+            .map(|(i, &id)| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i as u32, size: 4 })
+            .collect();
         let spec_bytes: &[u8] = bytemuck::cast_slice(&spec_data);
         let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
         // A compute pipeline has no groups and no SBT.
@@ -172,10 +171,7 @@ impl ScenePipeline {
                 stage: stage_flag(m.spec.stage),
                 spirv: &m.spirv[..],
                 entry: &m.entry,
-                // Procedural closest hits read SPEC_TEXTURES; the other stages ignore what they
-                // do not declare.
-                specialization: matches!(m.spec.stage, Stage::Raygen | Stage::Compute | Stage::ClosestHit)
-                    .then_some(&spec),
+                specialization: matches!(m.spec.stage, Stage::Raygen | Stage::Compute).then_some(&spec),
             })
             .collect();
         let (rt, held) = if compute {

@@ -165,7 +165,6 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>) -> Sce
         shadow_query: scene.shadow_method == ShadowMethod::Query,
         compute: scene.renderer == Renderer::Compute,
         callable_kinds: if callable { material_kinds(&materials) } else { Vec::new() },
-        textured: !textures.is_empty(),
     };
     let Geometry { blases, primitives, vertices, indices } = geometry;
     SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures }

@@ -130,9 +130,6 @@ pub struct PipelinePlan {
     /// Material kinds the scene's materials use, when material callables compute colours
     /// (`material_shading = "callable"`); empty when closest-hit stages compute them.
     pub callable_kinds: Vec<u32>,
-    /// Whether any material has a texture: the procedural closest-hit stages are specialised
-    /// on it (`SPEC_TEXTURES`).
-    pub textured: bool,
 }
 
 /// `names` without repeats, each where it first appears.

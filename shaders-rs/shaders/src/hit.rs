@@ -42,15 +42,13 @@ pub fn $name(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 1))] textured: u32,
     $($params)*
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let material = materials[objects[object as usize].material as usize];
     let primitive = primitives[(primitive_base + primitive_id) as usize];
-    let cone = (frame.cone.x, textured != 0);
-    let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, *normal, cone);
+    let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, *normal, frame.cone.x);
     let ($m, $p, $n) = (&material, surface.object_point(), *normal);
     let color = $color * tint;
     hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));
@@ -212,18 +210,16 @@ pub fn cone(hit: &SurfaceHit, object_to_world: Mat3, v: &[Vertex; 3], barycentri
 /// What the colour of a procedural shape's `material` is multiplied by at `hit` (its
 /// primitive's tint, times the material's texture through the shape's parametrisation) and
 /// the radiance it emits there, its intersection having reported the object-space `normal`;
-/// the ray's cone spreads by `spread` radians (0: texture level 0), and `textured` is false
-/// where no material of the scene has a texture (a specialisation constant: the driver then
-/// drops the texture code).
+/// the ray's cone spreads by `spread` radians (0: texture level 0).
 pub fn procedural_tint(
     textures: &RuntimeArray<Texture>,
     (material, primitive): (&Material, &Primitive),
     hit: &SurfaceHit,
     normal: Vec3,
-    (spread, textured): (f32, bool),
+    spread: f32,
 ) -> (Vec3, Vec3) {
     let (tint, emission) = (primitive.tint.xyz(), material.emission.xyz());
-    if !textured || (material.texture.x == 0 && material.texture.z == 0) {
+    if material.texture.x == 0 && material.texture.z == 0 {
         return (tint, emission);
     }
     let uv = shapes::shape_uv(hit.hit_kind, primitive, hit.object_point(), normal);

@@ -210,9 +210,7 @@ pub fn trace_query(
             let surface = SurfaceHit::new(object, primitive_id, data.shape & !SHAPE_NAIVE, rays, t, world_to_object);
             let primitive = query.get_committed_intersection_instance_custom_index() + primitive_id;
             let primitive = primitives[primitive as usize];
-            // Inline rays are not specialised on the scene's textures: `true` reads them.
-            let cone = (spread, true);
-            let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, normal, cone);
+            let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, normal, spread);
             let color = shading::material_color(&material, surface.object_point(), normal) * tint;
             hit::describe_surface(payload, &surface, material.kind, normal, normal, (color, emission));
         }

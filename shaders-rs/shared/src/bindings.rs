@@ -85,11 +85,6 @@ pub const SPEC_SHADOWS: u32 = 0;
 pub const SPEC_SAMPLES_PER_SIDE: u32 = 1;
 /// Specialisation constant: how rect lights' N x N shadow samples are placed.
 pub const SPEC_SHADOW_SAMPLER: u32 = 2;
-/// Specialisation constant of the procedural closest-hit stages: whether any material of the
-/// scene has a texture (0/1). Where none has, the driver drops the texture code, which
-/// otherwise costs untextured procedural scenes up to 4% on the H100
-/// (bench/reports/shape-textures-h100).
-pub const SPEC_TEXTURES: u32 = 3;
 /// One jittered sample in each cell of an N x N grid over the light (the default).
 pub const SHADOW_SAMPLER_STRATIFIED: u32 = 0;
 /// N x N independent samples, each anywhere on the light.

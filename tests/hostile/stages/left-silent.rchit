@@ -24,5 +24,5 @@ void main() {
     }
     procedural_hit(gl_InstanceID, gl_InstanceCustomIndexEXT + gl_PrimitiveID, gl_PrimitiveID, gl_HitKindEXT,
                    gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT, gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT,
-                   gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal, frame.cone.x, true);
+                   gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal, frame.cone.x);
 }
