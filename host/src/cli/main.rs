@@ -10,6 +10,7 @@ mod crosscheck;
 mod explain;
 mod frames;
 mod image_args;
+mod inspect;
 mod pipelines;
 mod probe;
 mod render;
@@ -71,6 +72,10 @@ enum Command {
     /// difference, re-rendered on every save of a shader source, set folder or the scene;
     /// click a pixel to explain it. Serves 127.0.0.1 and prints the address.
     View(ViewArgs),
+    /// What each stage keeps alive across each traceRay and executeCallable call (computed on
+    /// its SPIR-V), beside the stack size the driver gives it; `--a`/`--b` put two sets side by
+    /// side. Works on a set from disk or one .spv file.
+    Inspect(inspect::InspectArgs),
     /// Trace a probe case's rays with a shader set and judge each against the f64 reference.
     Probe(ProbeArgs),
     /// The hard-case suite: every probe case of a folder, per set and formula, against the
@@ -134,6 +139,7 @@ fn main() -> ExitCode {
         Command::Bisect(args) => bisect::bisect(&cli.global, args),
         Command::Explain(args) => explain::explain(&cli.global, args),
         Command::View(args) => view::view(&cli.global, args),
+        Command::Inspect(args) => inspect::inspect(&cli.global, args),
         Command::Probe(args) => probe::probe(&cli.global, args),
         Command::Stability(args) => probe::stability(&cli.global, args),
         Command::Reference(args) => bench::reference(&cli.global, args),

@@ -12,6 +12,7 @@ pub mod placement;
 pub(crate) mod prepare;
 pub mod sentinel;
 mod sets;
+pub mod stacks;
 mod textures;
 mod tracing;
 mod upload;

@@ -151,14 +151,8 @@ impl ScenePipeline {
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
         (witness, libraries): (bool, Option<&Libraries>),
     ) -> Result<Self> {
-        let spec_data = [u32::from(plan.shadows), plan.samples_per_side, plan.shadow_sampler];
-        let spec_entries: Vec<_> = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER]
-            .iter()
-            .enumerate()
-            .map(|(i, &id)| vk::SpecializationMapEntry { constant_id: id, offset: 4 * i as u32, size: 4 })
-            .collect();
-        let spec_bytes: &[u8] = bytemuck::cast_slice(&spec_data);
-        let spec = vk::SpecializationInfo::default().map_entries(&spec_entries).data(spec_bytes);
+        let specialised = RaygenSpec::new(plan.shadows, plan.samples_per_side, plan.shadow_sampler);
+        let (spec, spec_bytes) = (specialised.info(), specialised.bytes());
         // A compute pipeline has no groups and no SBT.
         let compute = workgroup(raygen).is_some();
         let groups = if compute { Vec::new() } else { groups(plan, &names, witness) };
@@ -203,6 +197,32 @@ impl ScenePipeline {
     /// and the validation layer (1.3.239) counts a linked pipeline's groups as none.
     pub fn raygen_stack_bytes(&self) -> u64 {
         self._libraries.first().map_or_else(|| self.rt.raygen_stack_bytes(), |raygen| raygen.raygen_stack_bytes())
+    }
+}
+
+/// The specialisation of ray generation (and compute) stages: whether any light casts shadows,
+/// M for M x M samples per pixel, and the shadow sampler.
+pub struct RaygenSpec {
+    data: [u32; 3],
+    entries: [vk::SpecializationMapEntry; 3],
+}
+
+impl RaygenSpec {
+    pub fn new(shadows: bool, samples_per_side: u32, shadow_sampler: u32) -> RaygenSpec {
+        let ids = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER];
+        let entry = |i: usize| vk::SpecializationMapEntry { constant_id: ids[i], offset: 4 * i as u32, size: 4 };
+        RaygenSpec {
+            data: [u32::from(shadows), samples_per_side, shadow_sampler],
+            entries: [entry(0), entry(1), entry(2)],
+        }
+    }
+
+    pub fn bytes(&self) -> &[u8] {
+        bytemuck::cast_slice(&self.data)
+    }
+
+    pub fn info(&self) -> vk::SpecializationInfo<'_> {
+        vk::SpecializationInfo::default().map_entries(&self.entries).data(self.bytes())
     }
 }
 

@@ -12,9 +12,10 @@
 //! So within a placement the sets do not share the GPU at once: each is built, warmed up,
 //! timed and released before the next is built, and every set of the placement runs from the
 //! same place. Placements differ in where that is: each pair of placements first makes
-//! `spacers` pipelines that it keeps, moving the code of what follows. Orders come in pairs,
-//! a shuffled order and its reverse, so that a drift of the GPU's clocks over a placement
-//! reaches every set alike. A ratio's uncertainty is the spread of the placements' ratios
+//! `spacers` pipelines that it keeps, moving the code of what follows. The orders are the
+//! rows of a Williams design ([`orders`]): every set at every position, and after every other
+//! set, equally often, each order followed by its reverse so that a drift of the GPU's clocks
+//! over a placement reaches every set alike. A ratio's uncertainty is the spread of the placements' ratios
 //! (`util::interval`): how much a set's time owes to where its code landed, and to drift.
 //!
 //! A render of several placements first renders one more whose times it drops: on the H100 the
@@ -32,31 +33,52 @@ use crate::util::interval::RatioInterval;
 use crate::vk::context::{Context, PipelineKind};
 use serde::Serialize;
 use std::sync::Arc;
-use twinray_shared::random::SplitMix64;
 
 /// Placements `compare` and `bench` time over unless told otherwise: three pairs of orders.
 pub const DEFAULT_PLACEMENTS: u32 = 6;
 
-/// The seed of the shuffles: fixed, so that a command repeats its orders exactly; the orders
-/// owe nothing to the sets' names or places in the command.
-const SEED: u64 = 0x7417_2a79_5eed_0026;
-
-/// The order of each placement of `sets` sets: pairs of a shuffled order and its reverse (the
-/// last one alone when `placements` is odd).
+/// The order of each placement of `sets` sets: the rows of a Williams design, cycled (see
+/// [`design`]). A set's time depends on where it comes in a placement and on which set was
+/// built and released just before it: on the H100 (issue 40, swarm at 16 spp, `bench --null`,
+/// so three sets) the same comparison gave Rust/GLSL 1.116 in three processes with
+/// `--sets glsl,rust` and 0.991 in three with `--sets rust,glsl`, each interval (±3%)
+/// excluding the other's estimate, when pairs of a shuffled order and its reverse left the
+/// second set never in the middle. Over a whole number of the design's rows every set comes
+/// at every position, and after every other set, equally often, so the label order cannot
+/// favour one.
 pub fn orders(sets: usize, placements: u32) -> Vec<Vec<usize>> {
-    let mut rng = SplitMix64(SEED);
-    let mut out = Vec::with_capacity(placements as usize);
-    while out.len() < placements.max(1) as usize {
-        let mut order: Vec<usize> = (0..sets).collect();
-        // Fisher-Yates.
-        for i in (1..sets).rev() {
-            order.swap(i, (rng.next_u64() % (i as u64 + 1)) as usize);
-        }
-        out.push(order.clone());
-        order.reverse();
-        out.push(order);
+    let rows = design(sets);
+    (0..placements.max(1) as usize).map(|p| rows[p % rows.len()].clone()).collect()
+}
+
+/// A Williams design for `n` sets: `n` orders (`2n` for odd `n`) in which every set takes
+/// every position equally often and follows every other set equally often; each order is
+/// followed by its reverse, so that a drift of the GPU's clocks reaches every set alike.
+pub fn design(n: usize) -> Vec<Vec<usize>> {
+    if n <= 1 {
+        return vec![vec![0; n]];
     }
-    out.truncate(placements.max(1) as usize);
+    // 0, 1, n-1, 2, n-2, ...: consecutive differences that take every value once.
+    let mut first = vec![0];
+    let (mut low, mut high) = (1, n - 1);
+    while first.len() < n {
+        first.push(low);
+        low += 1;
+        if first.len() < n {
+            first.push(high);
+            high -= 1;
+        }
+    }
+    let rows: Vec<Vec<usize>> = (0..n).map(|r| first.iter().map(|x| (x + r) % n).collect()).collect();
+    let mut out: Vec<Vec<usize>> = Vec::with_capacity(2 * n);
+    for row in rows {
+        let reverse: Vec<usize> = row.iter().rev().copied().collect();
+        // For even n the design holds each row's reverse already.
+        if !out.contains(&row) {
+            out.push(row);
+            out.push(reverse);
+        }
+    }
     out
 }
 
@@ -109,20 +131,35 @@ mod tests {
     use super::orders;
 
     #[test]
-    fn orders_come_in_pairs_that_centre_every_set() {
+    fn every_set_takes_every_place_and_follows_every_other_equally_often() {
         for sets in 1..=7 {
-            let all = orders(sets, 6);
-            assert_eq!(all.len(), 6);
-            for pair in all.chunks(2) {
-                let mut sorted = pair[0].clone();
+            let rows = super::design(sets);
+            assert_eq!(rows.len(), if sets % 2 == 1 && sets > 1 { 2 * sets } else { sets }, "{sets} sets");
+            let mut at = vec![vec![0; sets]; sets];
+            let mut after = vec![vec![0; sets]; sets];
+            for row in &rows {
+                let mut sorted = row.clone();
                 sorted.sort();
                 assert_eq!(sorted, (0..sets).collect::<Vec<_>>(), "a permutation");
-                assert_eq!(pair[1], pair[0].iter().rev().copied().collect::<Vec<_>>());
+                for (position, &set) in row.iter().enumerate() {
+                    at[set][position] += 1;
+                }
+                for pair in row.windows(2) {
+                    after[pair[1]][pair[0]] += 1;
+                }
+            }
+            let each = rows.len() / sets.max(1);
+            assert!(at.iter().flatten().all(|&n| n == each), "{sets} sets: positions {at:?}");
+            for (set, row) in after.iter().enumerate() {
+                let others: Vec<_> = row.iter().enumerate().filter(|(o, _)| *o != set).map(|(_, n)| *n).collect();
+                assert!(others.windows(2).all(|w| w[0] == w[1]), "{sets} sets: predecessors {after:?}");
+            }
+            for pair in rows.chunks(2).filter(|p| p.len() == 2) {
+                assert_eq!(pair[1], pair[0].iter().rev().copied().collect::<Vec<_>>(), "each order, then its reverse");
             }
         }
         assert_eq!(orders(3, 0).len(), 1, "at least one placement");
-        assert_eq!(orders(3, 5), orders(3, 5), "the same orders every time");
-        let firsts: std::collections::BTreeSet<usize> = orders(4, 40).iter().map(|o| o[0]).collect();
-        assert_eq!(firsts.len(), 4, "every set comes first in some placement");
+        assert_eq!(orders(3, 6), super::design(3), "six placements of three sets: the whole design");
+        assert_eq!(orders(2, 6).len(), 6);
     }
 }

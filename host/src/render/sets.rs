@@ -61,6 +61,14 @@ pub fn render_made(
 ) -> Result<Vec<RenderOutput>> {
     let mut outputs: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
     let orders = placement::orders(sets.len(), opts.placements);
+    let rows = placement::design(sets.len()).len();
+    if opts.placements > 1 && !(opts.placements as usize).is_multiple_of(rows) {
+        log::warn!(
+            "{} placements of {} sets: the orders balance every set's position and predecessor only over a multiple of {rows} placements, so a ratio may owe something to the sets' order",
+            opts.placements,
+            sets.len()
+        );
+    }
     // With several placements, a first one whose times are dropped (see `placement`).
     let warm_up = (opts.placements > 1).then(|| orders[0].iter().rev().copied().collect::<Vec<_>>());
     let total = orders.len() + usize::from(warm_up.is_some());

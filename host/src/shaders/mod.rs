@@ -7,6 +7,7 @@
 
 mod builtin;
 pub mod capabilities;
+pub mod inspect;
 mod module;
 mod salt;
 mod set;

@@ -163,8 +163,15 @@ impl RtPipeline {
         if self.bind_point != vk::PipelineBindPoint::RAY_TRACING_KHR {
             return 0;
         }
-        // SAFETY: group 0 is the raygen group, a general group, of this live pipeline.
-        unsafe { self.ctx.rt.get_ray_tracing_shader_group_stack_size(self.raw, 0, vk::ShaderGroupShaderKHR::GENERAL) }
+        self.group_stack_bytes(0, vk::ShaderGroupShaderKHR::GENERAL)
+    }
+
+    /// Bytes of stack the `shader` stage of group `group` needs (the driver's figure). The
+    /// caller names a group of this ray tracing pipeline that has such a stage.
+    pub fn group_stack_bytes(&self, group: u32, shader: vk::ShaderGroupShaderKHR) -> u64 {
+        // SAFETY: a live ray tracing pipeline; the group and its stage are the caller's promise,
+        // which the validation layer checks.
+        unsafe { self.ctx.rt.get_ray_tracing_shader_group_stack_size(self.raw, group, shader) }
     }
 }
 

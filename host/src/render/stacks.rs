@@ -1,0 +1,94 @@
+//! The stack size the driver gives each ray tracing stage of a set
+//! (`vkGetRayTracingShaderGroupStackSizeKHR`): what it saves around every trace and callable
+//! call the stage makes, for `twinray inspect` to set beside the liveness it computes.
+//!
+//! One pipeline holds every module asked for, each in a group of its own: a general group for
+//! ray generation, miss and callable stages, a triangle group with only its closest-hit or
+//! any-hit stage, a procedural group with only its intersection stage. The set's `raygen` is
+//! always in it (a pipeline needs a ray generation stage).
+
+use super::pipeline::{descriptor_bindings, stage_flag, RaygenSpec};
+use crate::error::Result;
+use crate::shaders::{capabilities, ShaderSet, Stage, StageModule};
+use crate::vk::context::Context;
+use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
+use ash::vk;
+use std::sync::Arc;
+use twinray_shared::bindings as b;
+
+/// A module's stack: bytes, or why there is no figure.
+pub type Stack = std::result::Result<u64, String>;
+
+/// The stack of each module called `names` in `set`, with ray generation specialised for
+/// `samples_per_side` x `samples_per_side` samples and shadows on.
+pub fn stage_stacks(
+    ctx: &Arc<Context>,
+    set: &ShaderSet,
+    names: &[&str],
+    samples_per_side: u32,
+) -> Result<Vec<(String, Stack)>> {
+    let mut wanted: Vec<&str> = vec!["raygen"];
+    wanted.extend(names.iter().filter(|n| **n != "raygen"));
+    let mut modules: Vec<StageModule> = Vec::new();
+    let mut out: Vec<(String, Stack)> = Vec::new();
+    for name in wanted {
+        let module = set.module(name)?;
+        match refusal(ctx, &module)? {
+            Some(why) => out.push((name.to_string(), Err(why))),
+            None => modules.push(module),
+        }
+    }
+    let specialised = RaygenSpec::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED);
+    let spec = specialised.info();
+    let stages: Vec<StageDesc> = modules
+        .iter()
+        .map(|m| StageDesc {
+            name: m.spec.name,
+            stage: stage_flag(m.spec.stage),
+            spirv: &m.spirv[..],
+            entry: &m.entry,
+            specialization: (m.spec.stage == Stage::Raygen).then_some(&spec),
+        })
+        .collect();
+    let groups: Vec<(GroupDesc, vk::ShaderGroupShaderKHR)> =
+        modules.iter().enumerate().map(|(i, m)| group(m.spec.stage, i as u32)).collect();
+    let descs: Vec<GroupDesc> = groups.iter().map(|g| g.0).collect();
+    let bindings = descriptor_bindings();
+    let depth = twinray_shared::interface::MAX_RECURSION_DEPTH;
+    let desc = PipelineDesc { bindings: &bindings, stages: &stages, groups: &descs, max_recursion_depth: depth };
+    let pipeline = RtPipeline::new(ctx, &desc)?;
+    ctx.check_validation()?;
+    for (n, (m, (_, shader))) in modules.iter().zip(&groups).enumerate() {
+        out.push((m.spec.name.to_string(), Ok(pipeline.group_stack_bytes(n as u32, *shader))));
+    }
+    Ok(out)
+}
+
+/// The group a module of `stage` at stage index `i` sits in alone, and which of its stages it is.
+fn group(stage: Stage, i: u32) -> (GroupDesc, vk::ShaderGroupShaderKHR) {
+    let unused = vk::SHADER_UNUSED_KHR;
+    match stage {
+        Stage::ClosestHit => {
+            (GroupDesc::Triangles { closest_hit: i, any_hit: unused }, vk::ShaderGroupShaderKHR::CLOSEST_HIT)
+        }
+        Stage::AnyHit => (GroupDesc::Triangles { closest_hit: unused, any_hit: i }, vk::ShaderGroupShaderKHR::ANY_HIT),
+        Stage::Intersection => (
+            GroupDesc::Procedural { intersection: i, closest_hit: unused, any_hit: unused },
+            vk::ShaderGroupShaderKHR::INTERSECTION,
+        ),
+        Stage::Raygen | Stage::Miss | Stage::Callable | Stage::Compute => {
+            (GroupDesc::General(i), vk::ShaderGroupShaderKHR::GENERAL)
+        }
+    }
+}
+
+/// Why the module has no stack figure on this device: a compute stage has none; a stage that
+/// declares what the device lacks (ray queries on the H100) cannot be compiled there.
+fn refusal(ctx: &Context, module: &StageModule) -> Result<Option<String>> {
+    if module.spec.stage == Stage::Compute {
+        return Ok(Some("a compute stage: no ray tracing stack".into()));
+    }
+    let info = twinray_shared::spirv_info::parse(&module.spirv)
+        .map_err(|e| crate::Error::Input(format!("{}: {e}", module.spec.name)))?;
+    Ok(capabilities::missing(module.spec.name, &module.origin, &info, &ctx.info))
+}

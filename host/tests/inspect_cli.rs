@@ -1,0 +1,119 @@
+//! `twinray inspect`: what each stage keeps alive across its trace and callable calls. The
+//! Rust set may keep no more than its GLSL twin, stage by stage, save for the differences
+//! listed (and explained) here; and the command works on a user's module from disk.
+
+mod common;
+
+use common::{assert_bad_input, repo, twinray};
+use serde_json::Value;
+
+/// Rust stages that keep more across a call than their GLSL twins today: (module, the most
+/// bytes the Rust stage may keep across any of its calls, why). A change that makes a Rust
+/// stage keep more fails; so does one that brings a listed stage down to its twin's, which
+/// must then leave this list.
+const KNOWN: &[(&str, u64, &str)] = &[
+    (
+        "raygen",
+        320,
+        "rust-gpu lowers the sample loops' `while` to a re-tested selection whose exits merge every \
+         carried value with OpUndef (docs/upstream/rust-gpu-while-loops.md), and the slices' lengths \
+         (OpArrayLength, for bounds checks) are kept across both trace calls: issue 40, item 2",
+    ),
+    (
+        "probe",
+        8,
+        "the result buffer's length (OpArrayLength), kept across the trace for the bounds check of the write after it",
+    ),
+    (
+        "explain",
+        8,
+        "as the probe: the result buffer's length, kept for the bounds checks of the writes after each trace",
+    ),
+];
+
+/// Per module with calls: the bytes live across each, in order.
+fn live_bytes(report: &Value) -> Vec<(String, Vec<u64>)> {
+    let modules = report["modules"].as_array().expect("modules");
+    modules
+        .iter()
+        .map(|m| {
+            let sites = m["entries"].as_array().unwrap().iter().flat_map(|e| e["sites"].as_array().unwrap().iter());
+            (m["module"].as_str().unwrap().to_string(), sites.map(|s| s["bytes"].as_u64().unwrap()).collect())
+        })
+        .filter(|(_, bytes): &(String, Vec<u64>)| !bytes.is_empty())
+        .collect()
+}
+
+fn json(args: &[&str]) -> Value {
+    let out = twinray(args, &repo());
+    assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    serde_json::from_slice(&out.stdout).expect("one JSON object")
+}
+
+#[test]
+fn rust_stages_keep_no_more_across_their_calls_than_their_glsl_twins() {
+    let both = json(&["inspect", "--a", "rust", "--b", "glsl", "--no-stacks", "--json"]);
+    let (rust, glsl) = (live_bytes(&both["a"]), live_bytes(&both["b"]));
+    assert!(rust.iter().any(|(m, _)| m == "raygen"), "the Rust raygen traces: {rust:?}");
+    let mut over = Vec::new();
+    for (module, bytes) in &rust {
+        let twin = glsl.iter().find(|(m, _)| m == module).map(|(_, b)| b.clone()).unwrap_or_default();
+        // The largest: the driver sizes a stage's stack by its largest call. Calls are not
+        // matched one to one, since the two compilers order them differently.
+        let most = bytes.iter().max().copied().unwrap_or(0);
+        let more = most > twin.iter().max().copied().unwrap_or(0);
+        let listed = KNOWN.iter().find(|k| k.0 == module);
+        match (more, listed) {
+            (false, Some(_)) => over.push(format!(
+                "{module} now keeps no more than GLSL ({bytes:?} against {twin:?}): remove it from KNOWN"
+            )),
+            (true, None) => over.push(format!("{module}: Rust keeps {bytes:?} bytes across its calls, GLSL {twin:?}")),
+            (true, Some((_, bound, _))) if most > *bound => {
+                over.push(format!("{module}: Rust keeps {most} bytes, more than the {bound} listed"))
+            }
+            _ => {}
+        }
+    }
+    assert!(over.is_empty(), "{}", over.join("\n"));
+}
+
+#[test]
+fn a_set_is_inspected_with_its_stack_sizes_under_validation() {
+    let out = twinray(&["--validate", "inspect", "glsl", "--stage", "raygen", "--values"], &repo());
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(text.contains("raygen (raygen), stack "), "{text}");
+    assert_eq!(text.matches("OpTraceRayKHR at").count(), 2, "{text}");
+    // Names glslang left reach the report.
+    assert!(text.contains("\"pixel\""), "{text}");
+    let side = twinray(&["inspect", "--a", "rust", "--b", "glsl", "--stage", "closest_hit", "--no-stacks"], &repo());
+    let table = String::from_utf8_lossy(&side.stdout);
+    assert!(side.status.success(), "{}", String::from_utf8_lossy(&side.stderr));
+    assert!(table.contains("triangle_closest_hit_callable"), "{table}");
+    assert!(!table.contains("triangle_closest_hit_flat"), "modules without calls are left out: {table}");
+}
+
+#[test]
+fn a_module_from_disk_is_inspected_alone_or_in_a_set() {
+    let file = repo().join("spirv/glsl/triangle_closest_hit_callable.spv");
+    let path = file.to_string_lossy().into_owned();
+    let alone = json(&["inspect", &path, "--json"]);
+    assert_eq!(live_bytes(&alone).len(), 1);
+    assert_eq!(alone["modules"][0]["entries"][0]["model"], "ClosestHitKHR");
+    let set = format!("rust,triangle_closest_hit_callable={path}");
+    let mixed = json(&["inspect", &set, "--stage", "triangle_closest_hit_callable", "--no-stacks", "--json"]);
+    let bytes = |report: &Value| live_bytes(report).into_iter().map(|(_, b)| b).collect::<Vec<_>>();
+    assert_eq!(bytes(&mixed), bytes(&alone), "the same module, the same answer");
+}
+
+#[test]
+fn bad_input_is_refused_in_one_line() {
+    assert_bad_input(&["inspect", "glsl", "--stage", "nosuch", "--no-stacks"], &["--stage nosuch", "closest_hit"]);
+    assert_bad_input(&["inspect", "glsl", "--spp", "15", "--no-stacks"], &["--spp 15", "square"]);
+    let dir = tempfile::tempdir().unwrap();
+    let junk = dir.path().join("junk.spv");
+    std::fs::write(&junk, b"not a module at all!").unwrap();
+    let out = twinray(&["inspect", &junk.to_string_lossy(), "--raw"], dir.path());
+    assert_eq!(out.status.code(), Some(2), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(String::from_utf8_lossy(&out.stderr).contains("not a SPIR-V module"));
+}
