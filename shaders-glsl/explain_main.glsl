@@ -33,8 +33,8 @@ layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;
 
 void main() {
     uint i = EXPLAIN_INDEX;
-    // Whole workgroups cover the rays.
-    if (i >= uint(rays.length())) {
+    // Whole workgroups cover the rays; checked before the traces, as the Rust twins do.
+    if (i >= uint(rays.length()) || i >= uint(results.length())) {
         return;
     }
     ExplainRay ray = rays[i];

@@ -126,6 +126,73 @@ fn a_small_bench_writes_every_report_file() {
     );
 }
 
+/// `--processes 2`: every set timed alone in two child processes (rounds in alternating
+/// orders), each row's times those of its processes, and every ratio's interval over the
+/// rounds; the global flags (here `--validate`) reach the children.
+#[test]
+fn sets_are_timed_alone_in_processes_of_their_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = [
+        "--validate",
+        "bench",
+        "sphere",
+        "--sets",
+        "glsl,rust",
+        "--null",
+        "--spp",
+        "1",
+        "--width",
+        "32",
+        "--height",
+        "24",
+        "--runs",
+        "10",
+        "--warmup",
+        "1",
+        "--placements",
+        "2",
+        "--processes",
+        "2",
+        "--reference-spp",
+        "16",
+        "--shadow-spp",
+        "none",
+        "--probes",
+        "none",
+        "--images",
+        "none",
+        "--out",
+        "report",
+        "--cache",
+        "cache",
+    ];
+    let out = twinray(&args, dir.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("report/results.json")).unwrap()).unwrap();
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 3);
+    for (i, row) in rows.iter().enumerate() {
+        // One time per process; the rounds go forwards, then backwards.
+        assert_eq!(row["placements"]["median_ms"].as_array().unwrap().len(), 2, "{row}");
+        let positions: Vec<u64> =
+            row["placements"]["position"].as_array().unwrap().iter().map(|p| p.as_u64().unwrap()).collect();
+        assert_eq!(positions, [i as u64, 2 - i as u64], "{row}");
+        // Every placement of both processes.
+        assert_eq!(row["gpu_ms"]["samples"], 4, "{row}");
+    }
+    for r in json["ratios"].as_array().unwrap() {
+        assert_eq!(r["interval"]["placements"], 2, "over the two rounds: {r}");
+    }
+    let left: Vec<_> = std::fs::read_dir(std::env::temp_dir())
+        .unwrap()
+        .filter_map(|e| e.ok())
+        .filter(|e| e.file_name().to_string_lossy().starts_with("twinray-alone-"))
+        .filter(|e| e.path().join("results.json").exists())
+        .collect();
+    assert!(left.is_empty(), "child folders left behind: {left:?}");
+}
+
 #[test]
 fn bench_rejects_bad_input_before_rendering() {
     assert_bad_input(&["bench", "lights", "--spp", "1,3"], &["squares up to 256", "got 3"]);

@@ -5,6 +5,7 @@
 
 pub mod animation;
 pub mod html;
+mod isolated;
 pub mod linking;
 pub mod metrics;
 pub mod pipelines;
@@ -25,6 +26,7 @@ use crate::util::interval::RatioInterval;
 use crate::util::output::file_safe;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
+pub use isolated::{Isolation, TimeAlone};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -57,6 +59,9 @@ pub struct BenchConfig {
     pub timing_rays: usize,
     /// Which renders are written as images (with their FLIP maps); references always are.
     pub images: Images,
+    /// Each set timed alone in processes of its own, the in-process times replaced; `None`:
+    /// every set timed in this process.
+    pub isolation: Option<Isolation>,
 }
 
 /// Which renders `twinray bench` keeps as PNG files.
@@ -204,10 +209,10 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         spirv: spirv_sizes()?,
         skipped: Vec::new(),
     };
-    for scene in &config.scenes {
+    for (index, scene) in config.scenes.iter().enumerate() {
         // A scene a set's module cannot run on this device is skipped, with what it had added.
         let kept = (report.references.len(), report.rows.len(), report.ratios.len(), report.samplers.len());
-        match bench_scene(ctx, config, scene, &mut report, progress) {
+        match bench_scene(ctx, config, (index, scene), &mut report, progress) {
             Ok(()) => {}
             Err(e) if e.device_lacks() => {
                 report.references.truncate(kept.0);
@@ -245,7 +250,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
 fn bench_scene(
     ctx: &Arc<Context>,
     config: &BenchConfig,
-    scene: &Scene,
+    (index, scene): (usize, &Scene),
     report: &mut BenchReport,
     progress: &dyn Fn(&str),
 ) -> Result<()> {
@@ -258,7 +263,11 @@ fn bench_scene(
     let sets = config.timed_sets();
     for &spp in &config.spp {
         progress(&format!("{}: {} sets at {spp} spp", scene.name(), sets.len()));
-        let outputs = measure(ctx, scene, size, spp, &sets, config)?;
+        let mut outputs = measure(ctx, scene, size, spp, &sets, config)?;
+        if let Some(isolation) = &config.isolation {
+            progress(&format!("{}: each set alone at {spp} spp, {} processes each", scene.name(), isolation.processes));
+            isolation.retime(index, spp, &sets, &mut outputs)?;
+        }
         let keep = match config.images {
             Images::All => true,
             Images::Last => config.spp.iter().max() == Some(&spp),
@@ -291,7 +300,8 @@ fn bench_scene(
 pub fn steps(config: &BenchConfig) -> usize {
     let soft = config.scenes.iter().filter(|s| s.has_soft_shadows()).count();
     let study = if config.shadow_spp.is_empty() { 0 } else { soft * (1 + 2 * config.shadow_spp.len()) };
-    config.scenes.len() * (1 + config.spp.len()) + study + usize::from(config.probes.is_some())
+    let per_spp = 1 + usize::from(config.isolation.is_some());
+    config.scenes.len() * (1 + per_spp * config.spp.len()) + study + usize::from(config.probes.is_some())
 }
 
 /// Every set's render of `scene` at `spp`, timed interleaved in every placement.
@@ -305,7 +315,9 @@ fn measure(
 ) -> Result<Vec<RenderOutput>> {
     let mut scene = scene.clone();
     scene.file.image.samples = side_of(spp)?;
-    let (warmup, runs, placements) = (config.warmup, config.runs, config.placements);
+    // Timed alone elsewhere: here only the images (and ray counts) are needed.
+    let (warmup, runs, placements) =
+        if config.isolation.is_some() { (0, 1, 1) } else { (config.warmup, config.runs, config.placements) };
     render_sets(ctx, &scene, sets, &RenderOptions { width, height, warmup, runs, placements })
 }
 

@@ -335,6 +335,12 @@ pub struct BenchArgs {
     /// Which renders to keep as PNG files with their FLIP maps (references are always kept).
     #[arg(long, value_enum, default_value = "all")]
     pub images: twinray::bench::Images,
+    /// Time each set alone in N processes of its own (each with --placements placements), in
+    /// rounds that alternate the sets' order, and take every ratio's interval over the rounds:
+    /// sets timed in one process can settle into a regime that favours one of them
+    /// (docs/measuring.md). 0: every set timed in this process.
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub processes: u32,
 }
 
 #[derive(Args)]

@@ -74,6 +74,11 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         let message = format!("--probes {}: no such folder (give --probes DIR, or none)", args.probes.display());
         return Err(Error::Input(message).into());
     }
+    let cache = args.cache.clone().unwrap_or_else(twinray::reference::image::default_cache);
+    let isolation = (args.processes > 0).then(|| bench::Isolation {
+        processes: args.processes,
+        time_alone: std::sync::Arc::new(crate::alone::timer(global, &args, cache.clone(), names.clone())),
+    });
     let config = bench::BenchConfig {
         scenes,
         sets,
@@ -85,12 +90,13 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         null: args.null,
         reference_spp: args.reference_spp,
         reference_set: args.reference_set,
-        cache: args.cache.unwrap_or_else(twinray::reference::image::default_cache),
+        cache,
         out: args.out.clone(),
         shadow_spp,
         probes: Some(args.probes.clone()).filter(|p| p.as_os_str() != "none"),
         timing_rays: args.timing_rays as usize,
         images: args.images,
+        isolation,
     };
     let ctx = context(global)?;
     let bar = indicatif::ProgressBar::new(bench::steps(&config) as u64);

@@ -2,6 +2,7 @@
 //! one-line error; a failed comparison exits with 1; GPU work that did not finish in time (or
 //! a lost device) with 3; a crash (a fatal signal, usually in the driver) with 4.
 
+mod alone;
 mod animate;
 mod args;
 mod bench;

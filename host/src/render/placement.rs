@@ -33,6 +33,7 @@ use crate::util::interval::RatioInterval;
 use crate::vk::context::{Context, PipelineKind};
 use serde::Serialize;
 use std::sync::Arc;
+use twinray_shared::random::SplitMix64;
 
 /// Placements `compare` and `bench` time over unless told otherwise: three pairs of orders.
 pub const DEFAULT_PLACEMENTS: u32 = 6;
@@ -88,23 +89,38 @@ pub fn spacers(p: usize) -> u32 {
     ((p / 2) % 4) as u32
 }
 
+/// Which of `sets` timed sets each spacer of placement `p` copies: drawn with a fixed seed
+/// per placement, so that the pipelines made before the timed ones are of every kind timed.
+/// On the H100 the set list decided a regime of the whole process (Rust or GLSL at its
+/// alone speed, the other 4-7% slower; `bench/reports/inspect-h100/`), which spacers of
+/// the GLSL set alone never reached.
+pub fn spacer_sets(p: usize, sets: usize) -> Vec<usize> {
+    let mut rng = SplitMix64(SEED ^ (p as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    (0..spacers(p)).map(|_| (rng.next_u64() % sets.max(1) as u64) as usize).collect()
+}
+
+/// The seed of the spacers' draws: fixed, so that a command repeats its placements exactly.
+const SEED: u64 = 0x7417_2a79_5eed_0026;
+
 /// Pipelines made only to be kept while a placement's sets are built and timed, so that their
-/// code lands further on: salted copies of the built-in GLSL set (`ShaderSet::copy`, numbered
-/// from 1000 so that no timed set shares their code), the same whatever sets are timed, so
-/// that `--a X --b Y` and `--a Y --b X` sample the same places.
+/// code lands further on: salted copies of the timed sets (`ShaderSet::copy`, numbered from
+/// 1000 so that no timed set shares their code), drawn by [`spacer_sets`].
 pub(super) struct Spacers {
     _pipelines: Vec<ScenePipeline>,
     _libraries: Libraries,
 }
 
 impl Spacers {
-    pub fn new(ctx: &Arc<Context>, scene: &UploadedScene, count: u32) -> Result<Spacers> {
-        let set = ShaderSet::uniform(crate::shaders::Language::Glsl);
+    pub fn new(ctx: &Arc<Context>, scene: &UploadedScene, sets: &[(ShaderSet, PipelineKind)]) -> Result<Spacers> {
         let libraries = Libraries::default();
-        let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
         let plan = &scene.data.plan;
-        let pipelines = (0..count)
-            .map(|k| ScenePipeline::new(ctx, &set.copy(1000 + k), plan, plan.render_raygen(), linking))
+        let pipelines = sets
+            .iter()
+            .enumerate()
+            .map(|(k, (set, kind))| {
+                let linking = (*kind == PipelineKind::Libraries).then_some(&libraries);
+                ScenePipeline::new(ctx, &set.copy(1000 + k as u32), plan, plan.render_raygen(), linking)
+            })
             .collect::<Result<Vec<_>>>()?;
         Ok(Spacers { _pipelines: pipelines, _libraries: libraries })
     }

@@ -76,7 +76,9 @@ pub fn render_made(
     for (done, (timed, order)) in all.enumerate() {
         let ordered: Vec<_> = order.iter().map(|&i| sets[i].clone()).collect();
         let _doing = (total > 1).then(|| activity::doing(format!("placement {} of {total}", done + 1)));
-        let placed = render_placement(ctx, scene, &ordered, opts, placement::spacers(timed.unwrap_or(0)))?;
+        let spacers: Vec<_> =
+            placement::spacer_sets(timed.unwrap_or(0), sets.len()).iter().map(|&i| sets[i].clone()).collect();
+        let placed = render_placement(ctx, scene, &ordered, opts, &spacers)?;
         for (position, (&i, mut out)) in order.iter().zip(placed).enumerate() {
             if timed.is_none() {
                 out.gpu_ms.clear();
@@ -245,7 +247,7 @@ impl SetRender {
     }
 }
 
-/// One placement: the scene uploaded, `spacers` pipelines made and kept (see
+/// One placement: the scene uploaded, salted copies of `spacers` made and kept (see
 /// `placement::Spacers`), then each set in turn built, traced alone for its output, warmed up,
 /// timed and released before the next is built, so that every set of the placement has its
 /// code where the driver put the first.
@@ -254,7 +256,7 @@ fn render_placement(
     scene: &Scene,
     sets: &[(ShaderSet, PipelineKind)],
     opts: &RenderOptions,
-    spacers: u32,
+    spacers: &[(ShaderSet, PipelineKind)],
 ) -> Result<Vec<RenderOutput>> {
     check_size(opts.width, opts.height).map_err(Error::Input)?;
     check_device_limits(ctx, opts)?;

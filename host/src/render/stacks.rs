@@ -9,7 +9,7 @@
 
 use super::pipeline::{descriptor_bindings, stage_flag, RaygenSpec};
 use crate::error::Result;
-use crate::shaders::{capabilities, ShaderSet, Stage, StageModule};
+use crate::shaders::{capabilities, Language, ShaderSet, Stage, StageModule};
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
 use ash::vk;
@@ -27,11 +27,14 @@ pub fn stage_stacks(
     names: &[&str],
     samples_per_side: u32,
 ) -> Result<Vec<(String, Stack)>> {
-    let mut wanted: Vec<&str> = vec!["raygen"];
-    wanted.extend(names.iter().filter(|n| **n != "raygen"));
-    let mut modules: Vec<StageModule> = Vec::new();
+    // A pipeline needs a ray generation stage: the set's, or GLSL's where a folder lacks one.
+    let mut modules: Vec<StageModule> = vec![if set.lacks("raygen") {
+        ShaderSet::uniform(Language::Glsl).module("raygen")?
+    } else {
+        set.module("raygen")?
+    }];
     let mut out: Vec<(String, Stack)> = Vec::new();
-    for name in wanted {
+    for &name in names.iter().filter(|n| **n != "raygen") {
         let module = set.module(name)?;
         match refusal(ctx, &module)? {
             Some(why) => out.push((name.to_string(), Err(why))),
@@ -59,7 +62,9 @@ pub fn stage_stacks(
     let pipeline = RtPipeline::new(ctx, &desc)?;
     ctx.check_validation()?;
     for (n, (m, (_, shader))) in modules.iter().zip(&groups).enumerate() {
-        out.push((m.spec.name.to_string(), Ok(pipeline.group_stack_bytes(n as u32, *shader))));
+        if names.contains(&m.spec.name) {
+            out.push((m.spec.name.to_string(), Ok(pipeline.group_stack_bytes(n as u32, *shader))));
+        }
     }
     Ok(out)
 }

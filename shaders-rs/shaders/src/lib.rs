@@ -202,7 +202,13 @@ pub fn probe(
     #[spirv(ray_payload)] payload: &mut HitPayload,
 ) {
     let i = launch_id.x as usize;
-    let ray = rays[i];
+    // Checked before the trace: a bounds check of the write after it would keep the buffer's
+    // length alive across the call (docs/rust-stages.md, "Writing loops around traceRay in Rust").
+    if i >= rays.len() || i >= results.len() {
+        return;
+    }
+    // SAFETY: i < rays.len(), checked above.
+    let ray = unsafe { *rays.get_unchecked(i) };
     payload.poison();
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
@@ -223,7 +229,8 @@ pub fn probe(
     let normal_t =
         if payload.ids.w == NO_HIT { Vec4::ZERO } else { payload.shading_normal.xyz().extend(payload.position.w) };
     let ids = if payload.unwritten(false) { UVec4::splat(PROBE_NO_PAYLOAD) } else { payload.ids };
-    results[i] = ProbeResult { normal_t, ids };
+    // SAFETY: i < results.len(), checked before the trace.
+    unsafe { *results.get_unchecked_mut(i) = ProbeResult { normal_t, ids } };
 }
 
 /// The probe's witness: a closest-hit stage twinray puts in place of a hit group's own (same
@@ -259,9 +266,14 @@ pub fn explain(
     #[spirv(ray_payload)] shadow: &mut ShadowPayload,
 ) {
     let i = launch_id.x as usize;
-    let r = rays[i];
+    // Checked before the traces, as in `probe`.
+    if i >= rays.len() || i >= results.len() {
+        return;
+    }
+    // SAFETY: i < rays.len(), checked above.
+    let r = unsafe { *rays.get_unchecked(i) };
     let ray = camera::Ray { origin: r.origin.xyz(), direction: r.direction.xyz() };
-    results[i] = if r.kind.x == EXPLAIN_SHADOW {
+    let result = if r.kind.x == EXPLAIN_SHADOW {
         let lit = trace::visible(tlas, ray.origin, ray.direction, r.direction.w, shadow);
         ExplainResult { hit: HitPayload::NONE, occluded: UVec4::new(if lit { 0 } else { 1 }, 0, 0, 0) }
     } else {
@@ -269,6 +281,8 @@ pub fn explain(
         trace::primary(tlas, ray, (frame.reach.z, frame.reach.x), payload);
         ExplainResult { hit: *payload, occluded: UVec4::ZERO }
     };
+    // SAFETY: i < results.len(), checked above.
+    unsafe { *results.get_unchecked_mut(i) = result };
 }
 
 /// `twinray explain`'s stage for rays traced inline (`renderer = "compute"`, and the shadow
@@ -291,8 +305,8 @@ pub fn explain_query(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ExplainResult],
 ) {
     let i = id.x as usize;
-    // Whole workgroups cover the rays.
-    if i >= rays.len() {
+    // Whole workgroups cover the rays; both buffers checked, as in `explain`.
+    if i >= rays.len() || i >= results.len() {
         return;
     }
     let r = rays[i];

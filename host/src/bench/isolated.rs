@@ -1,0 +1,80 @@
+//! Timing each set alone, in processes of its own (`twinray bench --processes K`).
+//!
+//! On the H100 a process that builds pipelines of several sets settles into a regime chosen
+//! by the set list: one set runs at its speed alone and another 4-7% slower, the same in
+//! every placement of the process, so no interval over placements can see it, and a label
+//! order or a `--null` decided Rust/GLSL (1.116 or 0.991 on swarm at 16 spp). Each set alone
+//! in a fresh process timed within 0.1% from one process to the next
+//! (`bench/reports/inspect-h100/`). So with isolation each set is timed in `processes`
+//! processes of its own, in rounds that alternate the sets' order; a ratio's interval is taken
+//! over the rounds, the two processes of a round being one paired observation.
+
+use crate::error::Result;
+use crate::render::{PlacementTimes, RenderOutput};
+use crate::shaders::ShaderSet;
+use std::sync::Arc;
+
+/// Times one set alone: the median GPU ms of each placement of scene number `scene` (in the
+/// bench's list) rendered with `set` at `spp`, in a fresh process.
+pub type TimeAlone = dyn Fn(usize, u32, &ShaderSet) -> Result<Vec<f64>> + Send + Sync;
+
+/// How the bench times sets in processes of their own.
+#[derive(Clone)]
+pub struct Isolation {
+    /// Processes per set.
+    pub processes: u32,
+    pub time_alone: Arc<TimeAlone>,
+}
+
+impl std::fmt::Debug for Isolation {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "Isolation {{ processes: {} }}", self.processes)
+    }
+}
+
+impl Isolation {
+    /// Replaces the times of `outputs` (one per set of `sets`) with each set's times alone:
+    /// per round one geometric mean of a process's placements, and every placement's median.
+    pub fn retime(&self, scene: usize, spp: u32, sets: &[ShaderSet], outputs: &mut [RenderOutput]) -> Result<()> {
+        let mut means = vec![Vec::new(); sets.len()];
+        let mut positions = vec![Vec::new(); sets.len()];
+        let mut all = vec![Vec::new(); sets.len()];
+        for round in 0..self.processes {
+            let order: Vec<usize> =
+                if round % 2 == 0 { (0..sets.len()).collect() } else { (0..sets.len()).rev().collect() };
+            for (position, &i) in order.iter().enumerate() {
+                // A salted copy alone is its original alone: the salt only parts code that
+                // shares a process.
+                let ms = (self.time_alone)(scene, spp, &sets[i].original())?;
+                means[i].push(geometric_mean(&ms));
+                positions[i].push(position as u32);
+                all[i].extend(ms);
+            }
+        }
+        for (i, out) in outputs.iter_mut().enumerate() {
+            out.placements = PlacementTimes {
+                median_ms: std::mem::take(&mut means[i]),
+                position: std::mem::take(&mut positions[i]),
+            };
+            out.gpu_ms = std::mem::take(&mut all[i]);
+        }
+        Ok(())
+    }
+}
+
+fn geometric_mean(values: &[f64]) -> f64 {
+    let logs: Vec<f64> = values.iter().filter(|v| v.is_finite() && **v > 0.0).map(|v| v.ln()).collect();
+    if logs.is_empty() {
+        return f64::NAN;
+    }
+    (logs.iter().sum::<f64>() / logs.len() as f64).exp()
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn the_geometric_mean_skips_what_is_not_a_time() {
+        assert!((super::geometric_mean(&[1.0, 4.0, f64::NAN, 0.0]) - 2.0).abs() < 1e-12);
+        assert!(super::geometric_mean(&[]).is_nan());
+    }
+}

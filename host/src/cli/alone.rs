@@ -1,0 +1,75 @@
+//! `twinray bench --processes N`: one set timed alone, by a child `twinray bench` of that set
+//! only, with the parent's global flags and timing settings, whose placement medians are read
+//! back from its results.json (see `twinray::bench::Isolation`).
+
+use crate::args::{BenchArgs, GlobalArgs};
+use std::path::PathBuf;
+use std::process::Command;
+use std::sync::atomic::{AtomicU32, Ordering};
+use twinray::shaders::ShaderSet;
+use twinray::Error;
+
+/// Child folders made so far by this process: each child writes into a fresh one.
+static CHILDREN: AtomicU32 = AtomicU32::new(0);
+
+/// The timer `bench` calls per scene (an index into `scenes`, as given on the command line),
+/// sample count and set.
+pub fn timer(
+    global: &GlobalArgs,
+    args: &BenchArgs,
+    cache: PathBuf,
+    scenes: Vec<String>,
+) -> impl Fn(usize, u32, &ShaderSet) -> twinray::Result<Vec<f64>> + Send + Sync + 'static {
+    let exe = std::env::current_exe().map_err(|e| e.to_string());
+    let mut common = global.forwarded();
+    common.push("bench".into());
+    let settings = [
+        ("--runs", args.runs.to_string()),
+        ("--warmup", args.warmup.to_string()),
+        ("--placements", args.placements.to_string()),
+        ("--reference-spp", args.reference_spp.to_string()),
+        ("--reference-set", args.reference_set.to_string()),
+        ("--cache", cache.display().to_string()),
+        ("--shadow-spp", "none".into()),
+        ("--probes", "none".into()),
+        ("--images", "none".into()),
+    ];
+    common.extend(settings.into_iter().flat_map(|(flag, value)| [flag.to_string(), value]));
+    if let (Some(w), Some(h)) = (args.width, args.height) {
+        common.extend(["--width".into(), w.to_string(), "--height".into(), h.to_string()]);
+    }
+    move |scene, spp, set| {
+        let exe = exe.as_ref().map_err(|e| Error::Unsupported(format!("finding twinray's own executable: {e}")))?;
+        let n = CHILDREN.fetch_add(1, Ordering::Relaxed);
+        let dir = std::env::temp_dir().join(format!("twinray-alone-{}-{n}", std::process::id()));
+        let ran = Command::new(exe)
+            .args(&common)
+            .arg(&scenes[scene])
+            .args(["--sets", &set.to_string(), "--spp", &spp.to_string(), "--out"])
+            .arg(&dir)
+            .output();
+        let times = ran
+            .map_err(|e| Error::Unsupported(format!("starting {}: {e}", exe.display())))
+            .and_then(|out| read_times(&out, &dir));
+        let _ = std::fs::remove_dir_all(&dir);
+        times.map_err(|e| Error::Unsupported(format!("timing {set} alone on {} at {spp} spp: {e}", scenes[scene])))
+    }
+}
+
+/// The placement medians of the one set a child timed.
+fn read_times(out: &std::process::Output, dir: &std::path::Path) -> twinray::Result<Vec<f64>> {
+    if !out.status.success() {
+        let said = String::from_utf8_lossy(&out.stderr);
+        let last = said.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("no message");
+        return Err(Error::Unsupported(format!("the child bench failed ({}): {last}", out.status)));
+    }
+    let text = std::fs::read_to_string(dir.join("results.json"))
+        .map_err(|e| Error::Unsupported(format!("the child bench left no results.json: {e}")))?;
+    let value: serde_json::Value =
+        serde_json::from_str(&text).map_err(|e| Error::Unsupported(format!("the child's results.json: {e}")))?;
+    let times =
+        value["rows"][0]["placements"]["median_ms"].as_array().map(|a| a.iter().filter_map(|v| v.as_f64()).collect());
+    times
+        .filter(|t: &Vec<f64>| !t.is_empty())
+        .ok_or_else(|| Error::Unsupported("the child's results.json has no times".into()))
+}
