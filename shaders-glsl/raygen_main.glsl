@@ -51,6 +51,10 @@ void main() {
     }
 #endif
     uint pixel_index = pixel.y * LAUNCH_SIZE.x + pixel.x;
+    // Checked before the loops, as the Rust twin must (docs/rust-stages.md).
+    if (HIT_IDS_PER_PIXEL * pixel_index + HIT_IDS_PER_PIXEL > uint(hit_ids.length())) {
+        return;
+    }
     vec3 sum = vec3(0.0);
     uint shadow_rays = 0u;
     uint no_payload = 0u;

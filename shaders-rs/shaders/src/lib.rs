@@ -30,6 +30,11 @@ use twinray_shared::layout::{
 };
 use twinray_shared::{camera, random, shading};
 
+/// Where pixel `pixel_index`'s hit-id words start in the hit-id buffer.
+fn hit_id_base(pixel_index: u32) -> usize {
+    (HIT_IDS_PER_PIXEL * pixel_index) as usize
+}
+
 /// Defines a renderer's entry point `$name`, of stage `$stage` with built-ins `$builtins`: M x M
 /// primary samples for pixel `$pixel` of an image of `$size`; each traced by `$primary` (given
 /// `$payload` and the resources `$pres`) and shaded by `$shade` (given the resources `$sres`);
@@ -68,15 +73,24 @@ pub fn $name(
     let pixel: UVec2 = $pixel;
     let size: UVec2 = $size;
     let pixel_index = pixel.y * size.x + pixel.x;
+    // Checked before the loops, so that no bounds check inside or after them keeps the
+    // buffer's length alive across the trace calls (docs/rust-stages.md, "Writing loops
+    // around traceRay in Rust"), and no panic path sits in the loops (see trace.rs). The
+    // offset is computed where it is used, not kept across the traces.
+    if hit_id_base(pixel_index) + HIT_IDS_PER_PIXEL as usize > hit_ids.len() {
+        return;
+    }
     let mut sum = Vec3::ZERO;
-    let mut first_hit = (NO_HIT, NO_HIT);
     let mut shadow_rays = 0;
     let mut no_payload = 0;
-    // Counted `while` loops rather than `for` over ranges: see trace.rs.
+    // Bottom-tested loops, neither `for` over ranges (see trace.rs) nor `while`: rust-gpu tests
+    // a `while` loop's condition again in its continue block, which keeps the condition alive
+    // across the traces in the body (docs/rust-stages.md). The host makes samples_per_side at
+    // least 1, so each loop runs at least once, as GLSL's `for` loops do.
     let mut sy = 0;
-    while sy < samples_per_side {
+    loop {
         let mut sx = 0;
-        while sx < samples_per_side {
+        loop {
             let sample = sy * samples_per_side + sx;
             // Jitter only when there is more than one sample: the spine's pipeline paid nothing.
             let (r1, r2) = if samples_per_side > 1 {
@@ -88,12 +102,18 @@ pub fn $name(
             let ray = camera::primary_ray($frame, pixel, size, offset);
             $payload.poison();
             $primary(tlas, ray, ($frame.reach.z, $frame.reach.x), $payload, $($pres),*);
-            if $payload.unwritten(true) {
+            let unwritten = $payload.unwritten(true);
+            if sample == 0 {
+                let base = hit_id_base(pixel_index);
+                // SAFETY: base + 1 < hit_ids.len(), checked before the loops.
+                unsafe {
+                    *hit_ids.get_unchecked_mut(base) = if unwritten { NO_HIT } else { $payload.ids.x };
+                    *hit_ids.get_unchecked_mut(base + 1) = if unwritten { NO_HIT } else { $payload.ids.y };
+                }
+            }
+            if unwritten {
                 no_payload = no_payload_word(no_payload, sample);
             } else {
-                if sample == 0 {
-                    first_hit = ($payload.ids.x, $payload.ids.y);
-                }
                 sum += $shade(
                     tlas,
                     $frame,
@@ -108,16 +128,21 @@ pub fn $name(
                 );
             }
             sx += 1;
+            if sx >= samples_per_side {
+                break;
+            }
         }
         sy += 1;
+        if sy >= samples_per_side {
+            break;
+        }
     }
-    // Written after the loops: an indexing panic path inside them becomes control flow that
-    // NVIDIA's driver miscompiles (see trace.rs).
-    let base = (HIT_IDS_PER_PIXEL * pixel_index) as usize;
-    hit_ids[base] = first_hit.0;
-    hit_ids[base + 1] = first_hit.1;
-    hit_ids[base + 2] = shadow_rays;
-    hit_ids[base + 3] = no_payload;
+    let base = hit_id_base(pixel_index);
+    // SAFETY: base + 3 < hit_ids.len(), checked before the loops.
+    unsafe {
+        *hit_ids.get_unchecked_mut(base + 2) = shadow_rays;
+        *hit_ids.get_unchecked_mut(base + 3) = no_payload;
+    }
     let color = if no_payload == 0 { sum / (samples_per_side * samples_per_side) as f32 } else { Vec3::splat(f32::NAN) };
     // SAFETY: the pixel lies inside the image, which the host sizes to the launch.
     unsafe { image.write(pixel, color.extend(1.0)) };

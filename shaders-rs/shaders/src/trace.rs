@@ -80,9 +80,10 @@ pub fn $name(
         if index >= lights.len() {
             break;
         }
-        // SAFETY: index < lights.len(), checked just above.
-        let light = unsafe { *lights.get_unchecked(index) };
-        let n = lighting::samples_per_side(&light);
+        // SAFETY: index < lights.len(), checked just above. A reference, not a copy: the
+        // copy's fields were all live across every shadow ray (`twinray inspect`).
+        let light = unsafe { lights.get_unchecked(index) };
+        let n = lighting::samples_per_side(light);
         let casts = shadows && light.shadows != 0;
         // One loop over the n x n cells, stepping i and then j, where the GLSL twin nests a j
         // and an i loop: same samples in the same order. Each loop rust-gpu emits is a loop
@@ -105,7 +106,7 @@ pub fn $name(
             // Independent samples: cell (0, 0) stretched over the whole light.
             let nf = n as f32;
             let (si, sj, r1, r2) = if stratified { (i, j, r1, r2) } else { (0, 0, r1 * nf, r2 * nf) };
-            let s = lighting::sample(&light, point, (si, sj), (r1, r2), frame.reach.y);
+            let s = lighting::sample(light, point, (si, sj), (r1, r2), frame.reach.y);
             let cosine = normal.dot(s.direction);
             if cosine > 0.0 {
                 let lit = if casts {
