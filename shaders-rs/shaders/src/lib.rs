@@ -73,20 +73,15 @@ pub fn $name(
     let pixel: UVec2 = $pixel;
     let size: UVec2 = $size;
     let pixel_index = pixel.y * size.x + pixel.x;
-    // Checked before the loops, so that no bounds check inside or after them keeps the
-    // buffer's length alive across the trace calls (docs/rust-stages.md, "Writing loops
-    // around traceRay in Rust"), and no panic path sits in the loops (see trace.rs). The
-    // offset is computed where it is used, not kept across the traces.
+    // Checked here, so that no length is kept across the traces nor a panic path put in loops.
     if hit_id_base(pixel_index) + HIT_IDS_PER_PIXEL as usize > hit_ids.len() {
         return;
     }
     let mut sum = Vec3::ZERO;
     let mut shadow_rays = 0;
     let mut no_payload = 0;
-    // Bottom-tested loops, neither `for` over ranges (see trace.rs) nor `while`: rust-gpu tests
-    // a `while` loop's condition again in its continue block, which keeps the condition alive
-    // across the traces in the body (docs/rust-stages.md). The host makes samples_per_side at
-    // least 1, so each loop runs at least once, as GLSL's `for` loops do.
+    // Bottom-tested: not `for` over ranges (trace.rs), nor `while`, whose condition rust-gpu
+    // tests again after the body, alive across its traces. samples_per_side is at least 1.
     let mut sy = 0;
     loop {
         let mut sx = 0;
@@ -291,7 +286,6 @@ pub fn explain(
     #[spirv(ray_payload)] shadow: &mut ShadowPayload,
 ) {
     let i = launch_id.x as usize;
-    // Checked before the traces, as in `probe`.
     if i >= rays.len() || i >= results.len() {
         return;
     }

@@ -4,7 +4,7 @@
 //! the loops around the call. `twinray inspect` reports it beside the stack size the driver
 //! gives each stage.
 //!
-//! The analysis ([`flow`]) is liveness on each function's control-flow graph. A call inside a
+//! The analysis (`flow`) is liveness on each function's control-flow graph. A call inside a
 //! function another calls is reached through every call path from the entry point: what the
 //! callers keep across their calls is kept across the trace too. [`normalise`] first puts a
 //! module in the form a driver's compiler works on (functions inlined, local variables turned

@@ -30,7 +30,7 @@ const HEADER: &str = r#"
                OpCapability RayTracingKHR
                OpExtension "SPV_KHR_ray_tracing"
                OpMemoryModel Logical GLSL450
-               OpEntryPoint RayGenerationKHR %main "main" %tlas %payload
+               OpEntryPoint RayGenerationKHR %main "main" %tlas %payload %seedvar
                OpName %main "main"
                OpName %shade "shade"
                OpName %kept "kept"
@@ -49,6 +49,8 @@ const HEADER: &str = r#"
        %tlas = OpVariable %ptr_as UniformConstant
 %ptr_payload = OpTypePointer RayPayloadKHR %v3float
     %payload = OpVariable %ptr_payload RayPayloadKHR
+%ptr_private = OpTypePointer Private %float
+    %seedvar = OpVariable %ptr_private Private
          %f0 = OpConstant %float 0
          %f1 = OpConstant %float 1
          %u0 = OpConstant %uint 0
@@ -80,12 +82,13 @@ fn live_ids(site: &Site) -> Vec<String> {
 fn only_what_is_used_after_the_call_is_live_across_it() {
     let body = format!(
         "%main = OpFunction %void None %fn\n%entry = OpLabel\n\
-         %after = OpFAdd %float %f1 %f1\n\
-         %before = OpFMul %float %f1 %f1\n\
+         %seed = OpLoad %float %seedvar\n%after = OpFAdd %float %seed %f1\n\
+         %before = OpFMul %float %seed %f1\n\
          %dir = OpCompositeConstruct %v3float %before %before %before\n\
-         %unused = OpFSub %float %before %f1\n\
+         %unused = OpFSub %float %before %f1\n%folded = OpFMul %float %f1 %f1\n\
          {}\
-         %p = OpLoad %v3float %payload\n%s = OpVectorTimesScalar %v3float %p %after\nOpStore %payload %s\n\
+         %p = OpLoad %v3float %payload\n%s0 = OpVectorTimesScalar %v3float %p %after\n\
+         %s = OpVectorTimesScalar %v3float %s0 %folded\nOpStore %payload %s\n\
          OpReturn\nOpFunctionEnd\n",
         trace("dir")
     );
@@ -93,7 +96,7 @@ fn only_what_is_used_after_the_call_is_live_across_it() {
     assert_eq!(sites.len(), 1);
     assert_eq!(sites[0].call, "OpTraceRayKHR");
     // %after alone: not %before, the direction or the handle (used by the trace itself), nor
-    // %unused.
+    // %unused, nor %folded (made of constants alone: a driver folds it).
     assert_eq!(live_ids(&sites[0]), ["OpFAdd:4"]);
     assert_eq!(sites[0].bytes, 4);
     assert!(sites[0].loops.is_empty());
@@ -102,8 +105,8 @@ fn only_what_is_used_after_the_call_is_live_across_it() {
 /// A counted loop around a trace, summing the payload; `%init` feeds the counter's phi from
 /// the entry, `%exit_only` a phi of the exit block from the header, `%k` is used after the loop.
 const LOOP: &str = "%main = OpFunction %void None %fn\n%entry = OpLabel\n\
-    %init = OpIAdd %uint %u0 %u0\n%k = OpFAdd %float %f1 %f1\n%exit_only = OpFMul %float %f1 %f1\n\
-    %dir = OpCompositeConstruct %v3float %f1 %f0 %f0\nOpBranch %header\n\
+    %init = OpIAdd %uint %u0 %u0\n%seed = OpLoad %float %seedvar\n%k = OpFAdd %float %seed %f1\n\
+    %exit_only = OpFMul %float %seed %f1\n%dir = OpCompositeConstruct %v3float %seed %f0 %f0\nOpBranch %header\n\
     %header = OpLabel\n%i = OpPhi %uint %init %entry %next %latch\n%sum = OpPhi %v3float %zero3 %entry %sum2 %latch\n\
     %cond = OpULessThan %bool %i %u4\nOpLoopMerge %exit %latch None\nOpBranchConditional %cond %body %exit\n\
     %body = OpLabel\nTRACE%p = OpLoad %v3float %payload\n%sum2 = OpFAdd %v3float %sum %p\n%next = OpIAdd %uint %i %u1\nOpBranch %latch\n\
@@ -132,12 +135,12 @@ fn a_trace_in_a_called_function_keeps_what_its_callers_keep_across_the_call() {
     // counted once.
     let body = format!(
         "%main = OpFunction %void None %fn\n%entry = OpLabel\n%kept = OpVariable %ptr_float Function\n\
-         OpStore %kept %f1\n%x = OpFAdd %float %f1 %f1\n\
+         OpStore %kept %f1\n%seed = OpLoad %float %seedvar\n%x = OpFAdd %float %seed %f1\n\
          %r = OpFunctionCall %float %shade %kept\n%back = OpLoad %float %kept\n\
          %sum = OpFAdd %float %r %x\n%total = OpFAdd %float %sum %back\n\
          %v = OpCompositeConstruct %v3float %total %total %total\nOpStore %payload %v\nOpReturn\nOpFunctionEnd\n\
          %shade = OpFunction %float None %fn_shade\n%param = OpFunctionParameter %ptr_float\n%sentry = OpLabel\n\
-         %y = OpFMul %float %f1 %f1\n%dir = OpCompositeConstruct %v3float %f1 %f0 %f0\n{}\
+         %sseed = OpLoad %float %seedvar\n%y = OpFMul %float %sseed %f1\n%dir = OpCompositeConstruct %v3float %f1 %f0 %f0\n{}\
          %read = OpLoad %float %param\n%ret = OpFAdd %float %read %y\nOpReturnValue %ret\nOpFunctionEnd\n",
         trace("dir")
     );
