@@ -158,16 +158,7 @@ impl ScenePipeline {
         let groups = if compute { Vec::new() } else { groups(plan, &names, witness) };
         require_device_features(ctx, modules)?;
         let bindings = descriptor_bindings();
-        let stages: Vec<_> = modules
-            .iter()
-            .map(|m| StageDesc {
-                name: m.spec.name,
-                stage: stage_flag(m.spec.stage),
-                spirv: &m.spirv[..],
-                entry: &m.entry,
-                specialization: matches!(m.spec.stage, Stage::Raygen | Stage::Compute).then_some(&spec),
-            })
-            .collect();
+        let stages = stage_descs(modules, &spec);
         let (rt, held) = if compute {
             // One stage, no groups, no SBT, nothing to link.
             (RtPipeline::compute(ctx, &bindings, &stages[0])?, Vec::new())
@@ -198,6 +189,20 @@ impl ScenePipeline {
     pub fn raygen_stack_bytes(&self) -> u64 {
         self._libraries.first().map_or_else(|| self.rt.raygen_stack_bytes(), |raygen| raygen.raygen_stack_bytes())
     }
+}
+
+/// The stage descriptions of `modules`, ray generation and compute stages specialised by `spec`.
+pub fn stage_descs<'a>(modules: &'a [StageModule], spec: &'a vk::SpecializationInfo<'a>) -> Vec<StageDesc<'a>> {
+    modules
+        .iter()
+        .map(|m| StageDesc {
+            name: m.spec.name,
+            stage: stage_flag(m.spec.stage),
+            spirv: &m.spirv[..],
+            entry: &m.entry,
+            specialization: matches!(m.spec.stage, Stage::Raygen | Stage::Compute).then_some(spec),
+        })
+        .collect()
 }
 
 /// The specialisation of ray generation (and compute) stages: whether any light casts shadows,

@@ -7,11 +7,11 @@
 //! any-hit stage, a procedural group with only its intersection stage. The set's `raygen` is
 //! always in it (a pipeline needs a ray generation stage).
 
-use super::pipeline::{descriptor_bindings, stage_flag, RaygenSpec};
+use super::pipeline::{descriptor_bindings, stage_descs, RaygenSpec};
 use crate::error::Result;
 use crate::shaders::{capabilities, Language, ShaderSet, Stage, StageModule};
 use crate::vk::context::Context;
-use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
+use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline};
 use ash::vk;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
@@ -43,16 +43,7 @@ pub fn stage_stacks(
     }
     let specialised = RaygenSpec::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED);
     let spec = specialised.info();
-    let stages: Vec<StageDesc> = modules
-        .iter()
-        .map(|m| StageDesc {
-            name: m.spec.name,
-            stage: stage_flag(m.spec.stage),
-            spirv: &m.spirv[..],
-            entry: &m.entry,
-            specialization: (m.spec.stage == Stage::Raygen).then_some(&spec),
-        })
-        .collect();
+    let stages = stage_descs(&modules, &spec);
     let groups: Vec<(GroupDesc, vk::ShaderGroupShaderKHR)> =
         modules.iter().enumerate().map(|(i, m)| group(m.spec.stage, i as u32)).collect();
     let descs: Vec<GroupDesc> = groups.iter().map(|g| g.0).collect();
