@@ -90,11 +90,15 @@ impl Entry {
 
 /// SPIRV-Tools passes that put a module in the form a driver's compiler analyses: one function
 /// per entry point, local variables as SSA values (arrays indexed at run time stay variables).
-/// None of them moves code across a call or changes a loop's shape.
-pub const NORMALISE_PASSES: [&str; 8] = [
+/// None of them moves code across a call or changes a loop's shape. Branches on constants go
+/// first, as every driver drops them: rust-gpu leaves core's `if false { panic }` checks, which
+/// would otherwise become return flags carried through the loops.
+pub const NORMALISE_PASSES: [&str; 10] = [
+    "--eliminate-dead-branches",
     "--merge-return",
     "--inline-entry-points-exhaustive",
     "--eliminate-dead-functions",
+    "--eliminate-dead-branches",
     "--scalar-replacement=0",
     "--eliminate-local-single-block",
     "--eliminate-local-single-store",

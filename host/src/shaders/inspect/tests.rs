@@ -34,6 +34,8 @@ const HEADER: &str = r#"
                OpName %main "main"
                OpName %shade "shade"
                OpName %kept "kept"
+               OpDecorate %tlas DescriptorSet 0
+               OpDecorate %tlas Binding 0
        %void = OpTypeVoid
          %fn = OpTypeFunction %void
       %float = OpTypeFloat 32
@@ -56,6 +58,7 @@ const HEADER: &str = r#"
          %u0 = OpConstant %uint 0
          %u1 = OpConstant %uint 1
          %u4 = OpConstant %uint 4
+      %false = OpConstantFalse %bool
      %origin = OpConstantComposite %v3float %f1 %f1 %f1
       %zero3 = OpConstantComposite %v3float %f0 %f0 %f0
 "#;
@@ -126,6 +129,40 @@ fn values_carried_around_a_loop_are_live_across_a_trace_in_it() {
     assert_eq!(s.bytes, 12 + 4 + 4 + 12 + 4);
     assert_eq!(s.loops.len(), 1);
     assert_eq!((s.loops[0].carried, s.loops[0].carried_bytes), (2, 16));
+}
+
+#[test]
+fn a_return_behind_a_constant_false_branch_is_dropped_before_it_can_become_a_carried_flag() {
+    // What rust-gpu leaves of core's `if false { panic }` precondition checks: a return on a
+    // branch no driver keeps. Left in, merge-return would turn it into a flag carried by the
+    // loop and live across the trace.
+    let bail = "OpSelectionMerge %cont None\nOpBranchConditional %false %bail %cont\n\
+                %bail = OpLabel\nOpReturn\n%cont = OpLabel\n";
+    // Two loops, so that the flag would go round the outer one through the inner one's exit.
+    let nested = format!(
+        "%main = OpFunction %void None %fn\n%entry = OpLabel\n%seed = OpLoad %float %seedvar\n\
+         %dir = OpCompositeConstruct %v3float %seed %f0 %f0\nOpBranch %oh\n\
+         %oh = OpLabel\n%o = OpPhi %uint %u0 %entry %onext %olatch\n%ocond = OpULessThan %bool %o %u4\n\
+         OpLoopMerge %oexit %olatch None\nOpBranchConditional %ocond %obody %oexit\n\
+         %obody = OpLabel\nOpBranch %header\n\
+         %header = OpLabel\n%i = OpPhi %uint %u0 %obody %next %latch\n%cond = OpULessThan %bool %i %u4\n\
+         OpLoopMerge %iexit %latch None\nOpBranchConditional %cond %body %iexit\n\
+         %body = OpLabel\n{}BAIL%next = OpIAdd %uint %i %u1\nOpBranch %latch\n\
+         %latch = OpLabel\nOpBranch %header\n\
+         %iexit = OpLabel\n%onext = OpIAdd %uint %o %u1\nOpBranch %olatch\n\
+         %olatch = OpLabel\nOpBranch %oh\n\
+         %oexit = OpLabel\nOpReturn\nOpFunctionEnd\n\
+         %shade = OpFunction %float None %fn_shade\n%arg = OpFunctionParameter %ptr_float\n\
+         %start = OpLabel\n%kept = OpLoad %float %arg\nOpReturnValue %kept\nOpFunctionEnd\n",
+        trace("dir")
+    );
+    let looped = nested.replace("BAIL", "");
+    let body = nested.replace("BAIL", bail);
+    let plain = inspect(&normalise(&assemble(&looped)).unwrap()).unwrap();
+    let normal = inspect(&normalise(&assemble(&body)).unwrap()).unwrap();
+    let site = &normal[0].sites[0];
+    assert!(site.live.iter().all(|l| l.ty != "bool"), "{:?}", live_ids(site));
+    assert_eq!(site.bytes, plain[0].sites[0].bytes);
 }
 
 #[test]
