@@ -22,6 +22,12 @@ const KNOWN: &[(&str, &[u64], &str)] = &[(
      was 8% slower on box at 16 spp. Not kept: issue 40, item 2",
 )];
 
+/// Whether `bytes` (sorted) keeps more than `bound` (sorted) across some call, calls matched
+/// smallest to smallest, or has a different number of calls.
+fn exceeds(bytes: &[u64], bound: &[u64]) -> bool {
+    bytes.len() != bound.len() || bytes.iter().zip(bound).any(|(b, limit)| b > limit)
+}
+
 /// Per module with calls: the bytes live across each, in order.
 fn live_bytes(report: &Value) -> Vec<(String, Vec<u64>)> {
     let modules = report["modules"].as_array().expect("modules");
@@ -53,13 +59,12 @@ fn rust_stages_keep_no_more_across_their_calls_than_their_glsl_twins() {
         let (mut mine, mut theirs) = (bytes.clone(), twin.clone());
         mine.sort_unstable();
         theirs.sort_unstable();
-        let more = mine.len() != theirs.len() || mine.iter().zip(&theirs).any(|(r, g)| r > g);
-        match (more, KNOWN.iter().find(|k| k.0 == module)) {
+        match (exceeds(&mine, &theirs), KNOWN.iter().find(|k| k.0 == module)) {
             (false, Some(_)) => over.push(format!(
                 "{module} now keeps no more than GLSL ({mine:?} against {theirs:?}): remove it from KNOWN"
             )),
             (true, None) => over.push(format!("{module}: Rust keeps {mine:?} bytes across its calls, GLSL {theirs:?}")),
-            (true, Some((_, bound, _))) if mine.len() != bound.len() || mine.iter().zip(*bound).any(|(r, b)| r > b) => {
+            (true, Some((_, bound, _))) if exceeds(&mine, bound) => {
                 over.push(format!("{module}: Rust keeps {mine:?} bytes, more than the {bound:?} listed"))
             }
             _ => {}
