@@ -134,10 +134,13 @@ fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
             assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{} with {set_text}", path.display());
             assert!(r.decided > 0, "{}: nothing decided", path.display());
             // Rays gone through a first surface: none, but for the watertight case, where
-            // lavapipe's triangle test lets 1 to 3 of its 8000 rays through between the
-            // icosahedron's triangles, a different number each run (docs/probe-format.md).
-            // More would be a new leak.
-            let allowed = if path.ends_with("mesh-edges.toml") { 4 } else { 0 };
+            // lavapipe's triangle test lets a few of its 8000 rays through between triangles,
+            // a different number each run (docs/probe-format.md): over 120 runs (60 per set)
+            // 1 to 6, mean 2.4, variance 1.0. The bound was 4 until a CI run met 5. Counted
+            // as Poisson with that mean (the spread is narrower than Poisson's, so this is
+            // cautious), more than 10 comes once in 25,000 runs. A leak of twinray's own
+            // beyond that bound (0.125% of the rays) still fails.
+            let allowed = if path.ends_with("mesh-edges.toml") { 10 } else { 0 };
             assert!(r.through <= allowed, "{} with {set_text}: {} rays went through", path.display(), r.through);
         }
     }
