@@ -29,7 +29,7 @@ fn a_set_against_its_salted_copy_is_not_resolved() {
     let glsl = set("glsl");
     let mut verdicts = Vec::new();
     for _ in 0..2 {
-        let c = compare_sets(&ctx, &sphere(), &glsl, &glsl, &opts()).unwrap();
+        let c = compare_sets(&ctx, &sphere(), (&glsl, &glsl), &opts(), None).unwrap();
         let r = &c.report;
         assert!(r.null_control && r.set_b == "glsl (copy 1)", "{} / {}", r.set_a, r.set_b);
         assert!(r.pass, "a copy renders what the set renders: {:?}", r.failures);
@@ -61,7 +61,7 @@ fn twice_the_work_is_resolved_as_slower() {
         .expect("glslangValidator (cargo xtask setup installs it)");
     assert!(compiled.status.success(), "{}", String::from_utf8_lossy(&compiled.stdout));
     let heavy: ShaderSet = format!("glsl,raygen={}", twice.display()).parse().unwrap();
-    let c = compare_sets(&ctx, &sphere(), &set("glsl"), &heavy, &opts()).unwrap();
+    let c = compare_sets(&ctx, &sphere(), (&set("glsl"), &heavy), &opts(), None).unwrap();
     let r = &c.report;
     assert!(r.pass && !r.null_control, "the same image, not a copy: {:?}", r.failures);
     let timing = r.timing.clone().expect("lavapipe times");

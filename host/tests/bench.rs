@@ -193,6 +193,36 @@ fn sets_are_timed_alone_in_processes_of_their_own() {
     assert!(left.is_empty(), "child folders left behind: {left:?}");
 }
 
+/// `compare --processes 3`: each set timed alone in three child benches of two placements, one
+/// time per process in alternating orders and the interval over the rounds, the images from
+/// the parent (in-process timing would give one time per placement, two); and
+/// the flags a child cannot honour refused before anything renders.
+#[test]
+fn compare_times_each_set_alone_in_processes_of_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = ["--width", "32", "--height", "24", "--warmup", "1", "--placements", "2"];
+    let args = [&["--validate", "compare", "sphere", "--a", "glsl", "--b", "rust"][..], &size[..]].concat();
+    let out = twinray(&[&args[..], &["--processes", "3", "--out-dir", "cmp", "--json"]].concat(), dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_str(&stdout).expect("compare --json prints JSON");
+    assert_eq!(json["processes"], 3);
+    assert_eq!(json["timing"]["placements"], 3, "over the three rounds: {json}");
+    for (key, first) in [("placements_a", 0), ("placements_b", 1)] {
+        let positions: Vec<u64> =
+            json[key]["position"].as_array().unwrap().iter().map(|p| p.as_u64().unwrap()).collect();
+        assert_eq!(positions, [first, 1 - first, first], "{key}: the rounds go forwards, then backwards");
+        assert_eq!(json[key]["median_ms"].as_array().unwrap().len(), 3, "one time per process: {json}");
+    }
+    assert!(dir.path().join("cmp/diff.png").is_file());
+    let text = twinray(&[&args[..], &["--processes", "3", "--out-dir", "cmp"]].concat(), dir.path());
+    let text = String::from_utf8_lossy(&text.stdout);
+    assert!(text.contains("each set alone in 3 processes of 2 placements"), "{text}");
+    assert_bad_input(&["compare", "--processes", "2", "--eye", "1,2,3"], &["--processes", "--eye"]);
+    assert_bad_input(&["compare", "orbit", "--processes", "2", "--frames", "0..2"], &["not with --frames"]);
+    assert_bad_input(&["compare", "--processes", "2", "--runs", "3"], &["at least 10", "got 3"]);
+}
+
 #[test]
 fn bench_rejects_bad_input_before_rendering() {
     assert_bad_input(&["bench", "lights", "--spp", "1,3"], &["squares up to 256", "got 3"]);

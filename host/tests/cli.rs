@@ -203,6 +203,7 @@ fn compare_prints_json_with_the_documented_keys() {
         "timing",
         "placements_a",
         "placements_b",
+        "processes",
         "null_control",
         "pass",
     ];
@@ -218,6 +219,7 @@ fn compare_prints_json_with_the_documented_keys() {
     assert_eq!(json["placements_a"]["median_ms"].as_array().unwrap().len(), 3);
     assert!(timing["verdict"].as_str().unwrap().contains("95% CI"), "{timing}");
     assert_eq!(json["null_control"], false);
+    assert_eq!(json["processes"], 0);
     assert_eq!(out.status.success(), json["pass"] == true, "exit code must follow pass");
     for name in ["a.png", "b.png", "diff.png"] {
         assert!(dir.path().join("cmp").join(name).is_file(), "{name} not written");

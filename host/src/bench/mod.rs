@@ -5,7 +5,6 @@
 
 pub mod animation;
 pub mod html;
-mod isolated;
 pub mod linking;
 pub mod metrics;
 pub mod pipelines;
@@ -19,6 +18,7 @@ pub use samplers::side_of;
 use crate::error::{Error, Result};
 use crate::probe::stability::Skipped;
 use crate::reference::image::{reference, ReferenceImage};
+pub use crate::render::isolated::{Isolation, TimeAlone};
 use crate::render::{render_sets, to_rgba8, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
@@ -26,7 +26,6 @@ use crate::util::interval::RatioInterval;
 use crate::util::output::file_safe;
 use crate::util::stats::Spread;
 use crate::vk::context::Context;
-pub use isolated::{Isolation, TimeAlone};
 use serde::Serialize;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

@@ -1,6 +1,6 @@
-//! `twinray bench --processes N`: one set timed alone, by a child `twinray bench` of that set
-//! only, with the parent's global flags and timing settings, whose placement medians are read
-//! back from its results.json (see `twinray::bench::Isolation`).
+//! `--processes N` (`twinray bench` and `compare`): one set timed alone, by a child `twinray
+//! bench` of that set only, with the parent's global flags and timing settings, whose placement
+//! medians are read back from its results.json (see `twinray::bench::Isolation`).
 
 use crate::args::{BenchArgs, GlobalArgs};
 use std::path::PathBuf;
@@ -12,30 +12,79 @@ use twinray::Error;
 /// Child folders made so far by this process: each child writes into a fresh one.
 static CHILDREN: AtomicU32 = AtomicU32::new(0);
 
-/// The timer `bench` calls per scene (an index into `scenes`, as given on the command line),
-/// sample count and set.
+/// The parent's settings every child times with.
+pub struct ChildSettings {
+    pub runs: u32,
+    pub warmup: u32,
+    pub placements: u32,
+    pub size: Option<(u32, u32)>,
+    /// The child bench's reference image: its error figures go unread, so `compare` asks for
+    /// the cheapest one; `bench` hands on its own, which its cache already holds.
+    pub reference_spp: u32,
+    pub reference_set: String,
+    pub cache: PathBuf,
+}
+
+impl ChildSettings {
+    pub fn of_bench(args: &BenchArgs, cache: PathBuf) -> Self {
+        ChildSettings {
+            runs: args.runs,
+            warmup: args.warmup,
+            placements: args.placements,
+            size: args.width.zip(args.height),
+            reference_spp: args.reference_spp,
+            reference_set: args.reference_set.to_string(),
+            cache,
+        }
+    }
+}
+
+/// `compare --processes N`'s isolation, and the folder its children keep their (1 spp,
+/// unread) reference in, for the caller to remove.
+pub fn for_compare(
+    global: &GlobalArgs,
+    scene: String,
+    opts: &twinray::render::RenderOptions,
+    reference_set: &ShaderSet,
+    processes: u32,
+) -> (twinray::bench::Isolation, PathBuf) {
+    let cache = std::env::temp_dir().join(format!("twinray-compare-{}", std::process::id()));
+    let settings = ChildSettings {
+        runs: opts.runs,
+        warmup: opts.warmup,
+        placements: opts.placements,
+        size: Some((opts.width, opts.height)),
+        reference_spp: 1,
+        reference_set: reference_set.to_string(),
+        cache: cache.clone(),
+    };
+    let time_alone = std::sync::Arc::new(timer(global, settings, vec![scene]));
+    (twinray::bench::Isolation { processes, time_alone }, cache)
+}
+
+/// The timer `bench` and `compare` call per scene (an index into `scenes`, as given on the
+/// command line), sample count and set.
 pub fn timer(
     global: &GlobalArgs,
-    args: &BenchArgs,
-    cache: PathBuf,
+    settings: ChildSettings,
     scenes: Vec<String>,
 ) -> impl Fn(usize, u32, &ShaderSet) -> twinray::Result<Vec<f64>> + Send + Sync + 'static {
     let exe = std::env::current_exe().map_err(|e| e.to_string());
     let mut common = global.forwarded();
     common.push("bench".into());
-    let settings = [
-        ("--runs", args.runs.to_string()),
-        ("--warmup", args.warmup.to_string()),
-        ("--placements", args.placements.to_string()),
-        ("--reference-spp", args.reference_spp.to_string()),
-        ("--reference-set", args.reference_set.to_string()),
-        ("--cache", cache.display().to_string()),
+    let flags = [
+        ("--runs", settings.runs.to_string()),
+        ("--warmup", settings.warmup.to_string()),
+        ("--placements", settings.placements.to_string()),
+        ("--reference-spp", settings.reference_spp.to_string()),
+        ("--reference-set", settings.reference_set),
+        ("--cache", settings.cache.display().to_string()),
         ("--shadow-spp", "none".into()),
         ("--probes", "none".into()),
         ("--images", "none".into()),
     ];
-    common.extend(settings.into_iter().flat_map(|(flag, value)| [flag.to_string(), value]));
-    if let (Some(w), Some(h)) = (args.width, args.height) {
+    common.extend(flags.into_iter().flat_map(|(flag, value)| [flag.to_string(), value]));
+    if let Some((w, h)) = settings.size {
         common.extend(["--width".into(), w.to_string(), "--height".into(), h.to_string()]);
     }
     move |scene, spp, set| {

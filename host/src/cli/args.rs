@@ -183,6 +183,12 @@ pub struct CompareArgs {
     pub viewpoint: ViewpointArgs,
     #[command(flatten)]
     pub animation: AnimationArgs,
+    /// Time each set alone in N processes of its own (child `twinray bench` runs of the scene,
+    /// each with --placements placements), in rounds that alternate the sets' order, and take
+    /// the ratio's interval over the rounds, as `bench --processes` does. 0: both sets timed in
+    /// this process. Not with --frames, --frame, --eye or --look-at (the child takes none).
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub processes: u32,
 }
 
 #[derive(Args)]

@@ -77,7 +77,11 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     let cache = args.cache.clone().unwrap_or_else(twinray::reference::image::default_cache);
     let isolation = (args.processes > 0).then(|| bench::Isolation {
         processes: args.processes,
-        time_alone: std::sync::Arc::new(crate::alone::timer(global, &args, cache.clone(), names.clone())),
+        time_alone: std::sync::Arc::new(crate::alone::timer(
+            global,
+            crate::alone::ChildSettings::of_bench(&args, cache.clone()),
+            names.clone(),
+        )),
     });
     let config = bench::BenchConfig {
         scenes,

@@ -74,17 +74,35 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
 }
 
 pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
+    if args.processes > 0 && (args.animation.frames.is_some() || args.viewpoint.given()) {
+        let message = "--processes times the scene's own still image: not with --frames, --frame, --eye or --look-at";
+        return Err(Error::Input(message.into()).into());
+    }
     if let Some(range) = args.animation.frames {
         refuse_viewpoint_with_frames(&args.viewpoint)?;
         return crate::frames::compare(global, args, range);
     }
     let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
     let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
+    if args.processes > 0 && opts.runs < 10 {
+        let message = format!(
+            "--processes: each process is a `twinray bench`, which needs --runs of at least 10 (got {})",
+            opts.runs
+        );
+        return Err(Error::Input(message).into());
+    }
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
     }
     let ctx = context(global)?;
-    let comparison = compare_sets(&ctx, &scene, &args.a, &args.b, &opts)?;
+    let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
+    let isolation =
+        (args.processes > 0).then(|| crate::alone::for_compare(global, scene_arg, &opts, &args.a, args.processes));
+    let comparison = compare_sets(&ctx, &scene, (&args.a, &args.b), &opts, isolation.as_ref().map(|(i, _)| i));
+    if let Some((_, cache)) = &isolation {
+        let _ = std::fs::remove_dir_all(cache);
+    }
+    let comparison = comparison?;
     comparison.write_images(&args.out_dir)?;
     let report = &comparison.report;
     if args.frame.json {

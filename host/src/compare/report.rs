@@ -5,6 +5,7 @@ use super::diff::{diff, diff_image, verdict, ImageDiff};
 use super::pixels::{named_pixels, pixel_lines, NamedPixel};
 use crate::error::{Error, Result};
 use crate::explain::no_payload;
+use crate::render::isolated::Isolation;
 use crate::render::{render_sets, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
@@ -62,6 +63,9 @@ pub struct CompareReport {
     pub runs: u32,
     pub warmup: u32,
     pub placements: u32,
+    /// Processes each set was timed alone in (`--processes`), the ratio's interval taken over
+    /// them; 0: both sets timed in this process, the interval over placements.
+    pub processes: u32,
     /// Whether B is a salted copy of A (`compare --a X --b X`): the null control.
     pub null_control: bool,
     /// The pixels that differ most and the hit mismatches, a few, with their `twinray explain`
@@ -89,19 +93,27 @@ pub struct Comparison {
 }
 
 /// Renders `scene` with both sets (see `render_sets`) and compares them against its tolerance.
+/// With `isolation`, the sets' times are those of each set alone in processes of its own (the
+/// renders here give only the images).
 pub fn compare_sets(
     ctx: &Arc<Context>,
     scene: &Scene,
-    set_a: &ShaderSet,
-    set_b: &ShaderSet,
+    (set_a, set_b): (&ShaderSet, &ShaderSet),
     opts: &RenderOptions,
+    isolation: Option<&Isolation>,
 ) -> Result<Comparison> {
     let named_sets = (set_a.to_string(), set_b.to_string());
     // The same set twice is timed as two copies built apart: the null control.
-    let set_b = &ShaderSet::distinct(&[set_a.clone(), set_b.clone()])[1];
-    let [a, b]: [RenderOutput; 2] = render_sets(ctx, scene, &[set_a.clone(), set_b.clone()], opts)?
-        .try_into()
-        .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
+    let sets = ShaderSet::distinct(&[set_a.clone(), set_b.clone()]);
+    let set_b = &sets[1];
+    let imaged = RenderOptions { warmup: 0, runs: 1, placements: 1, ..*opts };
+    let mut outputs = render_sets(ctx, scene, &sets, if isolation.is_some() { &imaged } else { opts })?;
+    if let Some(isolation) = isolation {
+        let spp = scene.file.image.samples * scene.file.image.samples;
+        isolation.retime(0, spp, &sets, &mut outputs)?;
+    }
+    let [a, b]: [RenderOutput; 2] =
+        outputs.try_into().map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
     let parity = scene.file.parity;
     let diff = diff(&a, &b, parity.pixel_threshold);
     let mut failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
@@ -138,6 +150,7 @@ pub fn compare_sets(
         runs: opts.runs,
         warmup: opts.warmup,
         placements: opts.placements,
+        processes: isolation.map_or(0, |i| i.processes),
         null_control: set_b.original() == *set_a,
         pixels: named_pixels(scene, (&a, &b), parity.pixel_threshold, (&named_sets.0, &named_sets.1), None),
         pass: failures.is_empty(),
@@ -168,16 +181,19 @@ impl CompareReport {
         };
         let threads = self.cpu_threads.map_or(String::new(), |t| format!(", {t} threads"));
         let null = if self.null_control { " (b is a salted copy of a: the null control)" } else { "" };
+        let timed = if self.processes > 0 {
+            let (n, p, r, w) = (self.processes, self.placements, self.runs, self.warmup);
+            format!("each set alone in {n} processes of {p} placements of {r} timed traces after {w} untimed")
+        } else {
+            let (p, r, wa, wb) = (self.placements, self.runs, self.warmup_traces_a, self.warmup_traces_b);
+            format!("{p} placements of {r} timed traces after {wa}/{wb} untimed")
+        };
         let mut s = format!(
-            "scene {} {}x{} on {}{threads}, {} placements of {} timed traces after {}/{} untimed\n  a = {:<28} {}\n  b = {:<28} {}{null}\n  time a/b {}, raygen stack {} / {} bytes\n",
+            "scene {} {}x{} on {}{threads}, {timed}\n  a = {:<28} {}\n  b = {:<28} {}{null}\n  time a/b {}, raygen stack {} / {} bytes\n",
             self.scene,
             self.width,
             self.height,
             self.device,
-            self.placements,
-            self.runs,
-            self.warmup_traces_a,
-            self.warmup_traces_b,
             self.set_a,
             timing(self.gpu_ms_a, self.spread_a, self.mrays_per_s_a, self.rays_a),
             self.set_b,

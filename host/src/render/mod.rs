@@ -4,6 +4,7 @@
 
 mod barriers;
 pub mod frames;
+pub mod isolated;
 pub mod libraries;
 mod moving;
 pub mod output;

@@ -1,4 +1,5 @@
-//! Timing each set alone, in processes of its own (`twinray bench --processes K`).
+//! Timing each set alone, in processes of its own (`twinray bench` and `compare` with
+//! `--processes K`).
 //!
 //! On the H100 a process that builds pipelines of several sets settles into a regime chosen
 //! by the set list: one set runs at its speed alone and another 4-7% slower, the same in
@@ -9,8 +10,8 @@
 //! processes of its own, in rounds that alternate the sets' order; a ratio's interval is taken
 //! over the rounds, the two processes of a round being one paired observation.
 
+use super::{PlacementTimes, RenderOutput};
 use crate::error::Result;
-use crate::render::{PlacementTimes, RenderOutput};
 use crate::shaders::ShaderSet;
 use std::sync::Arc;
 
