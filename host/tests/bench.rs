@@ -223,6 +223,26 @@ fn compare_times_each_set_alone_in_processes_of_its_own() {
     assert_bad_input(&["compare", "--processes", "2", "--runs", "3"], &["at least 10", "got 3"]);
 }
 
+/// `bisect --processes 2`: every set of the bisect timed alone in two child benches, the
+/// swaps among them, whose text reads back as another set (`raygen` names a module and its
+/// stage), handed over as folders of their modules; not with --probe.
+#[test]
+fn bisect_times_each_set_alone_in_processes_of_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["bisect", "sphere", "--a", "glsl", "--b", "glsl,raygen=rust", "--width", "32", "--height", "24"];
+    let out = twinray(&[&args[..], &["--placements", "1", "--processes", "3", "--json"]].concat(), dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_str(&stdout).expect("bisect --json prints JSON");
+    assert_eq!(json["processes"], 3);
+    // One placement in each process: an interval at all is one over the three rounds.
+    assert_eq!(json["ratio"]["placements"], 3, "{json}");
+    let swap = &json["stages"][0];
+    assert_eq!(swap["unit"], "raygen", "{json}");
+    assert_eq!(swap["ratio_forward"]["placements"], 3, "{swap}");
+    assert_bad_input(&["bisect", "--probe", "probes/far-sphere.toml", "--processes", "2"], &["--processes"]);
+}
+
 #[test]
 fn bench_rejects_bad_input_before_rendering() {
     assert_bad_input(&["bench", "lights", "--spp", "1,3"], &["squares up to 256", "got 3"]);

@@ -39,16 +39,16 @@ impl ChildSettings {
     }
 }
 
-/// `compare --processes N`'s isolation, and the folder its children keep their (1 spp,
-/// unread) reference in, for the caller to remove.
-pub fn for_compare(
+/// `--processes N` of `compare` and `bisect` (none for 0), and the folder its children keep
+/// their (1 spp, unread) reference in, for the caller to remove.
+pub fn for_scene(
     global: &GlobalArgs,
     scene: String,
     opts: &twinray::render::RenderOptions,
     reference_set: &ShaderSet,
     processes: u32,
-) -> (twinray::bench::Isolation, PathBuf) {
-    let cache = std::env::temp_dir().join(format!("twinray-compare-{}", std::process::id()));
+) -> (Option<twinray::bench::Isolation>, PathBuf) {
+    let cache = std::env::temp_dir().join(format!("twinray-scene-alone-{}", std::process::id()));
     let settings = ChildSettings {
         runs: opts.runs,
         warmup: opts.warmup,
@@ -59,10 +59,20 @@ pub fn for_compare(
         cache: cache.clone(),
     };
     let time_alone = std::sync::Arc::new(timer(global, settings, vec![scene]));
-    (twinray::bench::Isolation { processes, time_alone }, cache)
+    ((processes > 0).then_some(twinray::bench::Isolation { processes, time_alone }), cache)
 }
 
-/// The timer `bench` and `compare` call per scene (an index into `scenes`, as given on the
+/// Each process is a `twinray bench`, whose floor for `--runs` is 10.
+pub fn check_runs(processes: u32, runs: u32) -> Result<(), Error> {
+    if processes > 0 && runs < 10 {
+        let message =
+            format!("--processes: each process is a `twinray bench`, which needs --runs of at least 10 (got {runs})");
+        return Err(Error::Input(message));
+    }
+    Ok(())
+}
+
+/// The timer `bench`, `compare` and `bisect` call per scene (an index into `scenes`, as given on the
 /// command line), sample count and set.
 pub fn timer(
     global: &GlobalArgs,
@@ -91,18 +101,38 @@ pub fn timer(
         let exe = exe.as_ref().map_err(|e| Error::Unsupported(format!("finding twinray's own executable: {e}")))?;
         let n = CHILDREN.fetch_add(1, Ordering::Relaxed);
         let dir = std::env::temp_dir().join(format!("twinray-alone-{}-{n}", std::process::id()));
-        let ran = Command::new(exe)
-            .args(&common)
-            .arg(&scenes[scene])
-            .args(["--sets", &set.to_string(), "--spp", &spp.to_string(), "--out"])
-            .arg(&dir)
-            .output();
-        let times = ran
-            .map_err(|e| Error::Unsupported(format!("starting {}: {e}", exe.display())))
-            .and_then(|out| read_times(&out, &dir));
+        let modules = dir.with_extension("set");
+        let times = child_set(set, &modules).and_then(|text| {
+            let ran = Command::new(exe)
+                .args(&common)
+                .arg(&scenes[scene])
+                .args(["--sets", &text, "--spp", &spp.to_string(), "--out"])
+                .arg(&dir)
+                .output();
+            ran.map_err(|e| Error::Unsupported(format!("starting {}: {e}", exe.display())))
+                .and_then(|out| read_times(&out, &dir))
+        });
         let _ = std::fs::remove_dir_all(&dir);
+        let _ = std::fs::remove_dir_all(&modules);
         times.map_err(|e| Error::Unsupported(format!("timing {set} alone on {} at {spp} spp: {e}", scenes[scene])))
     }
+}
+
+/// How a child is told `set`: its text where that parses back to the same modules, else a
+/// folder `dir` of its modules, written here. The text of a mix can name another set: in a
+/// bisect's swap, a module named as its stage is (`raygen`) reads back as the whole stage.
+fn child_set(set: &ShaderSet, dir: &std::path::Path) -> twinray::Result<String> {
+    let text = set.to_string();
+    if twinray::shaders::parse_sets(&text).ok().as_deref() == Some(std::slice::from_ref(set)) {
+        return Ok(text);
+    }
+    let io = |source| Error::Io { what: "writing a set's modules to", path: dir.into(), source };
+    std::fs::create_dir_all(dir).map_err(io)?;
+    for spec in twinray_shared::catalog::MODULES.iter().filter(|m| !set.lacks(m.name)) {
+        let module = set.module(spec.name)?;
+        std::fs::write(dir.join(format!("{}.spv", spec.name)), &module.spirv[..]).map_err(io)?;
+    }
+    Ok(dir.display().to_string())
 }
 
 /// The placement medians of the one set a child timed.

@@ -208,6 +208,10 @@ pub struct BisectArgs {
     pub b: ShaderSet,
     #[command(flatten)]
     pub frame: FrameArgs,
+    /// Time each set alone in N processes of its own, as `compare --processes` does (not with
+    /// --probe). 0: every set timed in this process.
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub processes: u32,
 }
 
 #[derive(Args)]

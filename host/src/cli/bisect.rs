@@ -11,8 +11,8 @@ use twinray::{Error, Scene};
 pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
     let report = match &args.probe {
         Some(path) => {
-            if args.frame.width.is_some() || args.frame.height.is_some() {
-                return Err(Error::Input("--width and --height do not apply to --probe".into()).into());
+            if args.frame.width.is_some() || args.frame.height.is_some() || args.processes > 0 {
+                return Err(Error::Input("--width, --height and --processes do not apply to --probe".into()).into());
             }
             let case = ProbeCase::load(path)?;
             let ctx = context(global)?;
@@ -29,8 +29,13 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
         None => {
             let scene = Scene::load(args.scene.as_deref())?;
             let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
+            crate::alone::check_runs(args.processes, opts.runs)?;
             let ctx = context(global)?;
-            run_bisect(&mut ImageSubject { ctx: &ctx, scene: &scene, opts }, &args.a, &args.b)?
+            let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
+            let (isolation, cache) = crate::alone::for_scene(global, scene_arg, &opts, &args.a, args.processes);
+            let report = run_bisect(&mut ImageSubject { ctx: &ctx, scene: &scene, opts, isolation }, &args.a, &args.b);
+            let _ = std::fs::remove_dir_all(cache);
+            report?
         }
     };
     print_report(&report, args.frame.json)?;

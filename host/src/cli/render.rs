@@ -84,24 +84,15 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
     }
     let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
     let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
-    if args.processes > 0 && opts.runs < 10 {
-        let message = format!(
-            "--processes: each process is a `twinray bench`, which needs --runs of at least 10 (got {})",
-            opts.runs
-        );
-        return Err(Error::Input(message).into());
-    }
+    crate::alone::check_runs(args.processes, opts.runs)?;
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
     }
     let ctx = context(global)?;
     let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
-    let isolation =
-        (args.processes > 0).then(|| crate::alone::for_compare(global, scene_arg, &opts, &args.a, args.processes));
-    let comparison = compare_sets(&ctx, &scene, (&args.a, &args.b), &opts, isolation.as_ref().map(|(i, _)| i));
-    if let Some((_, cache)) = &isolation {
-        let _ = std::fs::remove_dir_all(cache);
-    }
+    let (isolation, cache) = crate::alone::for_scene(global, scene_arg, &opts, &args.a, args.processes);
+    let comparison = compare_sets(&ctx, &scene, (&args.a, &args.b), &opts, isolation.as_ref());
+    let _ = std::fs::remove_dir_all(cache);
     let comparison = comparison?;
     comparison.write_images(&args.out_dir)?;
     let report = &comparison.report;

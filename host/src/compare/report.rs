@@ -5,8 +5,8 @@ use super::diff::{diff, diff_image, verdict, ImageDiff};
 use super::pixels::{named_pixels, pixel_lines, NamedPixel};
 use crate::error::{Error, Result};
 use crate::explain::no_payload;
-use crate::render::isolated::Isolation;
-use crate::render::{render_sets, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
+use crate::render::isolated::{render_timed, Isolation};
+use crate::render::{PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::util::interval::RatioInterval;
@@ -106,14 +106,9 @@ pub fn compare_sets(
     // The same set twice is timed as two copies built apart: the null control.
     let sets = ShaderSet::distinct(&[set_a.clone(), set_b.clone()]);
     let set_b = &sets[1];
-    let imaged = RenderOptions { warmup: 0, runs: 1, placements: 1, ..*opts };
-    let mut outputs = render_sets(ctx, scene, &sets, if isolation.is_some() { &imaged } else { opts })?;
-    if let Some(isolation) = isolation {
-        let spp = scene.file.image.samples * scene.file.image.samples;
-        isolation.retime(0, spp, &sets, &mut outputs)?;
-    }
-    let [a, b]: [RenderOutput; 2] =
-        outputs.try_into().map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
+    let [a, b]: [RenderOutput; 2] = render_timed(ctx, scene, &sets, opts, isolation)?
+        .try_into()
+        .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
     let parity = scene.file.parity;
     let diff = diff(&a, &b, parity.pixel_threshold);
     let mut failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));

@@ -10,9 +10,11 @@
 //! processes of its own, in rounds that alternate the sets' order; a ratio's interval is taken
 //! over the rounds, the two processes of a round being one paired observation.
 
-use super::{PlacementTimes, RenderOutput};
+use super::{render_sets, PlacementTimes, RenderOptions, RenderOutput};
 use crate::error::Result;
+use crate::scene::Scene;
 use crate::shaders::ShaderSet;
+use crate::vk::context::Context;
 use std::sync::Arc;
 
 /// Times one set alone: the median GPU ms of each placement of scene number `scene` (in the
@@ -61,6 +63,23 @@ impl Isolation {
         }
         Ok(())
     }
+}
+
+/// Renders `scene` with `sets` and times them: here, over `opts`'s placements, or with
+/// `isolation` each set alone in processes of its own (the renders here then give only the
+/// images, one untimed trace each), at the scene's own sample count.
+pub fn render_timed(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    sets: &[ShaderSet],
+    opts: &RenderOptions,
+    isolation: Option<&Isolation>,
+) -> Result<Vec<RenderOutput>> {
+    let Some(isolation) = isolation else { return render_sets(ctx, scene, sets, opts) };
+    let mut outputs = render_sets(ctx, scene, sets, &RenderOptions { warmup: 0, runs: 1, placements: 1, ..*opts })?;
+    let side = scene.file.image.samples;
+    isolation.retime(0, side * side, sets, &mut outputs)?;
+    Ok(outputs)
 }
 
 fn geometric_mean(values: &[f64]) -> f64 {

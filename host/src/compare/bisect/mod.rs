@@ -87,8 +87,11 @@ pub struct BisectReport {
     /// Median GPU ms of A and B: the median of their placements' medians.
     pub gpu_ms_a: Option<f64>,
     pub gpu_ms_b: Option<f64>,
-    /// t(B) / t(A), with its 95% interval over placements, and that in words.
+    /// t(B) / t(A), with its 95% interval over placements (or rounds of processes), and that
+    /// in words.
     pub ratio: Option<RatioInterval>,
+    /// Processes each set was timed alone in (`--processes`); 0: all in this one.
+    pub processes: u32,
     pub time_verdict: String,
     pub raygen_stack_bytes_a: u64,
     pub raygen_stack_bytes_b: u64,
@@ -261,6 +264,7 @@ pub fn bisect<T>(subject: &mut dyn Subject<Data = T>, a: &ShaderSet, b: &ShaderS
         gpu_ms_a,
         gpu_ms_b,
         ratio: base.interval,
+        processes: subject.processes(),
         time_verdict: base.interval.map_or("the device cannot time".into(), |i| i.verdict("B")),
         raygen_stack_bytes_a: run_a.raygen_stack_bytes,
         raygen_stack_bytes_b: run_b.raygen_stack_bytes,

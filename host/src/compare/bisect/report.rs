@@ -59,8 +59,12 @@ impl BisectReport {
     /// A), and what explains each difference.
     pub fn summary(&self) -> String {
         let ms = |m: Option<f64>| m.map_or("n/a".into(), |m| format!("{m:.3} ms"));
+        let over = match (self.ratio.map_or(0, |r| r.placements), self.processes) {
+            (n, 0) => format!("{n} placements"),
+            (n, _) => format!("{n} rounds, each set alone in a process of its own"),
+        };
         let mut s = format!(
-            "bisect {} on {}\n  A = {}\n  B = {}\n  A against B: {}\n  GPU A {}, B {}; B/A {} over {} placements: {}; raygen stack {} / {} bytes\n",
+            "bisect {} on {}\n  A = {}\n  B = {}\n  A against B: {}\n  GPU A {}, B {}; B/A {} over {over}: {}; raygen stack {} / {} bytes\n",
             self.subject,
             self.device,
             self.set_a,
@@ -69,7 +73,6 @@ impl BisectReport {
             ms(self.gpu_ms_a),
             ms(self.gpu_ms_b),
             ratio(self.ratio),
-            self.ratio.map_or(0, |r| r.placements),
             self.time_verdict,
             self.raygen_stack_bytes_a,
             self.raygen_stack_bytes_b,

@@ -4,9 +4,10 @@ use crate::compare::diff::{diff, verdict};
 use crate::error::Result;
 use crate::probe::case::ProbeCase;
 use crate::probe::run::{count_written, probe, ProbeResult};
+use crate::render::isolated::{render_timed, Isolation};
 use crate::render::pipeline::plan_modules;
 use crate::render::placement::orders;
-use crate::render::{render_sets, RenderOptions, RenderOutput, Written};
+use crate::render::{RenderOptions, RenderOutput, Written};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::util::stats::median;
@@ -63,6 +64,10 @@ pub trait Subject {
     fn modules(&self) -> Vec<&'static str>;
     /// One run per set, in order.
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<Self::Data>>>;
+    /// Processes each set is timed alone in (0: all in this one).
+    fn processes(&self) -> u32 {
+        0
+    }
     fn gap(&self, a: &Self::Data, b: &Self::Data) -> Gap;
 }
 
@@ -73,6 +78,8 @@ pub struct ImageSubject<'a> {
     pub ctx: &'a Arc<Context>,
     pub scene: &'a Scene,
     pub opts: RenderOptions,
+    /// Each set timed alone in processes of its own (`bisect --processes`).
+    pub isolation: Option<Isolation>,
 }
 
 impl Subject for ImageSubject<'_> {
@@ -96,7 +103,7 @@ impl Subject for ImageSubject<'_> {
     }
 
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<RenderOutput>>> {
-        let outputs = render_sets(self.ctx, self.scene, sets, &self.opts)?;
+        let outputs = render_timed(self.ctx, self.scene, sets, &self.opts, self.isolation.as_ref())?;
         Ok(outputs
             .into_iter()
             .map(|o| Run {
@@ -106,6 +113,10 @@ impl Subject for ImageSubject<'_> {
                 data: o,
             })
             .collect())
+    }
+
+    fn processes(&self) -> u32 {
+        self.isolation.as_ref().map_or(0, |i| i.processes)
     }
 
     fn gap(&self, a: &RenderOutput, b: &RenderOutput) -> Gap {
