@@ -223,9 +223,8 @@ fn compare_times_each_set_alone_in_processes_of_its_own() {
     assert_bad_input(&["compare", "--processes", "2", "--runs", "3"], &["at least 10", "got 3"]);
 }
 
-/// `bisect --processes 2`: every set of the bisect timed alone in two child benches, the
-/// swaps among them, whose text reads back as another set (`raygen` names a module and its
-/// stage), handed over as folders of their modules; not with --probe.
+/// `bisect --processes 3`: every set of the bisect timed alone in three child benches, the
+/// swap of the `raygen` module (named as its stage) among them; not with --probe.
 #[test]
 fn bisect_times_each_set_alone_in_processes_of_its_own() {
     let dir = tempfile::tempdir().unwrap();

@@ -101,8 +101,7 @@ pub fn timer(
         let exe = exe.as_ref().map_err(|e| Error::Unsupported(format!("finding twinray's own executable: {e}")))?;
         let n = CHILDREN.fetch_add(1, Ordering::Relaxed);
         let dir = std::env::temp_dir().join(format!("twinray-alone-{}-{n}", std::process::id()));
-        let modules = dir.with_extension("set");
-        let times = child_set(set, &modules).and_then(|text| {
+        let times = child_set(set).and_then(|text| {
             let ran = Command::new(exe)
                 .args(&common)
                 .arg(&scenes[scene])
@@ -113,26 +112,18 @@ pub fn timer(
                 .and_then(|out| read_times(&out, &dir))
         });
         let _ = std::fs::remove_dir_all(&dir);
-        let _ = std::fs::remove_dir_all(&modules);
         times.map_err(|e| Error::Unsupported(format!("timing {set} alone on {} at {spp} spp: {e}", scenes[scene])))
     }
 }
 
-/// How a child is told `set`: its text where that parses back to the same modules, else a
-/// folder `dir` of its modules, written here. The text of a mix can name another set: in a
-/// bisect's swap, a module named as its stage is (`raygen`) reads back as the whole stage.
-fn child_set(set: &ShaderSet, dir: &std::path::Path) -> twinray::Result<String> {
+/// How a child is told `set`: its text, which must read back as the same modules (a set whose
+/// text named another would have another set timed).
+fn child_set(set: &ShaderSet) -> twinray::Result<String> {
     let text = set.to_string();
-    if twinray::shaders::parse_sets(&text).ok().as_deref() == Some(std::slice::from_ref(set)) {
-        return Ok(text);
+    if twinray::shaders::parse_sets(&text).ok().as_deref() != Some(std::slice::from_ref(set)) {
+        return Err(Error::Unsupported(format!("{text} does not read back as the set it names")));
     }
-    let io = |source| Error::Io { what: "writing a set's modules to", path: dir.into(), source };
-    std::fs::create_dir_all(dir).map_err(io)?;
-    for spec in twinray_shared::catalog::MODULES.iter().filter(|m| !set.lacks(m.name)) {
-        let module = set.module(spec.name)?;
-        std::fs::write(dir.join(format!("{}.spv", spec.name)), &module.spirv[..]).map_err(io)?;
-    }
-    Ok(dir.display().to_string())
+    Ok(text)
 }
 
 /// The placement medians of the one set a child timed.

@@ -296,9 +296,22 @@ impl ShaderSet {
                 Some(language) if language == base => {}
                 Some(language) => write!(f, ",{}={}", stage.name(), language.name())?,
                 None => {
-                    for (spec, origin) in MODULES.iter().zip(&self.origins).filter(|(m, _)| m.stage == stage) {
-                        match origin {
-                            Origin::Builtin(language) if *language != base => {
+                    let in_stage = || MODULES.iter().zip(&self.origins).filter(move |(m, _)| m.stage == stage);
+                    let builtin = |o: &Origin| match o {
+                        Origin::Builtin(language) => Some(*language),
+                        _ => None,
+                    };
+                    // A module named as its stage (`raygen`) cannot be named alone: `raygen=glsl`
+                    // reads back as the whole stage. So the stage takes that module's language
+                    // first, and the stage's other modules that differ are named after it.
+                    let named = in_stage().find(|(m, _)| m.name == stage.name()).and_then(|(_, o)| builtin(o));
+                    let stage_language = named.unwrap_or(base);
+                    if stage_language != base {
+                        write!(f, ",{}={}", stage.name(), stage_language.name())?;
+                    }
+                    for (spec, origin) in in_stage() {
+                        match builtin(origin) {
+                            Some(language) if language != stage_language => {
                                 write!(f, ",{}={}", spec.name, language.name())?
                             }
                             _ => {}
@@ -321,6 +334,21 @@ mod tests {
         let names: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
         assert_eq!(names, ["rust", "glsl", "rust,miss=glsl,intersection=glsl"]); // stage order
         assert!(super::parse_sets("intersection=glsl").is_err(), "an override needs a set before it");
+    }
+
+    /// What `twinray bisect` prints, and hands to `--processes`' children as text: every
+    /// set with one module taken from the other language reads back as itself, the `raygen`
+    /// module (named as its stage) too.
+    #[test]
+    fn a_set_with_any_one_module_swapped_reads_back_as_itself() {
+        let (rust, glsl) = (ShaderSet::uniform(Language::Rust), ShaderSet::uniform(Language::Glsl));
+        for (from, to) in [(&rust, &glsl), (&glsl, &rust)] {
+            for spec in MODULES {
+                let swapped = from.with_modules_from(to, &[spec.name]);
+                let text = swapped.to_string();
+                assert_eq!(text.parse::<ShaderSet>().ok(), Some(swapped), "{} swapped: {text}", spec.name);
+            }
+        }
     }
 
     #[test]
