@@ -67,6 +67,31 @@ fn stage_bench_measures_every_variant_against_the_first() {
     assert!(table.contains("| cutout | solid-cutouts | rust |") && table.contains("not measured"), "{table}");
 }
 
+/// `--alone`: each round's render of each variant and set timed in a child stage-bench of its
+/// own, one time per round (in-process, a row pools every timed trace), the images still
+/// compared here; the global flags (`--validate`) reach the children.
+#[test]
+fn stage_bench_alone_times_each_render_in_a_process_of_its_own() {
+    let dir = tempfile::tempdir().unwrap();
+    let size = ["--width", "48", "--height", "32", "--runs", "3", "--warmup", "1"];
+    let args =
+        [&["--validate", "stage-bench", "cutout", "--variants", "opaque,as-is", "--sets", "glsl,rust"][..], &size];
+    let run = twinray(&[&args.concat()[..], &["--rounds", "2", "--alone", "--out", "report"]].concat(), dir.path());
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let json: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.path().join("report/results.json")).unwrap()).unwrap();
+    assert_eq!(json["alone"], true);
+    let rows = json["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), 4, "{rows:#?}");
+    for row in rows {
+        assert_eq!(row["round_ms"].as_array().unwrap().len(), 2, "{row}");
+        assert_eq!(row["gpu_ms"]["samples"], 2, "one time per round, not 3 traces each: {row}");
+        assert_eq!(row["against_first_set"]["placements"], 2, "{row}");
+    }
+    let as_is = rows.iter().find(|r| r["variant"] == "as-is" && r["set"] == "rust").unwrap();
+    assert!(as_is["rmse"].as_f64().unwrap() > 0.01, "the holes, against the opaque image: {as_is}");
+}
+
 #[test]
 fn stage_bench_refuses_bad_input() {
     let dir = tempfile::tempdir().unwrap();

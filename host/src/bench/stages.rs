@@ -179,13 +179,20 @@ pub struct Skipped {
     pub why: String,
 }
 
+/// Times one variant of scene number `scene` (in the plan's list) with one set, alone in a
+/// fresh process: the median GPU ms of its timed traces.
+pub type TimeCell = dyn Fn(usize, Variant, &ShaderSet) -> Result<f64>;
+
 /// What to measure: `variants` of `scenes`, each with `sets`, `rounds` times each with
-/// `opts.runs` timed traces, at the size `size` gives per scene.
+/// `opts.runs` timed traces, at the size `size` gives per scene; with `alone`, each round's
+/// time of each variant and set is that of a fresh process (the renders here give only the
+/// images).
 pub struct StagePlan<'a> {
     pub scenes: &'a [Scene],
     pub variants: &'a [Variant],
     pub sets: &'a [ShaderSet],
     pub rounds: u32,
+    pub alone: Option<&'a TimeCell>,
 }
 
 /// Every measurement of `plan`, reporting each render to `progress`.
@@ -196,7 +203,7 @@ pub fn run(
     mut progress: impl FnMut(&str),
 ) -> Result<(Vec<StageRow>, Vec<Skipped>)> {
     let (mut rows, mut skipped) = (Vec::new(), Vec::new());
-    for scene in plan.scenes {
+    for (index, scene) in plan.scenes.iter().enumerate() {
         let opts = opts(scene);
         let mut runs: Vec<(Variant, Scene)> = Vec::new();
         for &variant in plan.variants {
@@ -220,12 +227,29 @@ pub fn run(
                 let c = (k + round) % cells.len();
                 let (v, s) = cells[c];
                 progress(&format!("{} {} {} (round {})", scene.name(), runs[v].0.name(), plan.sets[s], round + 1));
-                let out = render(ctx, &runs[v].1, &plan.sets[s], &opts)?;
-                let set = plan.sets[s].to_string();
-                out.written.require(&set, "pixels", &format!("{} {}", scene.name(), runs[v].0.name()))?;
-                times[c].extend(&out.gpu_ms);
-                round_ms[c].push(out.median_ms().unwrap_or(f64::NAN));
-                last[c] = Some(out);
+                let (variant, set) = (runs[v].0, &plan.sets[s]);
+                let render_here = |opts: &RenderOptions| -> Result<RenderOutput> {
+                    let out = render(ctx, &runs[v].1, set, opts)?;
+                    out.written.require(&set.to_string(), "pixels", &format!("{} {}", scene.name(), variant.name()))?;
+                    Ok(out)
+                };
+                let (ms, median) = match plan.alone {
+                    Some(alone) => {
+                        if last[c].is_none() {
+                            last[c] = Some(render_here(&RenderOptions { warmup: 0, runs: 1, placements: 1, ..opts })?);
+                        }
+                        let ms = alone(index, variant, set)?;
+                        (vec![ms], ms)
+                    }
+                    None => {
+                        let out = render_here(&opts)?;
+                        let timed = (out.gpu_ms.clone(), out.median_ms().unwrap_or(f64::NAN));
+                        last[c] = Some(out);
+                        timed
+                    }
+                };
+                times[c].extend(ms);
+                round_ms[c].push(median);
             }
         }
         rows.extend(rows_of(scene, &runs, plan.sets, &cells, (&times, &round_ms), &last));

@@ -6,6 +6,7 @@ use crate::args::{BenchArgs, GlobalArgs};
 use std::path::PathBuf;
 use std::process::Command;
 use std::sync::atomic::{AtomicU32, Ordering};
+use twinray::bench::stages::Variant;
 use twinray::shaders::ShaderSet;
 use twinray::Error;
 
@@ -98,22 +99,43 @@ pub fn timer(
         common.extend(["--width".into(), w.to_string(), "--height".into(), h.to_string()]);
     }
     move |scene, spp, set| {
-        let exe = exe.as_ref().map_err(|e| Error::Unsupported(format!("finding twinray's own executable: {e}")))?;
-        let n = CHILDREN.fetch_add(1, Ordering::Relaxed);
-        let dir = std::env::temp_dir().join(format!("twinray-alone-{}-{n}", std::process::id()));
         let times = child_set(set).and_then(|text| {
-            let ran = Command::new(exe)
-                .args(&common)
-                .arg(&scenes[scene])
-                .args(["--sets", &text, "--spp", &spp.to_string(), "--out"])
-                .arg(&dir)
-                .output();
-            ran.map_err(|e| Error::Unsupported(format!("starting {}: {e}", exe.display())))
-                .and_then(|out| read_times(&out, &dir))
+            let args = [&common[..], &[scenes[scene].clone(), "--sets".into(), text, "--spp".into(), spp.to_string()]];
+            let results = child_results(&exe, &args.concat())?;
+            let times = results["rows"][0]["placements"]["median_ms"].as_array();
+            let times: Vec<f64> = times.map_or(Vec::new(), |a| a.iter().filter_map(|v| v.as_f64()).collect());
+            Some(times).filter(|t| !t.is_empty()).ok_or_else(|| no_times("bench"))
         });
-        let _ = std::fs::remove_dir_all(&dir);
         times.map_err(|e| Error::Unsupported(format!("timing {set} alone on {} at {spp} spp: {e}", scenes[scene])))
     }
+}
+
+/// The timer `stage-bench --alone` calls per scene (an index into `scenes`), variant and set:
+/// one round of that variant and set in a child `twinray stage-bench`, with the parent's
+/// global flags and trace settings.
+pub fn stage_timer(
+    global: &GlobalArgs,
+    frame: &crate::args::FrameArgs,
+    scenes: Vec<String>,
+) -> impl Fn(usize, Variant, &ShaderSet) -> twinray::Result<f64> {
+    let exe = std::env::current_exe().map_err(|e| e.to_string());
+    let mut common = global.forwarded();
+    common.extend(["stage-bench".into(), "--rounds".into(), "1".into()]);
+    let flags =
+        [("--width", frame.width), ("--height", frame.height), ("--runs", frame.runs), ("--warmup", frame.warmup)];
+    common.extend(flags.into_iter().filter_map(|(f, v)| v.map(|v| [f.to_string(), v.to_string()])).flatten());
+    move |scene, variant, set| {
+        let ms = child_set(set).and_then(|text| {
+            let which = [scenes[scene].clone(), "--variants".into(), variant.name().into(), "--sets".into(), text];
+            let results = child_results(&exe, &[&common[..], &which[..]].concat())?;
+            results["rows"][0]["round_ms"][0].as_f64().ok_or_else(|| no_times("stage-bench"))
+        });
+        ms.map_err(|e| Error::Unsupported(format!("timing {} {} with {set} alone: {e}", scenes[scene], variant.name())))
+    }
+}
+
+fn no_times(command: &str) -> Error {
+    Error::Unsupported(format!("the child {command}'s results.json has no times"))
 }
 
 /// How a child is told `set`: its text, which must read back as the same modules (a set whose
@@ -126,20 +148,23 @@ fn child_set(set: &ShaderSet) -> twinray::Result<String> {
     Ok(text)
 }
 
-/// The placement medians of the one set a child timed.
-fn read_times(out: &std::process::Output, dir: &std::path::Path) -> twinray::Result<Vec<f64>> {
-    if !out.status.success() {
-        let said = String::from_utf8_lossy(&out.stderr);
-        let last = said.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("no message");
-        return Err(Error::Unsupported(format!("the child bench failed ({}): {last}", out.status)));
-    }
-    let text = std::fs::read_to_string(dir.join("results.json"))
-        .map_err(|e| Error::Unsupported(format!("the child bench left no results.json: {e}")))?;
-    let value: serde_json::Value =
-        serde_json::from_str(&text).map_err(|e| Error::Unsupported(format!("the child's results.json: {e}")))?;
-    let times =
-        value["rows"][0]["placements"]["median_ms"].as_array().map(|a| a.iter().filter_map(|v| v.as_f64()).collect());
-    times
-        .filter(|t: &Vec<f64>| !t.is_empty())
-        .ok_or_else(|| Error::Unsupported("the child's results.json has no times".into()))
+/// Runs `twinray ARGS --out DIR`, DIR a fresh folder removed after, and hands back the
+/// results.json it wrote there.
+fn child_results(exe: &Result<PathBuf, String>, args: &[String]) -> twinray::Result<serde_json::Value> {
+    let exe = exe.as_ref().map_err(|e| Error::Unsupported(format!("finding twinray's own executable: {e}")))?;
+    let n = CHILDREN.fetch_add(1, Ordering::Relaxed);
+    let dir = std::env::temp_dir().join(format!("twinray-alone-{}-{n}", std::process::id()));
+    let ran = Command::new(exe).args(args).arg("--out").arg(&dir).output();
+    let results = ran.map_err(|e| Error::Unsupported(format!("starting {}: {e}", exe.display()))).and_then(|out| {
+        if !out.status.success() {
+            let said = String::from_utf8_lossy(&out.stderr);
+            let last = said.lines().rev().find(|l| !l.trim().is_empty()).unwrap_or("no message");
+            return Err(Error::Unsupported(format!("the child failed ({}): {last}", out.status)));
+        }
+        let text = std::fs::read_to_string(dir.join("results.json"))
+            .map_err(|e| Error::Unsupported(format!("the child left no results.json: {e}")))?;
+        serde_json::from_str(&text).map_err(|e| Error::Unsupported(format!("the child's results.json: {e}")))
+    });
+    let _ = std::fs::remove_dir_all(&dir);
+    results
 }

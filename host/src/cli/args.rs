@@ -443,6 +443,10 @@ pub struct StageBenchArgs {
     /// Rounds: every variant and set renders once per round, in an order rotated each round.
     #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
     pub rounds: u32,
+    /// Time each round's render of each variant and set alone in a fresh process (a child
+    /// `twinray stage-bench`), as `bench --processes` does; the renders here give the images.
+    #[arg(long)]
+    pub alone: bool,
     /// Image size and trace counts per render [default: each scene's size, 10 timed traces
     /// after 2 untimed].
     #[command(flatten)]

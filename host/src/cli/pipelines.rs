@@ -80,18 +80,24 @@ pub fn stage_bench(global: &GlobalArgs, args: StageBenchArgs) -> Result<ExitCode
     }
     create_dir(&args.out)?;
     let ctx = context(global)?;
-    let plan = StagePlan { scenes: &scenes, variants: &variants, sets: &sets, rounds: args.rounds };
+    let timer = args.alone.then(|| crate::alone::stage_timer(global, &args.frame, args.scenes.clone()));
+    let alone = timer.as_ref().map(|t| t as &twinray::bench::stages::TimeCell);
+    let plan = StagePlan { scenes: &scenes, variants: &variants, sets: &sets, rounds: args.rounds, alone };
     let opts = |s: &Scene| render_options(s, &args.frame, STAGE_TRACES).expect("checked above");
     let (rows, skipped) = run(&ctx, &plan, opts, |step| eprintln!("stage-bench: {step}"))?;
+    let (round, times) = match args.alone {
+        true => ("each render alone in a process of its own", "medians of the rounds' medians"),
+        false => ("each a placement", "medians of every timed trace of every round"),
+    };
     let text = format!(
-        "{} on {}, {} rounds (each a placement); times are medians of every timed trace of every round, ratios have their 95% interval over rounds\n\n{}",
+        "{} on {}, {} rounds ({round}); times are {times}, ratios have their 95% interval over rounds\n\n{}",
         std::env::args().collect::<Vec<_>>().join(" "),
         ctx.info.name,
         args.rounds,
         table(&rows, &skipped)
     );
     let json = serde_json::to_string_pretty(&serde_json::json!({
-        "device": ctx.info.name, "driver": ctx.info.driver_info, "rows": rows, "skipped": skipped,
+        "device": ctx.info.name, "driver": ctx.info.driver_info, "alone": args.alone, "rows": rows, "skipped": skipped,
     }))?;
     for (name, body) in [("table.md", &text), ("results.json", &json)] {
         twinray::util::output::write_atomically(&args.out.join(name), body.as_bytes())?;
