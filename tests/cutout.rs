@@ -107,7 +107,7 @@ fn light_falls_through_the_holes_exactly_where_the_pattern_says() {
             &ctx,
             &scene,
             &set(set_text),
-            &RenderOptions { width: w, height: h, warmup: 0, runs: 1, placements: 1 },
+            &RenderOptions { width: w, height: h, warmup: 0, runs: 1, placements: 1, first_placement: 0 },
         )
         .unwrap_or_else(|e| panic!("{set_text}: {e}"));
         let (mut lit, mut shadowed, mut through, mut stopped) = (0, 0, 0, 0);

@@ -102,7 +102,7 @@ fn scene(dir: &Path, samples: u32, lod: &str, transform: &str) -> Scene {
 }
 
 fn render(scene: &Scene, shaders: &str) -> RenderOutput {
-    let opts = RenderOptions { width: SIZE.0, height: SIZE.1, warmup: 0, runs: 1, placements: 1 };
+    let opts = RenderOptions { width: SIZE.0, height: SIZE.1, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
     twinray::render(&validated_context(), scene, &set(shaders), &opts).unwrap_or_else(|e| panic!("{e}"))
 }
 

@@ -180,6 +180,8 @@ fn sets_are_timed_alone_in_processes_of_their_own() {
         assert_eq!(positions, [i as u64, 2 - i as u64], "{row}");
         // Every placement of both processes.
         assert_eq!(row["gpu_ms"]["samples"], 4, "{row}");
+        // Each process at places of its own: the second past the first's two placements.
+        assert_eq!(row["placements"]["first_placement"], serde_json::json!([0, 2]), "{row}");
     }
     for r in json["ratios"].as_array().unwrap() {
         assert_eq!(r["interval"]["placements"], 2, "over the two rounds: {r}");
@@ -213,6 +215,7 @@ fn compare_times_each_set_alone_in_processes_of_its_own() {
             json[key]["position"].as_array().unwrap().iter().map(|p| p.as_u64().unwrap()).collect();
         assert_eq!(positions, [first, 1 - first, first], "{key}: the rounds go forwards, then backwards");
         assert_eq!(json[key]["median_ms"].as_array().unwrap().len(), 3, "one time per process: {json}");
+        assert_eq!(json[key]["first_placement"], serde_json::json!([0, 2, 4]), "places of its own: {json}");
     }
     assert!(dir.path().join("cmp/diff.png").is_file());
     let text = twinray(&[&args[..], &["--processes", "3", "--out-dir", "cmp"]].concat(), dir.path());
@@ -246,6 +249,10 @@ fn bisect_times_each_set_alone_in_processes_of_its_own() {
 fn bench_rejects_bad_input_before_rendering() {
     assert_bad_input(&["bench", "lights", "--spp", "1,3"], &["squares up to 256", "got 3"]);
     assert_bad_input(&["bench", "lights", "--runs", "5"], &["--runs must be at least 10"]);
+    assert_bad_input(
+        &["bench", "lights", "--processes", "2", "--first-placement", "4"],
+        &["--first-placement", "a placement of its own"],
+    );
     assert_bad_input(&["bench", "lights", "--sets", "rust,cuda"], &["unknown language \"cuda\""]);
     assert_bad_input(&["bench", "nosuchscene"], &["nosuchscene"]);
     assert_bad_input(&["bench", "lights", "--reference-spp", "300"], &["square up to 256"]);

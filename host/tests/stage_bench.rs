@@ -69,18 +69,23 @@ fn stage_bench_measures_every_variant_against_the_first() {
 
 /// `--alone`: each round's render of each variant and set timed in a child stage-bench of its
 /// own, one time per round (in-process, a row pools every timed trace), the images still
-/// compared here; the global flags (`--validate`) reach the children.
+/// compared here; the global flags (`--validate`) reach the children, and each child its
+/// round's number (it says which it timed, and a child that timed another fails the run).
 #[test]
 fn stage_bench_alone_times_each_render_in_a_process_of_its_own() {
     let dir = tempfile::tempdir().unwrap();
     let size = ["--width", "48", "--height", "32", "--runs", "3", "--warmup", "1"];
     let args =
         [&["--validate", "stage-bench", "cutout", "--variants", "opaque,as-is", "--sets", "glsl,rust"][..], &size];
-    let run = twinray(&[&args.concat()[..], &["--rounds", "2", "--alone", "--out", "report"]].concat(), dir.path());
+    let run = twinray(
+        &[&args.concat()[..], &["--rounds", "2", "--first-round", "5", "--alone", "--out", "report"]].concat(),
+        dir.path(),
+    );
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let json: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.path().join("report/results.json")).unwrap()).unwrap();
     assert_eq!(json["alone"], true);
+    assert_eq!(json["first_round"], 5, "rounds 5 and 6");
     let rows = json["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 4, "{rows:#?}");
     for row in rows {

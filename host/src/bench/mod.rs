@@ -44,6 +44,8 @@ pub struct BenchConfig {
     pub runs: u32,
     /// Placements per measurement (see `render::placement`).
     pub placements: u32,
+    /// Whose spacers the first placement makes (`RenderOptions::first_placement`).
+    pub first_placement: u32,
     /// Whether a salted copy of the first set is timed too: the null control.
     pub null: bool,
     pub reference_spp: u32,
@@ -111,6 +113,7 @@ pub struct BenchReport {
     pub runs: u32,
     pub warmup: u32,
     pub placements: u32,
+    pub first_placement: u32,
     pub reference_spp: u32,
     pub reference_set: String,
     /// Per scene, the reference image relative to the output folder.
@@ -198,6 +201,7 @@ pub fn run(ctx: &Arc<Context>, config: &BenchConfig, progress: &dyn Fn(&str)) ->
         runs: config.runs,
         warmup: config.warmup,
         placements: config.placements,
+        first_placement: config.first_placement,
         reference_spp: config.reference_spp,
         reference_set: config.reference_set.to_string(),
         references: Vec::new(),
@@ -317,7 +321,8 @@ fn measure(
     // Timed alone elsewhere: here only the images (and ray counts) are needed.
     let (warmup, runs, placements) =
         if config.isolation.is_some() { (0, 1, 1) } else { (config.warmup, config.runs, config.placements) };
-    render_sets(ctx, &scene, sets, &RenderOptions { width, height, warmup, runs, placements })
+    let first_placement = config.first_placement;
+    render_sets(ctx, &scene, sets, &RenderOptions { width, height, warmup, runs, placements, first_placement })
 }
 
 /// Every pair of `sets`, earlier over later, with the interval of their time ratio.

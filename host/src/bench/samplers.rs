@@ -53,8 +53,14 @@ pub fn study(ctx: &Arc<Context>, scene: &Scene, s: &Study, progress: &dyn Fn(&st
             variant.file.image.samples = 1;
             variant.file.shadow_sampler = sampler;
             variant.set_shadow_samples(side_of(count)?);
-            let opts =
-                RenderOptions { width: s.size.0, height: s.size.1, warmup: s.warmup, runs: s.runs, placements: 1 };
+            let opts = RenderOptions {
+                width: s.size.0,
+                height: s.size.1,
+                warmup: s.warmup,
+                runs: s.runs,
+                placements: 1,
+                first_placement: 0,
+            };
             let out = render(ctx, &variant, s.set, &opts)?;
             out.written.require(
                 &s.set.to_string(),

@@ -180,8 +180,16 @@ pub struct Skipped {
 }
 
 /// Times one variant of scene number `scene` (in the plan's list) with one set, alone in a
-/// fresh process: the median GPU ms of its timed traces.
-pub type TimeCell = dyn Fn(usize, Variant, &ShaderSet) -> Result<f64>;
+/// fresh process, as round number `round` ([`StagePlan::first_round`]): the median GPU ms of
+/// its timed traces.
+pub type TimeCell = dyn Fn(usize, Variant, &ShaderSet, u32) -> Result<f64>;
+
+/// The placement whose spacers round `round` makes (`RenderOptions::first_placement`): every
+/// round at a place of its own, as the processes of `bench --processes` are (each pair of
+/// placements makes the same spacers).
+pub fn round_placement(round: u32) -> u32 {
+    2 * round
+}
 
 /// What to measure: `variants` of `scenes`, each with `sets`, `rounds` times each with
 /// `opts.runs` timed traces, at the size `size` gives per scene; with `alone`, each round's
@@ -192,6 +200,9 @@ pub struct StagePlan<'a> {
     pub variants: &'a [Variant],
     pub sets: &'a [ShaderSet],
     pub rounds: u32,
+    /// The number of the first round (0 but in `--alone`'s children): round `r` makes the
+    /// spacers of [`round_placement`]`(r)`.
+    pub first_round: u32,
     pub alone: Option<&'a TimeCell>,
 }
 
@@ -223,6 +234,8 @@ pub fn run(
         let mut round_ms = vec![Vec::new(); cells.len()];
         let mut last: Vec<Option<RenderOutput>> = (0..cells.len()).map(|_| None).collect();
         for round in 0..plan.rounds.max(1) as usize {
+            let number = plan.first_round + round as u32;
+            let opts = RenderOptions { first_placement: round_placement(number), ..opts };
             for k in 0..cells.len() {
                 let c = (k + round) % cells.len();
                 let (v, s) = cells[c];
@@ -238,7 +251,7 @@ pub fn run(
                         if last[c].is_none() {
                             last[c] = Some(render_here(&RenderOptions { warmup: 0, runs: 1, placements: 1, ..opts })?);
                         }
-                        let ms = alone(index, variant, set)?;
+                        let ms = alone(index, variant, set, number)?;
                         (vec![ms], ms)
                     }
                     None => {

@@ -60,7 +60,8 @@ pub fn for_scene(
         cache: cache.clone(),
     };
     let time_alone = std::sync::Arc::new(timer(global, settings, vec![scene]));
-    ((processes > 0).then_some(twinray::bench::Isolation { processes, time_alone }), cache)
+    let placements = opts.placements;
+    ((processes > 0).then_some(twinray::bench::Isolation { processes, placements, time_alone }), cache)
 }
 
 /// Each process is a `twinray bench`, whose floor for `--runs` is 10.
@@ -74,12 +75,12 @@ pub fn check_runs(processes: u32, runs: u32) -> Result<(), Error> {
 }
 
 /// The timer `bench`, `compare` and `bisect` call per scene (an index into `scenes`, as given on the
-/// command line), sample count and set.
+/// command line), sample count, set and first placement.
 pub fn timer(
     global: &GlobalArgs,
     settings: ChildSettings,
     scenes: Vec<String>,
-) -> impl Fn(usize, u32, &ShaderSet) -> twinray::Result<Vec<f64>> + Send + Sync + 'static {
+) -> impl Fn(usize, u32, &ShaderSet, u32) -> twinray::Result<Vec<f64>> + Send + Sync + 'static {
     let exe = std::env::current_exe().map_err(|e| e.to_string());
     let mut common = global.forwarded();
     common.push("bench".into());
@@ -98,10 +99,15 @@ pub fn timer(
     if let Some((w, h)) = settings.size {
         common.extend(["--width".into(), w.to_string(), "--height".into(), h.to_string()]);
     }
-    move |scene, spp, set| {
+    move |scene, spp, set, first| {
         let times = child_set(set).and_then(|text| {
-            let args = [&common[..], &[scenes[scene].clone(), "--sets".into(), text, "--spp".into(), spp.to_string()]];
+            let which = [scenes[scene].clone(), "--sets".into(), text, "--spp".into(), spp.to_string()];
+            let args = [&common[..], &which[..], &["--first-placement".into(), first.to_string()]];
             let results = child_results(&exe, &args.concat())?;
+            if results["first_placement"] != first {
+                let said = &results["first_placement"];
+                return Err(Error::Unsupported(format!("the child timed from placement {said}, not {first}")));
+            }
             let times = results["rows"][0]["placements"]["median_ms"].as_array();
             let times: Vec<f64> = times.map_or(Vec::new(), |a| a.iter().filter_map(|v| v.as_f64()).collect());
             Some(times).filter(|t| !t.is_empty()).ok_or_else(|| no_times("bench"))
@@ -110,24 +116,32 @@ pub fn timer(
     }
 }
 
-/// The timer `stage-bench --alone` calls per scene (an index into `scenes`), variant and set:
-/// one round of that variant and set in a child `twinray stage-bench`, with the parent's
-/// global flags and trace settings.
+/// The timer `stage-bench --alone` calls per scene (an index into `scenes`), variant, set and
+/// round number: that round of that variant and set in a child `twinray stage-bench`, with
+/// the parent's global flags and trace settings.
 pub fn stage_timer(
     global: &GlobalArgs,
     frame: &crate::args::FrameArgs,
     scenes: Vec<String>,
-) -> impl Fn(usize, Variant, &ShaderSet) -> twinray::Result<f64> {
+) -> impl Fn(usize, Variant, &ShaderSet, u32) -> twinray::Result<f64> {
     let exe = std::env::current_exe().map_err(|e| e.to_string());
     let mut common = global.forwarded();
     common.extend(["stage-bench".into(), "--rounds".into(), "1".into()]);
     let flags =
         [("--width", frame.width), ("--height", frame.height), ("--runs", frame.runs), ("--warmup", frame.warmup)];
     common.extend(flags.into_iter().filter_map(|(f, v)| v.map(|v| [f.to_string(), v.to_string()])).flatten());
-    move |scene, variant, set| {
+    move |scene, variant, set, round| {
         let ms = child_set(set).and_then(|text| {
-            let which = [scenes[scene].clone(), "--variants".into(), variant.name().into(), "--sets".into(), text];
+            let mut which =
+                vec![scenes[scene].clone(), "--variants".into(), variant.name().into(), "--sets".into(), text];
+            which.extend(["--first-round".into(), round.to_string()]);
             let results = child_results(&exe, &[&common[..], &which[..]].concat())?;
+            if results["first_round"] != round {
+                return Err(Error::Unsupported(format!(
+                    "the child timed round {}, not {round}",
+                    results["first_round"]
+                )));
+            }
             results["rows"][0]["round_ms"][0].as_f64().ok_or_else(|| no_times("stage-bench"))
         });
         ms.map_err(|e| Error::Unsupported(format!("timing {} {} with {set} alone: {e}", scenes[scene], variant.name())))

@@ -351,6 +351,11 @@ pub struct BenchArgs {
     /// (docs/measuring.md). 0: every set timed in this process.
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
     pub processes: u32,
+    /// Make the spacers of placement N first, N+1 next, and so on (see `compare
+    /// --placements`): where in the layouts the placements start. --processes gives each of
+    /// its processes its own start; give it to repeat one of them.
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_PLACEMENTS) * 64))]
+    pub first_placement: u32,
 }
 
 #[derive(Args)]
@@ -447,6 +452,11 @@ pub struct StageBenchArgs {
     /// `twinray stage-bench`), as `bench --processes` does; the renders here give the images.
     #[arg(long)]
     pub alone: bool,
+    /// Number the rounds from N: each round makes the spacers of a placement of its own
+    /// (see `compare --placements`), so the rounds time at different places; --alone gives
+    /// each child its round. Give it to repeat a round.
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
+    pub first_round: u32,
     /// Image size and trace counts per render [default: each scene's size, 10 timed traces
     /// after 2 untimed].
     #[command(flatten)]

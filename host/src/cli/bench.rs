@@ -63,6 +63,10 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         return Err(Error::Input("--spp needs at least one sample count".into()).into());
     }
     twinray::reference::image::frames(args.reference_spp)?;
+    if args.processes > 0 && args.first_placement > 0 {
+        let message = "--first-placement: with --processes each process starts at a placement of its own (give it to a bench without --processes to repeat one)";
+        return Err(Error::Input(message.into()).into());
+    }
     if args.runs < 10 {
         return Err(Error::Input(format!("--runs must be at least 10 (got {})", args.runs)).into());
     }
@@ -77,6 +81,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     let cache = args.cache.clone().unwrap_or_else(twinray::reference::image::default_cache);
     let isolation = (args.processes > 0).then(|| bench::Isolation {
         processes: args.processes,
+        placements: args.placements,
         time_alone: std::sync::Arc::new(crate::alone::timer(
             global,
             crate::alone::ChildSettings::of_bench(&args, cache.clone()),
@@ -91,6 +96,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         warmup: args.warmup,
         runs: args.runs,
         placements: args.placements,
+        first_placement: args.first_placement,
         null: args.null,
         reference_spp: args.reference_spp,
         reference_set: args.reference_set,

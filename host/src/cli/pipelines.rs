@@ -82,7 +82,8 @@ pub fn stage_bench(global: &GlobalArgs, args: StageBenchArgs) -> Result<ExitCode
     let ctx = context(global)?;
     let timer = args.alone.then(|| crate::alone::stage_timer(global, &args.frame, args.scenes.clone()));
     let alone = timer.as_ref().map(|t| t as &twinray::bench::stages::TimeCell);
-    let plan = StagePlan { scenes: &scenes, variants: &variants, sets: &sets, rounds: args.rounds, alone };
+    let (rounds, first_round) = (args.rounds, args.first_round);
+    let plan = StagePlan { scenes: &scenes, variants: &variants, sets: &sets, rounds, first_round, alone };
     let opts = |s: &Scene| render_options(s, &args.frame, STAGE_TRACES).expect("checked above");
     let (rows, skipped) = run(&ctx, &plan, opts, |step| eprintln!("stage-bench: {step}"))?;
     let (round, times) = match args.alone {
@@ -97,7 +98,7 @@ pub fn stage_bench(global: &GlobalArgs, args: StageBenchArgs) -> Result<ExitCode
         table(&rows, &skipped)
     );
     let json = serde_json::to_string_pretty(&serde_json::json!({
-        "device": ctx.info.name, "driver": ctx.info.driver_info, "alone": args.alone, "rows": rows, "skipped": skipped,
+        "device": ctx.info.name, "driver": ctx.info.driver_info, "alone": args.alone, "first_round": first_round, "rows": rows, "skipped": skipped,
     }))?;
     for (name, body) in [("table.md", &text), ("results.json", &json)] {
         twinray::util::output::write_atomically(&args.out.join(name), body.as_bytes())?;

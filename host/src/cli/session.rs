@@ -79,6 +79,7 @@ pub fn render_options(
         warmup: frame.warmup.unwrap_or(warmup),
         runs: frame.runs.unwrap_or(runs),
         placements: frame.placements.unwrap_or(placements),
+        first_placement: 0,
     })
 }
 

@@ -9,6 +9,14 @@
 //! (`bench/reports/inspect-h100/`). So with isolation each set is timed in `processes`
 //! processes of its own, in rounds that alternate the sets' order; a ratio's interval is taken
 //! over the rounds, the two processes of a round being one paired observation.
+//!
+//! Each round's processes start at a later placement than the round before
+//! ([`Isolation::first_placement`]), so the rounds time the sets at different places and the
+//! interval over them holds where the code lands.
+//! When every process started at placement 0, every process timed the same places: three
+//! sessions on three H100s with 2 placements per process (0 spacers each) agreed to 0.1%
+//! (median), while one with 4 (0 and 1 spacers) put some cells 1-2% away, outside intervals
+//! of +-0.1% (`bench/reports/issue40-third/`).
 
 use super::{render_sets, PlacementTimes, RenderOptions, RenderOutput};
 use crate::error::Result;
@@ -18,37 +26,48 @@ use crate::vk::context::Context;
 use std::sync::Arc;
 
 /// Times one set alone: the median GPU ms of each placement of scene number `scene` (in the
-/// bench's list) rendered with `set` at `spp`, in a fresh process.
-pub type TimeAlone = dyn Fn(usize, u32, &ShaderSet) -> Result<Vec<f64>> + Send + Sync;
+/// bench's list) rendered with `set` at `spp`, in a fresh process whose placements start at
+/// the last argument's (`RenderOptions::first_placement`).
+pub type TimeAlone = dyn Fn(usize, u32, &ShaderSet, u32) -> Result<Vec<f64>> + Send + Sync;
 
 /// How the bench times sets in processes of their own.
 #[derive(Clone)]
 pub struct Isolation {
     /// Processes per set.
     pub processes: u32,
+    /// Placements each process makes.
+    pub placements: u32,
     pub time_alone: Arc<TimeAlone>,
 }
 
 impl std::fmt::Debug for Isolation {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(f, "Isolation {{ processes: {} }}", self.processes)
+        write!(f, "Isolation {{ processes: {}, placements: {} }}", self.processes, self.placements)
     }
 }
 
 impl Isolation {
+    /// Where round `round`'s processes start: past every placement of the rounds before,
+    /// rounded up to a pair, since each pair of placements makes the same spacers
+    /// (`placement::spacers`).
+    pub fn first_placement(&self, round: u32) -> u32 {
+        round * self.placements.next_multiple_of(2)
+    }
+
     /// Replaces the times of `outputs` (one per set of `sets`) with each set's times alone:
     /// per round one geometric mean of a process's placements, and every placement's median.
     pub fn retime(&self, scene: usize, spp: u32, sets: &[ShaderSet], outputs: &mut [RenderOutput]) -> Result<()> {
         let mut means = vec![Vec::new(); sets.len()];
         let mut positions = vec![Vec::new(); sets.len()];
         let mut all = vec![Vec::new(); sets.len()];
+        let firsts: Vec<u32> = (0..self.processes).map(|r| self.first_placement(r)).collect();
         for round in 0..self.processes {
             let order: Vec<usize> =
                 if round % 2 == 0 { (0..sets.len()).collect() } else { (0..sets.len()).rev().collect() };
             for (position, &i) in order.iter().enumerate() {
                 // A salted copy alone is its original alone: the salt only parts code that
                 // shares a process.
-                let ms = (self.time_alone)(scene, spp, &sets[i].original())?;
+                let ms = (self.time_alone)(scene, spp, &sets[i].original(), firsts[round as usize])?;
                 means[i].push(geometric_mean(&ms));
                 positions[i].push(position as u32);
                 all[i].extend(ms);
@@ -58,6 +77,7 @@ impl Isolation {
             out.placements = PlacementTimes {
                 median_ms: std::mem::take(&mut means[i]),
                 position: std::mem::take(&mut positions[i]),
+                first_placement: firsts.clone(),
             };
             out.gpu_ms = std::mem::take(&mut all[i]);
         }

@@ -22,12 +22,17 @@ pub struct RenderOptions {
     /// Independent placements of the sets' pipelines (see `render::placement`), each with its
     /// own warm-up and timed traces; at least one.
     pub placements: u32,
+    /// Whose spacers the first placement makes: placement `p` of the render makes those of
+    /// placement `first_placement + p` (`render::placement::spacer_sets`). Each process of
+    /// `--processes` starts further on, so that the processes time the sets at different
+    /// places; 0 elsewhere.
+    pub first_placement: u32,
 }
 
 impl RenderOptions {
     /// One placement of `runs` timed traces after `warmup` untimed ones.
     pub fn once(width: u32, height: u32, warmup: u32, runs: u32) -> Self {
-        RenderOptions { width, height, warmup, runs, placements: 1 }
+        RenderOptions { width, height, warmup, runs, placements: 1, first_placement: 0 }
     }
 }
 

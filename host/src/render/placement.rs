@@ -133,6 +133,10 @@ pub struct PlacementTimes {
     pub median_ms: Vec<f64>,
     /// The set's position (0: built and traced first in each round) in each placement.
     pub position: Vec<u32>,
+    /// Timed alone in processes (`render::Isolation`): the placement each round's process
+    /// started at (`--first-placement`), whose layouts it timed. Empty otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub first_placement: Vec<u32>,
 }
 
 impl PlacementTimes {

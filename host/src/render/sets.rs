@@ -76,8 +76,10 @@ pub fn render_made(
     for (done, (timed, order)) in all.enumerate() {
         let ordered: Vec<_> = order.iter().map(|&i| sets[i].clone()).collect();
         let _doing = (total > 1).then(|| activity::doing(format!("placement {} of {total}", done + 1)));
-        let spacers: Vec<_> =
-            placement::spacer_sets(timed.unwrap_or(0), sets.len()).iter().map(|&i| sets[i].clone()).collect();
+        let spacers: Vec<_> = placement::spacer_sets(opts.first_placement as usize + timed.unwrap_or(0), sets.len())
+            .iter()
+            .map(|&i| sets[i].clone())
+            .collect();
         let placed = render_placement(ctx, scene, &ordered, opts, &spacers)?;
         for (position, (&i, mut out)) in order.iter().zip(placed).enumerate() {
             if timed.is_none() {
