@@ -184,13 +184,6 @@ pub struct Skipped {
 /// its timed traces.
 pub type TimeCell = dyn Fn(usize, Variant, &ShaderSet, u32) -> Result<f64>;
 
-/// The placement whose spacers round `round` makes (`RenderOptions::first_placement`): every
-/// round at a place of its own, as the processes of `bench --processes` are (each pair of
-/// placements makes the same spacers).
-pub fn round_placement(round: u32) -> u32 {
-    2 * round
-}
-
 /// What to measure: `variants` of `scenes`, each with `sets`, `rounds` times each with
 /// `opts.runs` timed traces, at the size `size` gives per scene; with `alone`, each round's
 /// time of each variant and set is that of a fresh process (the renders here give only the
@@ -200,8 +193,8 @@ pub struct StagePlan<'a> {
     pub variants: &'a [Variant],
     pub sets: &'a [ShaderSet],
     pub rounds: u32,
-    /// The number of the first round (0 but in `--alone`'s children): round `r` makes the
-    /// spacers of [`round_placement`]`(r)`.
+    /// The number of the first round (0 but in `--alone`'s children): round `r`, of one
+    /// placement, starts at `render::placement::round_start(r, 1)`.
     pub first_round: u32,
     pub alone: Option<&'a TimeCell>,
 }
@@ -235,7 +228,7 @@ pub fn run(
         let mut last: Vec<Option<RenderOutput>> = (0..cells.len()).map(|_| None).collect();
         for round in 0..plan.rounds.max(1) as usize {
             let number = plan.first_round + round as u32;
-            let opts = RenderOptions { first_placement: round_placement(number), ..opts };
+            let opts = RenderOptions { first_placement: crate::render::placement::round_start(number, 1), ..opts };
             for k in 0..cells.len() {
                 let c = (k + round) % cells.len();
                 let (v, s) = cells[c];

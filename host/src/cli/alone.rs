@@ -104,10 +104,7 @@ pub fn timer(
             let which = [scenes[scene].clone(), "--sets".into(), text, "--spp".into(), spp.to_string()];
             let args = [&common[..], &which[..], &["--first-placement".into(), first.to_string()]];
             let results = child_results(&exe, &args.concat())?;
-            if results["first_placement"] != first {
-                let said = &results["first_placement"];
-                return Err(Error::Unsupported(format!("the child timed from placement {said}, not {first}")));
-            }
+            said_it_timed(&results, "first_placement", first)?;
             let times = results["rows"][0]["placements"]["median_ms"].as_array();
             let times: Vec<f64> = times.map_or(Vec::new(), |a| a.iter().filter_map(|v| v.as_f64()).collect());
             Some(times).filter(|t| !t.is_empty()).ok_or_else(|| no_times("bench"))
@@ -132,19 +129,23 @@ pub fn stage_timer(
     common.extend(flags.into_iter().filter_map(|(f, v)| v.map(|v| [f.to_string(), v.to_string()])).flatten());
     move |scene, variant, set, round| {
         let ms = child_set(set).and_then(|text| {
-            let mut which =
-                vec![scenes[scene].clone(), "--variants".into(), variant.name().into(), "--sets".into(), text];
-            which.extend(["--first-round".into(), round.to_string()]);
+            let (v, r) = (variant.name().to_string(), round.to_string());
+            let which =
+                [scenes[scene].clone(), "--variants".into(), v, "--sets".into(), text, "--first-round".into(), r];
             let results = child_results(&exe, &[&common[..], &which[..]].concat())?;
-            if results["first_round"] != round {
-                return Err(Error::Unsupported(format!(
-                    "the child timed round {}, not {round}",
-                    results["first_round"]
-                )));
-            }
+            said_it_timed(&results, "first_round", round)?;
             results["rows"][0]["round_ms"][0].as_f64().ok_or_else(|| no_times("stage-bench"))
         });
         ms.map_err(|e| Error::Unsupported(format!("timing {} {} with {set} alone: {e}", scenes[scene], variant.name())))
+    }
+}
+
+/// Whether the child's results say it timed `key` = `want`, as it was told: a child that timed
+/// other places would hand back times of another measurement.
+fn said_it_timed(results: &serde_json::Value, key: &str, want: u32) -> twinray::Result<()> {
+    match results[key] == want {
+        true => Ok(()),
+        false => Err(Error::Unsupported(format!("the child timed {key} {}, not {want}", results[key]))),
     }
 }
 

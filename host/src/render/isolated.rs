@@ -47,11 +47,9 @@ impl std::fmt::Debug for Isolation {
 }
 
 impl Isolation {
-    /// Where round `round`'s processes start: past every placement of the rounds before,
-    /// rounded up to a pair, since each pair of placements makes the same spacers
-    /// (`placement::spacers`).
+    /// Where round `round`'s processes start (`placement::round_start`).
     pub fn first_placement(&self, round: u32) -> u32 {
-        round * self.placements.next_multiple_of(2)
+        super::placement::round_start(round, self.placements)
     }
 
     /// Replaces the times of `outputs` (one per set of `sets`) with each set's times alone:

@@ -94,6 +94,13 @@ pub fn spacers(p: usize) -> u32 {
 /// The places [`spacers`] cycles through.
 pub const PLACES: usize = 8;
 
+/// The placement round `round` of a measurement in rounds of `placements` placements each
+/// starts at: past every placement of the rounds before, rounded up to a pair, since each
+/// pair of placements makes the same spacers. Each round then times at places of its own.
+pub fn round_start(round: u32, placements: u32) -> u32 {
+    round * placements.next_multiple_of(2)
+}
+
 /// Which of `sets` timed sets each spacer of placement `p` copies: drawn with a fixed seed
 /// per placement, so that the pipelines made before the timed ones are of every kind timed.
 /// On the H100 the set list decided a regime of the whole process (Rust or GLSL at its
