@@ -388,7 +388,8 @@ pub struct AnimateBenchArgs {
     /// Timed traces per frame.
     #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
     pub runs: u32,
-    /// Untimed traces before the first frame (and at least 200 ms of GPU time when above 0).
+    /// Untimed traces before the first frame (and at least 1000 ms of GPU time when above 0;
+    /// before each later frame, at least a fifth of that).
     #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
     pub warmup: u32,
     /// Renderings of the whole animation, each mode's pipeline made afresh in an order of its

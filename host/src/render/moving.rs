@@ -101,7 +101,7 @@ impl<'a> FrameRenderer<'a> {
                 .iter()
                 .map(|r| r.timed_trace(ctx, size, (self.opts.warmup, runs)))
                 .collect::<Result<Vec<_>>>()?;
-            self.warm = traces.iter().map(|t| t.warmup).collect();
+            self.warm = traces.iter().map(|t| between_frames(t.warmup, self.opts.warmup)).collect();
             (as_ms, traces)
         } else {
             let cold = self.renders.iter().map(|r| r.timed_trace(ctx, size, (0, runs))).collect::<Result<Vec<_>>>()?;
@@ -205,4 +205,12 @@ pub fn render_frames(
     drop(renderer);
     // Every object of the render is destroyed by now: catch what the layer said about that too.
     ctx.check_validation()
+}
+
+/// The warm-up before each later frame: a fifth of the first frame's `first` traces (which
+/// filled `MIN_WARM_MS` of GPU time after the idle of building pipelines), at least the
+/// `asked` count. A frame follows the last on a GPU busy a moment ago, and 200 ms each (the
+/// floor before issue 40) kept per-frame times steady (docs/measuring.md, animate-bench).
+fn between_frames(first: u32, asked: u32) -> u32 {
+    first.div_ceil(5).max(asked.min(first))
 }

@@ -21,7 +21,7 @@
 //! A render of several placements first renders one more whose times it drops: on the H100 the
 //! first placement of a process ran 5% slower than the rest (sphere at 16 spp: 2.47 and 2.37
 //! ms against 2.33), and the first after a second of idle GPU (the bench writing images) up to
-//! 3x (7.2 ms), though each set had its 200 ms of warm-up traces: the GPU's clocks take longer
+//! 3x (7.2 ms), though each set had its 200 ms of warm-up traces (now 1000, `prepare::MIN_WARM_MS`): the clocks take longer
 //! than that to settle.
 
 use super::libraries::Libraries;
@@ -149,6 +149,18 @@ pub struct PlacementTimes {
     /// started at (`--first-placement`), whose layouts it timed. Empty otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub first_placement: Vec<u32>,
+    /// Rounds whose process was slow and was timed again (`render::isolated::RETIME_ABOVE`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub retimed: Vec<Retimed>,
+}
+
+/// A round timed twice: slow, then again at the same place.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Retimed {
+    pub round: u32,
+    /// The geometric means of the first process's and the second's placements (ms).
+    pub first_ms: f64,
+    pub again_ms: f64,
 }
 
 impl PlacementTimes {

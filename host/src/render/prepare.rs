@@ -6,7 +6,7 @@ use super::libraries::Libraries;
 use super::pipeline::{descriptor_bindings, ScenePipeline};
 use super::tracing::Trace;
 use super::upload::{upload_shared, SceneResources, UploadedScene};
-use crate::error::Result;
+use crate::error::{Error, Result};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::vk::buffer::Buffer;
@@ -38,11 +38,23 @@ pub(crate) struct Prepared {
 }
 
 /// GPU time warm-up traces take at least, when any are asked for: GPU clocks leave their
-/// idle state over tens of milliseconds. Measured on the H200 with 3 warm-up traces of a few
-/// ms: the same configuration timed 1x in one run and 2-3x in the next, with a tight IQR
-/// each time (the clock was stable within a run, but in another state).
-pub const MIN_WARM_MS: f64 = 200.0;
+/// idle state over hundreds of milliseconds. Measured on the H200 with 3 warm-up traces of a
+/// few ms: the same configuration timed 1x in one run and 2-3x in the next, with a tight IQR
+/// each time. Measured on the H100 with 200 ms (`bench/reports/issue40-places/`, showcase at
+/// 1 spp, 2.2 ms traces, each process after seconds of idle GPU while it built pipelines): 7
+/// of 8 processes timed one of their two placements 3 to 5 times slower (6.8 to 10.4 ms),
+/// while nvidia-smi saw the SM clock between 800 and 1200 MHz instead of 1980; with 1000 ms,
+/// 0 of 8, and 0 of 30 more processes in two benches, each placement within 1% of the others.
+pub const MIN_WARM_MS: f64 = 1000.0;
 const MAX_WARM_TRACES: u32 = 10_000;
+
+/// `MIN_WARM_MS`, or the milliseconds in `TWINRAY_MIN_WARM_MS`: for measuring how much
+/// warm-up a GPU needs (docs/measuring.md), in every process a bench starts.
+fn min_warm_ms() -> Result<f64> {
+    let Ok(text) = std::env::var("TWINRAY_MIN_WARM_MS") else { return Ok(MIN_WARM_MS) };
+    let ms = text.trim().parse::<f64>().ok().filter(|ms| ms.is_finite() && *ms >= 0.0);
+    ms.ok_or_else(|| Error::Input(format!("TWINRAY_MIN_WARM_MS must be milliseconds, 0 or more (got {text:?})")))
+}
 
 impl Prepared {
     /// The trace of this pipeline over `launch`: `runs` timed traces after warm-up traces that
@@ -75,8 +87,9 @@ impl Prepared {
             first.record(ctx, cmd);
             Ok(())
         })?;
-        let ms = one.read_ms()?.first().copied().unwrap_or(MIN_WARM_MS);
-        let needed = (MIN_WARM_MS / ms.max(1e-6)).ceil().min(f64::from(MAX_WARM_TRACES)) as u32;
+        let warm_ms = min_warm_ms()?;
+        let ms = one.read_ms()?.first().copied().unwrap_or(warm_ms);
+        let needed = (warm_ms / ms.max(1e-6)).ceil().min(f64::from(MAX_WARM_TRACES)) as u32;
         Ok(Trace { warmup: warmup.max(needed), ..trace })
     }
 }
