@@ -163,6 +163,15 @@ pub struct Retimed {
     pub again_ms: f64,
 }
 
+impl Retimed {
+    /// The line the bench prints for it: `what` names the scene, sample count and set.
+    pub fn line(&self, what: &str) -> String {
+        let (round, first, again) = (self.round, self.first_ms, self.again_ms);
+        let kept = if again < first { "the second kept" } else { "the first kept: a slow place" };
+        format!("{what}: round {round}'s process ran slow ({first:.3} ms); timed again: {again:.3} ms, {kept}")
+    }
+}
+
 impl PlacementTimes {
     /// The ratio of these times to `other`'s, placement by placement, with its interval.
     pub fn ratio_to(&self, other: &PlacementTimes) -> Option<RatioInterval> {
@@ -210,5 +219,16 @@ mod tests {
         }
         assert_eq!(orders(3, 6), super::design(3), "six placements of three sets: the whole design");
         assert_eq!(orders(2, 6).len(), 6);
+    }
+
+    #[test]
+    fn a_retimed_round_says_which_time_it_kept() {
+        let slow = super::Retimed { round: 5, first_ms: 4.389, again_ms: 2.45 };
+        assert_eq!(
+            slow.line("box 16 spp rust"),
+            "box 16 spp rust: round 5's process ran slow (4.389 ms); timed again: 2.450 ms, the second kept"
+        );
+        let place = super::Retimed { again_ms: 4.5, ..slow };
+        assert!(place.line("x").ends_with("the first kept: a slow place"));
     }
 }
