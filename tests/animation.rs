@@ -12,7 +12,7 @@ use twinray_tests::{set, validated_context};
 const SIZE: (u32, u32) = (128, 96);
 
 fn opts() -> RenderOptions {
-    RenderOptions { width: SIZE.0, height: SIZE.1, warmup: 0, runs: 1, placements: 1, first_placement: 0 }
+    RenderOptions::once(SIZE.0, SIZE.1, 0, 1)
 }
 
 /// Every frame of `frames`, each as one output per set.

@@ -103,13 +103,8 @@ fn light_falls_through_the_holes_exactly_where_the_pattern_says() {
     let frame = scene.frame_uniform(w, h);
     let light = Vec3::new(0.5, 1.0, 0.0).normalize();
     for set_text in ["rust", "glsl", "rust,any_hit=glsl", "glsl,any_hit=rust"] {
-        let out = twinray::render(
-            &ctx,
-            &scene,
-            &set(set_text),
-            &RenderOptions { width: w, height: h, warmup: 0, runs: 1, placements: 1, first_placement: 0 },
-        )
-        .unwrap_or_else(|e| panic!("{set_text}: {e}"));
+        let out = twinray::render(&ctx, &scene, &set(set_text), &RenderOptions::once(w, h, 0, 1))
+            .unwrap_or_else(|e| panic!("{set_text}: {e}"));
         let (mut lit, mut shadowed, mut through, mut stopped) = (0, 0, 0, 0);
         let mut wrong = Vec::new();
         for y in 0..h {

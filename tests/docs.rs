@@ -24,7 +24,7 @@ fn the_documented_example_loads_and_renders() {
     let scene = Scene::parse(example, "docs/scene-format.md", MeshFiles::Folder(repo_root().join("scenes")))
         .unwrap_or_else(|e| panic!("the documented example does not load: {e}"));
     let ctx = validated_context();
-    let opts = RenderOptions { width: 64, height: 36, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(64, 36, 0, 1);
     let out = twinray::render(&ctx, &scene, &set("rust"), &opts).expect("the documented example renders");
     assert!(twinray::compare::hit_count(&out) > 0);
 }

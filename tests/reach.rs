@@ -17,7 +17,7 @@ fn far_scenes_render_whole_with_their_distant_shadows() {
     for name in ["far-5000", "far-1e6"] {
         let path = repo_root().join(format!("tests/reach/{name}.toml"));
         let scene = Scene::load(Some(&path.to_string_lossy())).unwrap();
-        let opts = RenderOptions { width: 96, height: 96, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+        let opts = RenderOptions::once(96, 96, 0, 1);
         let reach = scene.frame_uniform(96, 96).reach;
         let extent = scene.file.camera.eye[2];
         assert!(
@@ -105,7 +105,7 @@ fn scaled(scene: &Scene, s: f32) -> Scene {
 fn a_scene_scaled_by_powers_of_ten_renders_the_same_picture() {
     let ctx = validated_context();
     let (width, height) = (96, 54);
-    let opts = RenderOptions { width, height, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(width, height, 0, 1);
     for name in ["lights"] {
         let scene = Scene::load(Some(name)).unwrap();
         for s in ["rust", "glsl"] {

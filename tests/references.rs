@@ -44,13 +44,7 @@ fn renders_converge_to_the_reference_as_samples_grow() {
         let mut s = scene.clone();
         s.file.image.samples = side;
         s.file.image.seed = 12345; // independent of the reference's frames
-        let out = render(
-            &ctx,
-            &s,
-            &set("rust"),
-            &RenderOptions { width, height, warmup: 0, runs: 1, placements: 1, first_placement: 0 },
-        )
-        .unwrap();
+        let out = render(&ctx, &s, &set("rust"), &RenderOptions::once(width, height, 0, 1)).unwrap();
         rmse(&out.linear, &truth.linear)
     };
     let (e1, e4, e16) = (error(1), error(4), error(16));
@@ -64,7 +58,7 @@ fn both_sets_place_random_shadow_samples_alike_and_stratified_ones_converge_fast
     use twinray::scene::file::ShadowSampler;
     let ctx = validated_context();
     let mut scene = twinray::Scene::load(Some("lights")).unwrap();
-    let opts = RenderOptions { width: 32, height: 32, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(32, 32, 0, 1);
     let stratified = render(&ctx, &scene, &set("glsl"), &opts).unwrap();
     scene.file.shadow_sampler = ShadowSampler::Random;
     let (rust, glsl) =

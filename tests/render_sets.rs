@@ -40,7 +40,7 @@ fn each_set_gets_what_it_renders_alone() {
 fn one_placement_has_no_warm_up_placement() {
     let ctx = validated_context();
     let scene = showcase();
-    let opts = RenderOptions { width: 16, height: 16, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(16, 16, 0, 1);
     let outs = render_sets(&ctx, &scene, &[set("rust"), set("glsl")], &opts).unwrap();
     let counts: Vec<_> = outs.iter().map(|o| (o.gpu_ms.len(), o.placements.median_ms.len())).collect();
     assert!(counts.iter().all(|&c| c == (1, 1)), "{counts:?}");
@@ -62,7 +62,7 @@ fn identical_sets_agree_bit_for_bit_and_an_empty_set_is_judged_on_its_own_pixels
         .expect("glslangValidator (cargo xtask setup installs it)");
     assert!(compiled.status.success(), "{}", String::from_utf8_lossy(&compiled.stdout));
     let sets = [set("glsl"), set("glsl"), set(&format!("glsl,raygen={}", noop.display()))];
-    let opts = RenderOptions { width: 48, height: 27, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(48, 27, 0, 1);
     let outs = render_sets(&ctx, &showcase(), &sets, &opts).unwrap();
     let bits = |i: usize| outs[i].linear.iter().flatten().map(|v| v.to_bits()).collect::<Vec<u32>>();
     assert_eq!(bits(0), bits(1), "identical sets, identical bits");

@@ -39,7 +39,7 @@ pub fn validated_context_making(pipelines: Option<twinray::vk::context::Pipeline
 
 /// Options for one untimed-warm-up, one-trace render of `TEST_SIZE` squared.
 pub fn small_render() -> RenderOptions {
-    RenderOptions { width: TEST_SIZE, height: TEST_SIZE, warmup: 0, runs: 1, placements: 1, first_placement: 0 }
+    RenderOptions::once(TEST_SIZE, TEST_SIZE, 0, 1)
 }
 
 /// Built-in scenes are tested at this size: small enough for lavapipe, large enough that
@@ -49,7 +49,7 @@ pub const SCENE_TEST_SIZE: (u32, u32) = (160, 120);
 /// Renders a built-in scene at `SCENE_TEST_SIZE` with one trace.
 pub fn render_scene(ctx: &Arc<Context>, scene: &Scene, set_text: &str) -> RenderOutput {
     let (width, height) = SCENE_TEST_SIZE;
-    let opts = RenderOptions { width, height, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(width, height, 0, 1);
     match twinray::render(ctx, scene, &set(set_text), &opts) {
         Ok(out) => out,
         Err(e) => panic!("rendering {} with {set_text}: {e}", scene.name()),

@@ -102,7 +102,7 @@ fn scene(dir: &Path, samples: u32, lod: &str, transform: &str) -> Scene {
 }
 
 fn render(scene: &Scene, shaders: &str) -> RenderOutput {
-    let opts = RenderOptions { width: SIZE.0, height: SIZE.1, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(SIZE.0, SIZE.1, 0, 1);
     twinray::render(&validated_context(), scene, &set(shaders), &opts).unwrap_or_else(|e| panic!("{e}"))
 }
 

@@ -91,7 +91,7 @@ pub struct AnimateReport {
 /// where the driver put one mode's code would otherwise pass for its TLAS's cost.
 pub fn run(ctx: &Arc<Context>, config: &AnimateConfig, mut progress: impl FnMut(&str)) -> Result<AnimateReport> {
     let (width, height, warmup, runs) = (config.width, config.height, config.warmup, config.runs);
-    let opts = RenderOptions { width, height, warmup, runs, placements: 1, first_placement: 0 };
+    let opts = RenderOptions::once(width, height, warmup, runs);
     let mut rows = Vec::new();
     for scene in &config.scenes {
         let instances = scene.file.objects.len();
