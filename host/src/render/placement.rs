@@ -21,8 +21,8 @@
 //! A render of several placements first renders one more whose times it drops: on the H100 the
 //! first placement of a process ran 5% slower than the rest (sphere at 16 spp: 2.47 and 2.37
 //! ms against 2.33), and the first after a second of idle GPU (the bench writing images) up to
-//! 3x (7.2 ms), though each set had its 200 ms of warm-up traces (now 1000, `prepare::MIN_WARM_MS`): the clocks take longer
-//! than that to settle.
+//! 3x (7.2 ms), though each set had its 200 ms of warm-up traces: the clocks take longer than
+//! that to settle. (The floor is now 1000 ms, `prepare::MIN_WARM_MS`.)
 
 use super::libraries::Libraries;
 use super::pipeline::ScenePipeline;
