@@ -48,8 +48,13 @@ pub fn $name(
     let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     // References, not copies: 3.7% to 4.9% faster on sphere and cone at 16 spp on the H100; the
     // triangle closest hit keeps its copies (references were 3% slower on meshes).
-    let material = &materials[objects[object as usize].material as usize];
-    let primitive = &primitives[(primitive_base + primitive_id) as usize];
+    // Not bounds-checked, as GLSL's twin is not (nor the intersection stages' primitive read,
+    // docs/rust-stages.md): the instance id, the object's material and the custom index are
+    // the host's, made from the lists it uploads. The three checks cost Rust 1.7% to 3.6% at
+    // 1 spp on the H100 (bench/reports/issue40-hit).
+    // SAFETY: see above; robust access reads zeros where a stage from disk strays.
+    let material = unsafe { materials.get_unchecked(objects.get_unchecked(object as usize).material as usize) };
+    let primitive = unsafe { primitives.get_unchecked((primitive_base + primitive_id) as usize) };
     let (tint, emission) = hit::procedural_tint(textures, (material, primitive), &surface, *normal, frame.cone.x);
     let ($m, $p, $n) = (material, surface.object_point(), *normal);
     let color = $color * tint;
