@@ -129,9 +129,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         println!("{:<12} {:>4} spp  {} / {}: {:.3}  {} {what}", r.scene, r.spp, r.a, r.b, r.interval.ratio, r.verdict);
     }
     for row in &report.rows {
-        for retimed in &row.placements.retimed {
-            println!("{}", retimed.line(&format!("{:<12} {:>4} spp  {}", row.scene, row.spp, row.set)));
-        }
+        print!("{}", row.placements.retimed_lines("", &format!("{:<12} {:>4} spp  {}", row.scene, row.spp, row.set)));
     }
     for skip in &report.skipped {
         println!("{}", skip.line());

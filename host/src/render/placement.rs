@@ -173,6 +173,12 @@ impl Retimed {
 }
 
 impl PlacementTimes {
+    /// `Retimed::line` for each round timed again, each after `indent` and ending in a newline:
+    /// what `bench` and `compare` print, so that a re-timed round is never silent.
+    pub fn retimed_lines(&self, indent: &str, what: &str) -> String {
+        self.retimed.iter().map(|r| format!("{indent}{}\n", r.line(what))).collect()
+    }
+
     /// The ratio of these times to `other`'s, placement by placement, with its interval.
     pub fn ratio_to(&self, other: &PlacementTimes) -> Option<RatioInterval> {
         RatioInterval::paired(&self.median_ms, &other.median_ms)
@@ -230,5 +236,10 @@ mod tests {
         );
         let place = super::Retimed { again_ms: 4.5, ..slow };
         assert!(place.line("x").ends_with("the first kept: a slow place"));
+        let times = super::PlacementTimes { retimed: vec![slow, place], ..Default::default() };
+        let lines = times.retimed_lines("  ", "set b");
+        assert_eq!(lines.lines().count(), 2, "{lines}");
+        assert!(lines.starts_with("  set b: round 5's") && lines.ends_with("a slow place\n"), "{lines}");
+        assert_eq!(super::PlacementTimes::default().retimed_lines("  ", "set b"), "");
     }
 }
