@@ -20,6 +20,10 @@ fn each_set_gets_what_it_renders_alone() {
     let opts = RenderOptions { width: 48, height: 27, warmup: 1, runs: 3, placements: 3, first_placement: 0 };
     let together = render_sets(&ctx, &scene, &sets, &opts).unwrap();
     assert_eq!(together.len(), sets.len());
+    // Every set at places of its own, one a round: no place timed twice.
+    let places: Vec<u64> = together.iter().flat_map(|o| o.placements.place.clone()).collect();
+    assert_eq!(places.len(), sets.len() * opts.placements as usize, "{places:?}");
+    assert_eq!(places.iter().collect::<std::collections::HashSet<_>>().len(), places.len(), "{places:?}");
     for (s, out) in sets.iter().zip(&together) {
         let alone =
             twinray::render(&ctx, &scene, s, &RenderOptions { runs: 1, warmup: 0, placements: 1, ..opts }).unwrap();

@@ -180,8 +180,10 @@ fn sets_are_timed_alone_in_processes_of_their_own() {
         assert_eq!(positions, [i as u64, 2 - i as u64], "{row}");
         // Every placement of both processes.
         assert_eq!(row["gpu_ms"]["samples"], 4, "{row}");
-        // Each process at places of its own: the second past the first's two placements.
-        assert_eq!(row["placements"]["first_placement"], serde_json::json!([0, 2]), "{row}");
+        // Each process at places of its own, the null control's too: round r of set i starts
+        // past the two placements of every process before it, (3r + i) * 2.
+        let firsts = serde_json::json!([2 * i, 6 + 2 * i]);
+        assert_eq!(row["placements"]["first_placement"], firsts, "{row}");
     }
     for r in json["ratios"].as_array().unwrap() {
         assert_eq!(r["interval"]["placements"], 2, "over the two rounds: {r}");
@@ -210,12 +212,12 @@ fn compare_times_each_set_alone_in_processes_of_its_own() {
     let json: serde_json::Value = serde_json::from_str(&stdout).expect("compare --json prints JSON");
     assert_eq!(json["processes"], 3);
     assert_eq!(json["timing"]["placements"], 3, "over the three rounds: {json}");
-    for (key, first) in [("placements_a", 0), ("placements_b", 1)] {
+    for (key, first, places) in [("placements_a", 0, [0, 4, 8]), ("placements_b", 1, [2, 6, 10])] {
         let positions: Vec<u64> =
             json[key]["position"].as_array().unwrap().iter().map(|p| p.as_u64().unwrap()).collect();
         assert_eq!(positions, [first, 1 - first, first], "{key}: the rounds go forwards, then backwards");
         assert_eq!(json[key]["median_ms"].as_array().unwrap().len(), 3, "one time per process: {json}");
-        assert_eq!(json[key]["first_placement"], serde_json::json!([0, 2, 4]), "places of its own: {json}");
+        assert_eq!(json[key]["first_placement"], serde_json::json!(places), "places of its own: {json}");
     }
     assert!(dir.path().join("cmp/diff.png").is_file());
     let text = twinray(&[&args[..], &["--processes", "3", "--out-dir", "cmp"]].concat(), dir.path());

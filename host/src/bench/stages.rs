@@ -193,8 +193,9 @@ pub struct StagePlan<'a> {
     pub variants: &'a [Variant],
     pub sets: &'a [ShaderSet],
     pub rounds: u32,
-    /// The number of the first round (0 but in `--alone`'s children): round `r`, of one
-    /// placement, starts at `render::placement::round_start(r, 1)`.
+    /// The number of the first round (0 but in `--alone`'s children): in round `r` each of the
+    /// `c` cells (variant and set) is timed once, cell `k` at place `r * c + k` (see
+    /// `render::placement::place`).
     pub first_round: u32,
     pub alone: Option<&'a TimeCell>,
 }
@@ -228,9 +229,9 @@ pub fn run(
         let mut last: Vec<Option<RenderOutput>> = (0..cells.len()).map(|_| None).collect();
         for round in 0..plan.rounds.max(1) as usize {
             let number = plan.first_round + round as u32;
-            let opts = RenderOptions { first_placement: crate::render::placement::round_start(number, 1), ..opts };
             for k in 0..cells.len() {
                 let c = (k + round) % cells.len();
+                let opts = RenderOptions { first_placement: number * cells.len() as u32 + c as u32, ..opts };
                 let (v, s) = cells[c];
                 progress(&format!("{} {} {} (round {})", scene.name(), runs[v].0.name(), plan.sets[s], round + 1));
                 let (variant, set) = (runs[v].0, &plan.sets[s]);

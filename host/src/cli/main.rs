@@ -13,6 +13,7 @@ mod frames;
 mod image_args;
 mod inspect;
 mod pipelines;
+mod places;
 mod probe;
 mod render;
 mod session;
@@ -98,6 +99,9 @@ enum Command {
     /// any-hit, shadows by traceRay or ray queries), timed against the first variant, with
     /// each image against that variant's.
     StageBench(StageBenchArgs),
+    /// What a place changes on this device: each set timed over many places with its code, its
+    /// SBT or the scene's buffers moved, one at a time, and with nothing moved.
+    Places(places::PlacesArgs),
     /// twinray's converged references against Mitsuba 3's renders of the same scenes, in linear
     /// radiance (docs/shading-model.md); `cargo xtask crosscheck` sets up Mitsuba and runs it.
     Crosscheck(crosscheck::CrosscheckArgs),
@@ -148,6 +152,7 @@ fn main() -> ExitCode {
         Command::AnimateBench(args) => animate::animate_bench(&cli.global, args),
         Command::PipelineBench(args) => pipelines::pipeline_bench(&cli.global, args),
         Command::StageBench(args) => pipelines::stage_bench(&cli.global, args),
+        Command::Places(args) => places::places(&cli.global, args),
         Command::Crosscheck(args) => crosscheck::crosscheck(&cli.global, args),
     };
     match result {

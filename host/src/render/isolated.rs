@@ -10,13 +10,9 @@
 //! processes of its own, in rounds that alternate the sets' order; a ratio's interval is taken
 //! over the rounds, the two processes of a round being one paired observation.
 //!
-//! Each round's processes start at a later placement than the round before
-//! ([`Isolation::first_placement`]), so the rounds time the sets at different places and the
-//! interval over them holds where the code lands.
-//! When every process started at placement 0, every process timed the same places: three
-//! sessions on three H100s with 2 placements per process (0 spacers each) agreed to 0.1%
-//! (median), while one with 4 (0 and 1 spacers) put some cells 1-2% away, outside intervals
-//! of +-0.1% (`bench/reports/issue40-third/`).
+//! Every process starts at places of its own ([`Isolation::first_placement`]): each round's,
+//! and within a round each set's, a null control's copy too, so that the interval over rounds
+//! is an interval over places (docs/measuring.md, *Places*).
 
 use super::placement::Retimed;
 use super::{render_sets, PlacementTimes, RenderOptions, RenderOutput};
@@ -48,9 +44,11 @@ impl std::fmt::Debug for Isolation {
 }
 
 impl Isolation {
-    /// Where round `round`'s processes start (`placement::round_start`).
-    pub fn first_placement(&self, round: u32) -> u32 {
-        super::placement::round_start(round, self.placements)
+    /// The round the process of set `set` (of `sets`) in round `round` starts at
+    /// (`--first-placement`): past every place of the processes before it, so that no two
+    /// processes, a set's and its salted copy's included, time the same places.
+    pub fn first_placement(&self, round: u32, set: usize, sets: usize) -> u32 {
+        (round * sets.max(1) as u32 + set as u32) * self.placements.max(1)
     }
 
     /// Replaces the times of `outputs` (one per set of `sets`) with each set's times alone:
@@ -58,13 +56,15 @@ impl Isolation {
     /// A process that ran [`RETIME_ABOVE`] times slower than its set's median round is timed
     /// again, at the same place, and the faster of the two kept (see `placement::Retimed`).
     pub fn retime(&self, scene: usize, spp: u32, sets: &[ShaderSet], outputs: &mut [RenderOutput]) -> Result<()> {
-        let firsts: Vec<u32> = (0..self.processes).map(|r| self.first_placement(r)).collect();
-        // A salted copy alone is its original alone: the salt only parts code that shares a
-        // process.
-        let time = |i: usize, round: usize| (self.time_alone)(scene, spp, &sets[i].original(), firsts[round]);
+        let n = sets.len();
+        let firsts: Vec<Vec<u32>> =
+            (0..n).map(|i| (0..self.processes).map(|r| self.first_placement(r, i, n)).collect()).collect();
+        // A salted copy alone is its original alone, at places of its own: the salt only parts
+        // code that shares a process.
+        let time = |i: usize, round: usize| (self.time_alone)(scene, spp, &sets[i].original(), firsts[i][round]);
         let mut rounds = vec![Vec::new(); sets.len()];
         let mut positions = vec![Vec::new(); sets.len()];
-        for round in 0..firsts.len() {
+        for round in 0..self.processes as usize {
             let order: Vec<usize> =
                 if round % 2 == 0 { (0..sets.len()).collect() } else { (0..sets.len()).rev().collect() };
             for (position, &i) in order.iter().enumerate() {
@@ -77,7 +77,8 @@ impl Isolation {
             out.placements = PlacementTimes {
                 median_ms: rounds[i].iter().map(|ms| geometric_mean(ms)).collect(),
                 position: std::mem::take(&mut positions[i]),
-                first_placement: firsts.clone(),
+                place: Vec::new(),
+                first_placement: firsts[i].clone(),
                 retimed,
             };
             out.gpu_ms = rounds[i].concat();

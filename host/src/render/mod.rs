@@ -10,6 +10,7 @@ mod moving;
 pub mod output;
 pub mod pipeline;
 pub mod placement;
+pub mod places;
 pub(crate) mod prepare;
 pub mod sentinel;
 mod sets;

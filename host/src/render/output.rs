@@ -19,13 +19,12 @@ pub struct RenderOptions {
     pub warmup: u32,
     /// Timed traces per placement (at least one trace always runs).
     pub runs: u32,
-    /// Independent placements of the sets' pipelines (see `render::placement`), each with its
-    /// own warm-up and timed traces; at least one.
+    /// Rounds of placements: in each, every set is timed once at a place of its own (see
+    /// `render::placement`), with its own warm-up and timed traces; at least one.
     pub placements: u32,
-    /// Whose spacers the first placement makes: placement `p` of the render makes those of
-    /// placement `first_placement + p` (`render::placement::spacer_sets`). Each process of
-    /// `--processes` starts further on, so that the processes time the sets at different
-    /// places; 0 elsewhere.
+    /// The number of the render's first round: round `r` of the render times set `i` at
+    /// `placement::place(first_placement + r, i, sets)`. Each process of `--processes` starts
+    /// further on, so that no two processes time the same places; 0 elsewhere.
     pub first_placement: u32,
 }
 
@@ -178,6 +177,17 @@ impl RayCounts {
 }
 
 impl RenderOutput {
+    /// Adds one place's timed traces: their median, the set's position in the round, the
+    /// place (see `render::placement`), and the traces to the pooled ones.
+    pub(crate) fn record_place(&mut self, gpu_ms: &[f64], position: u32, place: u64) {
+        if let Some(ms) = median(gpu_ms) {
+            self.placements.median_ms.push(ms);
+            self.placements.position.push(position);
+            self.placements.place.push(place);
+        }
+        self.gpu_ms.extend_from_slice(gpu_ms);
+    }
+
     /// Median GPU time: the median of the placements' medians (of the traces when no
     /// placement was recorded), so that a placement with more traces weighs no more.
     pub fn median_ms(&self) -> Option<f64> {

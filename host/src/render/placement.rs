@@ -1,28 +1,20 @@
-//! Placements: each an independent making of every set's pipeline, SBT and descriptors over a
-//! fresh upload of the scene, in an order of its own, each giving one median per set.
+//! Places: where a set's pipeline is made, and the rounds and orders that time sets over many.
 //!
-//! Where the driver puts a pipeline's code moves its trace time. Measured on the H100 (issue
-//! 26, `bench/reports/timing/`): two salted copies of one GLSL set built one after the other
-//! and traced interleaved took 2.33 and 2.26 ms on cylinder at 16 spp, the slower being
-//! whichever was built first, every time, in every process; tracing them in the other order,
-//! or moving their SBTs, changed nothing; making one to three other pipelines first moved
-//! each copy's time (2.18 to 2.33 ms) and which copy was slower. Freed code is reused: a
-//! pipeline built after another was released lands where that one was.
+//! Where the driver puts a pipeline's code moves its trace time by up to 10% on the H100, by
+//! an amount of its own for each set, and the same again when the same allocations are made in
+//! the same order (docs/measuring.md, *Places*). So a set is timed over many places, and a
+//! ratio's uncertainty is taken over them. A place is one making of a set's pipeline, SBT and
+//! descriptors after a drawn number of spacer pipelines ([`spacer_sets`]) that it keeps while
+//! the set is timed, moving where the set's code lands; freed code is reused, so the set's
+//! pipeline is released before the next is made. Every set of every round has a place of its
+//! own ([`place`]): a null control's copy timed where its original was timed would only
+//! repeat that place's time.
 //!
-//! So within a placement the sets do not share the GPU at once: each is built, warmed up,
-//! timed and released before the next is built, and every set of the placement runs from the
-//! same place. Placements differ in where that is: each pair of placements first makes
-//! `spacers` pipelines that it keeps, moving the code of what follows. The orders are the
-//! rows of a Williams design ([`orders`]): every set at every position, and after every other
-//! set, equally often, each order followed by its reverse so that a drift of the GPU's clocks
-//! over a placement reaches every set alike. A ratio's uncertainty is the spread of the placements' ratios
-//! (`util::interval`): how much a set's time owes to where its code landed, and to drift.
-//!
-//! A render of several placements first renders one more whose times it drops: on the H100 the
-//! first placement of a process ran 5% slower than the rest (sphere at 16 spp: 2.47 and 2.37
-//! ms against 2.33), and the first after a second of idle GPU (the bench writing images) up to
-//! 3x (7.2 ms), though each set had its 200 ms of warm-up traces: the clocks take longer than
-//! that to settle. (The floor is now 1000 ms, `prepare::MIN_WARM_MS`.)
+//! A render times its sets in rounds, each round every set once, in the orders of a Williams
+//! design ([`orders`]): every set at every position, and after every other set, equally often,
+//! each order followed by its reverse, so that a drift of the GPU's clocks reaches every set
+//! alike. Each round gives one median per set, and a ratio's interval is taken over rounds
+//! (`util::interval`).
 
 use super::libraries::Libraries;
 use super::pipeline::ScenePipeline;
@@ -38,15 +30,11 @@ use twinray_shared::random::SplitMix64;
 /// Placements `compare` and `bench` time over unless told otherwise: three pairs of orders.
 pub const DEFAULT_PLACEMENTS: u32 = 6;
 
-/// The order of each placement of `sets` sets: the rows of a Williams design, cycled (see
-/// [`design`]). A set's time depends on where it comes in a placement and on which set was
-/// built and released just before it: on the H100 (issue 40, swarm at 16 spp, `bench --null`,
-/// so three sets) the same comparison gave Rust/GLSL 1.116 in three processes with
-/// `--sets glsl,rust` and 0.991 in three with `--sets rust,glsl`, each interval (±3%)
-/// excluding the other's estimate, when pairs of a shuffled order and its reverse left the
-/// second set never in the middle. Over a whole number of the design's rows every set comes
-/// at every position, and after every other set, equally often, so the label order cannot
-/// favour one.
+/// The order of each round of `sets` sets: the rows of a Williams design, cycled (see
+/// [`design`]). A set's time depends on where it comes in a round and on which set was built
+/// and released just before it (on the H100, a label order once decided a ratio by 12%:
+/// docs/measuring.md); over a whole number of the design's rows every set comes at every
+/// position, and after every other set, equally often, so the label order cannot favour one.
 pub fn orders(sets: usize, placements: u32) -> Vec<Vec<usize>> {
     let rows = design(sets);
     (0..placements.max(1) as usize).map(|p| rows[p % rows.len()].clone()).collect()
@@ -83,47 +71,45 @@ pub fn design(n: usize) -> Vec<Vec<usize>> {
     out
 }
 
-/// Spacer pipelines placement `p` makes first: 0, 0, 1, 1, ..., 7, 7, 0, ... (each pair of
-/// orders at one place). Eight places, so that up to eight rounds of `--processes` time eight
-/// different ones: a repeated place times the same as before (to 0.5% on the H100), and
-/// would narrow an interval over places without adding one.
-pub fn spacers(p: usize) -> u32 {
-    ((p / 2) % PLACES) as u32
+/// The place of set `set` (of `sets` timed together) in round `round`: every round and set a
+/// place of its own, so that no set, a null control's copy included, is ever timed at the
+/// place of another, and a set's interval over its rounds is an interval over places.
+pub fn place(round: u32, set: usize, sets: usize) -> u64 {
+    u64::from(round) * sets.max(1) as u64 + set as u64
 }
 
-/// The places [`spacers`] cycles through.
-pub const PLACES: usize = 8;
+/// The most spacer pipelines a place makes before the set it times.
+pub const MAX_SPACERS: usize = 7;
 
-/// The placement round `round` of a measurement in rounds of `placements` placements each
-/// starts at: past every placement of the rounds before, rounded up to a pair, since each
-/// pair of placements makes the same spacers. Each round then times at places of its own.
-pub fn round_start(round: u32, placements: u32) -> u32 {
-    round * placements.next_multiple_of(2)
+/// Which of `kinds` timed sets each spacer of place `place` copies: 0 to [`MAX_SPACERS`]
+/// spacers, each of a kind drawn with a seed fixed per place, so that a command repeats its
+/// places exactly and the pipelines made before a timed one are of every kind timed (on the
+/// H100 spacers of the GLSL set alone never reached a regime some set lists made; see
+/// docs/measuring.md).
+pub fn spacer_sets(place: u64, kinds: usize) -> Vec<usize> {
+    let mut rng = SplitMix64(SEED ^ place.wrapping_mul(0x9e37_79b9_7f4a_7c15));
+    let count = (rng.next_u64() % (MAX_SPACERS as u64 + 1)) as usize;
+    (0..count).map(|_| (rng.next_u64() % kinds.max(1) as u64) as usize).collect()
 }
 
-/// Which of `sets` timed sets each spacer of placement `p` copies: drawn with a fixed seed
-/// per placement, so that the pipelines made before the timed ones are of every kind timed.
-/// On the H100 the set list decided a regime of the whole process (Rust or GLSL at its
-/// alone speed, the other 4-7% slower; `bench/reports/inspect-h100/`), which spacers of
-/// the GLSL set alone never reached.
-pub fn spacer_sets(p: usize, sets: usize) -> Vec<usize> {
-    let mut rng = SplitMix64(SEED ^ (p as u64).wrapping_mul(0x9e37_79b9_7f4a_7c15));
-    (0..spacers(p)).map(|_| (rng.next_u64() % sets.max(1) as u64) as usize).collect()
-}
-
-/// The seed of the spacers' draws: fixed, so that a command repeats its placements exactly.
+/// The seed of the spacers' draws: fixed, so that a command repeats its places exactly.
 const SEED: u64 = 0x7417_2a79_5eed_0026;
 
-/// Pipelines made only to be kept while a placement's sets are built and timed, so that their
-/// code lands further on: salted copies of the timed sets (`ShaderSet::copy`, numbered from
-/// 1000 so that no timed set shares their code), drawn by [`spacer_sets`].
+/// Pipelines made only to be kept while a place's set is built and timed, so that its code
+/// lands further on: copies of the timed sets drawn by [`spacer_sets`], salted (numbered from
+/// 1000, so that no timed set shares their code) unless `salted` is false.
 pub(super) struct Spacers {
     _pipelines: Vec<ScenePipeline>,
     _libraries: Libraries,
 }
 
 impl Spacers {
-    pub fn new(ctx: &Arc<Context>, scene: &UploadedScene, sets: &[(ShaderSet, PipelineKind)]) -> Result<Spacers> {
+    pub fn new(
+        ctx: &Arc<Context>,
+        scene: &UploadedScene,
+        sets: &[(ShaderSet, PipelineKind)],
+        salted: bool,
+    ) -> Result<Spacers> {
         let libraries = Libraries::default();
         let plan = &scene.data.plan;
         let pipelines = sets
@@ -131,12 +117,19 @@ impl Spacers {
             .enumerate()
             .map(|(k, (set, kind))| {
                 let linking = (*kind == PipelineKind::Libraries).then_some(&libraries);
-                ScenePipeline::new(ctx, &set.copy(1000 + k as u32), plan, plan.render_raygen(), linking)
+                let copy = if salted { set.copy(1000 + k as u32) } else { set.clone() };
+                ScenePipeline::new(ctx, &copy, plan, plan.render_raygen(), linking)
             })
             .collect::<Result<Vec<_>>>()?;
         Ok(Spacers { _pipelines: pipelines, _libraries: libraries })
     }
 }
+
+/// A place whose making kept the GPU idle longer than this warms up for `MIN_WARM_MS`, not
+/// `PLACE_WARM_MS`: on the H200 a place made in 0.9 s (spacers compiled cold) timed 1.57 times
+/// slower than its neighbours, as at a clock of about 1260 MHz instead of 1980
+/// (`bench/reports/issue53-places/`).
+pub const LONG_GAP_MS: f64 = 250.0;
 
 /// One set's times by placement.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
@@ -145,6 +138,10 @@ pub struct PlacementTimes {
     pub median_ms: Vec<f64>,
     /// The set's position (0: built and traced first in each round) in each placement.
     pub position: Vec<u32>,
+    /// The place each placement timed the set at (`placement::place`: the draw of its
+    /// spacers). Empty when timed alone in processes (see `first_placement`).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub place: Vec<u64>,
     /// Timed alone in processes (`render::Isolation`): the placement each round's process
     /// started at (`--first-placement`), whose layouts it timed. Empty otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -218,13 +215,28 @@ mod tests {
             }
         }
         assert_eq!(orders(3, 0).len(), 1, "at least one placement");
-        let counts: Vec<u32> = (0..2 * super::PLACES).map(super::spacers).collect();
-        assert_eq!(counts[..6], [0, 0, 1, 1, 2, 2], "each pair of placements at one place");
-        for n in 0..super::PLACES as u32 {
-            assert_eq!(counts.iter().filter(|&&c| c == n).count(), 2, "every place once per cycle: {counts:?}");
-        }
-        assert_eq!(orders(3, 6), super::design(3), "six placements of three sets: the whole design");
         assert_eq!(orders(2, 6).len(), 6);
+        assert_eq!(orders(3, 6), super::design(3), "six placements of three sets: the whole design");
+    }
+
+    #[test]
+    fn every_round_and_set_has_a_place_of_its_own_and_a_draw_of_spacers() {
+        let mut seen = std::collections::HashSet::new();
+        for round in 0..50 {
+            for set in 0..3 {
+                assert!(seen.insert(super::place(round, set, 3)), "round {round}, set {set}");
+            }
+        }
+        let draws: Vec<Vec<usize>> = (0..200).map(|p| super::spacer_sets(p, 3)).collect();
+        assert!(draws.iter().all(|d| d.len() <= super::MAX_SPACERS && d.iter().all(|&k| k < 3)));
+        for count in 0..=super::MAX_SPACERS {
+            let n = draws.iter().filter(|d| d.len() == count).count();
+            assert!((10..40).contains(&n), "{n} of 200 places make {count} spacers");
+        }
+        for kind in 0..3 {
+            assert!(draws.iter().flatten().any(|&k| k == kind), "spacers of every kind timed");
+        }
+        assert_eq!(super::spacer_sets(7, 3), super::spacer_sets(7, 3), "a place repeats its draw");
     }
 
     #[test]

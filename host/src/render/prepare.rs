@@ -48,12 +48,28 @@ pub(crate) struct Prepared {
 pub const MIN_WARM_MS: f64 = 1000.0;
 const MAX_WARM_TRACES: u32 = 10_000;
 
+/// GPU time the warm-up traces of each place after a render's first take at least, when any
+/// are asked for. The clocks are up by then, and a place made in tens of milliseconds (its
+/// spacers made from the driver's cache) finds them up: on the H200 a place's first trace took
+/// 1.003 times its timed median (`twinray places`, bench/reports/issue53-places/). A place whose
+/// making took longer warms up for `MIN_WARM_MS` (`placement::LONG_GAP_MS`).
+pub const PLACE_WARM_MS: f64 = 20.0;
+
 /// `MIN_WARM_MS`, or the milliseconds in `TWINRAY_MIN_WARM_MS`: for measuring how much
 /// warm-up a GPU needs (docs/measuring.md), in every process a bench starts.
-fn min_warm_ms() -> Result<f64> {
-    let Ok(text) = std::env::var("TWINRAY_MIN_WARM_MS") else { return Ok(MIN_WARM_MS) };
+pub(crate) fn min_warm_ms() -> Result<f64> {
+    warm_ms("TWINRAY_MIN_WARM_MS", MIN_WARM_MS)
+}
+
+/// `PLACE_WARM_MS`, or the milliseconds in `TWINRAY_PLACE_WARM_MS`.
+pub(crate) fn place_warm_ms() -> Result<f64> {
+    warm_ms("TWINRAY_PLACE_WARM_MS", PLACE_WARM_MS)
+}
+
+fn warm_ms(variable: &str, default: f64) -> Result<f64> {
+    let Ok(text) = std::env::var(variable) else { return Ok(default) };
     let ms = text.trim().parse::<f64>().ok().filter(|ms| ms.is_finite() && *ms >= 0.0);
-    ms.ok_or_else(|| Error::Input(format!("TWINRAY_MIN_WARM_MS must be milliseconds, 0 or more (got {text:?})")))
+    ms.ok_or_else(|| Error::Input(format!("{variable} must be milliseconds, 0 or more (got {text:?})")))
 }
 
 impl Prepared {
@@ -66,6 +82,18 @@ impl Prepared {
         timestamps: Option<&'a Timestamps>,
         launch: (u32, u32),
         (warmup, runs): (u32, u32),
+    ) -> Result<Trace<'a>> {
+        self.trace_warmed(ctx, timestamps, launch, (warmup, runs), min_warm_ms()?)
+    }
+
+    /// [`Self::trace`] with `warm_ms` of warm-up GPU time in place of `MIN_WARM_MS`.
+    pub fn trace_warmed<'a>(
+        &'a self,
+        ctx: &Arc<Context>,
+        timestamps: Option<&'a Timestamps>,
+        launch: (u32, u32),
+        (warmup, runs): (u32, u32),
+        warm_ms: f64,
     ) -> Result<Trace<'a>> {
         let trace = Trace {
             pipeline: &self.pipeline.rt,
@@ -87,7 +115,6 @@ impl Prepared {
             first.record(ctx, cmd);
             Ok(())
         })?;
-        let warm_ms = min_warm_ms()?;
         let ms = one.read_ms()?.first().copied().unwrap_or(warm_ms);
         let needed = (warm_ms / ms.max(1e-6)).ceil().min(f64::from(MAX_WARM_TRACES)) as u32;
         Ok(Trace { warmup: warmup.max(needed), ..trace })

@@ -5,14 +5,13 @@ use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE};
 use super::libraries::Libraries;
 use super::output::{read_back, to_rgba8, AccelStats, RayCounts, RenderOptions, RenderOutput};
 use super::placement;
-use super::prepare::{prepare_on, storage_buffer, Prepared};
+use super::prepare::{min_warm_ms, place_warm_ms, prepare_on, storage_buffer, Prepared};
 use super::sentinel;
 use super::tracing::{self, Trace};
 use super::upload::{upload_shared, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::{check_size, Scene};
 use crate::shaders::ShaderSet;
-use crate::util::stats::median;
 use crate::util::{activity, progress};
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::memory_barrier;
@@ -53,13 +52,23 @@ pub(crate) fn made_as_context_says(ctx: &Context, sets: &[ShaderSet]) -> Vec<(Sh
 
 /// [`render_sets`] with each set's pipeline made its own way, whole or linked (what
 /// `pipeline-bench` times linking by).
+///
+/// One upload of the scene and one set of outputs serve every set. The sets are timed in
+/// rounds (`opts.placements`), each round every set once at a place of its own
+/// (`placement::place`), in that round's order: its spacers made, its pipeline built, traced
+/// alone for its output the first time, warmed up, timed and released with its spacers. The
+/// GPU's clocks are brought up once, by a warm-up of at least `MIN_WARM_MS` whose times are
+/// dropped (with several rounds: a place of its own before the first; with one: the first
+/// place's warm-up); every later place warms up for `prepare::place_warm_ms()`. Images and
+/// hit ids are each set's first place's.
 pub fn render_made(
     ctx: &Arc<Context>,
     scene: &Scene,
     sets: &[(ShaderSet, PipelineKind)],
     opts: &RenderOptions,
 ) -> Result<Vec<RenderOutput>> {
-    let mut outputs: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
+    check_size(opts.width, opts.height).map_err(Error::Input)?;
+    check_device_limits(ctx, opts)?;
     let orders = placement::orders(sets.len(), opts.placements);
     let rows = placement::design(sets.len()).len();
     if opts.placements > 1 && !(opts.placements as usize).is_multiple_of(rows) {
@@ -69,44 +78,64 @@ pub fn render_made(
             sets.len()
         );
     }
-    // With several placements, a first one whose times are dropped (see `placement`).
-    let warm_up = (opts.placements > 1).then(|| orders[0].iter().rev().copied().collect::<Vec<_>>());
-    let total = orders.len() + usize::from(warm_up.is_some());
-    let all = warm_up.iter().map(|o| (None, o)).chain(orders.iter().enumerate().map(|(p, o)| (Some(p), o)));
-    for (done, (timed, order)) in all.enumerate() {
-        let ordered: Vec<_> = order.iter().map(|&i| sets[i].clone()).collect();
-        let _doing = (total > 1).then(|| activity::doing(format!("placement {} of {total}", done + 1)));
-        let spacers: Vec<_> = placement::spacer_sets(opts.first_placement as usize + timed.unwrap_or(0), sets.len())
-            .iter()
-            .map(|&i| sets[i].clone())
-            .collect();
-        let placed = render_placement(ctx, scene, &ordered, opts, &spacers)?;
-        for (position, (&i, mut out)) in order.iter().zip(placed).enumerate() {
-            if timed.is_none() {
+    let size = (opts.width, opts.height);
+    let uploaded = upload_shared(ctx, scene, size)?;
+    let outputs = SharedOutputs::new(ctx, opts)?;
+    let mut warm_ms = min_warm_ms()?;
+    if opts.placements > 1 && opts.warmup > 0 {
+        let _doing = activity::doing("warming up the GPU");
+        let first = &sets[orders[0][0]];
+        let render = SetRender::each(ctx, &uploaded, &outputs, std::slice::from_ref(first), opts)?.remove(0);
+        let trace = render.timed_trace_after(ctx, size, (opts.warmup, 1), warm_ms)?;
+        tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
+        warm_ms = place_warm_ms()?;
+    }
+    let mut outputs_of: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
+    let total = (orders.len() * sets.len()) as u64;
+    for (round, order) in orders.iter().enumerate() {
+        let round = opts.first_placement + round as u32;
+        for (position, &i) in order.iter().enumerate() {
+            let place = placement::place(round, i, sets.len());
+            let _doing = (total > 1).then(|| activity::doing(format!("round {round}: {} at place {place}", sets[i].0)));
+            let made = std::time::Instant::now();
+            let spacers: Vec<_> = placement::spacer_sets(place, sets.len()).iter().map(|&k| sets[k].clone()).collect();
+            let _spacers = placement::Spacers::new(ctx, &uploaded, &spacers, false)?;
+            let render = SetRender::each(ctx, &uploaded, &outputs, std::slice::from_ref(&sets[i]), opts)?.remove(0);
+            if made.elapsed().as_secs_f64() * 1e3 > placement::LONG_GAP_MS && opts.warmup > 0 {
+                warm_ms = warm_ms.max(min_warm_ms()?);
+            }
+            let first = outputs_of[i].is_none();
+            if first {
+                render.trace_output(ctx, &outputs, size)?;
+            }
+            let trace = render.timed_trace_after(ctx, size, (opts.warmup, opts.runs), warm_ms)?;
+            let _timing = activity::doing(format!("the timed traces of {}", render.label));
+            tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
+            let gpu_ms = render.times()?;
+            let slot = &mut outputs_of[i];
+            if first {
+                let mut out = render.output(scene, opts, trace.warmup, uploaded.accel)?;
                 out.gpu_ms.clear();
-            } else if let Some(ms) = median(&out.gpu_ms) {
-                out.placements.median_ms.push(ms);
-                out.placements.position.push(position as u32);
+                *slot = Some(out);
             }
-            match &mut outputs[i] {
-                Some(first) => {
-                    first.gpu_ms.extend(out.gpu_ms);
-                    first.placements.median_ms.extend(out.placements.median_ms);
-                    first.placements.position.extend(out.placements.position);
-                }
-                slot => *slot = Some(out),
+            if let Some(out) = slot {
+                out.record_place(&gpu_ms, position as u32, place);
             }
-        }
-        if total > 1 {
-            progress::report("placements", done as u64 + 1, total as u64);
+            if opts.warmup > 0 {
+                warm_ms = place_warm_ms()?;
+            }
+            let done = (round as usize - opts.first_placement as usize) * sets.len() + position + 1;
+            if total > 1 {
+                progress::report("placements", done as u64, total);
+            }
         }
     }
     // Every object of the render is destroyed by now: catch what the layer said about that too.
     ctx.check_validation()?;
-    outputs
+    outputs_of
         .into_iter()
         .collect::<Option<Vec<_>>>()
-        .ok_or_else(|| Error::Unsupported("a placement of the render left a set out".into()))
+        .ok_or_else(|| Error::Unsupported("a round of the render left a set out".into()))
 }
 
 /// The outputs every set of a render writes in turn (one image, one hit-id buffer), so that
@@ -215,8 +244,26 @@ impl SetRender {
     /// This set's timed traces: `runs` after at least `warmup` warm-up ones (see
     /// `Prepared::trace`, whose calibration trace runs here, naming the set).
     pub fn timed_trace(&self, ctx: &Arc<Context>, size: (u32, u32), (warmup, runs): (u32, u32)) -> Result<Trace<'_>> {
+        self.timed_trace_after(ctx, size, (warmup, runs), min_warm_ms()?)
+    }
+
+    /// [`Self::timed_trace`] with warm-up traces of at least `warm_ms` of GPU time when
+    /// `warmup` > 0.
+    pub fn timed_trace_after(
+        &self,
+        ctx: &Arc<Context>,
+        size: (u32, u32),
+        (warmup, runs): (u32, u32),
+        warm_ms: f64,
+    ) -> Result<Trace<'_>> {
         let _doing = activity::doing(format!("warming up {}", self.label));
-        self.prepared.trace(ctx, self.timestamps.as_ref(), size, (warmup, runs))
+        self.prepared.trace_warmed(ctx, self.timestamps.as_ref(), size, (warmup, runs), warm_ms)
+    }
+
+    /// The GPU milliseconds of each timed trace of the last submission (none when the device
+    /// cannot time).
+    pub fn times(&self) -> Result<Vec<f64>> {
+        Ok(self.timestamps.as_ref().map(|t| t.read_ms()).transpose()?.unwrap_or_default())
     }
 
     pub fn output(
@@ -226,7 +273,7 @@ impl SetRender {
         warmup_traces: u32,
         accel: AccelStats,
     ) -> Result<RenderOutput> {
-        let gpu_ms = self.timestamps.as_ref().map(|t| t.read_ms()).transpose()?.unwrap_or_default();
+        let gpu_ms = self.times()?;
         let pixels = u64::from(opts.width) * u64::from(opts.height);
         let image = &self.image_readback.mapped()?[..(pixels * PIXEL_BYTES) as usize];
         let read = read_back(image, &self.ids_readback.mapped()?[..self.ids_readback.size as usize]);
@@ -247,35 +294,6 @@ impl SetRender {
             accel,
         })
     }
-}
-
-/// One placement: the scene uploaded, salted copies of `spacers` made and kept (see
-/// `placement::Spacers`), then each set in turn built, traced alone for its output, warmed up,
-/// timed and released before the next is built, so that every set of the placement has its
-/// code where the driver put the first.
-fn render_placement(
-    ctx: &Arc<Context>,
-    scene: &Scene,
-    sets: &[(ShaderSet, PipelineKind)],
-    opts: &RenderOptions,
-    spacers: &[(ShaderSet, PipelineKind)],
-) -> Result<Vec<RenderOutput>> {
-    check_size(opts.width, opts.height).map_err(Error::Input)?;
-    check_device_limits(ctx, opts)?;
-    let size = (opts.width, opts.height);
-    let uploaded = upload_shared(ctx, scene, size)?;
-    let outputs = SharedOutputs::new(ctx, opts)?;
-    let _spacers = placement::Spacers::new(ctx, &uploaded, spacers)?;
-    let mut out = Vec::with_capacity(sets.len());
-    for set in sets {
-        let render = SetRender::each(ctx, &uploaded, &outputs, std::slice::from_ref(set), opts)?.remove(0);
-        render.trace_output(ctx, &outputs, size)?;
-        let trace = render.timed_trace(ctx, size, (opts.warmup, opts.runs))?;
-        let _doing = activity::doing(format!("the timed traces of {}", render.label));
-        tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
-        out.push(render.output(scene, opts, trace.warmup, uploaded.accel)?);
-    }
-    Ok(out)
 }
 
 pub(super) fn check_device_limits(ctx: &Context, opts: &RenderOptions) -> Result<()> {
