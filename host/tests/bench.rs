@@ -107,15 +107,20 @@ fn a_small_bench_writes_every_report_file() {
     assert_eq!(variants.lines().next().unwrap(), twinray::bench::tables::VARIANT_CSV_HEADER);
     assert_eq!(variants.lines().filter(|l| l.starts_with("\"sphere-far-1e5\"")).count(), 2, "{variants}");
     assert!(!variants.contains("cone-apex"));
-    for plot in ["error-spp", "error-time", "ratio", "sampler-spp", "sampler-time", "variants"] {
+    for plot in ["error-spp", "error-time", "ratio", "places", "sampler-spp", "sampler-time", "variants"] {
         image::open(report.join("plots").join(format!("{plot}.png"))).expect("a readable plot");
         let svg = std::fs::read_to_string(report.join("plots").join(format!("{plot}.svg"))).unwrap();
         assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"), "{plot}.svg");
     }
     let html = std::fs::read_to_string(report.join("index.html")).unwrap();
-    for needle in
-        ["plots/error-spp.svg", "images/lights-reference.png", "Convergence", "Rust / GLSL", "Shadow samplers"]
-    {
+    for needle in [
+        "plots/error-spp.svg",
+        "plots/places.svg",
+        "images/lights-reference.png",
+        "Convergence",
+        "Rust / GLSL",
+        "Shadow samplers",
+    ] {
         assert!(html.contains(needle), "index.html lacks {needle}");
     }
     // The references went to the cache: a second run reads them back.
@@ -264,4 +269,34 @@ fn bench_rejects_bad_input_before_rendering() {
     assert_bad_input(&["bench", "nosuchscene"], &["nosuchscene"]);
     assert_bad_input(&["bench", "lights", "--reference-spp", "300"], &["square up to 256"]);
     assert_bad_input(&["bench", "lights", "--probes", "no/such/dir"], &["--probes no/such/dir: no such folder"]);
+}
+
+/// `twinray places`: each set at each place of each move, the moves doing what they say (pads
+/// only where a pad moves something, spacers only where the code is moved, the SBT moved by
+/// its pad), under the validation layer; and its bad input refused.
+#[test]
+fn places_times_each_set_at_each_place_of_each_move() {
+    let dir = tempfile::tempdir().unwrap();
+    let args = ["--validate", "places", "sphere", "--width", "32", "--height", "24", "--places", "3", "--runs", "2"];
+    let out = twinray(&[&args[..], &["--out", "places.json"]].concat(), dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
+    for line in ["none     glsl", "code     rust", "sbt      glsl", "buffers  rust"] {
+        assert!(stdout.contains(line), "a row per move and set: {stdout}");
+    }
+    let json: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(dir.path().join("places.json")).unwrap()).unwrap();
+    let places = json["places"].as_array().unwrap();
+    assert_eq!(places.len(), 4 * 2 * 3, "moves x sets x places");
+    let of = |moved: &'static str| places.iter().filter(move |p| p["move"] == moved);
+    assert!(of("none").all(|p| p["pad_bytes"] == 0 && p["spacers"] == 0), "{json}");
+    assert!(of("code").all(|p| p["pad_bytes"] == 0), "{json}");
+    assert!(of("code").any(|p| p["spacers"].as_u64() > Some(0)), "some place of 3 makes spacers: {json}");
+    assert!(of("sbt").chain(of("buffers")).all(|p| p["pad_bytes"].as_u64() > Some(0) && p["spacers"] == 0));
+    let sbts: std::collections::HashSet<u64> = of("sbt").filter_map(|p| p["sbt_address"].as_u64()).collect();
+    assert!(sbts.len() > 1, "the pads move the SBT: {json}");
+    assert!(of("none").all(|p| p["median_ms"].as_f64() > Some(0.0) && !p["warm_ms"].as_array().unwrap().is_empty()));
+    assert_eq!(json["spreads"].as_array().unwrap().len(), 4 * 2, "{json}");
+    assert_bad_input(&["places", "--places", "1"], &["--places"]);
+    assert_bad_input(&["places", "--moves", "tlas"], &["tlas"]);
 }

@@ -45,7 +45,8 @@ fn page(report: &BenchReport, ratios: &[SceneRatio], command: &str) -> String {
         escape(command),
     );
     s += "<h2>Plots</h2>\n<div class=\"plots\"><img src=\"plots/error-spp.svg\" alt=\"error against samples per pixel\">\
-          <img src=\"plots/error-time.svg\" alt=\"error against GPU time\"><img src=\"plots/ratio.svg\" alt=\"Rust/GLSL time\"></div>\n";
+          <img src=\"plots/error-time.svg\" alt=\"error against GPU time\"><img src=\"plots/ratio.svg\" alt=\"Rust/GLSL time\">\
+          <img src=\"plots/places.svg\" alt=\"each set's time at each place\"></div>\n";
     s += &ratio_table(ratios);
     s += &pairs_table(report);
     s += "<h2>Convergence</h2>\n<p>Least-squares slope of log RMSE against log samples per pixel (N<sup>-0.5</sup>: \

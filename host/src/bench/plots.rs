@@ -1,6 +1,6 @@
 //! The bench's plots, each as PNG and SVG: error against samples per pixel (log-log, with
-//! N^-0.5 and N^-0.75 guide lines), error against GPU time, and the Rust/GLSL time ratio
-//! per scene. PNG text uses an embedded font, so no system font library is needed.
+//! N^-0.5 and N^-0.75 guide lines), error against GPU time, the Rust/GLSL time ratio per
+//! scene, and each set's time at each of its places (a strip plot). PNG text uses an embedded font, so no system font library is needed.
 
 use super::samplers::SamplerRow;
 use super::tables::SceneRatio;
@@ -116,9 +116,92 @@ pub fn write(report: &BenchReport, ratios: &[SceneRatio], dir: &Path) -> Result<
         error_plot("sampler-spp", "shadow samples per light", &sampler_by_count(report), true)?;
         error_plot("sampler-time", "GPU ms (median)", &sampler_by_time(report), false)?;
     }
+    let (png, svg) = (dir.join("places.png"), dir.join("places.svg"));
+    let cells =
+        report.rows.iter().map(|r| (format!("{} {}", r.scene, r.spp), r.set.as_str(), &r.placements.median_ms[..]));
+    let strips = place_strips(cells);
+    draw_places(BitMapBackend::new(&png, SIZE).into_drawing_area(), &strips).map_err(plot_error)?;
+    draw_places(SVGBackend::new(&svg, SIZE).into_drawing_area(), &strips).map_err(plot_error)?;
     let (png, svg) = (dir.join("ratio.png"), dir.join("ratio.svg"));
     draw_ratios(BitMapBackend::new(&png, SIZE).into_drawing_area(), ratios).map_err(plot_error)?;
     draw_ratios(SVGBackend::new(&svg, SIZE).into_drawing_area(), ratios).map_err(plot_error)
+}
+
+/// One strip of the places plot: a scene and sample count, and each set's time at each of its
+/// places (or processes) over the first set's geometric mean there.
+pub struct Strip {
+    pub cell: String,
+    pub sets: Vec<(String, Vec<f64>)>,
+}
+
+/// The strips of `rows` (each a cell, "scene spp", a set and its place times), one per cell,
+/// in the order measured.
+pub fn place_strips<'a>(rows: impl IntoIterator<Item = (String, &'a str, &'a [f64])>) -> Vec<Strip> {
+    let mut strips: Vec<Strip> = Vec::new();
+    for (cell, set, ms) in rows {
+        if strips.last().is_none_or(|s| s.cell != cell) {
+            strips.push(Strip { cell, sets: Vec::new() });
+        }
+        if let Some(strip) = strips.last_mut() {
+            strip.sets.push((set.to_string(), ms.to_vec()));
+        }
+    }
+    for strip in &mut strips {
+        let logs: Vec<f64> = strip.sets.first().map_or(Vec::new(), |s| s.1.iter().map(|m| m.ln()).collect());
+        let mean = (logs.iter().sum::<f64>() / logs.len().max(1) as f64).exp();
+        for (_, ms) in &mut strip.sets {
+            ms.iter_mut().for_each(|m| *m /= mean);
+        }
+    }
+    strips
+}
+
+fn draw_places<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, strips: &[Strip]) -> Drawn
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let all = strips.iter().flat_map(|s| s.sets.iter().flat_map(|(_, ms)| ms.iter().copied()));
+    let (lo, hi) = all.filter(|v| v.is_finite()).fold((0.99f64, 1.01f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
+    let n = strips.len().max(1) as f64;
+    let pad = 0.1 * (hi - lo);
+    let mut chart = framed(&root).build_cartesian_2d(-0.5..n - 0.5, lo - pad..hi + pad)?;
+    let names: Vec<String> = strips.iter().map(|s| s.cell.clone()).collect();
+    chart
+        .configure_mesh()
+        .x_labels(strips.len().max(1))
+        .x_label_formatter(&|x| names.get(x.round() as usize).cloned().unwrap_or_default())
+        .light_line_style(WHITE)
+        .x_desc("scene and samples per pixel")
+        .y_desc("GPU time at each place over the first set's mean")
+        .draw()?;
+    let labels: Vec<&str> =
+        strips.iter().flat_map(|s| s.sets.iter().map(|(set, _)| set.as_str())).fold(Vec::new(), |mut v, set| {
+            if !v.contains(&set) {
+                v.push(set);
+            }
+            v
+        });
+    for (i, &label) in labels.iter().enumerate() {
+        let colour = Palette99::pick(i).to_rgba();
+        // Each set in a band of its own within the strip, its places spread across the band.
+        let band = 0.8 / labels.len() as f64;
+        let x0 = -0.4 + band * i as f64;
+        let points = strips.iter().enumerate().flat_map(|(k, strip)| {
+            let ms = strip.sets.iter().find(|(set, _)| set == label).map_or(&[][..], |(_, ms)| &ms[..]);
+            let step = band / (ms.len() + 1) as f64;
+            ms.iter()
+                .enumerate()
+                .map(move |(j, &m)| Circle::new((k as f64 + x0 + step * (j + 1) as f64, m), 2, colour.filled()))
+        });
+        chart
+            .draw_series(points)?
+            .label(label.to_string())
+            .legend(move |(x, y)| Circle::new((x + 8, y), 4, colour.filled()));
+    }
+    chart.configure_series_labels().background_style(WHITE.mix(0.8)).border_style(BLACK).draw()?;
+    root.present()?;
+    Ok(())
 }
 
 /// A line plot of `data` as `{name}.png` and `{name}.svg` in `dir`: linear x, log y.
@@ -328,6 +411,18 @@ where
 
 #[cfg(test)]
 mod tests {
+    #[test]
+    fn a_strip_per_cell_each_set_over_the_first_sets_mean() {
+        let rows: [(String, &str, &[f64]); 3] =
+            [("a 1".into(), "glsl", &[1.0, 4.0]), ("a 1".into(), "rust", &[2.0, 2.0]), ("b 1".into(), "glsl", &[3.0])];
+        let strips = super::place_strips(rows);
+        assert_eq!(strips.iter().map(|s| s.cell.as_str()).collect::<Vec<_>>(), ["a 1", "b 1"]);
+        let near = |a: &[f64], b: &[f64]| a.len() == b.len() && a.iter().zip(b).all(|(x, y)| (x - y).abs() < 1e-12);
+        assert!(near(&strips[0].sets[0].1, &[0.5, 2.0]), "over the geometric mean 2: {:?}", strips[0].sets);
+        assert!(near(&strips[0].sets[1].1, &[1.0, 1.0]), "{:?}", strips[0].sets);
+        assert!(near(&strips[1].sets[0].1, &[1.0]), "{:?}", strips[1].sets);
+    }
+
     #[test]
     fn slopes_of_power_laws() {
         let points: Vec<(f64, f64)> = [1.0, 4.0, 16.0, 64.0].iter().map(|&n: &f64| (n, 0.3 * n.powf(-0.75))).collect();

@@ -197,6 +197,8 @@ impl CompareReport {
             self.raygen_stack_bytes_a,
             self.raygen_stack_bytes_b,
         );
+        s += &self.placements_a.spread_line("  ", "a");
+        s += &self.placements_b.spread_line("  ", "b");
         s += &self.placements_a.retimed_lines("  ", "set a");
         s += &self.placements_b.retimed_lines("  ", "set b");
         for (set, written) in [(&self.set_a, &self.diff.written_a), (&self.set_b, &self.diff.written_b)] {

@@ -1,18 +1,14 @@
-//! Timing each set alone, in processes of its own (`twinray bench` and `compare` with
+//! Timing each set alone, in processes of its own (`twinray bench`, `compare` and `bisect` with
 //! `--processes K`).
 //!
-//! On the H100 a process that builds pipelines of several sets settles into a regime chosen
-//! by the set list: one set runs at its speed alone and another 4-7% slower, the same in
-//! every placement of the process, so no interval over placements can see it, and a label
-//! order or a `--null` decided Rust/GLSL (1.116 or 0.991 on swarm at 16 spp). Each set alone
-//! in a fresh process timed within 0.1% from one process to the next
-//! (`bench/reports/inspect-h100/`). So with isolation each set is timed in `processes`
-//! processes of its own, in rounds that alternate the sets' order; a ratio's interval is taken
-//! over the rounds, the two processes of a round being one paired observation.
-//!
-//! Every process starts at places of its own ([`Isolation::first_placement`]): each round's,
-//! and within a round each set's, a null control's copy too, so that the interval over rounds
-//! is an interval over places (docs/measuring.md, *Places*).
+//! What the driver's first allocations in a process settle carries through every place of
+//! that process: runs that differ only in where their rounds start land 2 to 5% apart, each
+//! interval over its own places far narrower (docs/measuring.md, *What one process cannot
+//! see*). So with isolation each set is timed in `processes` fresh processes of its own, as a
+//! program holding only its own pipelines runs, in rounds that alternate the sets' order; a
+//! ratio's interval is taken over the rounds, the processes of a round being one paired
+//! observation. Every process starts at rounds of its own ([`Isolation::first_placement`]),
+//! a set's and its salted copy's alike, so that no two time the same places.
 
 use super::placement::Retimed;
 use super::{render_sets, PlacementTimes, RenderOptions, RenderOutput};

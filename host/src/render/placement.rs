@@ -35,9 +35,11 @@ pub const DEFAULT_PLACEMENTS: u32 = 6;
 /// and released just before it (on the H100, a label order once decided a ratio by 12%:
 /// docs/measuring.md); over a whole number of the design's rows every set comes at every
 /// position, and after every other set, equally often, so the label order cannot favour one.
-pub fn orders(sets: usize, placements: u32) -> Vec<Vec<usize>> {
+/// Rounds are numbered from `first`, so that a child process that starts at a later round
+/// (`--processes`) starts at another row.
+pub fn orders(sets: usize, first: u32, placements: u32) -> Vec<Vec<usize>> {
     let rows = design(sets);
-    (0..placements.max(1) as usize).map(|p| rows[p % rows.len()].clone()).collect()
+    (0..placements.max(1) as usize).map(|p| rows[(first as usize + p) % rows.len()].clone()).collect()
 }
 
 /// A Williams design for `n` sets: `n` orders (`2n` for odd `n`) in which every set takes
@@ -139,11 +141,11 @@ pub struct PlacementTimes {
     /// The set's position (0: built and traced first in each round) in each placement.
     pub position: Vec<u32>,
     /// The place each placement timed the set at (`placement::place`: the draw of its
-    /// spacers). Empty when timed alone in processes (see `first_placement`).
+    /// spacers). Empty when timed in child processes (see `first_placement`).
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub place: Vec<u64>,
-    /// Timed alone in processes (`render::Isolation`): the placement each round's process
-    /// started at (`--first-placement`), whose layouts it timed. Empty otherwise.
+    /// Timed in child processes (`render::Isolation`): the round each process started at
+    /// (`--first-placement`), whose places it timed. Empty otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub first_placement: Vec<u32>,
     /// Rounds whose process was slow and was timed again (`render::isolated::RETIME_ABOVE`).
@@ -174,6 +176,22 @@ impl PlacementTimes {
     /// what `bench` and `compare` print, so that a re-timed round is never silent.
     pub fn retimed_lines(&self, indent: &str, what: &str) -> String {
         self.retimed.iter().map(|r| format!("{indent}{}\n", r.line(what))).collect()
+    }
+
+    /// How these times spread over their places (processes, when timed in child processes), in
+    /// a line after `indent` ending in a newline: "set a at 6 places: 2.312 to 2.451 ms, sd 1.8%";
+    /// empty with fewer than two.
+    pub fn spread_line(&self, indent: &str, what: &str) -> String {
+        let ms: Vec<f64> = self.median_ms.iter().copied().filter(|m| m.is_finite() && *m > 0.0).collect();
+        let Some(logs) = RatioInterval::of_logs(&ms.iter().map(|m| m.ln()).collect::<Vec<_>>()) else {
+            return String::new();
+        };
+        if ms.len() < 2 {
+            return String::new();
+        }
+        let units = if self.first_placement.is_empty() { "places" } else { "processes" };
+        let (low, high) = ms.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &m| (l.min(m), h.max(m)));
+        format!("{indent}{what} at {} {units}: {low:.3} to {high:.3} ms, sd {:.1}%\n", ms.len(), 100.0 * logs.log_sd)
     }
 
     /// The ratio of these times to `other`'s, placement by placement, with its interval.
@@ -214,9 +232,10 @@ mod tests {
                 assert_eq!(pair[1], pair[0].iter().rev().copied().collect::<Vec<_>>(), "each order, then its reverse");
             }
         }
-        assert_eq!(orders(3, 0).len(), 1, "at least one placement");
-        assert_eq!(orders(2, 6).len(), 6);
-        assert_eq!(orders(3, 6), super::design(3), "six placements of three sets: the whole design");
+        assert_eq!(orders(3, 0, 0).len(), 1, "at least one placement");
+        assert_eq!(orders(2, 0, 6).len(), 6);
+        assert_eq!(orders(3, 2, 1)[0], super::design(3)[2], "numbered from the first round");
+        assert_eq!(orders(3, 0, 6), super::design(3), "six placements of three sets: the whole design");
     }
 
     #[test]
@@ -253,5 +272,16 @@ mod tests {
         assert_eq!(lines.lines().count(), 2, "{lines}");
         assert!(lines.starts_with("  set b: round 5's") && lines.ends_with("a slow place\n"), "{lines}");
         assert_eq!(super::PlacementTimes::default().retimed_lines("  ", "set b"), "");
+    }
+
+    #[test]
+    fn the_spread_over_places_in_a_line() {
+        let times = super::PlacementTimes { median_ms: vec![2.0, 2.0 * 1.02f64.powi(2)], ..Default::default() };
+        let line = times.spread_line("  ", "set a");
+        assert!(line.starts_with("  set a at 2 places: 2.000 to 2.081 ms, sd 2.8%"), "{line}");
+        let children = super::PlacementTimes { first_placement: vec![0, 2], ..times };
+        assert!(children.spread_line("", "b").starts_with("b at 2 processes"));
+        let one = super::PlacementTimes { median_ms: vec![2.0], ..Default::default() };
+        assert_eq!(one.spread_line("  ", "set a"), "");
     }
 }

@@ -233,8 +233,7 @@ pub fn spreads(times: &[PlaceTime]) -> Vec<Spread> {
             let first = of(moved, first_set);
             let ms: Vec<f64> = these.iter().map(|t| t.median_ms).collect();
             let logs = RatioInterval::of_logs(&ms.iter().map(|m| m.ln()).collect::<Vec<_>>());
-            let warm: Vec<f64> =
-                these.iter().filter_map(|t| t.warm_ms.first().map(|w| w / t.median_ms)).collect();
+            let warm: Vec<f64> = these.iter().filter_map(|t| t.warm_ms.first().map(|w| w / t.median_ms)).collect();
             let make: Vec<f64> = these.iter().map(|t| t.make_ms).collect();
             Spread {
                 moved,

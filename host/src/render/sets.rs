@@ -69,7 +69,7 @@ pub fn render_made(
 ) -> Result<Vec<RenderOutput>> {
     check_size(opts.width, opts.height).map_err(Error::Input)?;
     check_device_limits(ctx, opts)?;
-    let orders = placement::orders(sets.len(), opts.placements);
+    let orders = placement::orders(sets.len(), opts.first_placement, opts.placements);
     let rows = placement::design(sets.len()).len();
     if opts.placements > 1 && !(opts.placements as usize).is_multiple_of(rows) {
         log::warn!(

@@ -95,7 +95,7 @@ pub fn run(ctx: &Arc<Context>, config: &AnimateConfig, mut progress: impl FnMut(
     let mut rows = Vec::new();
     for scene in &config.scenes {
         let instances = scene.file.objects.len();
-        for (p, order) in placement::orders(config.modes.len(), config.placements).iter().enumerate() {
+        for (p, order) in placement::orders(config.modes.len(), 0, config.placements).iter().enumerate() {
             progress(&format!(
                 "{instances} instances, {} frames, modes in turn (placement {} of {})",
                 config.frames,

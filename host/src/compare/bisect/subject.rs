@@ -163,7 +163,7 @@ impl Subject for ProbeSubject<'_> {
 
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<Vec<ProbeResult>>>> {
         let mut runs: Vec<Option<Run<Vec<ProbeResult>>>> = sets.iter().map(|_| None).collect();
-        for order in orders(sets.len(), self.placements) {
+        for order in orders(sets.len(), 0, self.placements) {
             for i in order {
                 let out = probe(self.ctx, &self.case.scene, &sets[i], &self.case.rays, self.warmup, self.runs)?;
                 let ms = median(&out.gpu_ms);
