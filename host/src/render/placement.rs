@@ -133,6 +133,17 @@ impl Spacers {
 /// (`bench/reports/issue53-places/`).
 pub const LONG_GAP_MS: f64 = 250.0;
 
+/// The GPU milliseconds of warm-up traces a place takes at least, when any are asked for:
+/// `MIN_WARM_MS` until the clocks are up or after a making of `made_ms` over [`LONG_GAP_MS`],
+/// else `PLACE_WARM_MS` (each as its environment variable overrides it).
+pub fn warm_floor(_ctx: &Context, clocks_up: bool, made_ms: f64) -> Result<f64> {
+    if clocks_up && made_ms <= LONG_GAP_MS {
+        super::prepare::place_warm_ms()
+    } else {
+        super::prepare::min_warm_ms()
+    }
+}
+
 /// One set's times by placement.
 #[derive(Clone, Debug, Default, PartialEq, Serialize)]
 pub struct PlacementTimes {
@@ -183,12 +194,8 @@ impl PlacementTimes {
     /// empty with fewer than two.
     pub fn spread_line(&self, indent: &str, what: &str) -> String {
         let ms: Vec<f64> = self.median_ms.iter().copied().filter(|m| m.is_finite() && *m > 0.0).collect();
-        let Some(logs) = RatioInterval::of_logs(&ms.iter().map(|m| m.ln()).collect::<Vec<_>>()) else {
-            return String::new();
-        };
-        if ms.len() < 2 {
-            return String::new();
-        }
+        let logs = RatioInterval::of_logs(&ms.iter().map(|m| m.ln()).collect::<Vec<_>>());
+        let Some(logs) = logs.filter(|l| l.placements > 1) else { return String::new() };
         let units = if self.first_placement.is_empty() { "places" } else { "processes" };
         let (low, high) = ms.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &m| (l.min(m), h.max(m)));
         format!("{indent}{what} at {} {units}: {low:.3} to {high:.3} ms, sd {:.1}%\n", ms.len(), 100.0 * logs.log_sd)

@@ -10,9 +10,9 @@
 //! address is recorded). `buffers` uploads the scene and its outputs afresh after pads of drawn
 //! sizes in both memories they use, which moves every buffer, image and acceleration structure.
 
-use super::placement::{self, Spacers};
+use super::placement;
 use super::prepare::{min_warm_ms, place_warm_ms};
-use super::sets::{SetRender, SharedOutputs};
+use super::sets::{Placed, SetRender, SharedOutputs};
 use super::tracing;
 use super::upload::{upload_shared, UploadedScene};
 use super::RenderOptions;
@@ -27,7 +27,6 @@ use ash::vk;
 use gpu_allocator::MemoryLocation;
 use serde::Serialize;
 use std::sync::Arc;
-use std::time::Instant;
 use twinray_shared::random::SplitMix64;
 
 /// What a study moves from place to place.
@@ -58,7 +57,8 @@ pub struct PlaceTime {
     pub median_ms: f64,
     /// Each warm-up trace's GPU ms, in order: whether the clocks were up after the CPU's work.
     pub warm_ms: Vec<f64>,
-    /// Wall ms of making the place's spacers, pipeline, SBT and descriptors.
+    /// Wall ms of making the place's spacers, pipeline, SBT and descriptors (not the pads, nor
+    /// the upload of `buffers`).
     pub make_ms: f64,
     /// Whether the making took over `placement::LONG_GAP_MS`, so that the place first warmed
     /// up for `MIN_WARM_MS` (untimed) before its recorded warm-up traces.
@@ -138,7 +138,6 @@ fn time_at(
     at: At,
     (opts, warm): (&RenderOptions, usize),
 ) -> Result<PlaceTime> {
-    let start = Instant::now();
     let id = placement::place(at.place, at.set, sets.len());
     let mut rng = SplitMix64(0x9ad5_eed0_0053 ^ id.wrapping_mul(0x9e37_79b9_7f4a_7c15));
     let pad_bytes = match at.moved {
@@ -163,10 +162,11 @@ fn time_at(
         _ => None,
     };
     let (uploaded, outputs) = moved_scene.as_ref().map_or((&fixed.0, &fixed.1), |(u, o, _)| (u, o));
-    let _spacers = Spacers::new(ctx, uploaded, &spacer_sets, at.moved != Move::Reused)?;
+    // Spacers allocate no buffer: a pad made before them lands right before the SBT.
     let _sbt_pad = if at.moved == Move::Sbt { pad(MemoryLocation::CpuToGpu)? } else { None };
-    let render = SetRender::each(ctx, uploaded, outputs, std::slice::from_ref(&sets[at.set]), opts)?.remove(0);
-    let make_ms = start.elapsed().as_secs_f64() * 1e3;
+    let salted = at.moved != Move::Reused;
+    let placed = Placed::new(ctx, (uploaded, outputs), &sets[at.set], (&spacer_sets, salted), opts)?;
+    let (render, make_ms) = (&placed.render, placed.made_ms);
     let size = (opts.width, opts.height);
     // After a long gap the clocks may have fallen: warm up as at the start (untimed).
     if make_ms > placement::LONG_GAP_MS {

@@ -5,7 +5,7 @@ use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE};
 use super::libraries::Libraries;
 use super::output::{read_back, to_rgba8, AccelStats, RayCounts, RenderOptions, RenderOutput};
 use super::placement;
-use super::prepare::{min_warm_ms, place_warm_ms, prepare_on, storage_buffer, Prepared};
+use super::prepare::{min_warm_ms, prepare_on, storage_buffer, Prepared};
 use super::sentinel;
 use super::tracing::{self, Trace};
 use super::upload::{upload_shared, UploadedScene};
@@ -59,7 +59,7 @@ pub(crate) fn made_as_context_says(ctx: &Context, sets: &[ShaderSet]) -> Vec<(Sh
 /// alone for its output the first time, warmed up, timed and released with its spacers. The
 /// GPU's clocks are brought up once, by a warm-up of at least `MIN_WARM_MS` whose times are
 /// dropped (with several rounds: a place of its own before the first; with one: the first
-/// place's warm-up); every later place warms up for `prepare::place_warm_ms()`. Images and
+/// place's warm-up); every later place warms up as `placement::warm_floor` says. Images and
 /// hit ids are each set's first place's.
 pub fn render_made(
     ctx: &Arc<Context>,
@@ -81,14 +81,10 @@ pub fn render_made(
     let size = (opts.width, opts.height);
     let uploaded = upload_shared(ctx, scene, size)?;
     let outputs = SharedOutputs::new(ctx, opts)?;
-    let mut warm_ms = min_warm_ms()?;
-    if opts.placements > 1 && opts.warmup > 0 {
-        let _doing = activity::doing("warming up the GPU");
-        let first = &sets[orders[0][0]];
-        let render = SetRender::each(ctx, &uploaded, &outputs, std::slice::from_ref(first), opts)?.remove(0);
-        let trace = render.timed_trace_after(ctx, size, (opts.warmup, 1), warm_ms)?;
-        tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
-        warm_ms = place_warm_ms()?;
+    // With several rounds, the clocks are brought up first, at a place of its own.
+    let mut clocks_up = opts.placements > 1 && opts.warmup > 0;
+    if clocks_up {
+        warm_up(ctx, (&uploaded, &outputs), &sets[orders[0][0]], opts)?;
     }
     let mut outputs_of: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
     let total = (orders.len() * sets.len()) as u64;
@@ -97,21 +93,18 @@ pub fn render_made(
         for (position, &i) in order.iter().enumerate() {
             let place = placement::place(round, i, sets.len());
             let _doing = (total > 1).then(|| activity::doing(format!("round {round}: {} at place {place}", sets[i].0)));
-            let made = std::time::Instant::now();
             let spacers: Vec<_> = placement::spacer_sets(place, sets.len()).iter().map(|&k| sets[k].clone()).collect();
-            let _spacers = placement::Spacers::new(ctx, &uploaded, &spacers, false)?;
-            let render = SetRender::each(ctx, &uploaded, &outputs, std::slice::from_ref(&sets[i]), opts)?.remove(0);
-            if made.elapsed().as_secs_f64() * 1e3 > placement::LONG_GAP_MS && opts.warmup > 0 {
-                warm_ms = warm_ms.max(min_warm_ms()?);
-            }
+            let placed = Placed::new(ctx, (&uploaded, &outputs), &sets[i], (&spacers, false), opts)?;
+            let render = &placed.render;
             let first = outputs_of[i].is_none();
             if first {
                 render.trace_output(ctx, &outputs, size)?;
             }
+            let warm_ms = placement::warm_floor(ctx, clocks_up, placed.made_ms)?;
             let trace = render.timed_trace_after(ctx, size, (opts.warmup, opts.runs), warm_ms)?;
             let _timing = activity::doing(format!("the timed traces of {}", render.label));
             tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
-            let gpu_ms = render.times()?;
+            clocks_up |= opts.warmup > 0;
             let slot = &mut outputs_of[i];
             if first {
                 let mut out = render.output(scene, opts, trace.warmup, uploaded.accel)?;
@@ -119,13 +112,10 @@ pub fn render_made(
                 *slot = Some(out);
             }
             if let Some(out) = slot {
-                out.record_place(&gpu_ms, position as u32, place);
+                out.record_place(&render.times()?, position as u32, place);
             }
-            if opts.warmup > 0 {
-                warm_ms = place_warm_ms()?;
-            }
-            let done = (round as usize - opts.first_placement as usize) * sets.len() + position + 1;
             if total > 1 {
+                let done = (round - opts.first_placement) as usize * sets.len() + position + 1;
                 progress::report("placements", done as u64, total);
             }
         }
@@ -136,6 +126,44 @@ pub fn render_made(
         .into_iter()
         .collect::<Option<Vec<_>>>()
         .ok_or_else(|| Error::Unsupported("a round of the render left a set out".into()))
+}
+
+/// Brings the GPU's clocks up: `set` built and traced for at least `MIN_WARM_MS`, its times
+/// dropped.
+fn warm_up(
+    ctx: &Arc<Context>,
+    (scene, outputs): (&UploadedScene, &SharedOutputs),
+    set: &(ShaderSet, PipelineKind),
+    opts: &RenderOptions,
+) -> Result<()> {
+    let _doing = activity::doing("warming up the GPU");
+    let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), opts)?.remove(0);
+    let trace = render.timed_trace_after(ctx, (opts.width, opts.height), (opts.warmup.max(1), 1), min_warm_ms()?)?;
+    tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})
+}
+
+/// A set built at a place: the place's spacers made and kept (salted copies when asked), then
+/// the set's pipeline, SBT and descriptors; with the wall milliseconds the making took, in
+/// which the GPU idled.
+pub(super) struct Placed {
+    pub render: SetRender,
+    pub made_ms: f64,
+    _spacers: placement::Spacers,
+}
+
+impl Placed {
+    pub fn new(
+        ctx: &Arc<Context>,
+        (scene, outputs): (&UploadedScene, &SharedOutputs),
+        set: &(ShaderSet, PipelineKind),
+        (spacers, salted): (&[(ShaderSet, PipelineKind)], bool),
+        opts: &RenderOptions,
+    ) -> Result<Placed> {
+        let start = std::time::Instant::now();
+        let spacers = placement::Spacers::new(ctx, scene, spacers, salted)?;
+        let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), opts)?.remove(0);
+        Ok(Placed { render, made_ms: start.elapsed().as_secs_f64() * 1e3, _spacers: spacers })
+    }
 }
 
 /// The outputs every set of a render writes in turn (one image, one hit-id buffer), so that
