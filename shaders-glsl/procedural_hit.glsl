@@ -10,12 +10,13 @@
 #include "texture.glsl"
 
 // Twin of twinray_shaders::hit::procedural_tint: what the material's colour is multiplied by
-// (tint) and the radiance emitted (emission) at a hit of shape `kind` on `primitive`.
+// (tint) and the radiance emitted (emission) at a hit of shape `kind` on `primitive`; textures
+// and emission read only where the scene uses them (HAS_FEATURE_*).
 void procedural_tint(Material material, Primitive primitive, uint kind, vec3 point, vec3 normal,
                      mat3 world_to_object, vec3 direction, float width, out vec3 tint, out vec3 emission) {
     tint = primitive.tint.xyz;
-    emission = material.emission.xyz;
-    if (material.texture.x == 0u && material.texture.z == 0u) {
+    emission = HAS_FEATURE_EMISSION ? material.emission.xyz : vec3(0.0);
+    if (!HAS_FEATURE_TEXTURES || (material.texture.x == 0u && material.texture.z == 0u)) {
         return;
     }
     vec2 uv, at, dx, dy;

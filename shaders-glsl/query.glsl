@@ -36,7 +36,8 @@ float candidate_hit(rayQueryEXT query, float t_min, float t_max, out vec3 normal
             normal = n;
         }
     }
-    if (t >= 0.0) {
+    // Holes only where the scene has cutouts: other instances are forced opaque.
+    if (HAS_FEATURE_ALPHA_MASKS && t >= 0.0) {
         Material material = materials[data.material];
         float alpha = cutout_alpha(material, o + d * t);
         if (triangle && material.cutout_pattern == CUTOUT_TEXTURE) {

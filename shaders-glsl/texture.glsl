@@ -143,7 +143,7 @@ void shape_textures(Material material, vec2 at, vec2 dx, vec2 dy, out vec3 color
 vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
                   vec3 direction, float width) {
     vec4 color = interpolate(v0.color, v1.color, v2.color, barycentrics.x, barycentrics.y);
-    if (material.texture.x == 0u) {
+    if (!HAS_FEATURE_TEXTURES || material.texture.x == 0u) {
         return color.xyz;
     }
     return color.xyz * filtered(material.texture.x, material.texture.y, material, v0, v1, v2, object_to_world,
@@ -153,7 +153,10 @@ vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 objec
 // Twin of twinray_shaders::texture::surface_emission: the radiance a mesh emits at the hit.
 vec3 surface_emission(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
                       vec3 direction, float width) {
-    if (material.texture.z == 0u) {
+    if (!HAS_FEATURE_EMISSION) {
+        return vec3(0.0);
+    }
+    if (!HAS_FEATURE_TEXTURES || material.texture.z == 0u) {
         return material.emission.xyz;
     }
     return material.emission.xyz * filtered(material.texture.z, material.texture.w, material, v0, v1, v2,
@@ -164,7 +167,7 @@ vec3 surface_emission(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 o
 // texture (at level 0) give the surface at the hit.
 float surface_alpha(Material material, Vertex v0, Vertex v1, Vertex v2, vec2 barycentrics) {
     vec4 color = interpolate(v0.color, v1.color, v2.color, barycentrics.x, barycentrics.y);
-    if (material.texture.x == 0u) {
+    if (!HAS_FEATURE_TEXTURES || material.texture.x == 0u) {
         return color.w;
     }
     uint set = material.texture.y;

@@ -35,7 +35,7 @@ bool visible(vec3 origin, vec3 direction, float distance) {
 // shadow samples one per cell of an N x N grid, else independent. Adds the shadow rays it
 // traces to shadow_rays.
 vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout uint shadow_rays) {
-    if (payload.ids.w == NO_HIT || payload.ids.z == MATERIAL_EMISSIVE) {
+    if (payload.ids.w == NO_HIT || (HAS_FEATURE_EMISSION && payload.ids.z == MATERIAL_EMISSIVE)) {
         return payload.color.xyz;
     }
     vec3 point = payload.position.xyz;
@@ -44,13 +44,14 @@ vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout u
     vec3 light_sum = vec3(0.0);
     for (uint l = 0u; l < frame.light_count; l++) {
         Light light = lights[l];
-        uint n = light_samples_per_side(light);
+        // Without area lights every light takes one sample at a fixed place.
+        uint n = HAS_FEATURE_AREA_LIGHTS ? light_samples_per_side(light) : 1u;
         for (uint j = 0u; j < n; j++) {
             for (uint i = 0u; i < n; i++) {
                 uint dimension = 2u + 2u * (l * 64u + j * n + i);
                 // Only area lights are sampled at random positions.
                 float r1 = 0.0, r2 = 0.0;
-                if (light.kind == LIGHT_RECT) {
+                if (HAS_FEATURE_AREA_LIGHTS && light.kind == LIGHT_RECT) {
                     r1 = random(frame.seed, pixel, sample_index, dimension);
                     r2 = random(frame.seed, pixel, sample_index, dimension + 1u);
                 }
@@ -74,8 +75,11 @@ vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout u
         }
     }
     // Plus the radiance the surface emits, in the spare w components (HitPayload::emission).
-    vec3 emission = vec3(payload.shading_normal.w, payload.geometric_normal.w, payload.color.w);
-    return payload.color.xyz * light_sum + emission;
+    vec3 lit = payload.color.xyz * light_sum;
+    if (!HAS_FEATURE_EMISSION) {
+        return lit;
+    }
+    return lit + vec3(payload.shading_normal.w, payload.geometric_normal.w, payload.color.w);
 }
 #endif // TRACE_ONLY
 #endif

@@ -1,7 +1,8 @@
 //! `cargo xtask shaders [--check]`: builds the Rust set with rust-gpu and the GLSL set with
 //! glslangValidator, validates every module with spirv-val, checks each declares the entry
 //! point, SPIR-V version and bindings the host expects, and installs them in `spirv/` (or, with
-//! `--check`, fails if the committed modules differ).
+//! `--check`, fails if the committed modules differ); with `--without NAMES --out DIR`, builds
+//! both sets without some features' code into DIR instead.
 
 use crate::process::repo_root;
 use anyhow::{bail, Context, Result};
@@ -55,6 +56,28 @@ pub fn run(check: bool) -> Result<()> {
         MODULES.len(),
         if check { "up to date" } else { "installed in spirv/" }
     );
+    Ok(())
+}
+
+/// `cargo xtask shaders --without NAMES --out DIR`: both sets built without the code of the
+/// named features (`twinray_shared::features`) into `DIR/rust` and `DIR/glsl`, each validated
+/// and checked as the committed sets are; loaded with `--sets DIR/rust,DIR/glsl`.
+pub fn without(names: &[String], out: &Path) -> Result<()> {
+    let root = repo_root();
+    require_tools()?;
+    let mut bits = 0;
+    for name in names {
+        let Some(feature) = twinray_shared::features::by_name(name) else {
+            let known: Vec<&str> = twinray_shared::features::FEATURES.iter().map(|f| f.name).collect();
+            bail!("--without {name}: no such feature (the features are {})", known.join(", "));
+        };
+        bits |= feature.bit;
+    }
+    for language in Language::ALL {
+        let dir = out.join(language.name());
+        twinray_build::build_set_without(&root, language, &dir, Output::Shown, bits)?;
+        println!("shaders: the {} set without {} in {}", language.name(), names.join(", "), dir.display());
+    }
     Ok(())
 }
 

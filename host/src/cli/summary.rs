@@ -102,6 +102,7 @@ pub fn scenes(json: bool) -> Result<ExitCode> {
             "frames": scene.frame_count(),
             "hit_groups": groups,
             "shadows": data.plan.shadows,
+            "features": twinray_shared::features::names(data.plan.features),
         }));
     }
     let kinds = twinray::scene::file::kinds();
@@ -112,17 +113,18 @@ pub fn scenes(json: bool) -> Result<ExitCode> {
         return Ok(ExitCode::SUCCESS);
     }
     println!(
-        "{:<10} {:>9} {:>7} {:>6} {:>7}  {:<28} description",
-        "scene", "size", "objects", "frames", "shadows", "hit groups"
+        "{:<10} {:>9} {:>7} {:>6} {:>7}  {:<22} {:<28} description",
+        "scene", "size", "objects", "frames", "shadows", "features", "hit groups"
     );
     for r in &rows {
         println!(
-            "{:<10} {:>9} {:>7} {:>6} {:>7}  {:<28} {}",
+            "{:<10} {:>9} {:>7} {:>6} {:>7}  {:<22} {:<28} {}",
             r["name"].as_str().unwrap_or_default(),
             format!("{}x{}", r["width"], r["height"]),
             r["objects"].as_u64().unwrap_or(0),
             r["frames"].as_u64().unwrap_or(1),
             if r["shadows"] == true { "yes" } else { "no" },
+            r["features"].as_str().unwrap_or_default(),
             r["hit_groups"]
                 .as_array()
                 .map(|g| g.iter().filter_map(|v| v.as_str()).collect::<Vec<_>>().join(","))

@@ -2,8 +2,8 @@
 //! miss shader, the shadow miss shader only if some light casts shadows, and the hit groups
 //! of the plan (with the cutout any-hit stage for cutout objects); or, for `renderer =
 //! "compute"`, the compute pipeline of the ray query renderer alone. Specialisation constants
-//! carry the plan's sample count, shadow switch and shadow sampler into ray generation (or the
-//! compute stage).
+//! carry the plan's sample count, shadow switch and shadow sampler, and the features the scene
+//! uses, into every stage (each reads those it declares).
 
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
@@ -151,7 +151,7 @@ impl ScenePipeline {
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
         (witness, libraries): (bool, Option<&Libraries>),
     ) -> Result<Self> {
-        let specialised = RaygenSpec::new(plan.shadows, plan.samples_per_side, plan.shadow_sampler);
+        let specialised = Specialisation::of_plan(plan);
         let (spec, spec_bytes) = (specialised.info(), specialised.bytes());
         // A compute pipeline has no groups and no SBT.
         let compute = workgroup(raygen).is_some();
@@ -191,7 +191,8 @@ impl ScenePipeline {
     }
 }
 
-/// The stage descriptions of `modules`, ray generation and compute stages specialised by `spec`.
+/// The stage descriptions of `modules`, every stage specialised by `spec` (a stage reads the
+/// constants it declares; Vulkan ignores the others).
 pub fn stage_descs<'a>(modules: &'a [StageModule], spec: &'a vk::SpecializationInfo<'a>) -> Vec<StageDesc<'a>> {
     modules
         .iter()
@@ -200,26 +201,32 @@ pub fn stage_descs<'a>(modules: &'a [StageModule], spec: &'a vk::SpecializationI
             stage: stage_flag(m.spec.stage),
             spirv: &m.spirv[..],
             entry: &m.entry,
-            specialization: matches!(m.spec.stage, Stage::Raygen | Stage::Compute).then_some(spec),
+            specialization: Some(spec),
         })
         .collect()
 }
 
-/// The specialisation of ray generation (and compute) stages: whether any light casts shadows,
-/// M for M x M samples per pixel, and the shadow sampler.
-pub struct RaygenSpec {
-    data: [u32; 3],
-    entries: [vk::SpecializationMapEntry; 3],
+/// The specialisation of a pipeline's stages: whether any light casts shadows, M for M x M
+/// samples per pixel, the shadow sampler (read by ray generation and compute stages), and the
+/// features the scene uses (read by every stage that has code for one).
+pub struct Specialisation {
+    data: [u32; 4],
+    entries: [vk::SpecializationMapEntry; 4],
 }
 
-impl RaygenSpec {
-    pub fn new(shadows: bool, samples_per_side: u32, shadow_sampler: u32) -> RaygenSpec {
-        let ids = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER];
+impl Specialisation {
+    pub fn new(shadows: bool, samples_per_side: u32, shadow_sampler: u32, features: u32) -> Specialisation {
+        let ids = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER, b::SPEC_FEATURES];
         let entry = |i: usize| vk::SpecializationMapEntry { constant_id: ids[i], offset: 4 * i as u32, size: 4 };
-        RaygenSpec {
-            data: [u32::from(shadows), samples_per_side, shadow_sampler],
-            entries: [entry(0), entry(1), entry(2)],
+        Specialisation {
+            data: [u32::from(shadows), samples_per_side, shadow_sampler, features],
+            entries: [entry(0), entry(1), entry(2), entry(3)],
         }
+    }
+
+    /// What `plan` specialises.
+    pub fn of_plan(plan: &PipelinePlan) -> Specialisation {
+        Specialisation::new(plan.shadows, plan.samples_per_side, plan.shadow_sampler, plan.features)
     }
 
     pub fn bytes(&self) -> &[u8] {

@@ -7,7 +7,7 @@
 //! any-hit stage, a procedural group with only its intersection stage. The set's `raygen` is
 //! always in it (a pipeline needs a ray generation stage).
 
-use super::pipeline::{descriptor_bindings, stage_descs, RaygenSpec};
+use super::pipeline::{descriptor_bindings, stage_descs, Specialisation};
 use crate::error::Result;
 use crate::shaders::{capabilities, Language, ShaderSet, Stage, StageModule};
 use crate::vk::context::Context;
@@ -41,7 +41,9 @@ pub fn stage_stacks(
             None => modules.push(module),
         }
     }
-    let specialised = RaygenSpec::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED);
+    // Every feature's code in: the stack a stage may need whatever the scene.
+    let specialised =
+        Specialisation::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED, twinray_shared::features::ALL);
     let spec = specialised.info();
     let stages = stage_descs(&modules, &spec);
     let groups: Vec<(GroupDesc, vk::ShaderGroupShaderKHR)> =

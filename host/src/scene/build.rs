@@ -8,7 +8,7 @@ use super::file::{
     ShadowMethod, ShadowSampler,
 };
 use super::mesh::MeshData;
-use super::plan::{Colour, HitGeometry, HitGroup, PipelinePlan};
+use super::plan::{scene_features, Colour, HitGeometry, HitGroup, PipelinePlan};
 use super::pool::Pooled;
 use super::reach;
 use super::shape::{Formula, ShapeDesc};
@@ -17,6 +17,7 @@ use glam::{Mat4, Vec3, Vec4};
 use std::collections::BTreeMap;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
+use twinray_shared::features;
 use twinray_shared::layout::{FrameUniform, Light, Material, ObjectData, Primitive, Vertex};
 pub use twinray_shared::shapes::spec::Aabb;
 use twinray_shared::shapes::SHAPES;
@@ -165,6 +166,10 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>) -> Sce
         shadow_query: scene.shadow_method == ShadowMethod::Query,
         compute: scene.renderer == Renderer::Compute,
         callable_kinds: if callable { material_kinds(&materials) } else { Vec::new() },
+        features: match &scene.features {
+            Some(names) => names.iter().filter_map(|n| features::by_name(n)).fold(0, |bits, f| bits | f.bit),
+            None => scene_features(&materials, &lights),
+        },
     };
     let Geometry { blases, primitives, vertices, indices } = geometry;
     SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures }

@@ -90,6 +90,12 @@ pub fn check(scene: &SceneFile) -> Checked {
     samples("shadow_samples", scene.shadow_samples)?;
     check_camera(&scene.camera)?;
     check_renderer(scene)?;
+    for name in scene.features.iter().flatten() {
+        if twinray_shared::features::by_name(name).is_none() {
+            let known: Vec<&str> = twinray_shared::features::FEATURES.iter().map(|f| f.name).collect();
+            return Err(format!("features: no feature {name:?} (the features are {})", known.join(", ")));
+        }
+    }
     color("background", scene.background)?;
     for (name, m) in &scene.materials {
         check_material(m).map_err(|e| format!("material {name:?}: {e}"))?;

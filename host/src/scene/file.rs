@@ -49,6 +49,12 @@ pub struct SceneFile {
     /// What renders the image: the ray tracing pipeline, or a compute shader with ray queries.
     #[serde(default)]
     pub renderer: Renderer,
+    /// The features every stage is specialised on (`twinray_shared::features`, by name); left
+    /// out, those the scene uses. A list drops the code of features it leaves out even where
+    /// the scene uses them, and keeps that of features it names though unused: what a feature's
+    /// code costs, measured.
+    #[serde(default)]
+    pub features: Option<Vec<String>>,
     #[serde(default)]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default)]

@@ -1,7 +1,9 @@
 //! What the ray tracing pipeline of a scene contains: its hit groups, in the order of the
 //! shader binding table, whether it traces shadow rays, and its specialisation.
 
-use twinray_shared::bindings::MATERIAL_CHECKER;
+use twinray_shared::bindings::{CUTOUT_NONE, LIGHT_RECT, MATERIAL_CHECKER, MATERIAL_CUTOUT, MATERIAL_EMISSIVE};
+use twinray_shared::features;
+use twinray_shared::layout::{Light, Material};
 use twinray_shared::shapes::{Shape, SHAPES, SHAPE_NAIVE};
 
 /// What a hit group intersects: triangles with the built-in test, or a registered shape with
@@ -130,6 +132,23 @@ pub struct PipelinePlan {
     /// Material kinds the scene's materials use, when material callables compute colours
     /// (`material_shading = "callable"`); empty when closest-hit stages compute them.
     pub callable_kinds: Vec<u32>,
+    /// The features the scene uses (`twinray_shared::features`), which every stage is
+    /// specialised on (`SPEC_FEATURES`): the code of the others is dropped.
+    pub features: u32,
+}
+
+/// The features that `materials` and `lights`, as uploaded, use: textures where a material
+/// names a texture slot, area lights where a light is a rect, alpha masks where a material has
+/// a cutout pattern, emission where a material is emissive or emits.
+pub fn scene_features(materials: &[Material], lights: &[Light]) -> u32 {
+    let any = |used: bool, bit: u32| if used { bit } else { 0 };
+    let textured = materials.iter().any(|m| m.texture.x != 0 || m.texture.z != 0);
+    let masked = materials.iter().any(|m| m.kind == MATERIAL_CUTOUT || m.cutout_pattern != CUTOUT_NONE);
+    let emits = materials.iter().any(|m| m.kind == MATERIAL_EMISSIVE || m.emission.truncate() != glam::Vec3::ZERO);
+    any(textured, features::TEXTURES)
+        | any(lights.iter().any(|l| l.kind == LIGHT_RECT), features::AREA_LIGHTS)
+        | any(masked, features::ALPHA_MASKS)
+        | any(emits, features::EMISSION)
 }
 
 /// `names` without repeats, each where it first appears.

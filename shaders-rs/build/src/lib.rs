@@ -66,13 +66,20 @@ pub fn require_tools() -> Result<()> {
 /// Builds every module of `language` from the sources under `root` into `dir` (emptied first)
 /// as `NAME.spv`, validates each with spirv-val and checks what it declares.
 pub fn build_set(root: &Path, language: Language, dir: &Path, output: Output) -> Result<()> {
+    build_set_without(root, language, dir, output, 0)
+}
+
+/// As `build_set`, without the code of the features `without` (bits of
+/// `twinray_shared::features`): the Rust crate's cargo features `without-NAME`, GLSL's
+/// `TWINRAY_WITHOUT_NAME` defines.
+pub fn build_set_without(root: &Path, language: Language, dir: &Path, output: Output, without: u32) -> Result<()> {
     if dir.exists() {
         std::fs::remove_dir_all(dir)?;
     }
     std::fs::create_dir_all(dir)?;
     match language {
-        Language::Rust => build_rust(root, dir, output)?,
-        Language::Glsl => build_glsl(root, dir, output)?,
+        Language::Rust => build_rust(root, dir, output, without)?,
+        Language::Glsl => build_glsl(root, dir, output, without)?,
     }
     for spec in MODULES {
         let path = dir.join(format!("{}.spv", spec.name));
@@ -112,7 +119,12 @@ fn nightly(program: &str) -> Command {
     command
 }
 
-fn build_rust(root: &Path, out: &Path, output: Output) -> Result<()> {
+/// The features of `without`, each as `f(name)`.
+fn without_names(without: u32, f: impl Fn(&str) -> String) -> Vec<String> {
+    twinray_shared::features::FEATURES.iter().filter(|x| without & x.bit != 0).map(|x| f(x.name)).collect()
+}
+
+fn build_rust(root: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
     let cache = cache_dir();
     let target = cache.join("builder-target");
     if !target.join("release/twinray-shader-builder").exists() {
@@ -127,12 +139,16 @@ fn build_rust(root: &Path, out: &Path, output: Output) -> Result<()> {
     )?;
     // spirv-builder looks for librustc_codegen_spirv.so on the library path.
     let deps = target.join("release");
+    let features = without_names(without, |name| format!("without-{name}"));
+    // A target folder of its own for other features, so that switching does not rebuild both.
+    let shader_target = if without == 0 { cache.join("shader-target") } else { cache.join("shader-target-without") };
     run_tool(
         output,
         nightly(&target.join("release/twinray-shader-builder").to_string_lossy())
             .arg(root.join("shaders-rs/shaders"))
             .arg(out)
-            .arg(cache.join("shader-target"))
+            .arg(shader_target)
+            .arg(features.join(","))
             .env("LD_LIBRARY_PATH", deps),
     )
     .context("building the Rust shaders")?;
@@ -164,7 +180,8 @@ fn strip_debug_info(dir: &Path) -> Result<()> {
 /// Compiles every GLSL module; a shape's intersection stage is the few lines of
 /// `ModuleSpec::glsl_wrapper`, written beside the output, with `shaders-glsl/` on the include
 /// path.
-fn build_glsl(root: &Path, out: &Path, output: Output) -> Result<()> {
+fn build_glsl(root: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
+    let defines = without_names(without, |name| format!("-DTWINRAY_WITHOUT_{}", name.replace('-', "_").to_uppercase()));
     let include = root.join("shaders-glsl");
     let wrappers = out.join("wrappers");
     std::fs::create_dir_all(&wrappers)?;
@@ -182,6 +199,7 @@ fn build_glsl(root: &Path, out: &Path, output: Output) -> Result<()> {
         if let GlslSource::Variant { define, .. } = spec.glsl {
             command.arg(format!("-D{define}"));
         }
+        command.args(&defines);
         run_tool(output, command.arg(format!("-I{}", include.display())).arg(&source))
             .with_context(|| format!("compiling {}", source.display()))?;
     }

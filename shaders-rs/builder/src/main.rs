@@ -1,6 +1,7 @@
 //! Compiles the `twinray-shaders` crate to SPIR-V 1.4 with rust-gpu, one module per entry point.
 //!
-//! Usage: `twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir>`.
+//! Usage: `twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir> [features]`
+//! (features: the shader crate's cargo features, comma-separated, e.g. `without-textures`).
 //! Run by `cargo xtask shaders`; it lives outside the stable workspace because
 //! rustc_codegen_spirv must be compiled by the pinned nightly.
 
@@ -13,11 +14,15 @@ const TARGET: &str = "spirv-unknown-vulkan1.1-spv1.4";
 
 fn main() -> ExitCode {
     let args: Vec<PathBuf> = std::env::args_os().skip(1).map(PathBuf::from).collect();
-    let [crate_dir, out_dir, target_dir] = args.as_slice() else {
-        eprintln!("usage: twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir>");
-        return ExitCode::from(2);
+    let (crate_dir, out_dir, target_dir, features) = match args.as_slice() {
+        [c, o, t] => (c, o, t, Vec::new()),
+        [c, o, t, f] => (c, o, t, f.to_string_lossy().split(',').filter(|s| !s.is_empty()).map(String::from).collect()),
+        _ => {
+            eprintln!("usage: twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir> [features]");
+            return ExitCode::from(2);
+        }
     };
-    match build(crate_dir, out_dir, target_dir) {
+    match build(crate_dir, out_dir, target_dir, features) {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
             eprintln!("error: {message}");
@@ -26,8 +31,9 @@ fn main() -> ExitCode {
     }
 }
 
-fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf) -> Result<(), String> {
+fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf, features: Vec<String>) -> Result<(), String> {
     let result = SpirvBuilder::new(crate_dir, TARGET)
+        .shader_crate_features(features)
         .capability(Capability::RayTracingKHR)
         .extension("SPV_KHR_ray_tracing")
         // For `raygen_query` and `render_compute`. rust-gpu declares it in every module, so

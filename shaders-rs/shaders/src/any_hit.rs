@@ -22,6 +22,7 @@ macro_rules! any_hit_stages {
             #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
             #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
             #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
+            #[spirv(spec_constant(id = 3, default = 15))] features: u32,
         ) {
             let data = objects[object as usize];
             let material = materials[data.material as usize];
@@ -32,7 +33,8 @@ macro_rules! any_hit_stages {
                 // texels on NVIDIA's driver 580 (every hit a hole), not on lavapipe (docs/rust-stages.md).
                 // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
                 let image = unsafe { textures.index(material.texture.x as usize) };
-                alpha *= texture::surface_alpha(image, &material, corners, *barycentrics);
+                let features = Features::new(features);
+                alpha *= texture::surface_alpha(image, (&material, features), corners, *barycentrics);
             }
             if alpha < material.cutout_threshold {
                 // SAFETY: called from an any-hit stage, as OpIgnoreIntersectionKHR requires.

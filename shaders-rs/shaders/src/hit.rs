@@ -8,6 +8,7 @@ use crate::texture::Texture;
 use core::arch::asm;
 use spirv_std::glam::{Mat3, UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
 use spirv_std::RuntimeArray;
+use twinray_shared::features::{Features, EMISSION, TEXTURES};
 use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Primitive, Vertex};
 use twinray_shared::texture::{self as shared_texture, TriangleHit};
 use twinray_shared::{shading, shapes};
@@ -42,6 +43,8 @@ pub fn $name(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+    // The scene's features (twinray_shared::features; 15 is `ALL`, for a host that sets none).
+    #[spirv(spec_constant(id = 3, default = 15))] features: u32,
     $($params)*
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
@@ -55,7 +58,8 @@ pub fn $name(
     // SAFETY: see above; robust access reads zeros where a stage from disk strays.
     let material = unsafe { materials.get_unchecked(objects.get_unchecked(object as usize).material as usize) };
     let primitive = unsafe { primitives.get_unchecked((primitive_base + primitive_id) as usize) };
-    let (tint, emission) = hit::procedural_tint(textures, (material, primitive), &surface, *normal, frame.cone.x);
+    let cone = (frame.cone.x, Features::new(features));
+    let (tint, emission) = hit::procedural_tint(textures, (material, primitive), &surface, *normal, cone);
     let ($m, $p, $n) = (material, surface.object_point(), *normal);
     let color = $color * tint;
     hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));
@@ -93,8 +97,10 @@ pub fn $name(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+    #[spirv(spec_constant(id = 3, default = 15))] features: u32,
     $($params)*
 ) {
+    let features = Features::new(features);
     let rays = ((origin, direction), (object_origin, object_direction));
     let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let data = objects[object as usize];
@@ -103,8 +109,8 @@ pub fn $name(
     let (geometric, shading_normal) = hit::triangle_normals(&v, *barycentrics);
     let ($m, $p, $n) = (&material, surface.object_point(), geometric);
     let cone = hit::cone(&surface, object_to_world.to_mat3(), &v, *barycentrics, frame.cone.x);
-    let color = $color * texture::surface_tint(textures, &material, &v, &cone);
-    let emission = texture::surface_emission(textures, &material, &v, &cone);
+    let color = $color * texture::surface_tint(textures, (&material, features), &v, &cone);
+    let emission = texture::surface_emission(textures, (&material, features), &v, &cone);
     hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, (color, emission));
 }
     };
@@ -217,16 +223,18 @@ pub fn cone(hit: &SurfaceHit, object_to_world: Mat3, v: &[Vertex; 3], barycentri
 /// What the colour of a procedural shape's `material` is multiplied by at `hit` (its
 /// primitive's tint, times the material's texture through the shape's parametrisation) and
 /// the radiance it emits there, its intersection having reported the object-space `normal`;
-/// the ray's cone spreads by `spread` radians (0: texture level 0).
+/// the ray's cone spreads by `spread` radians (0: texture level 0). Of the scene's `features`,
+/// reads textures and emission only where it uses them.
 pub fn procedural_tint(
     textures: &RuntimeArray<Texture>,
     (material, primitive): (&Material, &Primitive),
     hit: &SurfaceHit,
     normal: Vec3,
-    spread: f32,
+    (spread, features): (f32, Features),
 ) -> (Vec3, Vec3) {
-    let (tint, emission) = (primitive.tint.xyz(), material.emission.xyz());
-    if material.texture.x == 0 && material.texture.z == 0 {
+    let tint = primitive.tint.xyz();
+    let emission = if features.has::<EMISSION>() { material.emission.xyz() } else { Vec3::ZERO };
+    if !features.has::<TEXTURES>() || (material.texture.x == 0 && material.texture.z == 0) {
         return (tint, emission);
     }
     let uv = shapes::shape_uv(hit.hit_kind, primitive, hit.object_point(), normal);

@@ -17,6 +17,7 @@ use twinray_shared::bindings::{
     CUTOUT_TEXTURE, HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT,
 };
 use twinray_shared::camera::Ray;
+use twinray_shared::features::{Features, ALPHA_MASKS};
 use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
 use twinray_shared::shading;
 use twinray_shared::shapes::{self, SHAPE_NAIVE};
@@ -35,8 +36,8 @@ unsafe fn candidate_hit(
     (objects, primitives, materials): (&[ObjectData], &[Primitive], &[Material]),
     (vertices, indices): Mesh,
     textures: &RuntimeArray<Texture>,
-    t_min: f32,
-    t_max: f32,
+    (t_min, t_max): (f32, f32),
+    features: Features,
 ) -> (f32, Vec3) {
     let object = query.get_candidate_intersection_instance_id() as usize;
     let primitive_id = query.get_candidate_intersection_primitive_index();
@@ -59,7 +60,8 @@ unsafe fn candidate_hit(
             }
         }
         let material = data.material as usize;
-        if t >= 0.0 {
+        // Holes only where the scene has cutouts: other instances are forced opaque.
+        if features.has::<ALPHA_MASKS>() & (t >= 0.0) {
             if material < materials.len() {
                 let m = materials.get_unchecked(material);
                 let mut alpha = shading::cutout_alpha(m, o + d * t);
@@ -70,7 +72,7 @@ unsafe fn candidate_hit(
                         // Indexed here and the image handed on, as `triangle_cutout_any_hit` does
                         // (docs/rust-stages.md).
                         let image = textures.index(m.texture.x as usize);
-                        alpha *= texture::surface_alpha(image, m, corners, b);
+                        alpha *= texture::surface_alpha(image, (m, features), corners, b);
                     }
                 }
                 if alpha < m.cutout_threshold {
@@ -94,6 +96,7 @@ pub fn visible_query(
     origin: Vec3,
     direction: Vec3,
     distance: f32,
+    features: Features,
     hit_buffers: (&[ObjectData], &[Primitive], &[Material]),
     mesh: Mesh,
     textures: &RuntimeArray<Texture>,
@@ -105,7 +108,7 @@ pub fn visible_query(
     unsafe {
         query.initialize(tlas, RayFlags::TERMINATE_ON_FIRST_HIT, MASK_OCCLUDER, origin, 0.0, direction, distance);
         while query.proceed() {
-            if candidate_hit(query, hit_buffers, mesh, textures, 0.0, distance).0 >= 0.0 {
+            if candidate_hit(query, hit_buffers, mesh, textures, (0.0, distance), features).0 >= 0.0 {
                 occluded = true;
                 query.terminate();
             }
@@ -121,6 +124,7 @@ pub fn primary_query(
     tlas: &AccelerationStructure,
     ray: Ray,
     reach: (f32, f32),
+    features: Features,
     payload: &mut HitPayload,
     frame: &FrameUniform,
     objects: &[ObjectData],
@@ -131,7 +135,8 @@ pub fn primary_query(
     textures: &RuntimeArray<Texture>,
 ) {
     let hit_buffers = (objects, primitives, materials);
-    trace_query(tlas, ray, reach, payload, frame.background, hit_buffers, (vertices, indices), textures, frame.cone.x);
+    let mesh = (vertices, indices);
+    trace_query(tlas, ray, reach, payload, frame.background, hit_buffers, mesh, textures, (frame.cone.x, features));
 }
 
 /// `ray` over `(t_min, t_max)`, traced inline: each candidate decided by `candidate_hit` and
@@ -149,7 +154,7 @@ pub fn trace_query(
     (objects, primitives, materials): (&[ObjectData], &[Primitive], &[Material]),
     (vertices, indices): (&[Vertex], &[u32]),
     textures: &RuntimeArray<Texture>,
-    spread: f32,
+    (spread, features): (f32, Features),
 ) {
     spirv_std::ray_query!(let mut query);
     // The committed procedural hit's normal: each commit is no farther than the one before.
@@ -164,7 +169,7 @@ pub fn trace_query(
                 query.get_committed_intersection_t()
             };
             let hit_buffers = (objects, primitives, materials);
-            let (t, n) = candidate_hit(query, hit_buffers, (vertices, indices), textures, t_min, closest);
+            let (t, n) = candidate_hit(query, hit_buffers, (vertices, indices), textures, (t_min, closest), features);
             if t >= 0.0 {
                 if query.get_candidate_intersection_type() == CandidateIntersection::Triangle {
                     query.confirm_intersection();
@@ -203,14 +208,15 @@ pub fn trace_query(
             let object_to_world = committed_transform::<false>(query).to_mat3();
             let cone = hit::cone(&surface, object_to_world, &v, barycentrics, spread);
             let color = shading::material_color(&material, surface.object_point(), geometric)
-                * texture::surface_tint(textures, &material, &v, &cone);
-            let emission = texture::surface_emission(textures, &material, &v, &cone);
+                * texture::surface_tint(textures, (&material, features), &v, &cone);
+            let emission = texture::surface_emission(textures, (&material, features), &v, &cone);
             hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, (color, emission));
         } else {
             let surface = SurfaceHit::new(object, primitive_id, data.shape & !SHAPE_NAIVE, rays, t, world_to_object);
             let primitive = query.get_committed_intersection_instance_custom_index() + primitive_id;
             let primitive = primitives[primitive as usize];
-            let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, normal, spread);
+            let cone = (spread, features);
+            let (tint, emission) = hit::procedural_tint(textures, (&material, &primitive), &surface, normal, cone);
             let color = shading::material_color(&material, surface.object_point(), normal) * tint;
             hit::describe_surface(payload, &surface, material.kind, normal, normal, (color, emission));
         }

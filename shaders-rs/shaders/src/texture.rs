@@ -7,6 +7,7 @@ use core::arch::asm;
 use spirv_std::glam::{Vec2, Vec3, Vec4, Vec4Swizzles};
 use spirv_std::image::SampledImage;
 use spirv_std::{Image, RuntimeArray};
+use twinray_shared::features::{Features, EMISSION, TEXTURES};
 use twinray_shared::layout::{Material, Vertex};
 use twinray_shared::texture::{self, TriangleHit};
 
@@ -14,11 +15,17 @@ use twinray_shared::texture::{self, TriangleHit};
 pub type Texture = SampledImage<Image!(2D, type = f32, sampled = true)>;
 
 /// What the material's colour is multiplied by on a mesh: the vertex colour interpolated at the
-/// hit, times the material's texture (if it has one) filtered over the cone's footprint.
-pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[Vertex; 3], hit: &TriangleHit) -> Vec3 {
+/// hit, times the material's texture (if it has one, and the scene's `features` textures)
+/// filtered over the cone's footprint.
+pub fn surface_tint(
+    textures: &RuntimeArray<Texture>,
+    (material, features): (&Material, Features),
+    v: &[Vertex; 3],
+    hit: &TriangleHit,
+) -> Vec3 {
     let b = hit.barycentrics;
     let color = texture::interpolate([v[0].color, v[1].color, v[2].color], b.x, b.y);
-    if material.texture.x == 0 {
+    if !features.has::<TEXTURES>() || material.texture.x == 0 {
         return color.xyz();
     }
     let uv = texture::triangle_uv(material, v, material.texture.y);
@@ -26,15 +33,19 @@ pub fn surface_tint(textures: &RuntimeArray<Texture>, material: &Material, v: &[
 }
 
 /// The radiance a mesh emits at the hit: the material's emission, times its emission texture
-/// (if it has one) filtered over the cone's footprint.
+/// (if it has one) filtered over the cone's footprint; zero where the scene's `features` say
+/// nothing emits.
 pub fn surface_emission(
     textures: &RuntimeArray<Texture>,
-    material: &Material,
+    (material, features): (&Material, Features),
     v: &[Vertex; 3],
     hit: &TriangleHit,
 ) -> Vec3 {
+    if !features.has::<EMISSION>() {
+        return Vec3::ZERO;
+    }
     let emission = material.emission.xyz();
-    if material.texture.z == 0 {
+    if !features.has::<TEXTURES>() || material.texture.z == 0 {
         return emission;
     }
     let uv = texture::triangle_uv(material, v, material.texture.w);
@@ -73,10 +84,16 @@ fn filtered(textures: &RuntimeArray<Texture>, slot: u32, (at, dx, dy): (Vec2, Ve
 /// The alpha a mesh's vertex colours and texture (at level 0) give the surface at
 /// barycentrics `b`, from its corners' texture coordinates `uv` and colours `color` (as
 /// `hit::corner_attributes` reads them) and the material's texture `image` (indexed by the
-/// caller): what alpha-tested cutouts (glTF's alpha mode MASK) test.
-pub fn surface_alpha(image: &Texture, material: &Material, (uv, color): ([Vec4; 3], [Vec4; 3]), b: Vec2) -> f32 {
+/// caller): what alpha-tested cutouts (glTF's alpha mode MASK) test. The texture is read only
+/// where the scene's `features` have textures.
+pub fn surface_alpha(
+    image: &Texture,
+    (material, features): (&Material, Features),
+    (uv, color): ([Vec4; 3], [Vec4; 3]),
+    b: Vec2,
+) -> f32 {
     let alpha = texture::interpolate(color, b.x, b.y).w;
-    if material.texture.x == 0 {
+    if !features.has::<TEXTURES>() || material.texture.x == 0 {
         return alpha;
     }
     let set = material.texture.y;

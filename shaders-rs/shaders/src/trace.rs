@@ -10,13 +10,21 @@ use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::RuntimeArray;
 use twinray_shared::bindings::{LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT};
 use twinray_shared::camera::Ray;
+use twinray_shared::features::{Features, AREA_LIGHTS, EMISSION};
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
 use twinray_shared::{lighting, offset, random};
 
 /// Traces a primary ray over `(t_min, t_max)` (the frame's near and far reach) into `payload`. No ray is traced `OPAQUE`: instances
 /// say whether they are (cutouts are not, and their any-hit stage runs), so scenes without
 /// cutouts run none.
-pub fn primary(tlas: &AccelerationStructure, ray: Ray, (t_min, t_max): (f32, f32), payload: &mut HitPayload) {
+/// `_features` are the scene's: the hit stages read their own.
+pub fn primary(
+    tlas: &AccelerationStructure,
+    ray: Ray,
+    (t_min, t_max): (f32, f32),
+    _features: Features,
+    payload: &mut HitPayload,
+) {
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
         tlas.trace_ray(
@@ -55,15 +63,19 @@ pub fn $name(
     lights: &[Light],
     shadows: bool,
     stratified: bool,
+    features: Features,
     hit: &HitPayload,
     $($res: $ty,)*
     pixel: u32,
     sample: u32,
     shadow_rays: &mut u32,
 ) -> Vec3 {
-    if hit.ids.w == NO_HIT || hit.ids.z == MATERIAL_EMISSIVE {
+    let emission = features.has::<EMISSION>();
+    if hit.ids.w == NO_HIT || (emission & (hit.ids.z == MATERIAL_EMISSIVE)) {
         return hit.color.xyz();
     }
+    // Without area lights every light takes one sample at a fixed place.
+    let area = features.has::<AREA_LIGHTS>();
     let point = hit.position.xyz();
     let normal = hit.shading_normal.xyz();
     let origin = offset::offset_hit(point, hit.geometric_normal.xyz(), hit.position.w);
@@ -83,7 +95,7 @@ pub fn $name(
         // SAFETY: index < lights.len(), checked just above. A reference, not a copy: the
         // copy's fields were all live across every shadow ray (`twinray inspect`).
         let light = unsafe { lights.get_unchecked(index) };
-        let n = lighting::samples_per_side(light);
+        let n = if area { lighting::samples_per_side(light) } else { 1 };
         let casts = shadows && light.shadows != 0;
         // One loop over the n x n cells, stepping i and then j, where the GLSL twin nests a j
         // and an i loop: same samples in the same order. Each loop rust-gpu emits is a loop
@@ -94,8 +106,8 @@ pub fn $name(
         let (mut i, mut j) = (0, 0);
         while j < n {
             let dimension = 2 + 2 * (l * 64 + j * n + i);
-            // Only area lights are sampled at random positions.
-            let (r1, r2) = if light.kind == LIGHT_RECT {
+            // Only area lights are sampled at random positions (`&`: no branch for `&&`).
+            let (r1, r2) = if area & (light.kind == LIGHT_RECT) {
                 (
                     random::random(frame.seed, pixel, sample, dimension),
                     random::random(frame.seed, pixel, sample, dimension + 1),
@@ -111,7 +123,7 @@ pub fn $name(
             if cosine > 0.0 {
                 let lit = if casts {
                     *shadow_rays += 1;
-                    $visible(tlas, origin, s.direction, s.distance, $($res),*)
+                    $visible(tlas, origin, s.direction, s.distance, features, $($res),*)
                 } else {
                     true
                 };
@@ -127,7 +139,12 @@ pub fn $name(
         }
         l += 1;
     }
-    hit.color.xyz() * light_sum + hit.emission()
+    let lit = hit.color.xyz() * light_sum;
+    if emission {
+        lit + hit.emission()
+    } else {
+        lit
+    }
 }
     };
 }
@@ -143,11 +160,13 @@ shading!(
 );
 
 /// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`.
+/// `_features` are the scene's: the any-hit stages read their own.
 pub fn visible(
     tlas: &AccelerationStructure,
     origin: Vec3,
     direction: Vec3,
     distance: f32,
+    _features: Features,
     shadow: &mut ShadowPayload,
 ) -> bool {
     shadow.occluded = 1;

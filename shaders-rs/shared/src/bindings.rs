@@ -85,6 +85,9 @@ pub const SPEC_SHADOWS: u32 = 0;
 pub const SPEC_SAMPLES_PER_SIDE: u32 = 1;
 /// Specialisation constant: how rect lights' N x N shadow samples are placed.
 pub const SPEC_SHADOW_SAMPLER: u32 = 2;
+/// Specialisation constant of every stage: the features the scene uses (`crate::features`),
+/// whose code a stage skips where their bit is clear.
+pub const SPEC_FEATURES: u32 = 3;
 /// One jittered sample in each cell of an N x N grid over the light (the default).
 pub const SHADOW_SAMPLER_STRATIFIED: u32 = 0;
 /// N x N independent samples, each anywhere on the light.

@@ -172,6 +172,8 @@ pub fn layout_include() -> Result<String, String> {
         ("SPEC_SHADOWS", SPEC_SHADOWS),
         ("SPEC_SAMPLES_PER_SIDE", SPEC_SAMPLES_PER_SIDE),
         ("SPEC_SHADOW_SAMPLER", SPEC_SHADOW_SAMPLER),
+        ("SPEC_FEATURES", SPEC_FEATURES),
+        ("FEATURES_ALL", crate::features::ALL),
         ("SHADOW_SAMPLER_STRATIFIED", SHADOW_SAMPLER_STRATIFIED),
         ("SHADOW_SAMPLER_RANDOM", SHADOW_SAMPLER_RANDOM),
         ("MATERIAL_DIFFUSE", MATERIAL_DIFFUSE),
@@ -194,6 +196,7 @@ pub fn layout_include() -> Result<String, String> {
     for (name, value) in uints {
         writeln!(s, "#define {name} {value}u").map_err(|e| e.to_string())?;
     }
+    features_glsl(&mut s).map_err(|e| e.to_string())?;
     // Each procedural shape's hit kind, from the registry (crate::shapes).
     for shape in SHAPES {
         writeln!(s, "#define HIT_KIND_{} {}u", shape.name.to_uppercase(), shape.hit_kind).map_err(|e| e.to_string())?;
@@ -222,6 +225,21 @@ pub fn layout_include() -> Result<String, String> {
     }
     s.push_str("\n#endif\n");
     Ok(s)
+}
+
+/// Each feature's bit (`FEATURE_TEXTURES`, ...) and its test (`HAS_FEATURE_TEXTURES`): a
+/// constant false where the set is built without its code (`-DTWINRAY_WITHOUT_TEXTURES`), else
+/// its bit of the specialisation constant `FEATURES` (the twin of
+/// `crate::features::Features::has`).
+fn features_glsl(s: &mut String) -> std::fmt::Result {
+    s.push_str("layout(constant_id = SPEC_FEATURES) const uint FEATURES = FEATURES_ALL;\n");
+    for f in crate::features::FEATURES {
+        let name = f.name.replace('-', "_").to_uppercase();
+        writeln!(s, "#define FEATURE_{name} {}u", f.bit)?;
+        writeln!(s, "#ifdef TWINRAY_WITHOUT_{name}\n#define HAS_FEATURE_{name} false\n#else")?;
+        writeln!(s, "#define HAS_FEATURE_{name} ((FEATURES & FEATURE_{name}) != 0u)\n#endif")?;
+    }
+    Ok(())
 }
 
 /// `shaders-glsl/shape_dispatch.glsl`, generated from the shape registry: every shape's GLSL

@@ -95,6 +95,9 @@ pub fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
         .args(["xtask", "watch", name, "--changes", "3", "--poll-ms", "100", "--", "--gpu-timeout", "30"])
         .current_dir(dir)
         .env("CARGO_TARGET_DIR", scaffold_target())
+        // Every pipeline compiled cold, as on a fresh machine: the verdicts must not need a
+        // warm shader cache (a specialised stage once missed it and overran a 3 s deadline).
+        .env("MESA_SHADER_CACHE_DISABLE", "true")
         .stdout(std::process::Stdio::piped())
         .stderr(std::process::Stdio::inherit())
         .spawn()
