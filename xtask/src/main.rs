@@ -34,16 +34,17 @@ enum Task {
     /// Build both shader sets into spirv/, validate every module and check its entry points.
     Shaders {
         /// Build into a scratch folder and fail if a committed module is stale.
-        #[arg(long, conflicts_with = "without")]
+        #[arg(long, conflicts_with = "out")]
         check: bool,
-        /// Build both sets without the code of these features (comma-separated:
-        /// textures, area-lights, alpha-masks, emission) into OUT/rust and OUT/glsl, not into
-        /// spirv/: the baseline that measures what specialising on a feature leaves behind.
+        /// Build both sets into OUT/rust and OUT/glsl instead of spirv/ (sets to load from
+        /// disk, e.g. `--sets OUT/rust`).
+        #[arg(long)]
+        out: Option<std::path::PathBuf>,
+        /// With --out, build both sets without the code of these features (comma-separated:
+        /// textures, area-lights, alpha-masks, emission): the baseline that measures what
+        /// specialising on a feature leaves behind.
         #[arg(long, value_delimiter = ',', requires = "out")]
         without: Vec<String>,
-        /// Where `--without` writes its two sets.
-        #[arg(long, requires = "without")]
-        out: Option<std::path::PathBuf>,
     },
     /// Re-render the golden images of tests/golden/ from the current shaders: of every built-in
     /// scene, or only of the scenes named.
@@ -123,7 +124,7 @@ enum Task {
 fn main() -> Result<()> {
     match Cli::parse().task {
         Task::Setup { vulkan_only } => setup::run(if vulkan_only { Scope::Vulkan } else { Scope::Full }),
-        Task::Shaders { without, out: Some(out), .. } => shaders::without(&without, &out),
+        Task::Shaders { without, out: Some(out), .. } => shaders::build_into(&out, &without),
         Task::Shaders { check, .. } => shaders::run(check),
         Task::Golden { scenes } => golden(&scenes),
         Task::Screenshot => screenshot(),

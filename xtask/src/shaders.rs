@@ -1,8 +1,8 @@
 //! `cargo xtask shaders [--check]`: builds the Rust set with rust-gpu and the GLSL set with
 //! glslangValidator, validates every module with spirv-val, checks each declares the entry
 //! point, SPIR-V version and bindings the host expects, and installs them in `spirv/` (or, with
-//! `--check`, fails if the committed modules differ); with `--without NAMES --out DIR`, builds
-//! both sets without some features' code into DIR instead.
+//! `--check`, fails if the committed modules differ); with `--out DIR`, builds both sets into
+//! DIR instead (`--without NAMES`: without some features' code).
 
 use crate::process::repo_root;
 use anyhow::{bail, Context, Result};
@@ -59,10 +59,10 @@ pub fn run(check: bool) -> Result<()> {
     Ok(())
 }
 
-/// `cargo xtask shaders --without NAMES --out DIR`: both sets built without the code of the
-/// named features (`twinray_shared::features`) into `DIR/rust` and `DIR/glsl`, each validated
-/// and checked as the committed sets are; loaded with `--sets DIR/rust,DIR/glsl`.
-pub fn without(names: &[String], out: &Path) -> Result<()> {
+/// `cargo xtask shaders --out DIR [--without NAMES]`: both sets built into `DIR/rust` and
+/// `DIR/glsl` (without the code of the named features of `twinray_shared::features`), each
+/// validated and checked as the committed sets are; loaded with `--sets DIR/rust,DIR/glsl`.
+pub fn build_into(out: &Path, names: &[String]) -> Result<()> {
     let root = repo_root();
     require_tools()?;
     let mut bits = 0;
@@ -76,7 +76,8 @@ pub fn without(names: &[String], out: &Path) -> Result<()> {
     for language in Language::ALL {
         let dir = out.join(language.name());
         twinray_build::build_set_without(&root, language, &dir, Output::Shown, bits)?;
-        println!("shaders: the {} set without {} in {}", language.name(), names.join(", "), dir.display());
+        let without = if names.is_empty() { String::new() } else { format!(" without {}", names.join(", ")) };
+        println!("shaders: the {} set{without} in {}", language.name(), dir.display());
     }
     Ok(())
 }
