@@ -133,9 +133,16 @@ fn a_small_bench_writes_every_report_file() {
 
 /// `--processes 2`: every set timed alone in two child processes (rounds in alternating
 /// orders), each row's times those of its processes, and every ratio's interval over the
-/// rounds; the global flags (here `--validate`) reach the children.
+/// rounds; the global flags (here `--validate`) reach the children. `--alone-in devices`: the
+/// same rounds, each on a fresh device in the bench's process.
 #[test]
 fn sets_are_timed_alone_in_processes_of_their_own() {
+    for alone_in in ["processes", "devices"] {
+        timed_alone(alone_in);
+    }
+}
+
+fn timed_alone(alone_in: &str) {
     let dir = tempfile::tempdir().unwrap();
     let args = [
         "--validate",
@@ -158,6 +165,8 @@ fn sets_are_timed_alone_in_processes_of_their_own() {
         "2",
         "--processes",
         "2",
+        "--alone-in",
+        alone_in,
         "--reference-spp",
         "16",
         "--shadow-spp",
@@ -200,6 +209,7 @@ fn sets_are_timed_alone_in_processes_of_their_own() {
         .filter(|e| e.path().join("results.json").exists())
         .collect();
     assert!(left.is_empty(), "child folders left behind: {left:?}");
+    eprintln!("timed alone in {alone_in}: {}", json["ratios"]);
 }
 
 /// `compare --processes 3`: each set timed alone in three child benches of two placements, one

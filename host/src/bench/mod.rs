@@ -18,7 +18,7 @@ pub use samplers::side_of;
 use crate::error::{Error, Result};
 use crate::probe::stability::Skipped;
 use crate::reference::image::{reference, ReferenceImage};
-pub use crate::render::isolated::{Isolation, TimeAlone};
+pub use crate::render::isolated::{AloneIn, Isolation, TimeAlone};
 use crate::render::{render_sets, to_rgba8, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;

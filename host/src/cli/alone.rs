@@ -6,7 +6,10 @@ use crate::args::{BenchArgs, GlobalArgs};
 use std::path::PathBuf;
 use std::process::Command;
 use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::Arc;
 use twinray::bench::stages::Variant;
+use twinray::bench::{AloneIn, TimeAlone};
+use twinray::render::RenderOptions;
 use twinray::shaders::ShaderSet;
 use twinray::Error;
 
@@ -72,6 +75,38 @@ pub fn check_runs(processes: u32, runs: u32) -> Result<(), Error> {
         return Err(Error::Input(message));
     }
     Ok(())
+}
+
+/// `bench`'s timer of a set alone: in a child process ([`timer`]), or on a fresh Vulkan device
+/// in this process ([`device_timer`]).
+pub fn time_alone(global: &GlobalArgs, settings: ChildSettings, scenes: Vec<String>, on: AloneIn) -> Arc<TimeAlone> {
+    match on {
+        AloneIn::Processes => Arc::new(timer(global, settings, scenes)),
+        AloneIn::Devices => Arc::new(device_timer(global, settings, scenes)),
+    }
+}
+
+/// A set timed alone as a child process would time it, on a fresh Vulkan device (context,
+/// upload, outputs) in this process: on the H100 each of 12 such devices timed its set within
+/// 0.2% of the child process that started at the same place, in half the time
+/// (bench/reports/issue53-devices).
+fn device_timer(
+    global: &GlobalArgs,
+    settings: ChildSettings,
+    scenes: Vec<String>,
+) -> impl Fn(usize, u32, &ShaderSet, u32) -> twinray::Result<Vec<f64>> + Send + Sync + 'static {
+    let options = crate::session::options(global);
+    move |scene, spp, set, first| {
+        let ctx = twinray::vk::context::Context::new(&options)?;
+        let mut loaded = twinray::scene::Scene::load(Some(&scenes[scene]))?;
+        loaded.file.image.samples = (f64::from(spp).sqrt().round() as u32).max(1);
+        let image = &loaded.file.image;
+        let (width, height) = settings.size.unwrap_or((image.width, image.height));
+        let (warmup, runs, placements) = (settings.warmup, settings.runs, settings.placements);
+        let opts = RenderOptions { width, height, warmup, runs, placements, first_placement: first };
+        let out = twinray::render_sets(&ctx, &loaded, std::slice::from_ref(set), &opts)?;
+        Ok(out[0].placements.median_ms.clone())
+    }
 }
 
 /// The timer `bench`, `compare` and `bisect` call per scene (an index into `scenes`, as given on the

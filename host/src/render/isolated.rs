@@ -23,6 +23,16 @@ use std::sync::Arc;
 /// the last argument's (`RenderOptions::first_placement`).
 pub type TimeAlone = dyn Fn(usize, u32, &ShaderSet, u32) -> Result<Vec<f64>> + Send + Sync;
 
+/// What `bench --processes` times each set alone in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+pub enum AloneIn {
+    /// A child `twinray bench` process of that set only.
+    #[default]
+    Processes,
+    /// A fresh Vulkan device in the bench's own process, the set's scene uploaded to it afresh.
+    Devices,
+}
+
 /// How the bench times sets in processes of their own.
 #[derive(Clone)]
 pub struct Isolation {
