@@ -214,8 +214,9 @@ fn timed_alone(alone_in: &str) {
 
 /// `compare --processes 3`: each set timed alone in three child benches of two placements, one
 /// time per process in alternating orders and the interval over the rounds, the images from
-/// the parent (in-process timing would give one time per placement, two); and
-/// the flags a child cannot honour refused before anything renders.
+/// the parent (in-process timing would give one time per placement, two); the same on fresh
+/// devices (`--alone-in devices`); and the flags a child cannot honour refused before anything
+/// renders.
 #[test]
 fn compare_times_each_set_alone_in_processes_of_its_own() {
     let dir = tempfile::tempdir().unwrap();
@@ -235,9 +236,11 @@ fn compare_times_each_set_alone_in_processes_of_its_own() {
         assert_eq!(json[key]["first_placement"], serde_json::json!(places), "places of its own: {json}");
     }
     assert!(dir.path().join("cmp/diff.png").is_file());
-    let text = twinray(&[&args[..], &["--processes", "3", "--out-dir", "cmp"]].concat(), dir.path());
+    // The same rounds on fresh devices in compare's own process.
+    let on_devices = ["--processes", "3", "--alone-in", "devices", "--out-dir", "cmp"];
+    let text = twinray(&[&args[..], &on_devices[..]].concat(), dir.path());
     let text = String::from_utf8_lossy(&text.stdout);
-    assert!(text.contains("each set alone in 3 processes of 2 placements"), "{text}");
+    assert!(text.contains("each set alone in 3 devices of 2 placements"), "{text}");
     assert_bad_input(&["compare", "--processes", "2", "--eye", "1,2,3"], &["--processes", "--eye"]);
     assert_bad_input(&["compare", "orbit", "--processes", "2", "--frames", "0..2"], &["not with --frames"]);
     assert_bad_input(&["compare", "--processes", "2", "--runs", "3"], &["at least 10", "got 3"]);

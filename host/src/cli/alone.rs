@@ -1,6 +1,7 @@
-//! `--processes N` (`twinray bench` and `compare`): one set timed alone, by a child `twinray
-//! bench` of that set only, with the parent's global flags and timing settings, whose placement
-//! medians are read back from its results.json (see `twinray::bench::Isolation`).
+//! `--processes N` (`twinray bench`, `compare` and `bisect`): one set timed alone, by a child
+//! `twinray bench` of that set only, with the parent's global flags and timing settings, whose
+//! placement medians are read back from its results.json; or, with `--alone-in devices`, on a
+//! fresh Vulkan device in this process (see `twinray::bench::Isolation`).
 
 use crate::args::{BenchArgs, GlobalArgs};
 use std::path::PathBuf;
@@ -50,7 +51,7 @@ pub fn for_scene(
     scene: String,
     opts: &twinray::render::RenderOptions,
     reference_set: &ShaderSet,
-    processes: u32,
+    (processes, on): (u32, AloneIn),
 ) -> (Option<twinray::bench::Isolation>, PathBuf) {
     let cache = std::env::temp_dir().join(format!("twinray-scene-alone-{}", std::process::id()));
     let settings = ChildSettings {
@@ -62,9 +63,10 @@ pub fn for_scene(
         reference_set: reference_set.to_string(),
         cache: cache.clone(),
     };
-    let time_alone = std::sync::Arc::new(timer(global, settings, vec![scene]));
+    let time_alone = time_alone(global, settings, vec![scene], on);
     let placements = opts.placements;
-    ((processes > 0).then_some(twinray::bench::Isolation { processes, placements, time_alone }), cache)
+    let isolation = twinray::bench::Isolation { processes, placements, alone_in: on, time_alone };
+    ((processes > 0).then_some(isolation), cache)
 }
 
 /// Each process is a `twinray bench`, whose floor for `--runs` is 10.

@@ -189,6 +189,18 @@ pub struct CompareArgs {
     /// this process. Not with --frames, --frame, --eye or --look-at (the child takes none).
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
     pub processes: u32,
+    #[command(flatten)]
+    pub alone: AloneArgs,
+}
+
+/// Where `--processes` times each set alone (bench, compare, bisect).
+#[derive(Args)]
+pub struct AloneArgs {
+    /// With --processes: what each set is timed alone in. `processes`: child processes;
+    /// `devices`: a fresh Vulkan device each, in this process, which times a set as a child
+    /// process starting at the same place does, in half the time (docs/measuring.md).
+    #[arg(long, value_enum, default_value = "processes", requires = "processes")]
+    pub alone_in: twinray::bench::AloneIn,
 }
 
 #[derive(Args)]
@@ -212,6 +224,8 @@ pub struct BisectArgs {
     /// --probe). 0: every set timed in this process.
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
     pub processes: u32,
+    #[command(flatten)]
+    pub alone: AloneArgs,
 }
 
 #[derive(Args)]
@@ -351,11 +365,8 @@ pub struct BenchArgs {
     /// (docs/measuring.md). 0: every set timed in this process.
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
     pub processes: u32,
-    /// With --processes: what each set is timed alone in. `processes`: child processes;
-    /// `devices`: a fresh Vulkan device each, in this process, which times a set as a child
-    /// process starting at the same place does, in half the time (docs/measuring.md).
-    #[arg(long, value_enum, default_value = "processes", requires = "processes")]
-    pub alone_in: twinray::bench::AloneIn,
+    #[command(flatten)]
+    pub alone: AloneArgs,
     /// Make the spacers of placement N first, N+1 next, and so on (see `compare
     /// --placements`): where in the layouts the placements start. --processes gives each of
     /// its processes its own start; give it to repeat one of them.

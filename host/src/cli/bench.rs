@@ -82,11 +82,12 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     let isolation = (args.processes > 0).then(|| bench::Isolation {
         processes: args.processes,
         placements: args.placements,
+        alone_in: args.alone.alone_in,
         time_alone: crate::alone::time_alone(
             global,
             crate::alone::ChildSettings::of_bench(&args, cache.clone()),
             names.clone(),
-            args.alone_in,
+            args.alone.alone_in,
         ),
     });
     let config = bench::BenchConfig {

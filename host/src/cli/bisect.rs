@@ -32,7 +32,8 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
             crate::alone::check_runs(args.processes, opts.runs)?;
             let ctx = context(global)?;
             let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
-            let (isolation, cache) = crate::alone::for_scene(global, scene_arg, &opts, &args.a, args.processes);
+            let (isolation, cache) =
+                crate::alone::for_scene(global, scene_arg, &opts, &args.a, (args.processes, args.alone.alone_in));
             let report = run_bisect(&mut ImageSubject { ctx: &ctx, scene: &scene, opts, isolation }, &args.a, &args.b);
             let _ = std::fs::remove_dir_all(cache);
             report?

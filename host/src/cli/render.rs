@@ -90,7 +90,8 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
     }
     let ctx = context(global)?;
     let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
-    let (isolation, cache) = crate::alone::for_scene(global, scene_arg, &opts, &args.a, args.processes);
+    let (isolation, cache) =
+        crate::alone::for_scene(global, scene_arg, &opts, &args.a, (args.processes, args.alone.alone_in));
     let comparison = compare_sets(&ctx, &scene, (&args.a, &args.b), &opts, isolation.as_ref());
     let _ = std::fs::remove_dir_all(cache);
     let comparison = comparison?;

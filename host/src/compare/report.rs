@@ -5,7 +5,7 @@ use super::diff::{diff, diff_image, verdict, ImageDiff};
 use super::pixels::{named_pixels, pixel_lines, NamedPixel};
 use crate::error::{Error, Result};
 use crate::explain::no_payload;
-use crate::render::isolated::{render_timed, Isolation};
+use crate::render::isolated::{render_timed, AloneIn, Isolation};
 use crate::render::{PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
@@ -66,6 +66,8 @@ pub struct CompareReport {
     /// Processes each set was timed alone in (`--processes`), the ratio's interval taken over
     /// them; 0: both sets timed in this process, the interval over placements.
     pub processes: u32,
+    /// What those were: child processes or fresh devices in this one (`--alone-in`).
+    pub alone_in: AloneIn,
     /// Whether B is a salted copy of A (`compare --a X --b X`): the null control.
     pub null_control: bool,
     /// The pixels that differ most and the hit mismatches, a few, with their `twinray explain`
@@ -146,6 +148,7 @@ pub fn compare_sets(
         warmup: opts.warmup,
         placements: opts.placements,
         processes: isolation.map_or(0, |i| i.processes),
+        alone_in: isolation.map_or(AloneIn::Processes, |i| i.alone_in),
         null_control: set_b.original() == *set_a,
         pixels: named_pixels(scene, (&a, &b), parity.pixel_threshold, (&named_sets.0, &named_sets.1), None),
         pass: failures.is_empty(),
@@ -178,7 +181,8 @@ impl CompareReport {
         let null = if self.null_control { " (b is a salted copy of a: the null control)" } else { "" };
         let timed = if self.processes > 0 {
             let (n, p, r, w) = (self.processes, self.placements, self.runs, self.warmup);
-            format!("each set alone in {n} processes of {p} placements of {r} timed traces after {w} untimed")
+            let on = self.alone_in.plural();
+            format!("each set alone in {n} {on} of {p} placements of {r} timed traces after {w} untimed")
         } else {
             let (p, r, wa, wb) = (self.placements, self.runs, self.warmup_traces_a, self.warmup_traces_b);
             format!("{p} placements of {r} timed traces after {wa}/{wb} untimed")

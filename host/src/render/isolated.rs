@@ -23,14 +23,33 @@ use std::sync::Arc;
 /// the last argument's (`RenderOptions::first_placement`).
 pub type TimeAlone = dyn Fn(usize, u32, &ShaderSet, u32) -> Result<Vec<f64>> + Send + Sync;
 
-/// What `bench --processes` times each set alone in.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+/// What `--processes` times each set alone in.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
 pub enum AloneIn {
     /// A child `twinray bench` process of that set only.
     #[default]
     Processes,
     /// A fresh Vulkan device in the bench's own process, the set's scene uploaded to it afresh.
     Devices,
+}
+
+impl AloneIn {
+    /// "processes" or "devices".
+    pub fn plural(self) -> &'static str {
+        match self {
+            AloneIn::Processes => "processes",
+            AloneIn::Devices => "devices",
+        }
+    }
+
+    /// "a process" or "a device".
+    pub fn one(self) -> &'static str {
+        match self {
+            AloneIn::Processes => "a process",
+            AloneIn::Devices => "a device",
+        }
+    }
 }
 
 /// How the bench times sets in processes of their own.
@@ -40,6 +59,8 @@ pub struct Isolation {
     pub processes: u32,
     /// Placements each process makes.
     pub placements: u32,
+    /// Whether each "process" is a child process or a fresh device in this one.
+    pub alone_in: AloneIn,
     pub time_alone: Arc<TimeAlone>,
 }
 

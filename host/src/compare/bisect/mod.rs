@@ -18,6 +18,7 @@ mod subject;
 pub use subject::{Gap, ImageSubject, ProbeSubject, Run, Subject, PROBE_T_TOLERANCE};
 
 use crate::error::Result;
+use crate::render::isolated::AloneIn;
 use crate::shaders::{ShaderSet, Stage, MODULES};
 use crate::util::interval::RatioInterval;
 use crate::util::stats::median;
@@ -92,6 +93,8 @@ pub struct BisectReport {
     pub ratio: Option<RatioInterval>,
     /// Processes each set was timed alone in (`--processes`); 0: all in this one.
     pub processes: u32,
+    /// What those were: child processes or fresh devices in this one (`--alone-in`).
+    pub alone_in: AloneIn,
     pub time_verdict: String,
     pub raygen_stack_bytes_a: u64,
     pub raygen_stack_bytes_b: u64,
@@ -264,7 +267,8 @@ pub fn bisect<T>(subject: &mut dyn Subject<Data = T>, a: &ShaderSet, b: &ShaderS
         gpu_ms_a,
         gpu_ms_b,
         ratio: base.interval,
-        processes: subject.processes(),
+        processes: subject.processes().0,
+        alone_in: subject.processes().1,
         time_verdict: base.interval.map_or("the device cannot time".into(), |i| i.verdict("B")),
         raygen_stack_bytes_a: run_a.raygen_stack_bytes,
         raygen_stack_bytes_b: run_b.raygen_stack_bytes,

@@ -61,7 +61,7 @@ impl BisectReport {
         let ms = |m: Option<f64>| m.map_or("n/a".into(), |m| format!("{m:.3} ms"));
         let over = match (self.ratio.map_or(0, |r| r.placements), self.processes) {
             (n, 0) => format!("{n} placements"),
-            (n, _) => format!("{n} rounds, each set alone in a process of its own"),
+            (n, _) => format!("{n} rounds, each set alone in {} of its own", self.alone_in.one()),
         };
         let mut s = format!(
             "bisect {} on {}\n  A = {}\n  B = {}\n  A against B: {}\n  GPU A {}, B {}; B/A {} over {over}: {}; raygen stack {} / {} bytes\n",

@@ -4,7 +4,7 @@ use crate::compare::diff::{diff, verdict};
 use crate::error::Result;
 use crate::probe::case::ProbeCase;
 use crate::probe::run::{count_written, probe, ProbeResult};
-use crate::render::isolated::{render_timed, Isolation};
+use crate::render::isolated::{render_timed, AloneIn, Isolation};
 use crate::render::pipeline::plan_modules;
 use crate::render::placement::orders;
 use crate::render::{RenderOptions, RenderOutput, Written};
@@ -64,9 +64,9 @@ pub trait Subject {
     fn modules(&self) -> Vec<&'static str>;
     /// One run per set, in order.
     fn run(&mut self, sets: &[ShaderSet]) -> Result<Vec<Run<Self::Data>>>;
-    /// Processes each set is timed alone in (0: all in this one).
-    fn processes(&self) -> u32 {
-        0
+    /// Processes (or devices) each set is timed alone in (0: all in this one).
+    fn processes(&self) -> (u32, AloneIn) {
+        (0, AloneIn::Processes)
     }
     fn gap(&self, a: &Self::Data, b: &Self::Data) -> Gap;
 }
@@ -115,8 +115,8 @@ impl Subject for ImageSubject<'_> {
             .collect())
     }
 
-    fn processes(&self) -> u32 {
-        self.isolation.as_ref().map_or(0, |i| i.processes)
+    fn processes(&self) -> (u32, AloneIn) {
+        self.isolation.as_ref().map_or((0, AloneIn::Processes), |i| (i.processes, i.alone_in))
     }
 
     fn gap(&self, a: &RenderOutput, b: &RenderOutput) -> Gap {
