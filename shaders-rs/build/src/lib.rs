@@ -119,6 +119,12 @@ fn nightly(program: &str) -> Command {
     command
 }
 
+/// The GLSL define that builds a set without feature `name` (`-DTWINRAY_WITHOUT_TEXTURES`), which
+/// the generated layout include reads (`twinray_shared::glsl`).
+fn glsl_define(name: &str) -> String {
+    format!("-DTWINRAY_WITHOUT_{}", name.replace('-', "_").to_uppercase())
+}
+
 /// The features of `without`, each as `f(name)`.
 fn without_names(without: u32, f: impl Fn(&str) -> String) -> Vec<String> {
     twinray_shared::features::FEATURES.iter().filter(|x| without & x.bit != 0).map(|x| f(x.name)).collect()
@@ -181,7 +187,7 @@ fn strip_debug_info(dir: &Path) -> Result<()> {
 /// `ModuleSpec::glsl_wrapper`, written beside the output, with `shaders-glsl/` on the include
 /// path.
 fn build_glsl(root: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
-    let defines = without_names(without, |name| format!("-DTWINRAY_WITHOUT_{}", name.replace('-', "_").to_uppercase()));
+    let defines = without_names(without, glsl_define);
     let include = root.join("shaders-glsl");
     let wrappers = out.join("wrappers");
     std::fs::create_dir_all(&wrappers)?;
@@ -224,5 +230,16 @@ mod tests {
         assert_eq!(sets(&["shaders-glsl/shapes/sphere.glsl"]), [Language::Glsl]);
         assert_eq!(sets(&["shaders-rs/shaders/src/lib.rs", "shaders-glsl/raygen.rgen"]), Language::ALL);
         assert!(sets(&["scenes/showcase.toml"]).is_empty());
+    }
+
+    #[test]
+    fn a_set_without_features_names_each_in_both_languages() {
+        use twinray_shared::features::{ALPHA_MASKS, TEXTURES};
+        assert_eq!(
+            without_names(TEXTURES | ALPHA_MASKS, glsl_define),
+            ["-DTWINRAY_WITHOUT_TEXTURES", "-DTWINRAY_WITHOUT_ALPHA_MASKS"]
+        );
+        assert_eq!(without_names(TEXTURES, |n| format!("without-{n}")), ["without-textures"]);
+        assert!(without_names(0, |n| n.to_string()).is_empty());
     }
 }
