@@ -1,14 +1,13 @@
-//! Timing each set alone, in processes of its own (`twinray bench`, `compare` and `bisect` with
-//! `--processes K`).
+//! Timing each set alone (`twinray bench`, `compare` and `bisect` with `--processes K`), in
+//! child processes or on fresh devices of this process (`--alone-in`).
 //!
-//! What the driver's first allocations in a process settle carries through every place of
-//! that process: runs that differ only in where their rounds start land 2 to 5% apart, each
-//! interval over its own places far narrower (docs/measuring.md, *What one process cannot
-//! see*). So with isolation each set is timed in `processes` fresh processes of its own, as a
-//! program holding only its own pipelines runs, in rounds that alternate the sets' order; a
-//! ratio's interval is taken over the rounds, the processes of a round being one paired
-//! observation. Every process starts at rounds of its own ([`Isolation::first_placement`]),
-//! a set's and its salted copy's alike, so that no two time the same places.
+//! Where a device's rounds start fixes the times of all its places (a regime; docs/measuring.md,
+//! *A regime is where a device starts*), so one process's places do not sample what other
+//! starts would give. With isolation each set is timed in `processes` fresh processes or
+//! devices of its own, in rounds that alternate the sets' order; a ratio's interval is taken
+//! over the rounds, the processes of a round being one paired observation. Every process
+//! starts at rounds of its own ([`Isolation::first_placement`]), a set's and its salted copy's
+//! alike, so that no two time the same places.
 
 use super::placement::Retimed;
 use super::{render_sets, PlacementTimes, RenderOptions, RenderOutput};
