@@ -6,7 +6,7 @@
 
 use twinray::render::pipeline::ScenePipeline;
 use twinray::scene::{MeshFiles, Renderer, Scene};
-use twinray_shared::features::{self, FEATURES};
+use twinray_shared::features;
 use twinray_tests::{assert_same_render, default_scene, render_scene, set, validated_context, SCENE_TEST_SIZE};
 
 #[test]
@@ -115,7 +115,8 @@ fn a_scene_uses_the_features_its_materials_and_lights_need() {
     assert_eq!(uses("materials"), "emission");
     let dir = tempfile::tempdir().unwrap();
     assert_eq!(features::names(textured_scene(dir.path()).build().plan.features), "textures,emission");
-    let all: Vec<&str> = FEATURES.iter().map(|f| f.name).collect();
+    let all = features::names(features::ALL);
+    let all: Vec<&str> = all.split(',').collect();
     assert_eq!(with_features(&default_scene(), &all).build().plan.features, features::ALL);
     let text = "features = [\"shading\"]\n[image]\nwidth = 8\nheight = 8\n[camera]\neye = [0.0, 0.0, 1.0]\n\
                 target = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov_y_degrees = 40.0\n[shapes.s]\nkind = \"sphere\"\n\
@@ -129,7 +130,8 @@ fn a_scene_uses_the_features_its_materials_and_lights_need() {
 /// asserts the first two render alike, the third differently, and returns the third.
 fn dropped(scene: &Scene, set_text: &str, drop: &str) -> twinray::RenderOutput {
     let ctx = validated_context();
-    let all: Vec<&str> = FEATURES.iter().map(|f| f.name).collect();
+    let all = features::names(features::ALL);
+    let all: Vec<&str> = all.split(',').collect();
     let used = features::names(scene.build().plan.features);
     let without: Vec<&str> = used.split(',').filter(|f| *f != drop).collect();
     let [own, every, less] = [scene.clone(), with_features(scene, &all), with_features(scene, &without)]

@@ -68,8 +68,8 @@ pub fn build_into(out: &Path, names: &[String]) -> Result<()> {
     let mut bits = 0;
     for name in names {
         let Some(feature) = twinray_shared::features::by_name(name) else {
-            let known: Vec<&str> = twinray_shared::features::FEATURES.iter().map(|f| f.name).collect();
-            bail!("--without {name}: no such feature (the features are {})", known.join(", "));
+            let known = twinray_shared::features::names(twinray_shared::features::ALL);
+            bail!("--without {name}: no such feature (the features are {known})");
         };
         bits |= feature.bit;
     }

@@ -101,7 +101,7 @@ fn device_timer(
     move |scene, spp, set, first| {
         let ctx = twinray::vk::context::Context::new(&options)?;
         let mut loaded = twinray::scene::Scene::load(Some(&scenes[scene]))?;
-        loaded.file.image.samples = (f64::from(spp).sqrt().round() as u32).max(1);
+        loaded.file.image.samples = twinray::bench::side_of(spp)?;
         let image = &loaded.file.image;
         let (width, height) = settings.size.unwrap_or((image.width, image.height));
         let (warmup, runs, placements) = (settings.warmup, settings.runs, settings.placements);

@@ -281,7 +281,6 @@ fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8])
         },
     };
     let stages: Vec<StageDesc> = own.iter().map(|&i| stages[i as usize]).collect();
-    let spec_bytes = if stages.iter().any(|s| s.specialization.is_some()) { spec_bytes } else { &[] };
     LibraryDesc { stages, group, spec_bytes }
 }
 

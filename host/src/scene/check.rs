@@ -92,8 +92,8 @@ pub fn check(scene: &SceneFile) -> Checked {
     check_renderer(scene)?;
     for name in scene.features.iter().flatten() {
         if twinray_shared::features::by_name(name).is_none() {
-            let known: Vec<&str> = twinray_shared::features::FEATURES.iter().map(|f| f.name).collect();
-            return Err(format!("features: no feature {name:?} (the features are {})", known.join(", ")));
+            let known = twinray_shared::features::names(twinray_shared::features::ALL);
+            return Err(format!("features: no feature {name:?} (the features are {known})"));
         }
     }
     color("background", scene.background)?;

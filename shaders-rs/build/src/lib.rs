@@ -121,13 +121,13 @@ fn nightly(program: &str) -> Command {
 
 /// The GLSL define that builds a set without feature `name` (`-DTWINRAY_WITHOUT_TEXTURES`), which
 /// the generated layout include reads (`twinray_shared::glsl`).
-fn glsl_define(name: &str) -> String {
-    format!("-DTWINRAY_WITHOUT_{}", name.replace('-', "_").to_uppercase())
+fn glsl_define(feature: &twinray_shared::features::Feature) -> String {
+    format!("-DTWINRAY_WITHOUT_{}", feature.macro_name())
 }
 
-/// The features of `without`, each as `f(name)`.
-fn without_names(without: u32, f: impl Fn(&str) -> String) -> Vec<String> {
-    twinray_shared::features::FEATURES.iter().filter(|x| without & x.bit != 0).map(|x| f(x.name)).collect()
+/// The features of `without`, each as `f(feature)`.
+fn without_names(without: u32, f: impl Fn(&twinray_shared::features::Feature) -> String) -> Vec<String> {
+    twinray_shared::features::FEATURES.iter().filter(|x| without & x.bit != 0).map(f).collect()
 }
 
 fn build_rust(root: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
@@ -145,7 +145,7 @@ fn build_rust(root: &Path, out: &Path, output: Output, without: u32) -> Result<(
     )?;
     // spirv-builder looks for librustc_codegen_spirv.so on the library path.
     let deps = target.join("release");
-    let features = without_names(without, |name| format!("without-{name}"));
+    let features = without_names(without, |feature| format!("without-{}", feature.name));
     // A target folder of its own for other features, so that switching does not rebuild both.
     let shader_target = if without == 0 { cache.join("shader-target") } else { cache.join("shader-target-without") };
     run_tool(
@@ -239,7 +239,7 @@ mod tests {
             without_names(TEXTURES | ALPHA_MASKS, glsl_define),
             ["-DTWINRAY_WITHOUT_TEXTURES", "-DTWINRAY_WITHOUT_ALPHA_MASKS"]
         );
-        assert_eq!(without_names(TEXTURES, |n| format!("without-{n}")), ["without-textures"]);
-        assert!(without_names(0, |n| n.to_string()).is_empty());
+        assert_eq!(without_names(TEXTURES, |f| format!("without-{}", f.name)), ["without-textures"]);
+        assert!(without_names(0, |f| f.name.to_string()).is_empty());
     }
 }

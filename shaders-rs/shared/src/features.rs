@@ -76,12 +76,22 @@ impl Features {
     }
 }
 
+impl Feature {
+    /// The feature's name in GLSL macros: `TEXTURES` in `FEATURE_TEXTURES`,
+    /// `HAS_FEATURE_TEXTURES` and `TWINRAY_WITHOUT_TEXTURES`.
+    #[cfg(not(target_arch = "spirv"))]
+    pub fn macro_name(&self) -> String {
+        self.name.replace('-', "_").to_uppercase()
+    }
+}
+
 /// The feature named `name`.
 pub fn by_name(name: &str) -> Option<&'static Feature> {
     FEATURES.iter().find(|f| f.name == name)
 }
 
-/// The names of the features in `bits`, comma-separated ("none" for none).
+/// The names of the features in `bits`, comma-separated ("none" for none); `names(ALL)` lists
+/// every feature.
 #[cfg(not(target_arch = "spirv"))]
 pub fn names(bits: u32) -> String {
     let named: Vec<&str> = FEATURES.iter().filter(|f| bits & f.bit != 0).map(|f| f.name).collect();

@@ -234,7 +234,7 @@ pub fn layout_include() -> Result<String, String> {
 fn features_glsl(s: &mut String) -> std::fmt::Result {
     s.push_str("layout(constant_id = SPEC_FEATURES) const uint FEATURES = FEATURES_ALL;\n");
     for f in crate::features::FEATURES {
-        let name = f.name.replace('-', "_").to_uppercase();
+        let name = f.macro_name();
         writeln!(s, "#define FEATURE_{name} {}u", f.bit)?;
         writeln!(s, "#ifdef TWINRAY_WITHOUT_{name}\n#define HAS_FEATURE_{name} false\n#else")?;
         writeln!(s, "#define HAS_FEATURE_{name} ((FEATURES & FEATURE_{name}) != 0u)\n#endif")?;
