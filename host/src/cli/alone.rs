@@ -65,7 +65,8 @@ pub fn for_scene(
     };
     let time_alone = time_alone(global, settings, vec![scene], on);
     let placements = opts.placements;
-    let isolation = twinray::bench::Isolation { processes, placements, alone_in: on, time_alone };
+    let first = opts.first_placement;
+    let isolation = twinray::bench::Isolation { processes, placements, first, alone_in: on, time_alone };
     ((processes > 0).then_some(isolation), cache)
 }
 
@@ -99,14 +100,19 @@ fn device_timer(
 ) -> impl Fn(usize, u32, &ShaderSet, u32) -> twinray::Result<Vec<f64>> + Send + Sync + 'static {
     let options = crate::session::options(global);
     move |scene, spp, set, first| {
+        let start = std::time::Instant::now();
         let ctx = twinray::vk::context::Context::new(&options)?;
+        let made_ms = start.elapsed().as_secs_f64() * 1e3;
         let mut loaded = twinray::scene::Scene::load(Some(&scenes[scene]))?;
+        let loaded_ms = start.elapsed().as_secs_f64() * 1e3;
         loaded.file.image.samples = twinray::bench::side_of(spp)?;
         let image = &loaded.file.image;
         let (width, height) = settings.size.unwrap_or((image.width, image.height));
         let (warmup, runs, placements) = (settings.warmup, settings.runs, settings.placements);
         let opts = RenderOptions { width, height, warmup, runs, placements, first_placement: first };
         let out = twinray::render_sets(&ctx, &loaded, std::slice::from_ref(set), &opts)?;
+        let total_ms = start.elapsed().as_secs_f64() * 1e3;
+        log::debug!("{set} alone on a device from place {first}: device {made_ms:.0} ms, scene loaded at {loaded_ms:.0} ms, timed by {total_ms:.0} ms");
         Ok(out[0].placements.median_ms.clone())
     }
 }

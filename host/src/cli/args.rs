@@ -184,7 +184,7 @@ pub struct CompareArgs {
     #[command(flatten)]
     pub animation: AnimationArgs,
     /// Time each set alone in N processes of its own (child `twinray bench` runs of the scene,
-    /// each with --placements placements), in rounds that alternate the sets' order, and take
+    /// each with --placements placements), in rounds of alternating order, and take
     /// the ratio's interval over the rounds, as `bench --processes` does. 0: both sets timed in
     /// this process. Not with --frames, --frame, --eye or --look-at (the child takes none).
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
@@ -360,7 +360,8 @@ pub struct BenchArgs {
     #[arg(long, value_enum, default_value = "all")]
     pub images: twinray::bench::Images,
     /// Time each set alone in N processes of its own (each with --placements placements), in
-    /// rounds that alternate the sets' order, and take every ratio's interval over the rounds:
+    /// rounds ordered as the rows of a Williams design (for three sets a multiple of 6 balances
+    /// every set's position), and take every ratio's interval over the rounds:
     /// sets timed in one process can settle into a regime that favours one of them
     /// (docs/measuring.md). 0: every set timed in this process.
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
@@ -368,8 +369,8 @@ pub struct BenchArgs {
     #[command(flatten)]
     pub alone: AloneArgs,
     /// Make the spacers of placement N first, N+1 next, and so on (see `compare
-    /// --placements`): where in the layouts the placements start. --processes gives each of
-    /// its processes its own start; give it to repeat one of them.
+    /// --placements`): where in the layouts the placements start. With --processes every
+    /// process starts N further on, so that a second run times places the first did not.
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_PLACEMENTS) * 64))]
     pub first_placement: u32,
 }

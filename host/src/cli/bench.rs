@@ -63,10 +63,6 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         return Err(Error::Input("--spp needs at least one sample count".into()).into());
     }
     twinray::reference::image::frames(args.reference_spp)?;
-    if args.processes > 0 && args.first_placement > 0 {
-        let message = "--first-placement: with --processes each process starts at a placement of its own (give it to a bench without --processes to repeat one)";
-        return Err(Error::Input(message.into()).into());
-    }
     if args.runs < 10 {
         return Err(Error::Input(format!("--runs must be at least 10 (got {})", args.runs)).into());
     }
@@ -82,6 +78,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     let isolation = (args.processes > 0).then(|| bench::Isolation {
         processes: args.processes,
         placements: args.placements,
+        first: args.first_placement,
         alone_in: args.alone.alone_in,
         time_alone: crate::alone::time_alone(
             global,

@@ -4,10 +4,11 @@
 //! Where a device's rounds start fixes the times of all its places (a regime; docs/measuring.md,
 //! *A regime is where a device starts*), so one process's places do not sample what other
 //! starts would give. With isolation each set is timed in `processes` fresh processes or
-//! devices of its own, in rounds that alternate the sets' order; a ratio's interval is taken
-//! over the rounds, the processes of a round being one paired observation. Every process
-//! starts at rounds of its own ([`Isolation::first_placement`]), a set's and its salted copy's
-//! alike, so that no two time the same places.
+//! devices of its own, in rounds ordered by the rows of a Williams design, as in one process
+//! (`placement::design`); a ratio's interval is taken over the rounds, the processes of a round
+//! being one paired observation. Every process starts at rounds of its own
+//! ([`Isolation::first_placement`]), a set's and its salted copy's alike, so that no two time
+//! the same places.
 
 use super::placement::Retimed;
 use super::{render_sets, PlacementTimes, RenderOptions, RenderOutput};
@@ -58,6 +59,9 @@ pub struct Isolation {
     pub processes: u32,
     /// Placements each process makes.
     pub placements: u32,
+    /// Where the first process starts (`--first-placement`): a second run starts past the
+    /// first's places, so that it times others.
+    pub first: u32,
     /// Whether each "process" is a child process or a fresh device in this one.
     pub alone_in: AloneIn,
     pub time_alone: Arc<TimeAlone>,
@@ -74,7 +78,7 @@ impl Isolation {
     /// (`--first-placement`): past every place of the processes before it, so that no two
     /// processes, a set's and its salted copy's included, time the same places.
     pub fn first_placement(&self, round: u32, set: usize, sets: usize) -> u32 {
-        (round * sets.max(1) as u32 + set as u32) * self.placements.max(1)
+        self.first + (round * sets.max(1) as u32 + set as u32) * self.placements.max(1)
     }
 
     /// Replaces the times of `outputs` (one per set of `sets`) with each set's times alone:
@@ -90,10 +94,19 @@ impl Isolation {
         let time = |i: usize, round: usize| (self.time_alone)(scene, spp, &sets[i].original(), firsts[i][round]);
         let mut rounds = vec![Vec::new(); sets.len()];
         let mut positions = vec![Vec::new(); sets.len()];
+        // The rows of a Williams design, as in one process: with three sets, forwards and
+        // backwards alone would keep the second set in the middle of every round.
+        let design = super::placement::design(n);
+        if self.processes > 1 && !(self.processes as usize).is_multiple_of(design.len()) {
+            log::warn!(
+                "{} {} per set for {n} sets: the orders balance every set's position only over a multiple of {}",
+                self.processes,
+                self.alone_in.plural(),
+                design.len()
+            );
+        }
         for round in 0..self.processes as usize {
-            let order: Vec<usize> =
-                if round % 2 == 0 { (0..sets.len()).collect() } else { (0..sets.len()).rev().collect() };
-            for (position, &i) in order.iter().enumerate() {
+            for (position, &i) in design[round % design.len()].iter().enumerate() {
                 rounds[i].push(time(i, round)?);
                 positions[i].push(position as u32);
             }

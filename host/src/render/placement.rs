@@ -127,21 +127,53 @@ impl Spacers {
     }
 }
 
-/// A place whose making kept the GPU idle longer than this warms up for `MIN_WARM_MS`, not
-/// `PLACE_WARM_MS`: on the H200 a place made in 0.9 s (spacers compiled cold) timed 1.57 times
-/// slower than its neighbours, as at a clock of about 1260 MHz instead of 1980
-/// (`bench/reports/issue53-places/`).
-pub const LONG_GAP_MS: f64 = 250.0;
+/// A GPU idle longer than this since its last warmed trace warms up for `MIN_WARM_MS` again,
+/// not `PLACE_WARM_MS`: on the H200 a place made in 0.9 s (spacers compiled cold) timed 1.57
+/// times slower than its neighbours, as at a clock of about 1260 MHz instead of 1980
+/// (`bench/reports/issue53-places/`). On the H100 a fresh device of `--alone-in devices`,
+/// made about 0.3 s after the last one's timed traces, timed its set within 0.2% after 100 ms
+/// of warm-up as after 1000 ms, at 32 first places of two scenes
+/// (`bench/reports/issue53-table/`, `device-warm.sh`).
+pub const LONG_GAP_MS: f64 = 500.0;
+
+/// When each device of this process last ended a warmed trace (name, time): the GPU's clocks are
+/// the physical device's, so a fresh logical device made right after another's timing finds
+/// them up.
+static LAST_WARM: std::sync::Mutex<Vec<(String, std::time::Instant)>> = std::sync::Mutex::new(Vec::new());
+
+/// Records that `ctx`'s GPU has just ended traces that were warmed up: its clocks are up.
+pub fn note_warm(ctx: &Context) {
+    note_warm_of(&ctx.info.name);
+}
+
+/// Milliseconds since `ctx`'s GPU last ended warmed traces (infinite if it has not).
+pub fn idle_ms(ctx: &Context) -> f64 {
+    idle_ms_of(&ctx.info.name)
+}
+
+fn note_warm_of(device: &str) {
+    let mut last = LAST_WARM.lock().unwrap_or_else(|e| e.into_inner());
+    last.retain(|(name, _)| name != device);
+    last.push((device.to_string(), std::time::Instant::now()));
+}
+
+fn idle_ms_of(device: &str) -> f64 {
+    let last = LAST_WARM.lock().unwrap_or_else(|e| e.into_inner());
+    let at = last.iter().find(|(name, _)| name == device);
+    at.map_or(f64::INFINITY, |(_, at)| at.elapsed().as_secs_f64() * 1e3)
+}
 
 /// The GPU milliseconds of warm-up traces a place takes at least, when any are asked for:
-/// `MIN_WARM_MS` until the clocks are up, after a making of `made_ms` over [`LONG_GAP_MS`], and
-/// on a CPU device (lavapipe) at every place; else `PLACE_WARM_MS` (each as its environment
-/// variable overrides it). On lavapipe (2 cores) places warmed for 20 ms timed in bursts 1.3
-/// to 1.5 times slower: the interval of `tests/timing.rs`'s doubled ray generation reached
-/// 0.56 to 0.87 over 8 runs (2 over the test's 0.8), and 0.54 to 0.73 with 1000 ms.
-pub fn warm_floor(ctx: &Context, clocks_up: bool, made_ms: f64) -> Result<f64> {
+/// `PLACE_WARM_MS` if the GPU ended warmed traces at most [`LONG_GAP_MS`] ago (its clocks are
+/// up), else `MIN_WARM_MS`, and always `MIN_WARM_MS` on a CPU device (lavapipe), where places
+/// warmed for 20 ms timed in bursts 1.3 to 1.5 times slower: the interval of
+/// `tests/timing.rs`'s doubled ray generation reached 0.56 to 0.87 over 8 runs (2 over the
+/// test's 0.8), and 0.54 to 0.73 with 1000 ms. Each as its environment variable overrides it.
+pub fn warm_floor(ctx: &Context) -> Result<f64> {
     let cpu = ctx.info.cpu_threads.is_some();
-    if clocks_up && made_ms <= LONG_GAP_MS && !cpu {
+    let idle = idle_ms(ctx);
+    log::debug!("the GPU idle for {idle:.0} ms since its last warmed trace");
+    if idle <= LONG_GAP_MS && !cpu {
         super::prepare::place_warm_ms()
     } else {
         super::prepare::min_warm_ms()
@@ -214,6 +246,18 @@ impl PlacementTimes {
 #[cfg(test)]
 mod tests {
     use super::orders;
+
+    #[test]
+    fn a_gpu_is_idle_since_its_own_last_warmed_trace() {
+        // Names of no real device, so that a render elsewhere in the test binary cannot
+        // interfere; the GPU's clocks are the physical device's, so another device's warmed
+        // trace says nothing about this one.
+        assert_eq!(super::idle_ms_of("test GPU a"), f64::INFINITY);
+        super::note_warm_of("test GPU a");
+        let idle = super::idle_ms_of("test GPU a");
+        assert!((0.0..super::LONG_GAP_MS).contains(&idle), "{idle}");
+        assert_eq!(super::idle_ms_of("test GPU b"), f64::INFINITY);
+    }
 
     #[test]
     fn every_set_takes_every_place_and_follows_every_other_equally_often() {

@@ -59,7 +59,8 @@ pub(crate) fn made_as_context_says(ctx: &Context, sets: &[ShaderSet]) -> Vec<(Sh
 /// alone for its output the first time, warmed up, timed and released with its spacers. The
 /// GPU's clocks are brought up once, by a warm-up of at least `MIN_WARM_MS` whose times are
 /// dropped (with several rounds: a place of its own before the first; with one: the first
-/// place's warm-up); every later place warms up as `placement::warm_floor` says. Images and
+/// place's warm-up), unless the GPU ended warmed traces moments ago; every place warms up as
+/// `placement::warm_floor` says. Images and
 /// hit ids are each set's first place's.
 pub fn render_made(
     ctx: &Arc<Context>,
@@ -81,10 +82,12 @@ pub fn render_made(
     let size = (opts.width, opts.height);
     let uploaded = upload_shared(ctx, scene, size)?;
     let outputs = SharedOutputs::new(ctx, opts)?;
-    // With several rounds, the clocks are brought up first, at a place of its own.
-    let mut clocks_up = opts.placements > 1 && opts.warmup > 0;
-    if clocks_up {
+    // With several rounds, the clocks are brought up first, at a place of its own, unless
+    // this GPU ended warmed traces moments ago (the last device's, with `--alone-in devices`).
+    let warmed = opts.warmup > 0;
+    if warmed && opts.placements > 1 && placement::idle_ms(ctx) > placement::LONG_GAP_MS {
         warm_up(ctx, (&uploaded, &outputs), &sets[orders[0][0]], opts)?;
+        placement::note_warm(ctx);
     }
     let mut outputs_of: Vec<Option<RenderOutput>> = (0..sets.len()).map(|_| None).collect();
     let total = (orders.len() * sets.len()) as u64;
@@ -100,11 +103,13 @@ pub fn render_made(
             if first {
                 render.trace_output(ctx, &outputs, size)?;
             }
-            let warm_ms = placement::warm_floor(ctx, clocks_up, placed.made_ms)?;
+            let warm_ms = placement::warm_floor(ctx)?;
             let trace = render.timed_trace_after(ctx, size, (opts.warmup, opts.runs), warm_ms)?;
             let _timing = activity::doing(format!("the timed traces of {}", render.label));
             tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
-            clocks_up |= opts.warmup > 0;
+            if warmed {
+                placement::note_warm(ctx);
+            }
             let slot = &mut outputs_of[i];
             if first {
                 let mut out = render.output(scene, opts, trace.warmup, uploaded.accel)?;
