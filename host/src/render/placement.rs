@@ -83,14 +83,17 @@ pub fn place(round: u32, set: usize, sets: usize) -> u64 {
 /// The most spacer pipelines a place makes before the set it times.
 pub const MAX_SPACERS: usize = 7;
 
-/// Which of `kinds` timed sets each spacer of place `place` copies: 0 to [`MAX_SPACERS`]
+/// Which of `kinds` timed sets each spacer of place `place` copies: 1 to [`MAX_SPACERS`]
 /// spacers, each of a kind drawn with a seed fixed per place, so that a command repeats its
 /// places exactly and the pipelines made before a timed one are of every kind timed (on the
 /// H100 spacers of the GLSL set alone never reached a regime some set lists made; see
-/// docs/measuring.md).
+/// docs/measuring.md). Never none: a set made first on a fresh device times in a regime of
+/// its own, 0.884 to 1.074 times its time after a spacer on the H100, while its devices with
+/// spacers agree within 0.26% (median); 16 draws of 0 to 7 spacers caught that regime in
+/// different numbers, and two runs of the table disagreed (bench/reports/issue53-table).
 pub fn spacer_sets(place: u64, kinds: usize) -> Vec<usize> {
     let mut rng = SplitMix64(SEED ^ place.wrapping_mul(0x9e37_79b9_7f4a_7c15));
-    let count = (rng.next_u64() % (MAX_SPACERS as u64 + 1)) as usize;
+    let count = 1 + (rng.next_u64() % MAX_SPACERS as u64) as usize;
     (0..count).map(|_| (rng.next_u64() % kinds.max(1) as u64) as usize).collect()
 }
 
@@ -303,9 +306,11 @@ mod tests {
         }
         let draws: Vec<Vec<usize>> = (0..200).map(|p| super::spacer_sets(p, 3)).collect();
         assert!(draws.iter().all(|d| d.len() <= super::MAX_SPACERS && d.iter().all(|&k| k < 3)));
-        for count in 0..=super::MAX_SPACERS {
+        // Never none: a set made first on a fresh device times in a regime of its own.
+        assert!(draws.iter().all(|d| !d.is_empty()), "every place makes a spacer");
+        for count in 1..=super::MAX_SPACERS {
             let n = draws.iter().filter(|d| d.len() == count).count();
-            assert!((10..40).contains(&n), "{n} of 200 places make {count} spacers");
+            assert!((12..45).contains(&n), "{n} of 200 places make {count} spacers");
         }
         for kind in 0..3 {
             assert!(draws.iter().flatten().any(|&k| k == kind), "spacers of every kind timed");
