@@ -27,7 +27,7 @@ def geo(values):
 
 
 first_vs_after, spreads = [], []
-for path in sorted(glob.glob(os.path.join(here, "raw", "t*", "*", "results.json"))):
+for path in sorted(glob.glob(os.path.join(here, "raw", "t[12]*", "*", "results.json"))):
     for row in json.load(open(path))["rows"]:
         p = row["placements"]
         pairs = [(spacers(f), t) for f, t in zip(p["first_placement"], p["median_ms"])]
@@ -86,3 +86,15 @@ for k in sorted(one):
     if l > 1.0:
         print(f"  Rust slower, both runs' intervals above 1: {k[0]} {k[1]} spp {r:.4f} ({l:.4f} to {h:.4f}), run 2 {two[k][0]:.4f}"
               if two[k][1] > 1.0 else f"  run 1 only above 1: {k[0]} {k[1]} spp {r:.4f}, run 2 {two[k][0]:.4f} ({two[k][1]:.4f} to {two[k][2]:.4f})")
+
+# Run 3 (`device-table.sh t3 glsl,rust 2000 150 16 lights torus`), built with every place
+# after 1 to 7 spacers: its paired intervals against runs 1 and 2 over their spaced devices.
+for path in sorted(glob.glob(os.path.join(here, "raw", "t3", "*", "results.json"))):
+    for q in json.load(open(path))["ratios"]:
+        iv, key = q["interval"], (q["scene"], q["spp"])
+        if (q["a"], q["b"]) == ("glsl", "rust"):
+            r3 = (1 / iv["ratio"], 1 / iv["high"], 1 / iv["low"])
+            print(f"run 3 {key[0]} {key[1]} spp: Rust/GLSL {r3[0]:.4f} ({r3[1]:.4f} to {r3[2]:.4f}); "
+                  f"runs 1 and 2 over spaced devices {one[key][0]:.4f} and {two[key][0]:.4f}")
+        elif q["null_control"]:
+            print(f"run 3 {key[0]} {key[1]} spp: null {iv['ratio']:.4f} ({iv['low']:.4f} to {iv['high']:.4f})")
