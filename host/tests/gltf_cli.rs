@@ -5,7 +5,7 @@
 
 mod common;
 
-use common::assert_bad_input;
+use common::{assert_bad_input, twinray};
 use std::path::{Path, PathBuf};
 
 use twinray::scene::gltf::ASSIMP_TEST_MODELS as MODELS;
@@ -50,4 +50,97 @@ fn every_command_refuses(malformed: &[PathBuf]) {
             assert_bad_input(command, &[file]);
         }
     }
+}
+
+/// A quad: four float positions and six byte indices, padded to 56 bytes.
+fn quad_bytes() -> Vec<u8> {
+    let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+    let mut bytes: Vec<u8> = positions.iter().flat_map(|v| v.to_le_bytes()).collect();
+    bytes.extend([0, 1, 2, 0, 2, 3, 0, 0]);
+    bytes
+}
+
+/// A glTF model of the quad whose buffer is the file at `uri`.
+fn quad_gltf(uri: &str) -> String {
+    format!(
+        r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": 56, "uri": "{uri}"}}],
+        "bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 8}}],
+        "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+                      {{"bufferView": 1, "componentType": 5121, "count": 6, "type": "SCALAR"}}],
+        "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "indices": 1}}]}}],
+        "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}], "scene": 0}}"#
+    )
+}
+
+/// A model cannot lead twinray outside its folder: a glTF buffer, an OBJ's material library
+/// or texture, or a scene's mesh file or texture named by an absolute path, by `..` (also
+/// %-escaped) out of the folder, or through a symbolic link to a file or folder elsewhere ends
+/// with exit code 2 and one line naming it, and nothing of the file is read. The same file
+/// inside the folder renders, and so does the one outside when `--asset-root` holds both.
+#[test]
+fn a_model_cannot_lead_twinray_outside_its_folder() {
+    let dir = tempfile::tempdir().unwrap();
+    let (model, outside) = (dir.path().join("model"), dir.path().join("outside"));
+    for folder in [&model, &outside] {
+        std::fs::create_dir_all(folder).unwrap();
+        std::fs::write(folder.join("quad.bin"), quad_bytes()).unwrap();
+        std::fs::write(folder.join("quad.mtl"), "newmtl a\nKd 1 1 1\n").unwrap();
+        std::fs::write(folder.join("quad.obj"), "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
+    }
+    for ext in ["bin", "mtl", "obj"] {
+        std::os::unix::fs::symlink(outside.join(format!("quad.{ext}")), model.join(format!("link.{ext}"))).unwrap();
+    }
+    std::os::unix::fs::symlink(&outside, model.join("away")).unwrap();
+    let absolute = outside.join("quad.bin").display().to_string();
+    let write = |name: &str, text: String| {
+        let path = model.join(name);
+        std::fs::write(&path, text).unwrap();
+        path.display().to_string()
+    };
+    let obj = |mtl: &str, texture: &str| {
+        let material = write(&format!("{mtl}-{}.mtl", texture.len()), format!("newmtl a\nmap_Kd {texture}\n"));
+        let mtl = if mtl.is_empty() { material.rsplit('/').next().unwrap().to_string() } else { mtl.to_string() };
+        format!("mtllib {mtl}\nusemtl a\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nf 1/1 2/1 3/1\n")
+    };
+    let scene = |key: &str, file: &str| {
+        let (shape, texture) = match key {
+            "mesh" => (format!("kind = \"mesh\"\nfile = \"{file}\""), String::new()),
+            _ => ("kind = \"mesh\"\nbuiltin = \"box\"".to_string(), format!("texture = {{ file = \"{file}\" }}\n")),
+        };
+        format!(
+            "[image]\nwidth = 8\nheight = 8\n[camera]\neye = [0.0, 0.0, 5.0]\ntarget = [0.0, 0.0, 0.0]\nup = [0.0, 1.0, 0.0]\nfov_y_degrees = 45.0\n\
+             [materials.m]\nkind = \"diffuse\"\ncolor = [1.0, 1.0, 1.0]\n{texture}[shapes.s]\n{shape}\n\
+             [[objects]]\nshape = \"s\"\nmaterial = \"m\"\n"
+        )
+    };
+    let ways_out = [
+        (absolute.as_str(), "absolute path"),
+        ("../outside/quad.bin", "leads outside"),
+        ("%2E%2E/outside/quad.bin", "leads outside"),
+        ("link.bin", "leads outside"),
+        ("away/quad.bin", "leads outside"),
+        ("/dev/zero", "absolute path"),
+        (".", "not a regular file"),
+    ];
+    for (i, (uri, why)) in ways_out.iter().enumerate() {
+        let gltf = write(&format!("buffer-{i}.gltf"), quad_gltf(uri));
+        assert_bad_input(&["render", &gltf, "--out", "x.png"], &[uri, why]);
+        let name = uri.replace("%2E", ".").replace(".bin", ".mtl");
+        let library = write(&format!("library-{i}.obj"), obj(&name, "none.png"));
+        assert_bad_input(&["render", &library, "--out", "x.png"], &[&name, why]);
+        let name = uri.replace("%2E", ".");
+        let texture = write(&format!("texture-{i}.obj"), obj("", &name));
+        assert_bad_input(&["render", &texture, "--out", "x.png"], &[&name, why]);
+        let mesh = write(&format!("mesh-{i}.toml"), scene("mesh", &name.replace(".bin", ".obj")));
+        assert_bad_input(&["render", &mesh, "--out", "x.png"], &[&name.replace(".bin", ".obj"), why]);
+        let texture = write(&format!("texture-{i}.toml"), scene("texture", &name));
+        assert_bad_input(&["render", &texture, "--out", "x.png"], &[&name, why]);
+    }
+    let renders = |args: &[&str]| {
+        let out = twinray(&[args, &["--width", "8", "--height", "8", "--out", "x.png"]].concat(), dir.path());
+        assert!(out.status.success(), "{args:?}: {}", String::from_utf8_lossy(&out.stderr));
+    };
+    renders(&["render", &write("inside.gltf", quad_gltf("quad.bin"))]);
+    let up = write("up.gltf", quad_gltf("../outside/quad.bin"));
+    renders(&["render", &up, "--asset-root", &dir.path().display().to_string()]);
 }

@@ -55,6 +55,11 @@ pub struct GlobalArgs {
     /// More log output (-v info, -vv debug); RUST_LOG overrides.
     #[arg(short, long, global = true, action = clap::ArgAction::Count)]
     pub verbose: u8,
+    /// The folder every file a model or scene names (buffers, images, material libraries,
+    /// textures, meshes, placed models) must lie in [default: the folder of the file that
+    /// names it]. A file elsewhere, by an absolute path, `..` or a symbolic link, is refused.
+    #[arg(long, global = true, value_name = "DIR")]
+    pub asset_root: Option<PathBuf>,
 }
 
 impl GlobalArgs {
@@ -75,6 +80,7 @@ impl GlobalArgs {
         pair("--threads", self.threads.map(|n| n.to_string()));
         pair("--pipeline-cache", self.pipeline_cache.as_ref().map(|p| p.display().to_string()));
         pair("--gpu-timeout", self.gpu_timeout.map(|t| t.as_secs_f64().to_string()));
+        pair("--asset-root", self.asset_root.as_ref().map(|p| p.display().to_string()));
         let switches = [(self.no_pipeline_cache, "--no-pipeline-cache"), (self.no_robust_access, "--no-robust-access")];
         args.extend(switches.into_iter().filter(|(on, _)| *on).map(|(_, flag)| flag.to_string()));
         args

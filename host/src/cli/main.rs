@@ -136,6 +136,10 @@ fn main() -> ExitCode {
     session::show_progress();
     crash::report_crashes();
     let _command = activity::doing(format!("twinray {}", matches.subcommand_name().unwrap_or_default()));
+    if let Some(Err(e)) = cli.global.asset_root.as_deref().map(twinray::util::input::set_asset_root) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
     let result = match cli.command {
         Command::Info { json } => summary::info(&cli.global, json),
         Command::Scenes { json } => summary::scenes(json),

@@ -18,7 +18,7 @@ pub mod shape;
 pub mod texture;
 
 use crate::error::{Error, Result};
-use crate::util::input::{read_text, MAX_TEXT_BYTES};
+use crate::util::input::{confined, read_text, MAX_TEXT_BYTES};
 pub use animation::Animation;
 pub use build::{frame_data, frame_uniform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
 pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
@@ -284,10 +284,11 @@ fn load_textures(file: &mut SceneFile, folder: Option<&Path>) -> std::result::Re
             None => {
                 let folder =
                     folder.ok_or_else(|| format!("material {name:?}: a built-in scene has no texture files"))?;
-                let path = folder.join(&t.file);
+                let path =
+                    confined(folder, &t.file).map_err(|e| format!("material {name:?}: cannot read texture {e}"))?;
                 let limit = mesh::max_mesh_bytes()?;
                 let bytes = crate::util::input::read_bounded(&path, limit)
-                    .map_err(|e| format!("material {name:?}: cannot read texture {}: {e}", path.display()))?;
+                    .map_err(|e| format!("material {name:?}: cannot read texture {:?}: {e}", t.file))?;
                 let image = texture::decode(&t.file, &bytes, true).map_err(|e| format!("material {name:?}: {e}"))?;
                 let image = std::sync::Arc::new(image);
                 decoded.insert(t.file.clone(), image.clone());
@@ -341,7 +342,10 @@ impl MeshFiles {
     fn load(&mut self, name: &str, normals: shape::Normals) -> std::result::Result<MeshData, String> {
         match self {
             MeshFiles::Given(meshes) => meshes.remove(name).ok_or_else(|| format!("no mesh {name:?} in the model")),
-            MeshFiles::Folder(folder) => mesh::load_obj(&folder.join(name), normals),
+            MeshFiles::Folder(folder) => {
+                let path = confined(folder, name).map_err(|e| format!("cannot read mesh file {e}"))?;
+                mesh::load_obj(&path, normals)
+            }
             MeshFiles::Builtin => match BUILTIN_MESH_FILES.iter().find(|(n, _)| *n == name) {
                 Some((_, text)) => mesh::parse_obj(text.as_bytes(), name, normals),
                 None => Err(format!("no built-in mesh file {name:?}")),

@@ -9,6 +9,7 @@ use super::file::{ObjectDesc, SceneFile};
 use super::gltf::{load, mesh_shape, notice};
 use super::mesh::MeshData;
 use super::shape::ShapeDesc;
+use crate::util::input::confined;
 use std::collections::BTreeMap;
 use std::path::Path;
 
@@ -37,8 +38,8 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
     let folder = folder.ok_or("a built-in scene places no glTF files")?;
     let mut owners: Vec<usize> = (0..file.objects.len()).collect();
     for (name, desc) in models {
-        let path = folder.join(&desc.file);
-        let model = load(&path, desc.scene).map_err(|e| format!("shape {name:?}: {}: {e}", path.display()))?;
+        let path = confined(folder, &desc.file).map_err(|e| format!("shape {name:?}: cannot read {e}"))?;
+        let model = load(&path, desc.scene).map_err(|e| format!("shape {name:?}: {}: {e}", desc.file))?;
         notice(&path.display().to_string(), &model.ignored);
         file.shapes.remove(&name);
         // Its grids are objects by now, and name a shape that is gone.

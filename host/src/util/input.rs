@@ -3,7 +3,8 @@
 //! even if the file grows meanwhile.
 
 use std::io::Read;
-use std::path::Path;
+use std::path::{Component, Path, PathBuf};
+use std::sync::OnceLock;
 
 /// Largest scene or probe case file read, in bytes.
 pub const MAX_TEXT_BYTES: u64 = 64 << 20;
@@ -27,6 +28,55 @@ pub fn read_bounded(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
     Ok(bytes)
 }
 
+/// The folder every file a model or scene names must lie in, when the user names one
+/// (`--asset-root`); unset, each naming file's own folder.
+static ASSET_ROOT: OnceLock<PathBuf> = OnceLock::new();
+
+/// Sets the asset root (`--asset-root DIR`), once per process: `dir` must be a folder.
+pub fn set_asset_root(dir: &Path) -> Result<(), String> {
+    let root = dir.canonicalize().map_err(|e| format!("--asset-root {}: {e}", dir.display()))?;
+    if !root.is_dir() {
+        return Err(format!("--asset-root {}: not a folder", dir.display()));
+    }
+    ASSET_ROOT.set(root).map_err(|_| "--asset-root was given twice".to_string())
+}
+
+/// The file `name` names, relative to `folder` (the folder of the model or scene that names
+/// it), if it lies inside the asset root (`--asset-root`, else `folder`) and is a regular
+/// file: an absolute path, a `..` or a symbolic link that leaves the root, and anything but a
+/// regular file are refused. A model cannot lead twinray to read another file of the disk.
+/// The error names `name`, never what the file holds.
+pub fn confined(folder: &Path, name: &str) -> Result<PathBuf, String> {
+    let folder = if folder.as_os_str().is_empty() { Path::new(".") } else { folder };
+    let root = match ASSET_ROOT.get() {
+        Some(root) => root.clone(),
+        None => folder.canonicalize().map_err(|e| format!("the folder {}: {e}", folder.display()))?,
+    };
+    confined_in(&root, folder, name)
+}
+
+fn confined_in(root: &Path, folder: &Path, name: &str) -> Result<PathBuf, String> {
+    let path = Path::new(name);
+    if name.is_empty() {
+        return Err("an empty file name".into());
+    }
+    if path.has_root() || path.components().any(|c| matches!(c, Component::Prefix(_))) {
+        return Err(format!("{name:?} is an absolute path; a model names its files relative to its folder"));
+    }
+    let real = folder.join(path).canonicalize().map_err(|e| format!("{name:?}: {e}"))?;
+    if !real.starts_with(root) {
+        let root = root.display();
+        return Err(format!(
+            "{name:?} leads outside {root} (files a model names must lie there; --asset-root names another folder)"
+        ));
+    }
+    match std::fs::metadata(&real) {
+        Ok(meta) if meta.is_file() => Ok(real),
+        Ok(_) => Err(format!("{name:?} is not a regular file")),
+        Err(e) => Err(format!("{name:?}: {e}")),
+    }
+}
+
 /// As `read_bounded`, as UTF-8 text.
 pub fn read_text(path: &Path, limit: u64) -> Result<String, String> {
     String::from_utf8(read_bounded(path, limit)?).map_err(|e| format!("not UTF-8 text ({e})"))
@@ -35,6 +85,48 @@ pub fn read_text(path: &Path, limit: u64) -> Result<String, String> {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Every way out of a model's folder is refused, by name: absolute paths, `..`, a symbolic
+    /// link to a file outside and one to a folder outside, a device, a folder; a file inside,
+    /// also through `..` that stays inside or a link that does, is found.
+    #[test]
+    fn a_named_file_must_lie_inside_the_root() {
+        let dir = tempfile::tempdir().unwrap();
+        let (root, outside) = (dir.path().join("model"), dir.path().join("secret"));
+        std::fs::create_dir_all(root.join("textures")).unwrap();
+        std::fs::create_dir_all(&outside).unwrap();
+        std::fs::write(root.join("textures/a.png"), b"inside").unwrap();
+        std::fs::write(outside.join("key.bin"), b"outside").unwrap();
+        std::os::unix::fs::symlink(outside.join("key.bin"), root.join("link.bin")).unwrap();
+        std::os::unix::fs::symlink(&outside, root.join("away")).unwrap();
+        std::os::unix::fs::symlink(root.join("textures/a.png"), root.join("near.png")).unwrap();
+        let root = root.canonicalize().unwrap();
+        let at = |folder: &Path, name: &str| confined_in(&root, folder, name);
+        let textures = root.join("textures");
+        assert_eq!(at(&root, "textures/a.png").unwrap(), textures.join("a.png"));
+        assert_eq!(at(&textures, "../textures/./a.png").unwrap(), textures.join("a.png"));
+        assert_eq!(at(&root, "near.png").unwrap(), textures.join("a.png"));
+        let refused = [
+            (outside.join("key.bin").display().to_string(), "absolute path"),
+            ("/etc/passwd".to_string(), "absolute path"),
+            ("../secret/key.bin".to_string(), "leads outside"),
+            ("textures/../../secret/key.bin".to_string(), "leads outside"),
+            ("link.bin".to_string(), "leads outside"),
+            ("away/key.bin".to_string(), "leads outside"),
+            ("textures".to_string(), "not a regular file"),
+            ("missing.png".to_string(), "No such file"),
+            (String::new(), "empty file name"),
+        ];
+        for (name, why) in refused {
+            let e = at(&root, &name).unwrap_err();
+            assert!(e.contains(why) && (name.is_empty() || e.contains(&format!("{name:?}"))), "{name}: {e}");
+            assert!(!e.contains("outside\"") && !e.contains("inside\""), "never the file's bytes: {e}");
+        }
+        // With no asset root set, a model's root is its own folder.
+        std::fs::write(root.join("beside.bin"), b"beside").unwrap();
+        assert!(confined(&root, "beside.bin").is_ok());
+        assert!(confined(&textures, "../beside.bin").unwrap_err().contains("leads outside"), "textures/ is the root");
+    }
 
     #[test]
     fn refuses_devices_directories_and_large_files() {

@@ -4,7 +4,7 @@
 //! refused here, so no accessor can later read past the data it names.
 
 use super::super::mesh::max_mesh_bytes;
-use crate::util::input::read_bounded;
+use crate::util::input::{confined, read_bounded};
 use base64::Engine as _;
 use std::path::Path;
 
@@ -144,8 +144,8 @@ pub fn read_uri(uri: &str, folder: &Path, limit: u64) -> Result<Vec<u8>, String>
     if uri.contains("://") {
         return Err(format!("{uri:?} is not a file beside the model (twinray reads no network URIs)"));
     }
-    let file = folder.join(percent_decoded(uri)?);
-    read_bounded(&file, limit).map_err(|e| format!("cannot read {}: {e}", file.display()))
+    let file = confined(folder, &percent_decoded(uri)?).map_err(|e| format!("cannot read {uri:?}: {e}"))?;
+    read_bounded(&file, limit).map_err(|e| format!("cannot read {uri:?}: {e}"))
 }
 
 /// A relative URI's path with its %XX escapes decoded.

@@ -11,7 +11,7 @@ use super::framing::{self, ignore_found, Model, View};
 use super::gltf::{mesh_shape, DEFAULT_MATERIAL};
 use super::mesh;
 use super::texture::{self, SamplerDesc, TextureDesc};
-use crate::util::input::read_bounded;
+use crate::util::input::{confined, read_bounded};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 use std::sync::Arc;
@@ -35,27 +35,38 @@ pub fn load(path: &Path) -> Result<Model, String> {
     // tobj hands the loader no mutable state: what it read and what it could not go through
     // cells.
     let (spent, unread) = (std::cell::Cell::new(0u64), std::cell::RefCell::new(BTreeSet::new()));
+    let refused = std::cell::RefCell::new(None);
     let mut reader = std::io::BufReader::new(text.as_bytes());
     let (models, materials) = tobj::load_obj_buf(&mut reader, &mesh::OBJ_OPTIONS, |name| {
-        let path = folder.join(local(&name.to_string_lossy()));
+        let name = local(&name.to_string_lossy());
+        let path = match confined(folder, &name) {
+            Ok(path) => path,
+            Err(e) => {
+                refused.borrow_mut().get_or_insert(format!("material library: cannot read {e}"));
+                return Ok(Default::default());
+            }
+        };
         match read_bounded(&path, budget.saturating_sub(spent.get())) {
             Ok(bytes) => {
                 spent.set(spent.get() + bytes.len() as u64);
                 Ok(mtl::parse(&String::from_utf8_lossy(&bytes)))
             }
             Err(e) => {
-                unread.borrow_mut().insert(format!("material library {} ({e}: default material)", path.display()));
+                unread.borrow_mut().insert(format!("material library {name:?} ({e}: default material)"));
                 Ok(Default::default())
             }
         }
     })
     .map_err(|e| format!("cannot read: {e}"))?;
+    if let Some(refused) = refused.into_inner() {
+        return Err(refused);
+    }
     budget = budget.saturating_sub(spent.get());
     let mut ignored = unread.into_inner();
     let materials = materials.unwrap_or_default();
     let mut described = BTreeMap::new();
     let mut decoded = BTreeMap::new();
-    let mut files = Files { folder, budget: &mut budget, decoded: &mut decoded };
+    let mut files = Files { folder, budget: &mut budget, decoded: &mut decoded, refused: None };
     let (mut meshes, mut objects) = (BTreeMap::new(), Vec::new());
     for (i, m) in models.iter().enumerate().filter(|(_, m)| !m.mesh.indices.is_empty()) {
         let shape = format!("group {i} {:?}", m.name);
@@ -71,6 +82,9 @@ pub fn load(path: &Path) -> Result<Model, String> {
         if !m.mesh.normals.is_empty() {
             ignored.insert("vertex normals (vn: flat normals used)".into());
         }
+    }
+    if let Some(refused) = files.refused {
+        return Err(refused);
     }
     if objects.is_empty() {
         return Err("it has no faces".into());
@@ -96,6 +110,8 @@ struct Files<'a> {
     folder: &'a Path,
     budget: &'a mut u64,
     decoded: &'a mut BTreeMap<String, Arc<texture::TextureImage>>,
+    /// A texture refused for lying outside the model's folder: the load fails with it.
+    refused: Option<String>,
 }
 
 /// The name of `mtl`'s twinray material, added to `described` the first time.
@@ -139,9 +155,15 @@ fn read_texture(file: &str, files: &mut Files) -> Result<Box<TextureDesc>, Strin
     let image = match files.decoded.get(&file) {
         Some(image) => image.clone(),
         None => {
-            let path = files.folder.join(&file);
-            let bytes = read_bounded(&path, *files.budget)
-                .map_err(|e| format!("cannot read texture {}: {e}", path.display()))?;
+            let path = match confined(files.folder, &file) {
+                Ok(path) => path,
+                Err(e) => {
+                    let refused = format!("texture: cannot read {e}");
+                    files.refused.get_or_insert(refused.clone());
+                    return Err(refused);
+                }
+            };
+            let bytes = read_bounded(&path, *files.budget).map_err(|e| format!("cannot read texture {file:?}: {e}"))?;
             *files.budget = files.budget.saturating_sub(bytes.len() as u64);
             let image = Arc::new(texture::decode(&file, &bytes, true).map_err(|e| e.to_string())?);
             files.decoded.insert(file.clone(), image.clone());
