@@ -273,6 +273,9 @@ impl Scene {
 /// come decoded.
 fn load_textures(file: &mut SceneFile, folder: Option<&Path>) -> std::result::Result<(), String> {
     let mut decoded: BTreeMap<String, std::sync::Arc<texture::TextureImage>> = BTreeMap::new();
+    // Every texture file together, encoded and decoded, within the mesh file limit (asked for
+    // when the first file is read).
+    let mut budget = None;
     let textures =
         file.materials.iter_mut().flat_map(|(name, m)| m.textures_mut().into_iter().flatten().map(move |t| (name, t)));
     for (name, t) in textures {
@@ -286,10 +289,13 @@ fn load_textures(file: &mut SceneFile, folder: Option<&Path>) -> std::result::Re
                     folder.ok_or_else(|| format!("material {name:?}: a built-in scene has no texture files"))?;
                 let path =
                     confined(folder, &t.file).map_err(|e| format!("material {name:?}: cannot read texture {e}"))?;
-                let limit = mesh::max_mesh_bytes()?;
-                let bytes = crate::util::input::read_bounded(&path, limit)
+                let mut left = budget.map_or_else(mesh::max_mesh_bytes, Ok)?;
+                let bytes = crate::util::input::read_bounded(&path, left)
                     .map_err(|e| format!("material {name:?}: cannot read texture {:?}: {e}", t.file))?;
-                let image = texture::decode(&t.file, &bytes, true).map_err(|e| format!("material {name:?}: {e}"))?;
+                left = left.saturating_sub(bytes.len() as u64);
+                let image = texture::decode(&t.file, &bytes, true, &mut left)
+                    .map_err(|e| format!("material {name:?}: {e}"))?;
+                budget = Some(left);
                 let image = std::sync::Arc::new(image);
                 decoded.insert(t.file.clone(), image.clone());
                 image

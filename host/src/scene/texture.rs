@@ -91,26 +91,47 @@ impl std::fmt::Debug for TextureImage {
     }
 }
 
-/// Decodes `bytes` (PNG or JPEG), called `name` in errors, as RGBA: refused with the cause
-/// named if it is neither, damaged, or larger than [`MAX_SIDE`] on a side.
-pub fn decode(name: &str, bytes: &[u8], srgb: bool) -> Result<TextureImage> {
+/// Bytes an image of `width` x `height` takes decoded, as RGBA with its mip chain (which adds
+/// at most a third).
+pub fn decoded_bytes(width: u32, height: u32) -> u64 {
+    let level0 = u64::from(width) * u64::from(height) * 4;
+    level0 + level0.div_ceil(3)
+}
+
+/// Decodes `bytes` (PNG or JPEG), called `name` in errors, as RGBA, charging what it takes
+/// decoded ([`decoded_bytes`]) to `budget` first, by the size its header gives: refused with
+/// the cause named if it is neither, damaged, larger than [`MAX_SIDE`] on a side, or larger
+/// decoded than what is left of the budget (a small file can hold a huge image).
+pub fn decode(name: &str, bytes: &[u8], srgb: bool, budget: &mut u64) -> Result<TextureImage> {
     let refuse = |why: String| Error::Input(format!("texture {name}: {why}"));
-    let mut reader = image::ImageReader::new(std::io::Cursor::new(bytes))
-        .with_guessed_format()
-        .map_err(|e| refuse(e.to_string()))?;
+    let reader = || {
+        let reader = image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format();
+        let reader = reader.map_err(|e| refuse(e.to_string()))?;
+        match reader.format() {
+            Some(_) => Ok(reader),
+            None => Err(refuse("neither a PNG nor a JPEG image".into())),
+        }
+    };
+    let (width, height) = reader()?.into_dimensions().map_err(|e| refuse(e.to_string()))?;
+    let charged = decoded_bytes(width.min(MAX_SIDE), height.min(MAX_SIDE));
+    if charged > *budget {
+        let left = *budget;
+        return Err(refuse(format!(
+            "{width}x{height} takes {charged} bytes decoded, over the {left} bytes left of the model's budget (TWINRAY_MAX_MESH_BYTES raises it)"
+        )));
+    }
+    let mut reader = reader()?;
     let mut limits = image::Limits::default();
     limits.max_image_width = Some(MAX_SIDE);
     limits.max_image_height = Some(MAX_SIDE);
     limits.max_alloc = Some(u64::from(MAX_SIDE) * u64::from(MAX_SIDE) * 4);
     reader.limits(limits);
-    if reader.format().is_none() {
-        return Err(refuse("neither a PNG nor a JPEG image".into()));
-    }
     let decoded = reader.decode().map_err(|e| refuse(e.to_string()))?.into_rgba8();
     let (width, height) = decoded.dimensions();
     if width == 0 || height == 0 {
         return Err(refuse("an image with no pixels".into()));
     }
+    *budget = budget.saturating_sub(charged.max(decoded_bytes(width, height)));
     Ok(TextureImage { name: name.to_string(), width, height, rgba: decoded.into_raw(), srgb })
 }
 
@@ -176,6 +197,25 @@ mod tests {
         TextureImage { name: "t".into(), width, height, rgba, srgb }
     }
 
+    /// A small file of a large image is charged its decoded size from its header, before it
+    /// is decoded: refused over the budget, and the budget spent when it fits.
+    #[test]
+    fn an_image_is_charged_its_decoded_size_before_it_is_decoded() {
+        let mut png = Vec::new();
+        let pixels = image::GrayImage::new(512, 256);
+        pixels.write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
+        assert!(png.len() < 4096, "{} bytes encoded", png.len());
+        let size = decoded_bytes(512, 256);
+        assert_eq!(size, 512 * 256 * 4 * 4 / 3 + 1);
+        let mut budget = size - 1;
+        let e = decode("big.png", &png, true, &mut budget).unwrap_err().to_string();
+        assert!(e.contains("512x256") && e.contains(&format!("{size} bytes decoded")), "{e}");
+        assert_eq!(budget, size - 1, "nothing spent on a refusal");
+        let mut budget = size + 10;
+        let decoded = decode("big.png", &png, true, &mut budget).unwrap();
+        assert_eq!((decoded.width, decoded.height, budget), (512, 256, 10));
+    }
+
     /// A 3x2 image: levels 1x1 (rounded down); black and white average to 50% in linear light,
     /// which sRGB encodes as 188, and to 128 in a linear image; alpha is averaged as is.
     #[test]
@@ -193,13 +233,15 @@ mod tests {
 
     #[test]
     fn what_is_not_an_image_is_refused_by_name() {
-        let e = decode("wood.png", b"not an image at all", true).unwrap_err().to_string();
+        let mut budget = u64::MAX;
+        let plenty = &mut budget;
+        let e = decode("wood.png", b"not an image at all", true, plenty).unwrap_err().to_string();
         assert!(e.contains("wood.png") && e.contains("neither a PNG nor a JPEG"), "{e}");
         let mut png = Vec::new();
         image::RgbaImage::new(2, 1).write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png).unwrap();
-        let t = decode("ok.png", &png, false).unwrap();
+        let t = decode("ok.png", &png, false, plenty).unwrap();
         assert_eq!((t.width, t.height, t.rgba.len()), (2, 1, 8));
-        let e = decode("cut.png", &png[..png.len() / 2], false).unwrap_err().to_string();
+        let e = decode("cut.png", &png[..png.len() / 2], false, plenty).unwrap_err().to_string();
         assert!(e.contains("cut.png"), "{e}");
     }
 }

@@ -46,34 +46,75 @@ pub fn set_asset_root(dir: &Path) -> Result<(), String> {
 /// file: an absolute path, a `..` or a symbolic link that leaves the root, and anything but a
 /// regular file are refused. A model cannot lead twinray to read another file of the disk.
 /// The error names `name`, never what the file holds.
-pub fn confined(folder: &Path, name: &str) -> Result<PathBuf, String> {
+pub fn confined(folder: &Path, name: &str) -> Result<PathBuf, Unconfined> {
     let folder = if folder.as_os_str().is_empty() { Path::new(".") } else { folder };
     let root = match ASSET_ROOT.get() {
         Some(root) => root.clone(),
-        None => folder.canonicalize().map_err(|e| format!("the folder {}: {e}", folder.display()))?,
+        None => folder
+            .canonicalize()
+            .map_err(|e| Unconfined::Unreadable(format!("the folder {}: {e}", folder.display())))?,
     };
     confined_in(&root, folder, name)
 }
 
-fn confined_in(root: &Path, folder: &Path, name: &str) -> Result<PathBuf, String> {
+/// Why a named file is not read: it lies (or would lie) outside the root, which a model may
+/// not ask for; or it cannot be read, which some formats allow (an OBJ's missing material
+/// library is a notice).
+#[derive(Debug, PartialEq)]
+pub enum Unconfined {
+    Outside(String),
+    Unreadable(String),
+}
+
+impl std::fmt::Display for Unconfined {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Unconfined::Outside(why) | Unconfined::Unreadable(why) => f.write_str(why),
+        }
+    }
+}
+
+fn confined_in(root: &Path, folder: &Path, name: &str) -> Result<PathBuf, Unconfined> {
     let path = Path::new(name);
+    let outside = |why: &str| Unconfined::Outside(format!("{name:?} {why}"));
     if name.is_empty() {
-        return Err("an empty file name".into());
+        return Err(Unconfined::Outside("an empty file name".into()));
     }
     if path.has_root() || path.components().any(|c| matches!(c, Component::Prefix(_))) {
-        return Err(format!("{name:?} is an absolute path; a model names its files relative to its folder"));
+        return Err(outside("is an absolute path; a model names its files relative to its folder"));
     }
-    let real = folder.join(path).canonicalize().map_err(|e| format!("{name:?}: {e}"))?;
-    if !real.starts_with(root) {
+    let leads_out = || {
         let root = root.display();
-        return Err(format!(
-            "{name:?} leads outside {root} (files a model names must lie there; --asset-root names another folder)"
-        ));
+        outside(&format!(
+            "leads outside {root} (files a model names must lie there; --asset-root names another folder)"
+        ))
+    };
+    let real = match folder.join(path).canonicalize() {
+        Ok(real) => real,
+        // Missing: outside if its `..`s alone lead out, else unreadable.
+        Err(e) => {
+            let mut at = folder.canonicalize().map_err(|e| Unconfined::Unreadable(format!("{name:?}: {e}")))?;
+            for part in path.components() {
+                match part {
+                    Component::ParentDir => drop(at.pop()),
+                    Component::Normal(part) => at.push(part),
+                    _ => {}
+                }
+            }
+            return Err(if at.starts_with(root) {
+                Unconfined::Unreadable(format!("{name:?}: {e}"))
+            } else {
+                leads_out()
+            });
+        }
+    };
+    if !real.starts_with(root) {
+        return Err(leads_out());
     }
     match std::fs::metadata(&real) {
         Ok(meta) if meta.is_file() => Ok(real),
-        Ok(_) => Err(format!("{name:?} is not a regular file")),
-        Err(e) => Err(format!("{name:?}: {e}")),
+        Ok(_) => Err(outside("is not a regular file")),
+        Err(e) => Err(Unconfined::Unreadable(format!("{name:?}: {e}"))),
     }
 }
 
@@ -115,17 +156,21 @@ mod tests {
             ("away/key.bin".to_string(), "leads outside"),
             ("textures".to_string(), "not a regular file"),
             ("missing.png".to_string(), "No such file"),
+            ("../secret/missing.png".to_string(), "leads outside"),
             (String::new(), "empty file name"),
         ];
         for (name, why) in refused {
             let e = at(&root, &name).unwrap_err();
+            let unreadable = matches!(e, Unconfined::Unreadable(_));
+            assert_eq!(unreadable, why == "No such file", "{name}: {e}");
+            let e = e.to_string();
             assert!(e.contains(why) && (name.is_empty() || e.contains(&format!("{name:?}"))), "{name}: {e}");
             assert!(!e.contains("outside\"") && !e.contains("inside\""), "never the file's bytes: {e}");
         }
         // With no asset root set, a model's root is its own folder.
         std::fs::write(root.join("beside.bin"), b"beside").unwrap();
         assert!(confined(&root, "beside.bin").is_ok());
-        assert!(confined(&textures, "../beside.bin").unwrap_err().contains("leads outside"), "textures/ is the root");
+        assert!(confined(&textures, "../beside.bin").unwrap_err().to_string().contains("leads outside"));
     }
 
     #[test]

@@ -36,7 +36,7 @@ pub fn read(
         None => {
             let name = format!("{source}#image {}", image.index());
             let bytes = image_bytes(&image, files).map_err(|e| format!("image {}: {e}", image.index()))?;
-            let decoded = Arc::new(texture::decode(&name, &bytes, true).map_err(|e| e.to_string())?);
+            let decoded = Arc::new(texture::decode(&name, &bytes, true, files.budget).map_err(|e| e.to_string())?);
             images.insert(image.index(), decoded.clone());
             decoded
         }

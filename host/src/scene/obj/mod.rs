@@ -11,7 +11,7 @@ use super::framing::{self, ignore_found, Model, View};
 use super::gltf::{mesh_shape, DEFAULT_MATERIAL};
 use super::mesh;
 use super::texture::{self, SamplerDesc, TextureDesc};
-use crate::util::input::{confined, read_bounded};
+use crate::util::input::{confined, read_bounded, Unconfined};
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 use std::sync::Arc;
@@ -39,20 +39,20 @@ pub fn load(path: &Path) -> Result<Model, String> {
     let mut reader = std::io::BufReader::new(text.as_bytes());
     let (models, materials) = tobj::load_obj_buf(&mut reader, &mesh::OBJ_OPTIONS, |name| {
         let name = local(&name.to_string_lossy());
-        let path = match confined(folder, &name) {
-            Ok(path) => path,
-            Err(e) => {
-                refused.borrow_mut().get_or_insert(format!("material library: cannot read {e}"));
-                return Ok(Default::default());
-            }
-        };
-        match read_bounded(&path, budget.saturating_sub(spent.get())) {
+        let read = confined(folder, &name).and_then(|path| {
+            read_bounded(&path, budget.saturating_sub(spent.get())).map_err(|e| Unconfined::Unreadable(e.to_string()))
+        });
+        match read {
             Ok(bytes) => {
                 spent.set(spent.get() + bytes.len() as u64);
                 Ok(mtl::parse(&String::from_utf8_lossy(&bytes)))
             }
-            Err(e) => {
+            Err(Unconfined::Unreadable(e)) => {
                 unread.borrow_mut().insert(format!("material library {name:?} ({e}: default material)"));
+                Ok(Default::default())
+            }
+            Err(Unconfined::Outside(e)) => {
+                refused.borrow_mut().get_or_insert(format!("material library: cannot read {e}"));
                 Ok(Default::default())
             }
         }
@@ -157,7 +157,8 @@ fn read_texture(file: &str, files: &mut Files) -> Result<Box<TextureDesc>, Strin
         None => {
             let path = match confined(files.folder, &file) {
                 Ok(path) => path,
-                Err(e) => {
+                Err(Unconfined::Unreadable(e)) => return Err(format!("cannot read texture {e}")),
+                Err(Unconfined::Outside(e)) => {
                     let refused = format!("texture: cannot read {e}");
                     files.refused.get_or_insert(refused.clone());
                     return Err(refused);
@@ -165,7 +166,7 @@ fn read_texture(file: &str, files: &mut Files) -> Result<Box<TextureDesc>, Strin
             };
             let bytes = read_bounded(&path, *files.budget).map_err(|e| format!("cannot read texture {file:?}: {e}"))?;
             *files.budget = files.budget.saturating_sub(bytes.len() as u64);
-            let image = Arc::new(texture::decode(&file, &bytes, true).map_err(|e| e.to_string())?);
+            let image = Arc::new(texture::decode(&file, &bytes, true, files.budget).map_err(|e| e.to_string())?);
             files.decoded.insert(file.clone(), image.clone());
             image
         }
