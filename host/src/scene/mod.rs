@@ -293,8 +293,8 @@ fn load_textures(file: &mut SceneFile, folder: Option<&Path>) -> std::result::Re
                 let bytes = crate::util::input::read_bounded(&path, left)
                     .map_err(|e| format!("material {name:?}: cannot read texture {:?}: {e}", t.file))?;
                 left = left.saturating_sub(bytes.len() as u64);
-                let image = texture::decode(&t.file, &bytes, true, &mut left)
-                    .map_err(|e| format!("material {name:?}: {e}"))?;
+                let image =
+                    texture::decode(&t.file, &bytes, true, &mut left).map_err(|e| format!("material {name:?}: {e}"))?;
                 budget = Some(left);
                 let image = std::sync::Arc::new(image);
                 decoded.insert(t.file.clone(), image.clone());

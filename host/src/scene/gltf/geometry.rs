@@ -35,12 +35,19 @@ pub fn primitive(
     }
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
     let position = primitive.get(&gltf::Semantic::Positions).ok_or_else(|| format!("{what} has no POSITION"))?;
-    check(&position, what, "POSITION", &[Dimensions::Vec3], &[DataType::F32])?;
+    check(&position, buffers, what, "POSITION", &[Dimensions::Vec3], &[DataType::F32])?;
     let positions: Vec<Vec3> = reader.read_positions().into_iter().flatten().map(Vec3::from).collect();
     read_all(positions.len(), &position, what, "POSITION")?;
     let order: Vec<u32> = match primitive.indices() {
         Some(indices) => {
-            check(&indices, what, "indices", &[Dimensions::Scalar], &[DataType::U8, DataType::U16, DataType::U32])?;
+            check(
+                &indices,
+                buffers,
+                what,
+                "indices",
+                &[Dimensions::Scalar],
+                &[DataType::U8, DataType::U16, DataType::U32],
+            )?;
             let read: Vec<u32> = reader.read_indices().map(|i| i.into_u32().collect()).unwrap_or_default();
             read_all(read.len(), &indices, what, "indices")?;
             read
@@ -51,7 +58,7 @@ pub fn primitive(
     checked(&p, what)?;
     let normals = match primitive.get(&gltf::Semantic::Normals) {
         Some(n) => {
-            check(&n, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
+            check(&n, buffers, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
             let normals: Vec<Vec3> = reader.read_normals().into_iter().flatten().map(Vec3::from).collect();
             read_all(normals.len(), &n, what, "NORMAL")?;
             let usable =
@@ -92,7 +99,7 @@ fn attributes(
     for set in 0..2u32 {
         let semantic = format!("TEXCOORD_{set}");
         let Some(a) = primitive.get(&gltf::Semantic::TexCoords(set)) else { continue };
-        check(&a, what, &semantic, &[Dimensions::Vec2], &normalized)?;
+        check(&a, buffers, what, &semantic, &[Dimensions::Vec2], &normalized)?;
         let uv: Vec<[f32; 2]> = reader.read_tex_coords(set).map(|t| t.into_f32().collect()).unwrap_or_default();
         read_all(uv.len(), &a, what, &semantic)?;
         same_count(uv.len(), count, what, &semantic)?;
@@ -102,7 +109,7 @@ fn attributes(
         }
     }
     if let Some(a) = primitive.get(&gltf::Semantic::Colors(0)) {
-        check(&a, what, "COLOR_0", &[Dimensions::Vec3, Dimensions::Vec4], &normalized)?;
+        check(&a, buffers, what, "COLOR_0", &[Dimensions::Vec3, Dimensions::Vec4], &normalized)?;
         let colors: Vec<[f32; 4]> = reader.read_colors(0).map(|c| c.into_rgba_f32().collect()).unwrap_or_default();
         read_all(colors.len(), &a, what, "COLOR_0")?;
         same_count(colors.len(), count, what, "COLOR_0")?;
@@ -149,9 +156,13 @@ fn triangles(mode: Mode, order: &[u32]) -> Vec<[u32; 3]> {
 }
 
 /// An accessor of a type `semantic` allows, with a count twinray takes, whose every element
-/// lies within its buffer view, and whose view lies within its buffer.
+/// lies within its buffer view at a stride no shorter than the element and an offset its
+/// components align to, whose view lies within its buffer, and whose sparse indices (if any)
+/// rise strictly within its count: all that the glTF spec asks of an accessor and the `gltf`
+/// crate's reader assumes (it panics on a stride shorter than the element).
 fn check(
     a: &gltf::Accessor,
+    buffers: &[Vec<u8>],
     what: &str,
     semantic: &str,
     dimensions: &[Dimensions],
@@ -164,31 +175,85 @@ fn check(
     if a.count() == 0 || a.count() > MAX_ELEMENTS {
         return Err(format!("{name} has {} elements (1 to {MAX_ELEMENTS})", a.count()));
     }
+    let component = a.data_type().size();
     if let Some(sparse) = a.sparse() {
         let count = sparse.count();
         if count == 0 || count > a.count() {
             return Err(format!("{name} has {count} sparse elements (1 to its {} elements)", a.count()));
         }
         let (indices, values) = (sparse.indices(), sparse.values());
-        within(&indices.view(), indices.offset(), count, indices.index_type().size(), &name)?;
-        within(&values.view(), values.offset(), count, a.size(), &name)?;
+        let index_size = indices.index_type().size();
+        within(&indices.view(), (indices.offset(), index_size), count, index_size, &name)?;
+        within(&values.view(), (values.offset(), component), count, a.size(), &name)?;
+        sparse_indices_rise(&indices, buffers, (count, a.count()), &name)?;
     }
     match a.view() {
-        Some(view) => within(&view, a.offset(), a.count(), a.size(), &name),
+        Some(view) => within(&view, (a.offset(), component), a.count(), a.size(), &name),
         None => Ok(()), // all zeros, or sparse only
     }
 }
 
-/// That `count` elements of `size` bytes from `offset` in `view` (at its stride) lie within the
-/// view, and the view within its buffer.
-fn within(view: &gltf::buffer::View, offset: usize, count: usize, size: usize, name: &str) -> Result<(), String> {
+/// That `count` elements of `size` bytes from `offset` in `view` (at its stride, which is
+/// no shorter than an element) lie within the view, and the view within its buffer; and that
+/// the offset, in the view and in the buffer, is a multiple of the `align` bytes of a
+/// component.
+fn within(
+    view: &gltf::buffer::View,
+    (offset, align): (usize, usize),
+    count: usize,
+    size: usize,
+    name: &str,
+) -> Result<(), String> {
     let stride = view.stride().unwrap_or(size);
+    if stride < size {
+        return Err(format!(
+            "{name}: buffer view {} has a byteStride of {stride}, less than its {size}-byte elements",
+            view.index()
+        ));
+    }
+    if !offset.is_multiple_of(align) || !view.offset().wrapping_add(offset).is_multiple_of(align) {
+        let at = view.offset().wrapping_add(offset);
+        return Err(format!(
+            "{name} starts at byte {offset} of buffer view {} (byte {at} of its buffer), not a multiple of its {align}-byte components",
+            view.index()
+        ));
+    }
     let end = (count - 1).checked_mul(stride).and_then(|n| n.checked_add(offset)).and_then(|n| n.checked_add(size));
     if end.is_none_or(|end| end > view.length()) {
         return Err(format!("{name} reaches past the end of its buffer view {}", view.index()));
     }
     if view.offset().checked_add(view.length()).is_none_or(|end| end > view.buffer().length()) {
         return Err(format!("{name}: buffer view {} reaches past the end of its buffer", view.index()));
+    }
+    Ok(())
+}
+
+/// That the `count` sparse indices of an accessor of `elements` elements rise strictly and
+/// stay below `elements`, as the glTF spec asks (the reader would write past the accessor or
+/// substitute in an order the file did not mean). They lie within their view (`within`).
+fn sparse_indices_rise(
+    indices: &gltf::accessor::sparse::Indices,
+    buffers: &[Vec<u8>],
+    (count, elements): (usize, usize),
+    name: &str,
+) -> Result<(), String> {
+    let view = indices.view();
+    let size = indices.index_type().size();
+    let start = view.offset() + indices.offset();
+    let bytes = buffers.get(view.buffer().index()).and_then(|b| b.get(start..start + count * size));
+    let bytes = bytes.ok_or_else(|| format!("{name}: its sparse indices lie past its buffer"))?;
+    let mut last = None;
+    for (k, chunk) in bytes.chunks_exact(size).enumerate() {
+        let index = chunk.iter().rev().fold(0usize, |v, &b| (v << 8) | usize::from(b));
+        if index >= elements {
+            return Err(format!("{name}: sparse index {k} is {index}, past its {elements} elements"));
+        }
+        if last.is_some_and(|last| index <= last) {
+            return Err(format!(
+                "{name}: sparse index {k} is {index}, not above the one before (they must rise strictly)"
+            ));
+        }
+        last = Some(index);
     }
     Ok(())
 }

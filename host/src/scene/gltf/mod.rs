@@ -144,6 +144,9 @@ fn meshes(
     let mut out = BTreeMap::new();
     let mut bad_normals = false;
     for mesh in doc.meshes() {
+        if mesh.primitives().len() == 0 {
+            return Err(format!("mesh {} has no primitives (glTF asks for at least one)", mesh.index()));
+        }
         for primitive in mesh.primitives() {
             let name = shape_name(&mesh, primitive.index());
             match geometry::primitive(&primitive, buffers, &name, &mut bad_normals)? {

@@ -213,6 +213,21 @@ fn malformed_models_are_refused_with_their_fault_named() {
     refused(&good.replacen(r#""count": 4"#, r#""count": 5"#, 1), "reaches past the end of its buffer view");
     refused(&good.replacen(r#""type": "VEC3""#, r#""type": "VEC2""#, 1), "which glTF does not allow there");
     refused(&good.replacen(r#""byteLength": 60"#, r#""byteLength": 600"#, 1), "fewer than its byteLength");
+    // The crate's reader panicked on a stride shorter than the element.
+    let strided = good.replacen(
+        r#""byteOffset": 0, "byteLength": 48}"#,
+        r#""byteOffset": 0, "byteLength": 48, "byteStride": 8}"#,
+        1,
+    );
+    refused(&strided, "has a byteStride of 8, less than its 12-byte elements");
+    let misaligned =
+        good.replacen(r#""count": 4, "type": "VEC3""#, r#""count": 3, "byteOffset": 2, "type": "VEC3""#, 1);
+    refused(
+        &misaligned,
+        "starts at byte 2 of buffer view 0 (byte 2 of its buffer), not a multiple of its 4-byte components",
+    );
+    let no_primitives = good.replacen(r#""meshes": ["#, r#""meshes": [{"primitives": []}, "#, 1);
+    refused(&no_primitives.replace(r#""mesh": 0"#, r#""mesh": 1"#), "mesh 0 has no primitives");
     refused(&square(None, r#"{"mesh": 0, "children": [0]}"#, ""), "has a cycle");
     refused(&square(None, ONE_NODE, r#", "mode": 1"#), "places no triangles (ignored: Lines primitives)");
     refused("{\"asset\": {\"version\": \"2.0\"}, \"scenes\": [{\"nodes\": 7}]}", "not a valid glTF 2.0 file");
@@ -228,13 +243,27 @@ fn malformed_models_are_refused_with_their_fault_named() {
 
 /// The square with vertex 2 moved to (2, 2, 0) by a sparse accessor: `sparse` is its JSON.
 fn sparse_square(sparse: &str) -> String {
+    sparse_document([2, 0], 1, sparse)
+}
+
+/// The square with `count` (1 or 2) sparse elements at `indices` (the second is padding for
+/// one), each moving its vertex to (2, 2, 0).
+fn sparse_square_at(indices: [u16; 2], count: usize) -> String {
+    let sparse = format!(
+        r#"{{"count": {count}, "indices": {{"bufferView": 1, "componentType": 5123}}, "values": {{"bufferView": 2}}}}"#
+    );
+    sparse_document(indices, count, &sparse)
+}
+
+fn sparse_document(indices: [u16; 2], values: usize, sparse: &str) -> String {
     let mut bytes = floats(&SQUARE);
-    bytes.extend([2u16, 0].iter().flat_map(|i| i.to_le_bytes())); // the index, padded to 4 bytes
-    bytes.extend(floats(&[[2.0, 2.0, 0.0]]));
+    bytes.extend(indices.iter().flat_map(|i| i.to_le_bytes()));
+    bytes.extend(floats(&vec![[2.0, 2.0, 0.0]; values]));
+    let length = 12 * values;
     document(
         &bytes,
         &format!(
-            r#""bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 4}}, {{"buffer": 0, "byteOffset": 52, "byteLength": 12}}],
+            r#""bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 4}}, {{"buffer": 0, "byteOffset": 52, "byteLength": {length}}}],
             "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [2, 2, 0], "sparse": {sparse}}}],
             "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}, "mode": 6}}]}}], "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}]"#
         ),
@@ -253,4 +282,8 @@ fn sparse_accessors_are_read_and_checked() {
         &sparse_square(&good.replace(r#""count": 1"#, r#""count": 3"#)),
         "reaches past the end of its buffer view 1",
     );
+    // Index 2 is the square's third vertex: 4 lies past its four; 2 then 0 does not rise.
+    refused(&sparse_square_at([4, 0], 1), "sparse index 0 is 4, past its 4 elements");
+    refused(&sparse_square_at([2, 0], 2), "sparse index 1 is 0, not above the one before");
+    assert!(load_text(&sparse_square_at([1, 2], 2)).is_ok(), "two rising indices load");
 }
