@@ -135,6 +135,7 @@ fn main() -> ExitCode {
     env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
     session::show_progress();
     crash::report_crashes();
+    crash::quiet_caught_panics();
     let _command = activity::doing(format!("twinray {}", matches.subcommand_name().unwrap_or_default()));
     if let Some(Err(e)) = cli.global.asset_root.as_deref().map(twinray::util::input::set_asset_root) {
         eprintln!("error: {e}");

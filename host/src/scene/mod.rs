@@ -50,7 +50,17 @@ pub struct Scene {
 
 impl Scene {
     /// Loads `arg` as a file path, or else as a built-in scene name; `None` is the default scene.
+    /// A panic while loading (a bug, here or in a crate, that a file reached) is an error that
+    /// names the file, not a crash.
     pub fn load(arg: Option<&str>) -> Result<Scene> {
+        crate::util::crash::catching(|| Scene::load_unguarded(arg)).unwrap_or_else(|panic| {
+            let path = arg.unwrap_or(DEFAULT_SCENE).to_string();
+            let message = format!("twinray's loader failed on it (a bug; please report it with the file): {panic}");
+            Err(Error::Scene { path, message })
+        })
+    }
+
+    fn load_unguarded(arg: Option<&str>) -> Result<Scene> {
         if let Some(path) = arg.map(Path::new).filter(|p| gltf::is_gltf(p) && p.exists()) {
             return Scene::load_gltf(path);
         }

@@ -68,3 +68,50 @@ extern "C" fn on_signal(signal: libc::c_int) {
     // SAFETY: _exit is async-signal-safe and ends the process.
     unsafe { libc::_exit(EXIT_CRASHED) }
 }
+
+thread_local! {
+    /// Whether this thread runs inside [`catching`], whose panics are reported as errors.
+    static CATCHING: std::cell::Cell<bool> = const { std::cell::Cell::new(false) };
+}
+
+/// Installs a panic hook that stays quiet inside [`catching`] (the error it returns says what
+/// happened, in one line) and prints as Rust's own elsewhere; later calls do nothing.
+pub fn quiet_caught_panics() {
+    static INSTALLED: AtomicBool = AtomicBool::new(false);
+    if INSTALLED.swap(true, Ordering::SeqCst) {
+        return;
+    }
+    let default = std::panic::take_hook();
+    std::panic::set_hook(Box::new(move |info| {
+        if !CATCHING.with(|c| c.get()) {
+            default(info);
+        }
+    }));
+}
+
+/// Runs `f`, turning a panic in it into `Err` with the panic's message: reading a file from a
+/// stranger must end in an error that names the file, never in a crash without a message,
+/// even where a bug (twinray's or a crate's) panics on it.
+pub fn catching<T>(f: impl FnOnce() -> T) -> Result<T, String> {
+    let outer = CATCHING.with(|c| c.replace(true));
+    let result = std::panic::catch_unwind(std::panic::AssertUnwindSafe(f));
+    CATCHING.with(|c| c.set(outer));
+    result.map_err(|panic| {
+        let text =
+            panic.downcast_ref::<&str>().map(|s| s.to_string()).or_else(|| panic.downcast_ref::<String>().cloned());
+        text.unwrap_or_else(|| "a panic without a message".into())
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn a_panic_inside_catching_is_an_error_with_its_message() {
+        super::quiet_caught_panics();
+        assert_eq!(super::catching(|| 7), Ok(7));
+        let index = std::hint::black_box(9);
+        let caught = super::catching(|| [1, 2, 3][index]).unwrap_err();
+        assert!(caught.contains("index out of bounds"), "{caught}");
+        assert_eq!(super::catching(|| panic!("with {}", "words")).unwrap_err(), "with words");
+    }
+}
