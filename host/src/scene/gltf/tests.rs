@@ -241,6 +241,32 @@ fn malformed_models_are_refused_with_their_fault_named() {
     );
 }
 
+/// `extras` may be any JSON value, wherever the schema allows it (the crate read only objects
+/// until its `extras` feature was on), and so may an unknown extension's object.
+#[test]
+fn extras_of_every_json_type_load() {
+    let good = square(Some((&[0, 1, 2, 0, 2, 3], 5123)), ONE_NODE, "");
+    for value in ["[1, 2]", "3", "\"text\"", "null", "true", "{\"a\": 1}"] {
+        let extras = format!(r#""extras": {value}, "#);
+        let places = [
+            good.replacen("{\"asset\": {", &format!("{{{extras}\"asset\": {{{extras}"), 1),
+            good.replacen("{\"buffer\": 0,", &format!("{{{extras}\"buffer\": 0,"), 1),
+            good.replacen("{\"bufferView\": 0,", &format!("{{{extras}\"bufferView\": 0,"), 1),
+            good.replacen("{\"primitives\": [{", &format!("{{{extras}\"primitives\": [{{{extras}"), 1),
+            good.replacen(
+                "{\"mesh\": 0}",
+                &format!("{{{extras}\"extensions\": {{\"EXT_unknown\": {value}}}, \"mesh\": 0}}"),
+                1,
+            ),
+            good.replacen("{\"nodes\": [0]}", &format!("{{{extras}\"nodes\": [0]}}"), 1),
+        ];
+        for (i, text) in places.iter().enumerate() {
+            assert_ne!(text, &good, "place {i} of extras {value}");
+            load_text(text).unwrap_or_else(|e| panic!("extras {value} at place {i}: {e}"));
+        }
+    }
+}
+
 /// The square with vertex 2 moved to (2, 2, 0) by a sparse accessor: `sparse` is its JSON.
 fn sparse_square(sparse: &str) -> String {
     sparse_document([2, 0], 1, sparse)
