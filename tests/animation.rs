@@ -179,6 +179,7 @@ fn the_orbit_scene_agrees_across_tlas_modes_sets_and_its_still_frames() {
 /// the still scene `Scene::at_frame` makes.
 #[test]
 fn placed_gltf_models_move_as_one() {
+    twinray_tests::allow_installed_models();
     let model = "/usr/share/assimp/models/glTF2/textureTransform/TextureTransformTest.gltf";
     assert!(std::path::Path::new(model).exists(), "{model}: run `cargo xtask setup`");
     let text = format!(

@@ -87,6 +87,7 @@ fn a_device_without_ray_queries_refuses_compute_scenes_by_name() {
 /// probe reports, ray by ray.
 #[test]
 fn compute_scenes_are_probed_as_the_compute_renderer_traces() {
+    twinray_tests::allow_installed_models();
     let ctx = validated_context();
     let cases = twinray::probe::stability::case_files(&repo_root().join("probes")).expect("probe cases");
     for path in cases {

@@ -23,6 +23,7 @@ const MAX_RELATIVE_RMSE: [(&str, f64); 5] =
     [("plate", 0.002), ("sphere", 0.004), ("meshes", 0.02), ("emitters", 0.006), ("textured", 0.004)];
 
 fn crosscheck(name: &str, set_text: &str) -> SceneCheck {
+    twinray_tests::allow_installed_models();
     let dir = repo_root().join("tests/crosscheck");
     let file = dir.join(format!("{name}.toml"));
     let arg = if file.exists() { file.to_string_lossy().into_owned() } else { name.to_string() };

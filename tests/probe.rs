@@ -115,6 +115,7 @@ fn probe_agrees_with_the_f64_reference_in_both_sets() {
 /// false miss or wrong object.
 #[test]
 fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
+    twinray_tests::allow_installed_models();
     let root = twinray_tests::repo_root();
     let doc = std::fs::read_to_string(root.join("docs/probe-format.md")).expect("docs/probe-format.md");
     let start = doc.find("```toml\n").expect("an example") + "```toml\n".len();

@@ -8,6 +8,13 @@ use twinray::{Context, ContextOptions, RenderOptions, RenderOutput, Scene, Shade
 /// Test renders stay small: lavapipe traces the 1024-sphere scene at about 0.4 Mrays/s.
 pub const TEST_SIZE: u32 = 256;
 
+/// Scene files and probe cases here name models Debian installs (assimp-testmodels) by
+/// absolute path, outside their own folders: the whole disk is their asset root, as
+/// `--asset-root /` gives a command (what confinement refuses is tested in host/tests).
+pub fn allow_installed_models() {
+    twinray::util::input::set_asset_root(std::path::Path::new("/")).expect("the asset root");
+}
+
 /// The repository root.
 pub fn repo_root() -> PathBuf {
     let here = PathBuf::from(env!("CARGO_MANIFEST_DIR"));

@@ -32,13 +32,17 @@ pub fn read_bounded(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
 /// (`--asset-root`); unset, each naming file's own folder.
 static ASSET_ROOT: OnceLock<PathBuf> = OnceLock::new();
 
-/// Sets the asset root (`--asset-root DIR`), once per process: `dir` must be a folder.
+/// Sets the asset root (`--asset-root DIR`), once per process (again with the same folder
+/// does nothing): `dir` must be a folder.
 pub fn set_asset_root(dir: &Path) -> Result<(), String> {
     let root = dir.canonicalize().map_err(|e| format!("--asset-root {}: {e}", dir.display()))?;
     if !root.is_dir() {
         return Err(format!("--asset-root {}: not a folder", dir.display()));
     }
-    ASSET_ROOT.set(root).map_err(|_| "--asset-root was given twice".to_string())
+    match ASSET_ROOT.get_or_init(|| root.clone()) {
+        set if *set == root => Ok(()),
+        set => Err(format!("the asset root is {} already", set.display())),
+    }
 }
 
 /// The file `name` names, relative to `folder` (the folder of the model or scene that names
@@ -54,7 +58,7 @@ pub fn confined(folder: &Path, name: &str) -> Result<PathBuf, Unconfined> {
             .canonicalize()
             .map_err(|e| Unconfined::Unreadable(format!("the folder {}: {e}", folder.display())))?,
     };
-    confined_in(&root, folder, name)
+    confined_in(&root, folder, name, ASSET_ROOT.get().is_some())
 }
 
 /// Why a named file is not read: it lies (or would lie) outside the root, which a model may
@@ -74,14 +78,18 @@ impl std::fmt::Display for Unconfined {
     }
 }
 
-fn confined_in(root: &Path, folder: &Path, name: &str) -> Result<PathBuf, Unconfined> {
+/// `absolute_inside`: an absolute path is taken when it lies inside `root` (a root the user
+/// named), else refused.
+fn confined_in(root: &Path, folder: &Path, name: &str, absolute_inside: bool) -> Result<PathBuf, Unconfined> {
     let path = Path::new(name);
     let outside = |why: &str| Unconfined::Outside(format!("{name:?} {why}"));
     if name.is_empty() {
         return Err(Unconfined::Outside("an empty file name".into()));
     }
-    if path.has_root() || path.components().any(|c| matches!(c, Component::Prefix(_))) {
-        return Err(outside("is an absolute path; a model names its files relative to its folder"));
+    if !absolute_inside && (path.has_root() || path.components().any(|c| matches!(c, Component::Prefix(_)))) {
+        return Err(outside(
+            "is an absolute path; a model names its files relative to its folder (or inside --asset-root)",
+        ));
     }
     let leads_out = || {
         let root = root.display();
@@ -142,7 +150,7 @@ mod tests {
         std::os::unix::fs::symlink(&outside, root.join("away")).unwrap();
         std::os::unix::fs::symlink(root.join("textures/a.png"), root.join("near.png")).unwrap();
         let root = root.canonicalize().unwrap();
-        let at = |folder: &Path, name: &str| confined_in(&root, folder, name);
+        let at = |folder: &Path, name: &str| confined_in(&root, folder, name, false);
         let textures = root.join("textures");
         assert_eq!(at(&root, "textures/a.png").unwrap(), textures.join("a.png"));
         assert_eq!(at(&textures, "../textures/./a.png").unwrap(), textures.join("a.png"));
@@ -167,6 +175,13 @@ mod tests {
             assert!(e.contains(why) && (name.is_empty() || e.contains(&format!("{name:?}"))), "{name}: {e}");
             assert!(!e.contains("outside\"") && !e.contains("inside\""), "never the file's bytes: {e}");
         }
+        // Under a root the user named, an absolute path inside it is taken, one outside not.
+        let named = |name: &str| confined_in(&root, &root, name, true);
+        assert_eq!(named(&textures.join("a.png").display().to_string()).unwrap(), textures.join("a.png"));
+        assert!(named(&outside.join("key.bin").display().to_string())
+            .unwrap_err()
+            .to_string()
+            .contains("leads outside"));
         // With no asset root set, a model's root is its own folder.
         std::fs::write(root.join("beside.bin"), b"beside").unwrap();
         assert!(confined(&root, "beside.bin").is_ok());
