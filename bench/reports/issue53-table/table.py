@@ -1,10 +1,13 @@
-"""The Rust/GLSL table of issue 53 item 5 from raw/: run 1 (t1*, sets glsl,rust, places from 0)
-and run 2 (t2*, sets rust,glsl, places from 1000), each set alone on 16 fresh devices per
-cell. Prints the table, the null controls, and whether run 2's ratio lies in run 1's interval.
-    python3 table.py"""
+"""The Rust/GLSL table of issue 53 item 5 from raw/: run 1 (sets glsl,rust, places from 0) and
+run 2 (sets rust,glsl, places from 1000), each set alone on fresh devices, one per cell and
+round. Prints the table, the null controls, and whether run 2's ratio lies in run 1's interval.
+    python3 table.py            # u1 and u2: the fourth session's runs, 6 rounds, every place spaced
+    python3 table.py t1 t2      # the third session's runs, 16 rounds"""
 import glob
 import json
+import math
 import os
+import sys
 
 here = os.path.dirname(os.path.abspath(__file__))
 
@@ -15,12 +18,15 @@ def load(prefix):
         for r in json.load(open(path))["ratios"]:
             iv = r["interval"]
             ratio, low, high = iv["ratio"], iv["low"], iv["high"]
+            se = iv["log_sd"] / math.sqrt(iv["placements"])
             pair = (r["a"], r["b"])
             key = (r["scene"], r["spp"])
             if pair == ("glsl", "rust"):  # run 1 names GLSL first: Rust/GLSL is its inverse
                 cells.setdefault(key, {})["ratio"] = (1 / ratio, 1 / high, 1 / low)
+                cells[key]["se"] = (se, iv["placements"])
             elif pair == ("rust", "glsl"):
                 cells.setdefault(key, {})["ratio"] = (ratio, low, high)
+                cells[key]["se"] = (se, iv["placements"])
             elif r["null_control"]:
                 cells.setdefault(key, {})["null"] = (ratio, low, high)
     return cells
@@ -32,10 +38,14 @@ def fmt(c):
     return f"{ratio:.3f} ({low:.3f} to {high:.3f}) ±{half:.1f}%"
 
 
-one, two = load("t1"), load("t2")
+first, second = (sys.argv[1], sys.argv[2]) if len(sys.argv) > 2 else ("u1", "u2")
+one, two = load(first), load(second)
+# Two-sided 97.5% points of Student's t, by degrees of freedom.
+T975 = {5: 2.571, 10: 2.228, 15: 2.131, 30: 2.042}
 print("| scene | spp | run 1 Rust/GLSL (95% CI) | run 2 Rust/GLSL | run 2 in run 1's | null, run 1 | null, run 2 |")
 print("|---|---|---|---|---|---|---|")
-inside = within = total = above = nulls = nulls_in = 0
+inside = within = total = above = nulls = nulls_in = agree = 0
+squares = []
 for key in sorted(one, key=lambda k: (k[0].lower(), k[1])):
     a, b = one[key], two.get(key)
     if not b:
@@ -44,6 +54,12 @@ for key in sorted(one, key=lambda k: (k[0].lower(), k[1])):
     r2 = b["ratio"][0]
     ok = a["ratio"][1] <= r2 <= a["ratio"][2]
     inside += ok
+    # The two runs' difference against its own interval: a second run as precise as the first
+    # lands inside the first's 95% interval only about 83% of the time even when both are right.
+    (se1, n1), (se2, n2) = a["se"], b["se"]
+    d = math.log(r2 / a["ratio"][0])
+    squares.append(d * d)
+    agree += abs(d) <= T975.get(n1 + n2 - 2, 2.0) * math.hypot(se1, se2)
     for run in (a, b):
         ratio, low, high = run["ratio"]
         within += high / ratio - 1 <= 0.01 and 1 - low / ratio <= 0.01
@@ -54,5 +70,7 @@ for key in sorted(one, key=lambda k: (k[0].lower(), k[1])):
     print("| " + " | ".join(row) + " |")
 print()
 print(f"{inside} of {total} cells: run 2's ratio inside run 1's interval")
+print(f"{agree} of {total} cells: the runs' difference inside its 95% interval; "
+      f"rms difference {100 * math.sqrt(sum(squares) / len(squares)):.3f}%")
 print(f"{within} of {2 * total} intervals within ±1%; {above} wholly above 1.00")
 print(f"{nulls_in} of {nulls} null intervals contain 1")
