@@ -122,7 +122,7 @@ fn bad_modules_are_refused_with_the_file_and_the_reason() {
     let text = text.to_string_lossy().into_owned();
     let cases = [
         (format!("rust,raygen={text}"), vec![text.as_str(), "not a SPIR-V module"]),
-        (format!("rust,raygen={old}"), vec![old.as_str(), "SPIR-V 1.3, expected 1.4"]),
+        (format!("rust,raygen={old}"), vec![old.as_str(), "SPIR-V 1.3, where twinray reads 1.4 to 1.6"]),
         (format!("rust,raygen={miss}"), vec![miss.as_str(), "no raygen entry point", "a miss entry point \"main\""]),
         (format!("glsl,raygen={no_entry}"), vec![no_entry.as_str(), "no raygen entry point", "it has none"]),
         (format!("rust,raygen={unknown_binding}"), vec![unknown_binding.as_str(), "binding 99"]),
@@ -141,5 +141,33 @@ fn bad_modules_are_refused_with_the_file_and_the_reason() {
     let folder = glsl_folder(d);
     std::fs::copy(d.join("old.spv"), folder.join("raygen.spv")).unwrap();
     let folder_arg = folder.to_string_lossy().into_owned();
-    assert_bad_input(&["compare", "--a", &folder_arg], &["raygen.spv", "SPIR-V 1.3, expected 1.4"]);
+    assert_bad_input(&["compare", "--a", &folder_arg], &["raygen.spv", "SPIR-V 1.3, where twinray reads 1.4 to 1.6"]);
+}
+
+/// A user's module compiled the usual way, for Vulkan 1.2 (SPIR-V 1.5) or 1.3 (SPIR-V 1.6):
+/// the GLSL raygen stage through glslang with `--target-env vulkan1.2` and `vulkan1.3` renders
+/// the same image as the committed SPIR-V 1.4 build (under validation), and `inspect` reads it.
+#[test]
+fn modules_compiled_for_vulkan_1_2_and_1_3_render() {
+    let dir = tempfile::tempdir().unwrap();
+    for (env, version) in [("vulkan1.2", 5u32), ("vulkan1.3", 6)] {
+        let spv = dir.path().join(format!("raygen-{env}.spv"));
+        let out = std::process::Command::new("glslangValidator")
+            .args(["-V", "--target-env", env])
+            .arg(format!("-I{}", repo().join("shaders-glsl").display()))
+            .arg("-o")
+            .args([&spv, &repo().join("shaders-glsl/raygen.rgen")])
+            .output()
+            .expect("glslangValidator (cargo xtask setup installs it)");
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stdout));
+        assert_eq!(words(&spv)[1], 0x0001_0000 | (version << 8), "glslang wrote SPIR-V 1.{version}");
+        let set = format!("glsl,raygen={}", spv.display());
+        let args = ["--validate", "compare", "--a", "glsl", "--b", &set, "--width", "64", "--height", "48"];
+        let out = twinray(&[&args[..], &["--runs", "1", "--warmup", "0", "--json"]].concat(), dir.path());
+        assert!(out.status.success(), "{env}: {}", String::from_utf8_lossy(&out.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
+        assert_eq!((json["rmse"].as_f64(), json["hit_mismatches"].as_u64()), (Some(0.0), Some(0)), "{env}");
+        let out = twinray(&["inspect", "--a", &set, "--b", "glsl"], dir.path());
+        assert!(out.status.success(), "{env}: {}", String::from_utf8_lossy(&out.stderr));
+    }
 }

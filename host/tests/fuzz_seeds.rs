@@ -42,3 +42,31 @@ fn probe_case_seeds() {
 fn gltf_seeds() {
     run_seeds("gltf", twinray::fuzz::gltf);
 }
+
+/// The short run of the glTF fuzz campaign that `cargo test` makes: each committed seed
+/// through 16 chains of 8 mutations of the fuzz target's own structure-aware mutator, from
+/// fixed seeds (the same inputs every run), each input fed to the target. The long runs are `cargo fuzz`'s
+/// (docs/testing.md); this keeps what they reached reachable.
+#[test]
+fn gltf_mutations_short_run() {
+    use twinray::fuzz::mutate::{self, Rng};
+    let dir = repo().join("fuzz/corpus/gltf");
+    let mut seeds: Vec<_> = std::fs::read_dir(&dir).unwrap().map(|e| e.unwrap().path()).collect();
+    seeds.sort();
+    let mut fed = 0;
+    for (i, seed) in seeds.iter().enumerate() {
+        let original = std::fs::read(seed).unwrap();
+        for chain in 0..16 {
+            let mut rng = Rng::new((i * 16 + chain) as u64);
+            let mut bytes = original.clone();
+            for step in 0..8 {
+                bytes = mutate::gltf(&bytes, &mut rng, &mut mutate::flip_bytes);
+                let input = bytes.clone();
+                let result = std::panic::catch_unwind(|| twinray::fuzz::gltf(&input));
+                assert!(result.is_ok(), "{}: chain {chain} mutation {step} panicked", seed.display());
+                fed += 1;
+            }
+        }
+    }
+    assert!(fed >= 128 * 10, "only {fed} inputs fed");
+}

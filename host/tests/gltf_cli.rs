@@ -144,3 +144,28 @@ fn a_model_cannot_lead_twinray_outside_its_folder() {
     let up = write("up.gltf", quad_gltf("../outside/quad.bin"));
     renders(&["render", &up, "--asset-root", &dir.path().display().to_string()]);
 }
+
+/// Warnings read as a tool's: what a model has that is not modelled is one `warning: ...`
+/// line, with no timestamp or module path; with `-v` the user asked for logs, and gets them.
+#[test]
+fn warnings_are_one_line_each_unless_logs_are_asked_for() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("quad.bin"), quad_bytes()).unwrap();
+    let model = quad_gltf("quad.bin").replacen('{', r#"{"extensionsUsed": ["KHR_materials_sheen"], "#, 1);
+    std::fs::write(dir.path().join("sheen.gltf"), model).unwrap();
+    let render = |verbose: &[&str]| {
+        let args = [verbose, &["render", "sheen.gltf", "--width", "8", "--height", "8", "--out", "x.png"]].concat();
+        let out = twinray(&args, dir.path());
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        String::from_utf8_lossy(&out.stderr).into_owned()
+    };
+    let quiet = render(&[]);
+    let warning = quiet.lines().find(|l| l.contains("KHR_materials_sheen")).expect("the ignored extension is named");
+    assert!(warning.starts_with("warning: sheen.gltf: not modelled, ignored: "), "{quiet}");
+    assert!(!quiet.contains("WARN") && !quiet.contains("twinray::"), "{quiet}");
+    let logs = render(&["-v"]);
+    assert!(
+        logs.lines().any(|l| l.contains("WARN") && l.contains("twinray::") && l.contains("KHR_materials_sheen")),
+        "{logs}"
+    );
+}

@@ -132,7 +132,7 @@ fn main() -> ExitCode {
         1 => "info",
         _ => "debug",
     };
-    env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level)).init();
+    init_logging(cli.global.verbose, level);
     session::show_progress();
     crash::report_crashes();
     crash::quiet_caught_panics();
@@ -180,4 +180,23 @@ fn main() -> ExitCode {
             ExitCode::from(if error.is_some_and(twinray::Error::is_input) { 2 } else { 1 })
         }
     }
+}
+
+/// Warnings and errors read as a tool's, one `warning: ...` line each; with `-v` or `RUST_LOG`,
+/// the user asked for logs, and every record carries its time, level and module.
+fn init_logging(verbose: u8, level: &str) {
+    let mut builder = env_logger::Builder::from_env(env_logger::Env::default().default_filter_or(level));
+    if verbose == 0 && std::env::var_os("RUST_LOG").is_none() {
+        builder.format(|out, record| {
+            use std::io::Write;
+            let label = match record.level() {
+                log::Level::Error => "error",
+                log::Level::Warn => "warning",
+                log::Level::Info => "info",
+                _ => "debug",
+            };
+            writeln!(out, "{label}: {}", record.args())
+        });
+    }
+    builder.init();
 }

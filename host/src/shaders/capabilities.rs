@@ -129,6 +129,13 @@ pub fn missing(
     let refuse = |what: String, needs: String| {
         format!("the {name} module ({origin}) declares {what}, which needs {needs}, on {}", device.name)
     };
+    if let Some(v) = twinray_shared::catalog::spirv_version(info.version).filter(|v| v.vulkan > device.vulkan) {
+        let (have, need) = (device.vulkan, v.vulkan);
+        return Some(format!(
+            "the {name} module ({origin}) is SPIR-V {}.{}, which needs Vulkan {}.{}; {} runs Vulkan {}.{}",
+            v.spirv.0, v.spirv.1, need.0, need.1, device.name, have.0, have.1
+        ));
+    }
     for &cap in &info.capabilities {
         match CAPABILITIES.iter().find(|c| c.0 == cap) {
             Some(&(_, cap_name, enabled)) => {
@@ -169,6 +176,7 @@ mod tests {
             name: "test gpu".into(),
             device_type: String::new(),
             api_version: String::new(),
+            vulkan: (1, 2),
             driver_name: String::new(),
             driver_info: String::new(),
             shader_group_handle_size: 32,
@@ -186,6 +194,15 @@ mod tests {
             robustness: Default::default(),
             host_acceleration_structure_commands: false,
         }
+    }
+
+    #[test]
+    fn a_module_newer_than_the_device_runs_is_refused_naming_both_versions() {
+        let mut info = ModuleInfo { version: (1, 6), ..ModuleInfo::default() };
+        let e = missing("raygen", "mine.spv", &info, &device(false)).expect("SPIR-V 1.6 on Vulkan 1.2");
+        assert_eq!(e, "the raygen module (mine.spv) is SPIR-V 1.6, which needs Vulkan 1.3; test gpu runs Vulkan 1.2");
+        info.version = (1, 5);
+        assert_eq!(missing("raygen", "mine.spv", &info, &device(false)), None);
     }
 
     #[test]

@@ -7,7 +7,7 @@
 use std::io::{Read, Write};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
-use twinray_shared::catalog::SPIRV_VAL_ARGS;
+use twinray_shared::catalog::target_env;
 
 /// The validator: `TWINRAY_SPIRV_VAL` if set, else a `spirv-val` beside twinray's own
 /// executable (the NVIDIA bundle carries one), else `spirv-val` on the PATH.
@@ -26,11 +26,13 @@ const LIMIT: Duration = Duration::from_secs(60);
 /// Longest validator message quoted in an error.
 const MAX_MESSAGE: usize = 600;
 
-/// Runs the validator on `bytes`; the error is its message, on one line.
+/// Runs the validator on `bytes`, for the Vulkan environment of their SPIR-V version; the
+/// error is its message, on one line.
 pub(crate) fn validate(bytes: &[u8]) -> Result<(), String> {
     let program = program();
+    let env = target_env(bytes);
     let mut child = Command::new(&program)
-        .args(SPIRV_VAL_ARGS)
+        .args(["--target-env", env])
         .arg("-")
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())
@@ -74,7 +76,7 @@ pub(crate) fn validate(bytes: &[u8]) -> Result<(), String> {
     let one_line = text.split_whitespace().collect::<Vec<_>>().join(" ");
     let short: String = one_line.chars().take(MAX_MESSAGE).collect();
     let more = if short.len() < one_line.len() { "..." } else { "" };
-    Err(format!("spirv-val {} rejects it: {short}{more}", SPIRV_VAL_ARGS.join(" ")))
+    Err(format!("spirv-val --target-env {env} rejects it: {short}{more}"))
 }
 
 #[cfg(test)]

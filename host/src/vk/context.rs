@@ -111,7 +111,8 @@ impl Context {
                     .into(),
             ));
         }
-        let instance = create_instance(&entry, options.validation, &validation_log)?;
+        let api = instance_api(&entry);
+        let instance = create_instance(&entry, api, options.validation, &validation_log)?;
         let messenger = if validate {
             let loader = debug_utils::Instance::new(&entry, &instance);
             let info = validation::messenger_info(&validation_log);
@@ -141,6 +142,7 @@ impl Context {
         info.pipeline_library = optional.contains(&ash::khr::pipeline_library::NAME);
         info.ray_query = optional.contains(&ash::khr::ray_query::NAME);
         info.robustness = robust;
+        info.vulkan = info.vulkan.min((vk::api_version_major(api), vk::api_version_minor(api)));
         let pipelines = match options.pipelines {
             Some(PipelineKind::Libraries) if !info.pipeline_library => {
                 // SAFETY: nothing was made from the device yet.
@@ -350,12 +352,19 @@ fn layer_available(entry: &ash::Entry) -> Result<bool> {
     Ok(layers.iter().any(|l| l.layer_name_as_c_str() == Ok(validation::LAYER_NAME)))
 }
 
-fn create_instance(entry: &ash::Entry, validation: Validation, log: &ValidationLog) -> Result<ash::Instance> {
+/// Vulkan 1.3 where the loader has it (modules of SPIR-V 1.6 need it), else 1.2, what
+/// twinray needs.
+fn instance_api(entry: &ash::Entry) -> u32 {
+    // SAFETY: a plain query of the loader.
+    match unsafe { entry.try_enumerate_instance_version() } {
+        Ok(Some(version)) if version >= vk::API_VERSION_1_3 => vk::API_VERSION_1_3,
+        _ => vk::API_VERSION_1_2,
+    }
+}
+
+fn create_instance(entry: &ash::Entry, api: u32, validation: Validation, log: &ValidationLog) -> Result<ash::Instance> {
     let validate = validation != Validation::Off;
-    let app = vk::ApplicationInfo::default()
-        .application_name(c"twinray")
-        .engine_name(c"twinray")
-        .api_version(vk::API_VERSION_1_2);
+    let app = vk::ApplicationInfo::default().application_name(c"twinray").engine_name(c"twinray").api_version(api);
     let layers = [validation::LAYER_NAME.as_ptr()];
     let extensions = [debug_utils::NAME.as_ptr()];
     let mut messenger_info = validation::messenger_info(log);

@@ -13,6 +13,9 @@ pub struct DeviceInfo {
     pub name: String,
     pub device_type: String,
     pub api_version: String,
+    /// The Vulkan version twinray can use on the device: the device's, at most the instance's
+    /// (which says what SPIR-V its modules may be, `twinray_shared::catalog::SPIRV_VERSIONS`).
+    pub vulkan: (u32, u32),
     pub driver_name: String,
     pub driver_info: String,
     pub shader_group_handle_size: u32,
@@ -146,6 +149,7 @@ pub(super) fn device_info(
             vk::api_version_minor(props.api_version),
             vk::api_version_patch(props.api_version)
         ),
+        vulkan: (vk::api_version_major(props.api_version), vk::api_version_minor(props.api_version)),
         driver_name: text(driver.driver_name_as_c_str()),
         driver_info: text(driver.driver_info_as_c_str()),
         shader_group_handle_size: rt.shader_group_handle_size,

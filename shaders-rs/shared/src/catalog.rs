@@ -162,10 +162,43 @@ macro_rules! module_table {
 
 crate::procedural_shapes!(module_table);
 
-/// The arguments of SPIRV-Tools' `spirv-val` for the environment twinray's modules target:
-/// Vulkan 1.1 with SPIR-V 1.4 (what `cargo xtask shaders` builds, and every module from disk
-/// must pass before a driver sees it).
-pub const SPIRV_VAL_ARGS: [&str; 2] = ["--target-env", "vulkan1.1spv1.4"];
+/// A SPIR-V version twinray reads: the Vulkan version a device needs to run it, and the
+/// environment SPIRV-Tools (`spirv-val`, `spirv-opt`) checks it for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct SpirvVersion {
+    pub spirv: (u32, u32),
+    pub vulkan: (u32, u32),
+    pub target_env: &'static str,
+}
+
+/// The SPIR-V versions twinray reads: 1.4, what `cargo xtask shaders` builds, and 1.5 and 1.6,
+/// what glslang and shaderc write for `--target-env vulkan1.2` and `vulkan1.3`.
+pub const SPIRV_VERSIONS: [SpirvVersion; 3] = [
+    SpirvVersion { spirv: (1, 4), vulkan: (1, 2), target_env: "vulkan1.1spv1.4" },
+    SpirvVersion { spirv: (1, 5), vulkan: (1, 2), target_env: "vulkan1.2" },
+    SpirvVersion { spirv: (1, 6), vulkan: (1, 3), target_env: "vulkan1.3" },
+];
+
+/// What twinray knows of SPIR-V `version`; `None` for one it does not read.
+pub fn spirv_version(version: (u32, u32)) -> Option<SpirvVersion> {
+    SPIRV_VERSIONS.iter().copied().find(|v| v.spirv == version)
+}
+
+/// The SPIR-V version of a module's `bytes`, from its header (0.0 where there is none).
+pub fn header_version(bytes: &[u8]) -> (u32, u32) {
+    let word = bytes.get(4..8).map_or(0, |w| u32::from_le_bytes([w[0], w[1], w[2], w[3]]));
+    ((word >> 16) & 0xff, (word >> 8) & 0xff)
+}
+
+/// The SPIRV-Tools environment to check a module's `bytes` for: its version's, or 1.4's where
+/// twinray does not read its version (the module checks refuse it, naming the version).
+pub fn target_env(bytes: &[u8]) -> &'static str {
+    spirv_version(header_version(bytes)).unwrap_or(SPIRV_VERSIONS[0]).target_env
+}
+
+/// The arguments of SPIRV-Tools' `spirv-val` for the modules twinray builds: SPIR-V 1.4 for
+/// Vulkan 1.1 (what `cargo xtask shaders` writes and checks).
+pub const SPIRV_VAL_ARGS: [&str; 2] = ["--target-env", SPIRV_VERSIONS[0].target_env];
 
 /// The module called `name`.
 pub fn module(name: &str) -> Option<ModuleSpec> {
@@ -286,7 +319,7 @@ pub const LAYOUT: [BindingSpec; 13] = {
 };
 
 impl ModuleSpec {
-    /// Checks what a compiled module of this spec in `language` declares: SPIR-V 1.4, the
+    /// Checks what a compiled module of this spec in `language` declares: SPIR-V 1.4 to 1.6, the
     /// language's entry point with the stage's execution model, only bindings of [`LAYOUT`]
     /// that the stage can see, and the payloads, attributes and callable data of
     /// [`crate::interface`].
@@ -296,8 +329,8 @@ impl ModuleSpec {
 
     /// As [`Self::check_declarations`], for an entry point called `entry`.
     pub fn check_module(&self, info: &ModuleInfo, entry: &str) -> Result<(), String> {
-        if info.version != (1, 4) {
-            return Err(format!("SPIR-V {}.{}, expected 1.4", info.version.0, info.version.1));
+        if spirv_version(info.version).is_none() {
+            return Err(format!("SPIR-V {}.{}, where twinray reads 1.4 to 1.6", info.version.0, info.version.1));
         }
         let want = (self.stage.execution_model(), entry.to_string());
         if !info.entry_points.contains(&want) {

@@ -110,7 +110,9 @@ fn with_buffers(mut gltf: gltf::Gltf, size: u64, folder: &Path, limit: u64) -> R
     if let Some(ext) = gltf.extensions_required().find(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
         return Err(format!("it requires the extension {ext}, which twinray does not support"));
     }
-    gltf.document = gltf::Document::from_json(gltf.document.into_json()).map_err(invalid)?;
+    let json = gltf.document.into_json();
+    unchecked_by_the_crate(&json)?;
+    gltf.document = gltf::Document::from_json(json).map_err(invalid)?;
     let mut budget = limit.saturating_sub(size);
     let mut buffers = Vec::new();
     let mut blob = gltf.blob.take();
@@ -129,6 +131,34 @@ fn with_buffers(mut gltf: gltf::Gltf, size: u64, folder: &Path, limit: u64) -> R
         buffers.push(data);
     }
     Ok(Loaded { gltf, buffers, folder: folder.to_path_buf(), budget })
+}
+
+/// What the gltf crate assumes without checking, and panics on (each found by the fuzz
+/// campaign, docs/testing.md): every primitive's POSITION names an accessor that exists (its
+/// validation indexes the accessors with it first), and every image has exactly one of `uri`
+/// and `bufferView`, with a `mimeType` beside a `bufferView` (`Image::source` unwraps both).
+fn unchecked_by_the_crate(json: &gltf::json::Root) -> Result<(), String> {
+    use gltf::json::validation::Checked;
+    for (i, image) in json.images.iter().enumerate() {
+        match (&image.uri, &image.buffer_view, &image.mime_type) {
+            (Some(_), None, _) | (None, Some(_), Some(_)) => {}
+            (None, Some(_), None) => return Err(format!("image {i} has a bufferView but no mimeType")),
+            _ => return Err(format!("image {i} needs exactly one of uri and bufferView")),
+        }
+    }
+    for (m, mesh) in json.meshes.iter().enumerate() {
+        for (p, primitive) in mesh.primitives.iter().enumerate() {
+            let position = primitive.attributes.get(&Checked::Valid(gltf::json::mesh::Semantic::Positions));
+            if let Some(index) = position.filter(|i| i.value() >= json.accessors.len()) {
+                return Err(format!(
+                    "mesh {m} primitive {p}: POSITION names accessor {}, but the file has {} accessors",
+                    index.value(),
+                    json.accessors.len()
+                ));
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The bytes of a buffer's or image's URI: a base64 `data:` URI, or a file relative to the

@@ -108,8 +108,9 @@ pub const NORMALISE_PASSES: [&str; 10] = [
 
 /// `bytes` through [`NORMALISE_PASSES`] (`spirv-opt`, which `cargo xtask setup` installs).
 pub fn normalise(bytes: &[u8]) -> Result<Vec<u8>, String> {
+    let env = twinray_shared::catalog::target_env(bytes);
     let mut child = Command::new("spirv-opt")
-        .args(["--target-env=vulkan1.1spv1.4"])
+        .arg(format!("--target-env={env}"))
         .args(NORMALISE_PASSES)
         .args(["-", "-o", "-"])
         .stdin(Stdio::piped())
