@@ -1,5 +1,6 @@
 //! Golden images: every built-in scene rendered by each shader set at the test size, against
-//! the committed PNGs in tests/golden/. Refreshed only by `cargo xtask golden [SCENES]`, which
+//! the committed PNGs in tests/golden/ (linear 8-bit values, the steps parity counts; written
+//! tagged gAMA 1.0, not sRGB). Refreshed only by `cargo xtask golden [SCENES]`, which
 //! sets TWINRAY_REFRESH_GOLDEN=1 (and TWINRAY_GOLDEN_SCENES to the scenes named, comma-separated;
 //! empty is all); review the new images with git diff before committing them.
 //!
@@ -7,7 +8,7 @@
 //! build rounding a few pixels differently; a changed shader fails it.
 
 use twinray::compare::{color_diff, color_verdict};
-use twinray::util::output::write_png;
+use twinray::util::output::write_linear_png;
 use twinray_tests::{builtin_scenes, render_scene, repo_root, validated_context, SCENE_TEST_SIZE};
 
 fn check_goldens(set: &str) {
@@ -24,7 +25,7 @@ fn check_goldens(set: &str) {
         let out = render_scene(&ctx, &scene, set);
         let path = repo_root().join(format!("tests/golden/{}-{set}.png", scene.name()));
         if refresh {
-            write_png(&path, out.width, out.height, &out.rgba).expect("writing golden image");
+            write_linear_png(&path, out.width, out.height, &out.rgba).expect("writing golden image");
             continue;
         }
         let golden = match image::open(&path) {

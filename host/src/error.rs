@@ -74,9 +74,9 @@ pub enum Error {
     /// says it once.)
     #[error("{doing}: {cause}")]
     While { doing: String, cause: Box<Error> },
-    /// A PNG could not be written.
-    #[error("writing PNG {}: {source}", path.display())]
-    Png {
+    /// An image (OpenEXR) could not be encoded.
+    #[error("writing {}: {source}", path.display())]
+    Image {
         path: PathBuf,
         #[source]
         source: image::ImageError,

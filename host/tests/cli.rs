@@ -363,3 +363,45 @@ fn info_lists_the_optional_capabilities() {
         assert!(text.contains(line), "{line:?} missing from {text}");
     }
 }
+
+// Images as other tools read them: a PNG of radiance holds it sRGB-encoded and tagged so,
+// with values above 1 clipped or tone-mapped as asked; an EXR holds the linear radiance as
+// rendered. Read back with the `image` and `png` crates (OpenEXR through the `exr` crate).
+
+fn render_image(dir: &Path, out: &str, extra: &[&str]) {
+    let args = [extra, &["render", "lights", "--width", "48", "--height", "36", "--out", out]].concat();
+    let done = twinray(&args, dir);
+    assert!(done.status.success(), "{}", String::from_utf8_lossy(&done.stderr));
+}
+
+fn srgb(c: f32) -> u8 {
+    let c = c.clamp(0.0, 1.0);
+    let v = if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 };
+    (v * 255.0).round() as u8
+}
+
+#[test]
+fn pngs_are_srgb_and_exr_is_linear() {
+    let dir = tempfile::tempdir().unwrap();
+    render_image(dir.path(), "linear.exr", &[]);
+    render_image(dir.path(), "clip.png", &[]);
+    render_image(dir.path(), "reinhard.png", &["--tone-map", "reinhard"]);
+    let linear = image::open(dir.path().join("linear.exr")).unwrap().into_rgb32f();
+    assert_eq!(linear.dimensions(), (48, 36));
+    assert!(linear.pixels().any(|p| p.0.iter().any(|&c| c > 1.0)), "lights has radiance above 1 to clip");
+    for (name, tone) in [("clip.png", (|c: f32| c) as fn(f32) -> f32), ("reinhard.png", |c: f32| c / (1.0 + c))] {
+        let decoder = png::Decoder::new(std::io::BufReader::new(std::fs::File::open(dir.path().join(name)).unwrap()));
+        let reader = decoder.read_info().unwrap();
+        assert!(reader.info().srgb.is_some(), "{name} is tagged sRGB");
+        let picture = image::open(dir.path().join(name)).unwrap().into_rgba8();
+        for (p, q) in linear.pixels().zip(picture.pixels()) {
+            let want = p.0.map(|c| srgb(tone(c.max(0.0))));
+            assert_eq!(&q.0[..3], &want, "{name}: linear {:?}", p.0);
+        }
+    }
+}
+
+#[test]
+fn an_output_that_is_neither_png_nor_exr_is_refused() {
+    assert_bad_input(&["render", "sphere", "--out", "x.jpg"], &["x.jpg", ".png (sRGB) or .exr (linear)"]);
+}

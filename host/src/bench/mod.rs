@@ -19,7 +19,7 @@ use crate::error::{Error, Result};
 use crate::probe::stability::Skipped;
 use crate::reference::image::{reference, ReferenceImage};
 pub use crate::render::isolated::{AloneIn, Isolation, TimeAlone};
-use crate::render::{render_sets, to_rgba8, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
+use crate::render::{render_sets, PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
 use crate::shaders::ShaderSet;
 use crate::util::interval::RatioInterval;
@@ -261,7 +261,12 @@ fn bench_scene(
     progress(&format!("{}: reference at {} spp", scene.name(), config.reference_spp));
     let truth = reference(ctx, scene, &config.reference_set, size, config.reference_spp, &config.cache)?;
     let reference_png = format!("images/{}-reference.png", file_safe(scene.name()));
-    crate::util::output::write_png(&config.out.join(&reference_png), size.0, size.1, &to_rgba8(&truth.linear))?;
+    crate::util::output::write_png(
+        &config.out.join(&reference_png),
+        size.0,
+        size.1,
+        &crate::render::to_picture(&truth.linear),
+    )?;
     report.references.push((scene.name().to_string(), reference_png));
     let sets = config.timed_sets();
     for &spp in &config.spp {
@@ -360,7 +365,7 @@ fn row(
     let (mut image, mut error_map) = (None, None);
     if let Some(dir) = images {
         let (png, flip) = (format!("{stem}.png"), format!("{stem}-flip.png"));
-        crate::util::output::write_png(&dir.join(&png), out.width, out.height, &out.rgba)?;
+        crate::util::output::write_png(&dir.join(&png), out.width, out.height, &out.picture())?;
         crate::util::output::write_png(&dir.join(&flip), out.width, out.height, &errors.flip_map_rgba)?;
         (image, error_map) = (Some(png), Some(flip));
     }

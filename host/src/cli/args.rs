@@ -60,6 +60,10 @@ pub struct GlobalArgs {
     /// names it]. A file elsewhere, by an absolute path, `..` or a symbolic link, is refused.
     #[arg(long, global = true, value_name = "DIR")]
     pub asset_root: Option<PathBuf>,
+    /// What PNGs of radiance do with values above 1 before the sRGB encoding: clip each
+    /// channel, or map it by c / (1 + c) (reinhard). EXR output and every metric stay linear.
+    #[arg(long, global = true, value_enum, value_name = "MAP", default_value_t = twinray::util::srgb::ToneMap::Clip)]
+    pub tone_map: twinray::util::srgb::ToneMap,
 }
 
 impl GlobalArgs {
@@ -81,6 +85,7 @@ impl GlobalArgs {
         pair("--pipeline-cache", self.pipeline_cache.as_ref().map(|p| p.display().to_string()));
         pair("--gpu-timeout", self.gpu_timeout.map(|t| t.as_secs_f64().to_string()));
         pair("--asset-root", self.asset_root.as_ref().map(|p| p.display().to_string()));
+        pair("--tone-map", clap::ValueEnum::to_possible_value(&self.tone_map).map(|v| v.get_name().to_string()));
         let switches = [(self.no_pipeline_cache, "--no-pipeline-cache"), (self.no_robust_access, "--no-robust-access")];
         args.extend(switches.into_iter().filter(|(on, _)| *on).map(|(_, flag)| flag.to_string()));
         args

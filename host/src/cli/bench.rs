@@ -5,7 +5,7 @@ use crate::session::context;
 use anyhow::Result;
 use std::process::ExitCode;
 use twinray::scene::check_size;
-use twinray::util::output::{check_png_target, write_png};
+use twinray::util::output::{check_image_target, write_image};
 use twinray::{Error, Scene};
 
 pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
@@ -14,14 +14,14 @@ pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
     check_size(size.0, size.1).map_err(Error::Input)?;
     twinray::reference::image::frames(args.spp)?;
     if let Some(out) = &args.out {
-        check_png_target(out)?;
+        check_image_target(out)?;
     }
     let cache = args.cache.unwrap_or_else(twinray::reference::image::default_cache);
     let ctx = context(global)?;
     let start = std::time::Instant::now();
     let r = twinray::reference::image::reference(&ctx, &scene, &args.shaders, size, args.spp, &cache)?;
     if let Some(out) = &args.out {
-        write_png(out, r.width, r.height, &twinray::render::to_rgba8(&r.linear))?;
+        write_image(out, (r.width, r.height), &r.linear, &twinray::render::to_picture(&r.linear))?;
     }
     if args.json {
         let value = serde_json::json!({

@@ -41,8 +41,9 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
         }
         problems.extend(found.into_iter().map(|p| format!("frame {}: {p}", frame.index)));
         let png = numbered(&args.out, frame.index);
-        write_png(&png, out.width, out.height, &out.rgba)?;
-        movie.add(&out.rgba)?;
+        let picture = out.picture();
+        write_png(&png, out.width, out.height, &picture)?;
+        movie.add(&picture)?;
         rows.push(serde_json::json!({
             "frame": frame.index,
             "time": frame.time,
@@ -122,13 +123,13 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs, range: FrameRange) -> Res
     let mut worst: Option<(f64, [Vec<u8>; 3])> = None;
     let sets = (&args.a, &args.b);
     let report = compare_frames(&ctx, &scene, sets, &opts, frames, args.animation.mode(), |row, a, b| {
-        let diff = diff_image(a, b);
+        let diff = diff_image(a, b, &row.diff.internal_edge_pixels);
         if !row.pass {
             write_png(&args.out_dir.join(format!("diff-{:04}.png", row.frame)), a.width, a.height, &diff)?;
         }
         let bad = twinray::compare::frames::badness(&row.diff, &parity, pixels);
         if worst.as_ref().is_none_or(|w| bad > w.0) {
-            worst = Some((bad, [a.rgba.clone(), b.rgba.clone(), diff]));
+            worst = Some((bad, [a.picture(), b.picture(), diff]));
         }
         Ok(())
     })?;

@@ -137,6 +137,7 @@ fn main() -> ExitCode {
     crash::report_crashes();
     crash::quiet_caught_panics();
     let _command = activity::doing(format!("twinray {}", matches.subcommand_name().unwrap_or_default()));
+    twinray::util::srgb::set_tone_map(cli.global.tone_map);
     if let Some(Err(e)) = cli.global.asset_root.as_deref().map(twinray::util::input::set_asset_root) {
         eprintln!("error: {e}");
         return ExitCode::from(2);

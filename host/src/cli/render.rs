@@ -8,7 +8,7 @@ use anyhow::Result;
 use std::process::ExitCode;
 use twinray::compare::hit_count;
 use twinray::compare::report::compare_sets;
-use twinray::util::output::{check_png_target, write_png};
+use twinray::util::output::{check_image_target, write_image};
 use twinray::Error;
 
 pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
@@ -20,10 +20,10 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
     let load_ms = loading.elapsed().as_secs_f64() * 1e3;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
-    check_png_target(&args.out)?;
+    check_image_target(&args.out)?;
     let ctx = context(global)?;
     let out = twinray::render(&ctx, &scene, &args.shaders, &opts)?;
-    write_png(&args.out, out.width, out.height, &out.rgba)?;
+    write_image(&args.out, (out.width, out.height), &out.linear, &out.picture())?;
     let median = out.median_ms();
     let set = args.shaders.to_string();
     let mut problems = out.written.problems(&set, "pixels");

@@ -27,6 +27,12 @@ pub struct ImageDiff {
     pub hit_mismatches: u64,
     /// Of those, pixels not on a silhouette in either image: these should never happen.
     pub hit_mismatches_off_silhouette: u64,
+    /// Pixels whose primary rays hit two triangles of one mesh instance on the edge they share
+    /// (`compare::edges`): either answer is right, so they are not hit mismatches.
+    pub internal_edges: u64,
+    /// Those pixels (row-major indices, rising).
+    #[serde(skip)]
+    pub internal_edge_pixels: Vec<usize>,
     /// What each set left unwritten or wrote non-finite; anything fails the comparison.
     pub written_a: Written,
     pub written_b: Written,
@@ -69,6 +75,8 @@ pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDif
         color: color_diff(&a.rgba, &b.rgba, pixel_threshold),
         hit_mismatches,
         hit_mismatches_off_silhouette,
+        internal_edges: 0,
+        internal_edge_pixels: Vec::new(),
         written_a: a.written,
         written_b: b.written,
     }
@@ -122,27 +130,30 @@ fn hit_mismatches(a: &RenderOutput, b: &RenderOutput) -> (u64, u64) {
 }
 
 /// True when a pixel of the 3x3 neighbourhood of (x, y) saw something else.
-fn on_silhouette(ids: &[u64], w: usize, h: usize, x: usize, y: usize) -> bool {
+pub(super) fn on_silhouette(ids: &[u64], w: usize, h: usize, x: usize, y: usize) -> bool {
     let id = ids[y * w + x];
     (y.saturating_sub(1)..=(y + 1).min(h - 1))
         .any(|ny| (x.saturating_sub(1)..=(x + 1).min(w - 1)).any(|nx| ids[ny * w + nx] != id))
 }
 
 /// Legend of [`diff_image`], printed beside it.
-pub const DIFF_LEGEND: &str =
-    "dim grey = equal, red = 1 step, yellow = 8, white = 16+, cyan = hit mismatch, magenta = not written or not finite";
+pub const DIFF_LEGEND: &str = "dim grey = equal, red = 1 step, yellow = 8, white = 16+, cyan = hit mismatch, \
+     blue = edge inside a mesh (either triangle is right), magenta = not written or not finite";
 
 /// RGBA8 difference image: image A in dim grey for context; differing pixels as a heat map
 /// (bright red for one 8-bit step, through yellow at 8, to white at 16 or more); hit/miss or
-/// primitive mismatches in cyan; pixels either set left unwritten or wrote as NaN or infinity
-/// in magenta. Even a one-step difference stands out against the grey.
-pub fn diff_image(a: &RenderOutput, b: &RenderOutput) -> Vec<u8> {
+/// primitive mismatches in cyan, those on an edge inside a mesh (`internal`, rising pixel
+/// indices: `ImageDiff::internal_edge_pixels`) in blue; pixels either set left unwritten or
+/// wrote as NaN or infinity in magenta. Even a one-step difference stands out against the grey.
+pub fn diff_image(a: &RenderOutput, b: &RenderOutput, internal: &[usize]) -> Vec<u8> {
     let finite = |o: &RenderOutput, i: usize| o.linear.get(i).is_none_or(|p| p.iter().all(|v| v.is_finite()));
     let mut out = Vec::with_capacity(a.rgba.len());
     for (i, (pa, pb)) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)).enumerate() {
         let d = channel_diff(pa, pb);
         let rgb = if !finite(a, i) || !finite(b, i) {
             NOT_A_NUMBER_RGB
+        } else if a.hit_ids[i] != b.hit_ids[i] && internal.binary_search(&i).is_ok() {
+            [60, 90, 200]
         } else if a.hit_ids[i] != b.hit_ids[i] {
             [0, 255, 255]
         } else if d > 0 {
@@ -238,6 +249,8 @@ mod tests {
             color,
             hit_mismatches: 1,
             hit_mismatches_off_silhouette: 1,
+            internal_edges: 0,
+            internal_edge_pixels: Vec::new(),
             written_a: clean,
             written_b: clean,
         };

@@ -95,7 +95,8 @@ pub fn compare_frames(
     let mut worst: Option<(f64, u32)> = None;
     render_frames(ctx, scene, &[set_a.clone(), set_b.clone()], opts, frames, mode, |frame: Frame| {
         let [a, b] = &frame.outputs[..] else { return Ok(()) };
-        let d = diff(a, b, parity.pixel_threshold);
+        let mut d = diff(a, b, parity.pixel_threshold);
+        super::edges::set_apart(&mut d, &scene.at_frame(frame.index), a, b);
         let bad = badness(&d, &parity, pixels);
         if worst.is_none_or(|(w, _)| bad > w) {
             worst = Some((bad, frame.index));
@@ -106,6 +107,8 @@ pub fn compare_frames(
             failures.extend(no_payload::render_lines(&posed, a, "set a"));
             failures.extend(no_payload::render_lines(&posed, b, "set b"));
         }
+        let threshold = (parity.pixel_threshold, &d.internal_edge_pixels[..]);
+        let named = named_pixels(scene, (a, b), threshold, (&sets.0, &sets.1), Some(frame.index));
         let row = FrameFigures {
             frame: frame.index,
             time: frame.time,
@@ -118,7 +121,7 @@ pub fn compare_frames(
             diff: d,
             pass: failures.is_empty(),
             failures,
-            pixels: named_pixels(scene, (a, b), parity.pixel_threshold, (&sets.0, &sets.1), Some(frame.index)),
+            pixels: named,
         };
         each(&row, a, b)?;
         figures.push(row);
@@ -214,6 +217,8 @@ mod tests {
             color,
             hit_mismatches: hits,
             hit_mismatches_off_silhouette: off,
+            internal_edges: 0,
+            internal_edge_pixels: Vec::new(),
             written_a: clean,
             written_b: clean,
         }

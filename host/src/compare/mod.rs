@@ -3,6 +3,7 @@
 
 pub mod bisect;
 pub mod diff;
+pub mod edges;
 pub mod frames;
 pub mod pixels;
 pub mod report;

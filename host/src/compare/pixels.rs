@@ -23,17 +23,18 @@ pub struct NamedPixel {
 /// Up to `NAMED_PIXELS` pixels over `threshold` steps with the largest differences, then up to
 /// `NAMED_PIXELS` hit mismatches not named yet (the largest differences first; ties in reading
 /// order), with their explain lines for `scene` at the renders' size with sets `a` and `b`
-/// (at `frame` of a moving scene).
+/// (at `frame` of a moving scene). Pixels on an edge inside a mesh (`internal`, rising) are not
+/// hit mismatches.
 pub fn named_pixels(
     scene: &Scene,
     (a, b): (&RenderOutput, &RenderOutput),
-    threshold: u8,
+    (threshold, internal): (u8, &[usize]),
     sets: (&str, &str),
     frame: Option<u32>,
 ) -> Vec<NamedPixel> {
     let steps = |i: usize| (0..3).map(|c| a.rgba[4 * i + c].abs_diff(b.rgba[4 * i + c])).max().unwrap_or(0);
-    let mut by_steps: Vec<(u8, bool, usize)> =
-        (0..a.hit_ids.len()).map(|i| (steps(i), a.hit_ids[i] != b.hit_ids[i], i)).collect();
+    let mismatch = |i: usize| a.hit_ids[i] != b.hit_ids[i] && internal.binary_search(&i).is_err();
+    let mut by_steps: Vec<(u8, bool, usize)> = (0..a.hit_ids.len()).map(|i| (steps(i), mismatch(i), i)).collect();
     // Largest first; in reading order among equals.
     by_steps.sort_by(|p, q| q.0.cmp(&p.0).then(p.2.cmp(&q.2)));
     let mut named: Vec<(u8, bool, usize)> =

@@ -112,7 +112,10 @@ pub fn compare_sets(
         .try_into()
         .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
     let parity = scene.file.parity;
-    let diff = diff(&a, &b, parity.pixel_threshold);
+    let mut diff = diff(&a, &b, parity.pixel_threshold);
+    super::edges::set_apart(&mut diff, scene, &a, &b);
+    let threshold = (parity.pixel_threshold, &diff.internal_edge_pixels[..]);
+    let pixels = named_pixels(scene, (&a, &b), threshold, (&named_sets.0, &named_sets.1), None);
     let mut failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
     failures.extend(no_payload::render_lines(scene, &a, "set a"));
     failures.extend(no_payload::render_lines(scene, &b, "set b"));
@@ -150,7 +153,7 @@ pub fn compare_sets(
         processes: isolation.map_or(0, |i| i.processes),
         alone_in: isolation.map_or(AloneIn::Processes, |i| i.alone_in),
         null_control: set_b.original() == *set_a,
-        pixels: named_pixels(scene, (&a, &b), parity.pixel_threshold, (&named_sets.0, &named_sets.1), None),
+        pixels,
         pass: failures.is_empty(),
         failures,
     };
@@ -162,9 +165,9 @@ impl Comparison {
     pub fn write_images(&self, dir: &Path) -> Result<()> {
         std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.into(), source })?;
         let (w, h) = (self.a.width, self.a.height);
-        write_png(&dir.join("a.png"), w, h, &self.a.rgba)?;
-        write_png(&dir.join("b.png"), w, h, &self.b.rgba)?;
-        write_png(&dir.join("diff.png"), w, h, &diff_image(&self.a, &self.b))
+        write_png(&dir.join("a.png"), w, h, &self.a.picture())?;
+        write_png(&dir.join("b.png"), w, h, &self.b.picture())?;
+        write_png(&dir.join("diff.png"), w, h, &diff_image(&self.a, &self.b, &self.report.diff.internal_edge_pixels))
     }
 }
 
@@ -214,7 +217,7 @@ impl CompareReport {
         let pct = |n: u64| 100.0 * n as f64 / pixels;
         let d = &self.diff.color;
         s += &format!(
-            "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette\n",
+            "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette; {} on edges inside a mesh\n",
             d.rmse,
             if d.psnr.is_finite() { format!("{:.1} dB", d.psnr) } else { "inf".into() },
             d.max_abs_diff,
@@ -224,6 +227,7 @@ impl CompareReport {
             self.diff.hit_mismatches,
             pct(self.diff.hit_mismatches),
             self.diff.hit_mismatches_off_silhouette,
+            self.diff.internal_edges,
         );
         s += &pixel_lines(&self.pixels, "  ");
         if self.pass {

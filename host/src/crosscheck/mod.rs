@@ -9,7 +9,7 @@ pub mod run;
 mod textures;
 
 use crate::error::{Error, Result};
-use crate::render::to_rgba8;
+use crate::render::to_picture;
 use crate::util::output::write_png;
 use compare::{compose, diff_image, figures, Composed, Figures};
 use serde::Serialize;
@@ -65,7 +65,7 @@ pub fn check(
 
 fn write_images(out: &Path, (w, h): (u32, u32), twinray: &[[f32; 3]], mitsuba: &Composed, mean: f64) -> Result<()> {
     std::fs::create_dir_all(out).map_err(|source| Error::Io { what: "creating", path: out.into(), source })?;
-    write_png(&out.join("twinray.png"), w, h, &to_rgba8(twinray))?;
-    write_png(&out.join("mitsuba.png"), w, h, &to_rgba8(&mitsuba.radiance))?;
+    write_png(&out.join("twinray.png"), w, h, &to_picture(twinray))?;
+    write_png(&out.join("mitsuba.png"), w, h, &to_picture(&mitsuba.radiance))?;
     write_png(&out.join("diff.png"), w, h, &diff_image(twinray, mitsuba, mean))
 }

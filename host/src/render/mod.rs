@@ -23,7 +23,8 @@ pub(crate) use barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
 pub use frames::{AsWork, Frame, FrameRange, TlasKind, TlasMode, DEFAULT_TLAS};
 pub use moving::{render_frames, FrameRenderer};
 pub use output::{
-    hit_id, to_rgba8, NoPayloadPixel, RayCounts, RenderOptions, RenderOutput, Written, NOT_A_NUMBER_RGB, NO_HIT_ID,
+    hit_id, to_picture, to_rgba8, to_srgb8, NoPayloadPixel, RayCounts, RenderOptions, RenderOutput, Written,
+    NOT_A_NUMBER_RGB, NO_HIT_ID,
 };
 pub use placement::{PlacementTimes, DEFAULT_PLACEMENTS};
 pub use prepare::MIN_WARM_MS;

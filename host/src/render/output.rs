@@ -4,6 +4,7 @@ use super::placement::PlacementTimes;
 use super::sentinel;
 pub use super::upload::AccelStats;
 use crate::util::interval::RatioInterval;
+use crate::util::srgb::{self, ToneMap};
 use crate::util::stats::{median, Spread};
 use twinray_shared::bindings as b;
 
@@ -39,7 +40,8 @@ impl RenderOptions {
 pub struct RenderOutput {
     pub width: u32,
     pub height: u32,
-    /// Row-major RGBA8, top row first: `linear` clamped to [0, 1] and rounded to 8 bits.
+    /// Row-major RGBA8, top row first: `linear` clamped to [0, 1] and rounded to 8 bits, still
+    /// linear: what parity's steps are counted in. Pictures are [`RenderOutput::picture`].
     pub rgba: Vec<u8>,
     /// Row-major RGB mean radiance per pixel, in f32, as ray generation wrote it.
     pub linear: Vec<[f32; 3]>,
@@ -177,6 +179,11 @@ impl RayCounts {
 }
 
 impl RenderOutput {
+    /// The image as a PNG holds it: sRGB-encoded, through the process's `--tone-map`.
+    pub fn picture(&self) -> Vec<u8> {
+        to_picture(&self.linear)
+    }
+
     /// Adds one place's timed traces: their median, the set's position in the round, the
     /// place (see `render::placement`), and the traces to the pooled ones.
     pub(crate) fn record_place(&mut self, gpu_ms: &[f64], position: u32, place: u64) {
@@ -284,8 +291,28 @@ pub fn hit_id(object: u32, primitive: u32) -> u64 {
 /// PNGs twinray writes: magenta, which no scene's lighting makes by itself so plainly.
 pub const NOT_A_NUMBER_RGB: [u8; 3] = [255, 0, 255];
 
-/// 8-bit RGBA of linear RGB: clamped to [0, 1], rounded to nearest, alpha 255; a pixel with a
-/// NaN or an infinity is [`NOT_A_NUMBER_RGB`].
+/// 8-bit RGBA of linear RGB, sRGB-encoded as PNG viewers read it: each channel through `tone`,
+/// then the sRGB transfer function, alpha 255; a pixel with a NaN or an infinity is
+/// [`NOT_A_NUMBER_RGB`]. What every PNG of radiance holds; metrics use [`to_rgba8`].
+pub fn to_srgb8(linear: &[[f32; 3]], tone: ToneMap) -> Vec<u8> {
+    let byte = |v: f32| srgb::encode(tone.apply(v));
+    linear
+        .iter()
+        .flat_map(|p| {
+            let [r, g, b] = if p.iter().all(|v| v.is_finite()) { p.map(byte) } else { NOT_A_NUMBER_RGB };
+            [r, g, b, 255]
+        })
+        .collect()
+}
+
+/// [`to_srgb8`] through the process's `--tone-map`: what a PNG of radiance holds.
+pub fn to_picture(linear: &[[f32; 3]]) -> Vec<u8> {
+    to_srgb8(linear, srgb::tone_map())
+}
+
+/// 8-bit RGBA of linear RGB, still linear: clamped to [0, 1], rounded to nearest, alpha 255;
+/// a pixel with a NaN or an infinity is [`NOT_A_NUMBER_RGB`]. The steps parity is counted in
+/// (`RenderOutput::rgba`), never written as a picture.
 pub fn to_rgba8(linear: &[[f32; 3]]) -> Vec<u8> {
     let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
     linear

@@ -3,6 +3,7 @@
 //! mip chain the upload builds from it.
 
 use crate::error::{Error, Result};
+use crate::util::srgb;
 use serde::Deserialize;
 use std::sync::Arc;
 
@@ -140,8 +141,8 @@ pub fn decode(name: &str, bytes: &[u8], srgb: bool, budget: &mut u64) -> Result<
 /// light for sRGB images, as the sampler's filtering is.
 pub fn mip_chain(image: &TextureImage) -> Vec<(u32, u32, Vec<u8>)> {
     let srgb = image.srgb;
-    let decode = |v: u8| if srgb { srgb_to_linear(v) } else { f32::from(v) / 255.0 };
-    let encode = |c: f32| if srgb { linear_to_srgb(c) } else { unorm(c) };
+    let decode = |v: u8| if srgb { srgb::decode(v) } else { f32::from(v) / 255.0 };
+    let encode = |c: f32| if srgb { srgb::encode(c) } else { srgb::unorm(c) };
     let mut levels: Vec<(u32, u32, Vec<u8>)> = Vec::new();
     let (mut w, mut h) = (image.width, image.height);
     while w > 1 || h > 1 {
@@ -161,7 +162,7 @@ pub fn mip_chain(image: &TextureImage) -> Vec<(u32, u32, Vec<u8>)> {
                         }
                     }
                     let mean = sum / n;
-                    next[((y * nw + x) * 4 + c) as usize] = if c == 3 { unorm(mean) } else { encode(mean) };
+                    next[((y * nw + x) * 4 + c) as usize] = if c == 3 { srgb::unorm(mean) } else { encode(mean) };
                 }
             }
         }
@@ -169,24 +170,6 @@ pub fn mip_chain(image: &TextureImage) -> Vec<(u32, u32, Vec<u8>)> {
         (w, h) = (nw, nh);
     }
     levels
-}
-
-fn unorm(v: f32) -> u8 {
-    (v.clamp(0.0, 1.0) * 255.0).round() as u8
-}
-
-fn srgb_to_linear(v: u8) -> f32 {
-    let c = f32::from(v) / 255.0;
-    if c <= 0.04045 {
-        c / 12.92
-    } else {
-        ((c + 0.055) / 1.055).powf(2.4)
-    }
-}
-
-fn linear_to_srgb(c: f32) -> u8 {
-    let c = c.clamp(0.0, 1.0);
-    unorm(if c <= 0.003_130_8 { c * 12.92 } else { 1.055 * c.powf(1.0 / 2.4) - 0.055 })
 }
 
 #[cfg(test)]

@@ -24,6 +24,7 @@ impl AnimatedPng {
         let mut encoder = png::Encoder::new(BufWriter::new(file), width, height);
         encoder.set_color(png::ColorType::Rgba);
         encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
         encoder.set_animated(frames, 0).map_err(fail)?;
         // The delay as a fraction of a second: milliseconds, at least 1.
         let delay_ms = (1000.0 / fps).round().clamp(1.0, f32::from(u16::MAX)) as u16;

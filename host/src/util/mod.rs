@@ -8,5 +8,6 @@ pub mod input;
 pub mod interval;
 pub mod output;
 pub mod progress;
+pub mod srgb;
 pub mod stats;
 pub mod watchdog;

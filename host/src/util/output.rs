@@ -4,19 +4,57 @@
 use crate::error::{Error, Result};
 use std::path::{Path, PathBuf};
 
-/// Writes an RGBA8 image as PNG at `path`, atomically.
+/// Writes an RGBA8 image of sRGB values as PNG at `path`, atomically, tagged sRGB (an `sRGB`
+/// chunk, with the `gAMA` and `cHRM` that stand for it in older readers).
 pub fn write_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
-    let tmp = temp_path(path);
-    let saved =
-        image::save_buffer_with_format(&tmp, rgba, width, height, image::ColorType::Rgba8, image::ImageFormat::Png);
-    if let Err(source) = saved {
-        let _ = std::fs::remove_file(&tmp);
-        return Err(Error::Png { path: path.to_path_buf(), source });
+    encode_png(path, (width, height), rgba, true)
+}
+
+/// Writes an RGBA8 image of linear values (test data such as golden images, compared in linear
+/// steps) as PNG at `path`, atomically, tagged linear (`gAMA` 1.0), so that a viewer that reads
+/// the tag shows it right.
+pub fn write_linear_png(path: &Path, width: u32, height: u32, rgba: &[u8]) -> Result<()> {
+    encode_png(path, (width, height), rgba, false)
+}
+
+fn encode_png(path: &Path, (width, height): (u32, u32), rgba: &[u8], srgb: bool) -> Result<()> {
+    let mut bytes = Vec::new();
+    let mut encoder = png::Encoder::new(&mut bytes, width, height);
+    encoder.set_color(png::ColorType::Rgba);
+    encoder.set_depth(png::BitDepth::Eight);
+    match srgb {
+        true => encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual),
+        false => encoder.set_source_gamma(png::ScaledFloat::new(1.0)),
     }
-    std::fs::rename(&tmp, path).map_err(|source| {
-        let _ = std::fs::remove_file(&tmp);
-        Error::Io { what: "renaming a finished PNG to", path: path.to_path_buf(), source }
-    })
+    let encoded = encoder.write_header().and_then(|mut w| w.write_image_data(rgba).and_then(|()| w.finish()));
+    encoded.map_err(|e| Error::Input(format!("writing {}: {e}", path.display())))?;
+    write_atomically(path, &bytes)
+}
+
+/// Writes linear RGB radiance as OpenEXR at `path` (32-bit float channels, as rendered:
+/// nothing clipped or encoded), atomically.
+pub fn write_exr(path: &Path, width: u32, height: u32, linear: &[[f32; 3]]) -> Result<()> {
+    let flat: Vec<f32> = linear.iter().flatten().copied().collect();
+    let image = image::Rgb32FImage::from_raw(width, height, flat)
+        .ok_or_else(|| Error::Input(format!("writing {}: the pixels do not fill the image", path.display())))?;
+    let mut bytes = std::io::Cursor::new(Vec::new());
+    image
+        .write_to(&mut bytes, image::ImageFormat::OpenExr)
+        .map_err(|source| Error::Image { path: path.to_path_buf(), source })?;
+    write_atomically(path, bytes.get_ref())
+}
+
+/// Writes a rendered image at `path`: OpenEXR of the linear radiance for a name ending in
+/// `.exr`, else the sRGB PNG `picture`.
+pub fn write_image(path: &Path, (width, height): (u32, u32), linear: &[[f32; 3]], picture: &[u8]) -> Result<()> {
+    match is_exr(path) {
+        true => write_exr(path, width, height, linear),
+        false => write_png(path, width, height, picture),
+    }
+}
+
+fn is_exr(path: &Path) -> bool {
+    path.extension().is_some_and(|e| e.eq_ignore_ascii_case("exr"))
 }
 
 /// Writes `bytes` at `path`, atomically: through a temporary file beside it, renamed.
@@ -47,6 +85,20 @@ pub fn check_png_target(path: &Path) -> Result<()> {
     if !is_png {
         return Err(Error::Input(format!("output {}: the file name must end in .png", path.display())));
     }
+    check_dir(path)
+}
+
+/// Checks up front that `path` can be written: a PNG or EXR name in an existing directory.
+pub fn check_image_target(path: &Path) -> Result<()> {
+    let is_png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    if !is_png && !is_exr(path) {
+        let name = path.display();
+        return Err(Error::Input(format!("output {name}: the file name must end in .png (sRGB) or .exr (linear)")));
+    }
+    check_dir(path)
+}
+
+fn check_dir(path: &Path) -> Result<()> {
     let dir = parent_dir(path);
     if !dir.is_dir() {
         return Err(Error::Input(format!("output {}: directory {} does not exist", path.display(), dir.display())));
