@@ -72,11 +72,34 @@ fn quad_gltf(uri: &str) -> String {
     )
 }
 
+/// Every file `twinray args` (run in `dir`) opens, as strace sees the `open` calls of it and its
+/// threads, with symbolic links resolved where the file exists.
+fn opened_files(args: &[&str], dir: &Path) -> Vec<PathBuf> {
+    let log = dir.join("strace.log");
+    let traced = std::process::Command::new("strace")
+        .args(["-f", "-qq", "-e", "trace=open,openat,openat2,creat", "-o"])
+        .arg(&log)
+        .arg(env!("CARGO_BIN_EXE_twinray"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("strace (cargo xtask setup installs it)");
+    assert_eq!(traced.status.code(), Some(2), "{}", String::from_utf8_lossy(&traced.stderr));
+    let text = std::fs::read_to_string(&log).unwrap();
+    std::fs::remove_file(&log).unwrap();
+    text.lines()
+        .filter_map(|line| line.split_once('"').and_then(|(_, rest)| rest.split_once('"')).map(|(path, _)| path))
+        .map(|path| dir.join(path))
+        .map(|path| std::fs::canonicalize(&path).unwrap_or(path))
+        .collect()
+}
+
 /// A model cannot lead twinray outside its folder: a glTF buffer, an OBJ's material library
 /// or texture, or a scene's mesh file or texture named by an absolute path, by `..` (also
 /// %-escaped) out of the folder, or through a symbolic link to a file or folder elsewhere ends
 /// with exit code 2 and one line naming it, and nothing of the file is read. The same file
 /// inside the folder renders, and so does the one outside when `--asset-root` holds both.
+/// strace checks that no file outside is opened, not only that the error says so.
 #[test]
 fn a_model_cannot_lead_twinray_outside_its_folder() {
     let dir = tempfile::tempdir().unwrap();
@@ -125,6 +148,10 @@ fn a_model_cannot_lead_twinray_outside_its_folder() {
     for (i, (uri, why)) in ways_out.iter().enumerate() {
         let gltf = write(&format!("buffer-{i}.gltf"), quad_gltf(uri));
         assert_bad_input(&["render", &gltf, "--out", "x.png"], &[uri, why]);
+        let opened = opened_files(&["render", &gltf, "--out", "x.png"], &model);
+        let outside_opened: Vec<_> =
+            opened.iter().filter(|p| p.starts_with(&outside) || p.starts_with("/dev/zero")).collect();
+        assert!(outside_opened.is_empty(), "{uri}: twinray opened {outside_opened:?}");
         let name = uri.replace("%2E", ".").replace(".bin", ".mtl");
         let library = write(&format!("library-{i}.obj"), obj(&name, "none.png"));
         assert_bad_input(&["render", &library, "--out", "x.png"], &[&name, why]);

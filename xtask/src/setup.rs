@@ -33,6 +33,8 @@ pub fn run(scope: Scope) -> Result<()> {
         packages.extend(["chromium", "chromium-driver"]);
         // Models no one here made: the glTF tests load every one (docs/gltf.md).
         packages.push("assimp-testmodels");
+        // The confinement test watches which files twinray opens (host/tests/gltf_cli.rs).
+        packages.push("strace");
     }
     ensure_packages(&packages)?;
     if scope == Scope::Full {
