@@ -76,3 +76,26 @@ fn gltf_mutations_short_run() {
     }
     assert!(fed >= 128 * 10, "only {fed} inputs fed");
 }
+
+/// The mutator reaches the classes of fault the loader checks for: from the assimp
+/// BoxTextured model, 4000 mutations include files refused for a view's stride below its
+/// element, an accessor offset not a multiple of its component, and an image larger than
+/// the budget by its header.
+#[test]
+fn the_mutator_reaches_the_loaders_checks() {
+    use twinray::fuzz::mutate::{self, Rng};
+    let seed = repo().join("fuzz/corpus/gltf/assimp-BoxTextured-glTF-Binary-BoxTextured.glb");
+    let original = std::fs::read(seed).unwrap();
+    let mut errors = Vec::new();
+    for k in 0..4000 {
+        let bytes = mutate::gltf(&original, &mut Rng::new(k), &mut mutate::flip_bytes);
+        if let Err(e) = twinray::scene::gltf::parse(&bytes, std::path::Path::new("/nonexistent/fuzz")) {
+            errors.push(e);
+        }
+    }
+    let classes: [&[&str]; 3] = [&["byteStride"], &["not a multiple"], &["bytes decoded", "on a side"]];
+    for class in classes {
+        let found = errors.iter().any(|e| class.iter().any(|c| e.contains(c)));
+        assert!(found, "no mutation was refused for {class:?}: {:?}", &errors[..errors.len().min(20)]);
+    }
+}

@@ -4,6 +4,7 @@
 //! build from the result. An `Err` is the right answer to bad input; a panic, a hang or an
 //! allocation that eats the machine is a finding.
 
+pub mod faults;
 pub mod mutate;
 
 use crate::probe::case::ProbeCase;

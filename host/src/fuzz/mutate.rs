@@ -172,9 +172,10 @@ pub fn join(json: &[u8], bin: &[u8]) -> Vec<u8> {
     out
 }
 
-/// One mutation of a glTF file (JSON or GLB). Mostly an edit of one value of its JSON; else its
-/// binary chunk, or the whole input when its JSON does not parse, goes to `bytes`, a byte-level
-/// mutator (libFuzzer's own under the fuzzer, [`flip_bytes`] in the test).
+/// One mutation of a glTF file (JSON or GLB). Mostly an edit of one value of its JSON; one time
+/// in five a rule between two fields broken (`super::faults`); else its binary chunk, or the
+/// whole input when its JSON does not parse, goes to `bytes`, a byte-level mutator
+/// (libFuzzer's own under the fuzzer, [`flip_bytes`] in the test).
 pub fn gltf(input: &[u8], rng: &mut Rng, bytes: &mut dyn FnMut(&mut Vec<u8>, &mut Rng)) -> Vec<u8> {
     let parsed = split(input).and_then(|(json, bin)| Some((serde_json::from_slice::<Value>(&json).ok()?, bin)));
     let Some((mut doc, bin)) = parsed else {
@@ -183,12 +184,12 @@ pub fn gltf(input: &[u8], rng: &mut Rng, bytes: &mut dyn FnMut(&mut Vec<u8>, &mu
         return whole;
     };
     let mut bin = bin;
-    match (&mut bin, rng.below(5)) {
-        (Some(chunk), 0) => bytes(chunk, rng),
-        _ => {
-            for _ in 0..1 + rng.below(3) {
-                edit(&mut doc, rng);
-            }
+    let way = rng.below(5);
+    if let (Some(chunk), 0) = (&mut bin, way) {
+        bytes(chunk, rng);
+    } else if way != 1 || !super::faults::break_rule(&mut doc, bin.as_mut(), rng) {
+        for _ in 0..1 + rng.below(3) {
+            edit(&mut doc, rng);
         }
     }
     let json = serde_json::to_vec(&doc).unwrap_or_default();
