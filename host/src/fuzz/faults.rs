@@ -4,7 +4,7 @@
 //! header claims a huge image (a decompression bomb). Part of the `gltf` fuzz target's mutator
 //! (`super::mutate`).
 
-use super::mutate::Rng;
+use super::rng::Rng;
 use serde_json::Value;
 
 /// Bytes of one component of glTF's `componentType`; 0 for a value glTF does not define.

@@ -6,6 +6,7 @@
 
 pub mod faults;
 pub mod mutate;
+pub mod rng;
 
 use crate::probe::case::ProbeCase;
 use crate::reference::scene::SceneReference;

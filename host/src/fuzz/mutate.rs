@@ -5,6 +5,7 @@
 //! indices, URIs and images. The same mutator drives libFuzzer (`fuzz/fuzz_targets/gltf.rs`)
 //! and, from a fixed seed, the short run that `cargo test` makes (`host/tests/fuzz_seeds.rs`).
 
+pub use super::rng::Rng;
 use serde_json::{Map, Value};
 
 const GLB_MAGIC: &[u8; 4] = b"glTF";
@@ -108,29 +109,6 @@ const KEYS: &[&str] = &[
     "alphaCutoff",
     "mimeType",
 ];
-
-/// A small deterministic generator (SplitMix64): the mutator must give the same output for the
-/// same seed, as libFuzzer and the test's replay expect.
-pub struct Rng(u64);
-
-impl Rng {
-    pub fn new(seed: u64) -> Rng {
-        Rng(seed)
-    }
-
-    pub fn word(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// A number below `n` (which is at least 1).
-    pub fn below(&mut self, n: usize) -> usize {
-        (self.word() % n.max(1) as u64) as usize
-    }
-}
 
 /// A glTF file's two parts: its JSON and, in a GLB, its binary chunk (`None` for a .gltf).
 pub fn split(bytes: &[u8]) -> Option<(Vec<u8>, Option<Vec<u8>>)> {
