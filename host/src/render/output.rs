@@ -295,14 +295,7 @@ pub const NOT_A_NUMBER_RGB: [u8; 3] = [255, 0, 255];
 /// then the sRGB transfer function, alpha 255; a pixel with a NaN or an infinity is
 /// [`NOT_A_NUMBER_RGB`]. What every PNG of radiance holds; metrics use [`to_rgba8`].
 pub fn to_srgb8(linear: &[[f32; 3]], tone: ToneMap) -> Vec<u8> {
-    let byte = |v: f32| srgb::encode(tone.apply(v));
-    linear
-        .iter()
-        .flat_map(|p| {
-            let [r, g, b] = if p.iter().all(|v| v.is_finite()) { p.map(byte) } else { NOT_A_NUMBER_RGB };
-            [r, g, b, 255]
-        })
-        .collect()
+    rgba8_by(linear, |v| srgb::encode(tone.apply(v)))
 }
 
 /// [`to_srgb8`] through the process's `--tone-map`: what a PNG of radiance holds.
@@ -314,11 +307,16 @@ pub fn to_picture(linear: &[[f32; 3]]) -> Vec<u8> {
 /// a pixel with a NaN or an infinity is [`NOT_A_NUMBER_RGB`]. The steps parity is counted in
 /// (`RenderOutput::rgba`), never written as a picture.
 pub fn to_rgba8(linear: &[[f32; 3]]) -> Vec<u8> {
-    let byte = |v: f32| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8;
+    rgba8_by(linear, |v| (v.clamp(0.0, 1.0) * 255.0 + 0.5) as u8)
+}
+
+/// 8-bit RGBA of linear RGB, each finite channel through `byte`, alpha 255; a pixel with a NaN
+/// or an infinity is [`NOT_A_NUMBER_RGB`].
+fn rgba8_by(linear: &[[f32; 3]], byte: impl Fn(f32) -> u8) -> Vec<u8> {
     linear
         .iter()
         .flat_map(|p| {
-            let [r, g, b] = if p.iter().all(|v| v.is_finite()) { p.map(byte) } else { NOT_A_NUMBER_RGB };
+            let [r, g, b] = if p.iter().all(|v| v.is_finite()) { p.map(&byte) } else { NOT_A_NUMBER_RGB };
             [r, g, b, 255]
         })
         .collect()
