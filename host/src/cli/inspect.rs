@@ -45,6 +45,11 @@ pub struct InspectArgs {
     /// square.
     #[arg(long, default_value_t = 16)]
     pub spp: u32,
+    /// The scene features every stage is specialised for when the driver compiles it: `all`,
+    /// `none`, or names such as `textures,emission` (`twinray_shared::features`); a scene
+    /// without them runs the stages as specialised for `none`.
+    #[arg(long, default_value = "all", value_parser = |t: &str| twinray_shared::features::bits_named(t))]
+    pub features: u32,
 }
 
 /// One module of a set: its calls, and its stack.
@@ -123,7 +128,8 @@ fn report(global: &GlobalArgs, text: &str, args: &InspectArgs, side: u32) -> Res
     let stacks = if args.no_stacks {
         Vec::new()
     } else {
-        stage_stacks(&context(global)?, &set, &names, side).context("sizing the stages' stacks")?
+        let ctx = context(global)?;
+        stage_stacks(&ctx, &set, &names, (side, args.features)).context("sizing the stages' stacks")?
     };
     let mut modules = Vec::new();
     for name in names {

@@ -20,12 +20,13 @@ use twinray_shared::bindings as b;
 pub type Stack = std::result::Result<u64, String>;
 
 /// The stack of each module called `names` in `set`, with ray generation specialised for
-/// `samples_per_side` x `samples_per_side` samples and shadows on.
+/// `samples_per_side` x `samples_per_side` samples and shadows on, every stage for the
+/// `features` bits (`twinray_shared::features`).
 pub fn stage_stacks(
     ctx: &Arc<Context>,
     set: &ShaderSet,
     names: &[&str],
-    samples_per_side: u32,
+    (samples_per_side, features): (u32, u32),
 ) -> Result<Vec<(String, Stack)>> {
     // A pipeline needs a ray generation stage: the set's, or GLSL's where a folder lacks one.
     let mut modules: Vec<StageModule> = vec![if set.lacks("raygen") {
@@ -41,9 +42,7 @@ pub fn stage_stacks(
             None => modules.push(module),
         }
     }
-    // Every feature's code in: the stack a stage may need whatever the scene.
-    let specialised =
-        Specialisation::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED, twinray_shared::features::ALL);
+    let specialised = Specialisation::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED, features);
     let spec = specialised.info();
     let stages = stage_descs(&modules, &spec);
     let groups: Vec<(GroupDesc, vk::ShaderGroupShaderKHR)> =

@@ -102,6 +102,24 @@ pub fn names(bits: u32) -> String {
     }
 }
 
+/// The bits of `text`: `all`, `none`, or feature names joined by commas (`textures,emission`).
+#[cfg(not(target_arch = "spirv"))]
+pub fn bits_named(text: &str) -> Result<u32, String> {
+    match text.trim() {
+        "all" => return Ok(ALL),
+        "none" | "" => return Ok(0),
+        _ => {}
+    }
+    let mut bits = 0;
+    for name in text.split(',').map(str::trim) {
+        match by_name(name) {
+            Some(f) => bits |= f.bit,
+            None => return Err(format!("no feature {name:?} (features: all, none, {})", names(ALL))),
+        }
+    }
+    Ok(bits)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -117,6 +135,10 @@ mod tests {
         assert_eq!(names(TEXTURES | EMISSION), "textures,emission");
         assert_eq!(names(0), "none");
         assert_eq!(by_name("area-lights").map(|f| f.bit), Some(AREA_LIGHTS));
+        assert_eq!(bits_named("all"), Ok(ALL));
+        assert_eq!(bits_named("none"), Ok(0));
+        assert_eq!(bits_named("textures, emission"), Ok(TEXTURES | EMISSION));
+        assert!(bits_named("textures,glow").is_err_and(|e| e.contains("\"glow\"") && e.contains("area-lights")));
     }
 
     #[test]

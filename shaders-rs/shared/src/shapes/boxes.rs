@@ -21,11 +21,14 @@ struct Slabs {
     empty: bool,
 }
 
-/// Narrows `s` by the slab |x| <= h of one axis (`unit` is that axis).
-fn slab(s: Slabs, o: f32, d: f32, h: f32, unit: Vec3) -> Slabs {
+/// Narrows `s` by the slab |x| <= h of one axis (`unit` is that axis). In place: rust-gpu
+/// writes a `Slabs` passed along by value as a struct with phis at each branch (as it does an
+/// `Option`, `surface::Nearest`).
+fn slab(s: &mut Slabs, o: f32, d: f32, h: f32, unit: Vec3) {
     if d == 0.0 {
         let outside = o < -h || o > h;
-        return Slabs { empty: s.empty || outside, ..s };
+        s.empty = s.empty || outside;
+        return;
     }
     let inv = 1.0 / d;
     let a = (-h - o) * inv;
@@ -33,26 +36,24 @@ fn slab(s: Slabs, o: f32, d: f32, h: f32, unit: Vec3) -> Slabs {
     let (t0, t1) = if a <= b { (a, b) } else { (b, a) };
     let t1 = t1 * (1.0 + 2.0 * GAMMA_3);
     let sign = if d > 0.0 { 1.0 } else { -1.0 };
-    let mut next = s;
     if t0 > s.near {
-        next.near = t0;
-        next.near_axis = unit * -sign;
+        s.near = t0;
+        s.near_axis = unit * -sign;
     }
     if t1 < s.far {
-        next.far = t1;
-        next.far_axis = unit * sign;
+        s.far = t1;
+        s.far_axis = unit * sign;
     }
-    next.empty = s.empty || next.near > next.far;
-    next
+    s.empty = s.empty || s.near > s.far;
 }
 
 /// The entry point (or the exit, for a ray starting inside) within `[t_min, t_max]`.
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
     let h = primitive.a;
-    let start = Slabs { near: -f32::MAX, far: f32::MAX, near_axis: Vec3::ZERO, far_axis: Vec3::ZERO, empty: false };
-    let s = slab(start, origin.x, direction.x, h.x, Vec3::X);
-    let s = slab(s, origin.y, direction.y, h.y, Vec3::Y);
-    let s = slab(s, origin.z, direction.z, h.z, Vec3::Z);
+    let mut s = Slabs { near: -f32::MAX, far: f32::MAX, near_axis: Vec3::ZERO, far_axis: Vec3::ZERO, empty: false };
+    slab(&mut s, origin.x, direction.x, h.x, Vec3::X);
+    slab(&mut s, origin.y, direction.y, h.y, Vec3::Y);
+    slab(&mut s, origin.z, direction.z, h.z, Vec3::Z);
     if s.empty {
         None
     } else if s.near >= t_min && s.near <= t_max {

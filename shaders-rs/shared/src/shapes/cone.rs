@@ -12,7 +12,7 @@
 use super::sphere::ON_SURFACE;
 use super::uv::{revolved, ShapeUv};
 use crate::layout::Primitive;
-use crate::surface::{closer, is_self_root, point_at, self_reach2, stable_roots, SurfaceHit};
+use crate::surface::{is_self_root, point_at, self_reach2, stable_roots, Nearest, SurfaceHit};
 use glam::Vec3;
 
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
@@ -31,53 +31,45 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
     let c = r2 * cov * cov - h2 * (co.x * co.x + co.z * co.z);
     let w = co.cross(d);
     let discriminant = h2 * (r2 * (w.x * w.x + w.z * w.z) - h2 * w.y * w.y);
-    let mut best = None;
+    let mut best = Nearest::new(t_min, t_max);
     if discriminant >= 0.0 {
         let on_surface = c.abs() <= ON_SURFACE * (r2 + h2) * co.dot(co);
         // The cone's scale at the origin is its distance from the apex.
         let reach2 = self_reach2(on_surface, co.dot(co), d.dot(d));
         let (r0, r1) = stable_roots(a, half_b, c, discriminant);
-        best = side(best, origin, d, apex, height, (h2, r2), r0, r1, reach2, t_min, t_max);
-        best = side(best, origin, d, apex, height, (h2, r2), r1, r0, reach2, t_min, t_max);
+        side(&mut best, (origin, d), (apex, height), (h2, r2), (r0, r1), reach2);
+        side(&mut best, (origin, d), (apex, height), (h2, r2), (r1, r0), reach2);
     }
     if d.y != 0.0 {
         let t = (-half_height - origin.y) / d.y;
         let p = origin + d * t;
         if p.x * p.x + p.z * p.z <= r * r {
-            best = closer(best, SurfaceHit { t, normal: -Vec3::Y }, t_min, t_max);
+            best.take(SurfaceHit { t, normal: -Vec3::Y });
         }
     }
-    best
+    best.hit()
 }
 
-#[allow(clippy::too_many_arguments)]
+/// The side at `root` (the other root `other`), polished, if it is no self root and lies
+/// between the apex and the base.
 fn side(
-    best: Option<SurfaceHit>,
-    o: Vec3,
-    d: Vec3,
-    apex: Vec3,
-    height: f32,
+    best: &mut Nearest,
+    (o, d): (Vec3, Vec3),
+    (apex, height): (Vec3, f32),
     (h2, r2): (f32, f32),
-    root: Option<f32>,
-    other: Option<f32>,
+    (root, other): (Option<f32>, Option<f32>),
     reach2: f32,
-    t_min: f32,
-    t_max: f32,
-) -> Option<SurfaceHit> {
-    match root {
-        Some(t) if !is_self_root(reach2, t, other) => {
+) {
+    if let Some(t) = root {
+        if !is_self_root(reach2, t, other) {
             let t = polish(o, apex, d, (h2, r2), t);
             let cp = point_at(o, d, t) - apex;
             let along = -cp.y; // distance below the apex along the axis
             if along >= 0.0 && along <= height {
                 // Outward normal (h^2 + r^2) (cos^2 cp - (cp.v) v), with v = -y.
-                let normal = Vec3::new(h2 * cp.x, -r2 * cp.y, h2 * cp.z);
-                closer(best, SurfaceHit { t, normal }, t_min, t_max)
-            } else {
-                best
+                best.take(SurfaceHit { t, normal: Vec3::new(h2 * cp.x, -r2 * cp.y, h2 * cp.z) });
             }
         }
-        _ => best,
     }
 }
 

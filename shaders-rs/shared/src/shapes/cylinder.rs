@@ -6,7 +6,7 @@
 use super::sphere::ON_SURFACE;
 use super::uv::{revolved, ShapeUv};
 use crate::layout::Primitive;
-use crate::surface::{closer, is_self_root, self_reach2, stable_roots, SurfaceHit};
+use crate::surface::{is_self_root, self_reach2, stable_roots, Nearest, SurfaceHit};
 use glam::Vec3;
 
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
@@ -39,7 +39,7 @@ fn solve(
     use spirv_std::num_traits::Float;
     let (r, half_height) = (primitive.a.x, primitive.a.y);
     let (o, d) = (origin, direction);
-    let mut best = None;
+    let mut best = Nearest::new(t_min, t_max);
     let a = d.x * d.x + d.z * d.z;
     if a > 0.0 {
         let half_b = o.x * d.x + o.z * d.z;
@@ -55,52 +55,42 @@ fn solve(
                 let root = discriminant.sqrt();
                 (Some((-half_b - root) / a), Some((-half_b + root) / a))
             };
-            best = side(best, o, d, r, half_height, r0, r1, reach2, t_min, t_max);
-            best = side(best, o, d, r, half_height, r1, r0, reach2, t_min, t_max);
+            side(&mut best, (o, d), (r, half_height), (r0, r1), reach2);
+            side(&mut best, (o, d), (r, half_height), (r1, r0), reach2);
         }
     }
     if d.y != 0.0 {
-        best = cap(best, o, d, r, half_height, t_min, t_max);
-        best = cap(best, o, d, r, -half_height, t_min, t_max);
+        cap(&mut best, (o, d), r, half_height);
+        cap(&mut best, (o, d), r, -half_height);
     }
-    best
+    best.hit()
 }
 
-#[allow(clippy::too_many_arguments)]
+/// The side at `root` (the other root `other`), if it is no self root and within the height.
 fn side(
-    best: Option<SurfaceHit>,
-    o: Vec3,
-    d: Vec3,
-    r: f32,
-    half_height: f32,
-    root: Option<f32>,
-    other: Option<f32>,
+    best: &mut Nearest,
+    (o, d): (Vec3, Vec3),
+    (r, half_height): (f32, f32),
+    (root, other): (Option<f32>, Option<f32>),
     reach2: f32,
-    t_min: f32,
-    t_max: f32,
-) -> Option<SurfaceHit> {
-    match root {
-        Some(t) if !is_self_root(reach2, t, other) => {
+) {
+    if let Some(t) = root {
+        if !is_self_root(reach2, t, other) {
             let p = o + d * t;
             if p.y.abs() <= half_height {
-                closer(best, SurfaceHit { t, normal: Vec3::new(p.x, 0.0, p.z) / r }, t_min, t_max)
-            } else {
-                best
+                best.take(SurfaceHit { t, normal: Vec3::new(p.x, 0.0, p.z) / r });
             }
         }
-        _ => best,
     }
 }
 
 /// The cap in the plane y = `y` (normal pointing away from the body).
-fn cap(best: Option<SurfaceHit>, o: Vec3, d: Vec3, r: f32, y: f32, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
+fn cap(best: &mut Nearest, (o, d): (Vec3, Vec3), r: f32, y: f32) {
     let t = (y - o.y) / d.y;
     let p = o + d * t;
     if p.x * p.x + p.z * p.z <= r * r {
         let normal = Vec3::new(0.0, if y > 0.0 { 1.0 } else { -1.0 }, 0.0);
-        closer(best, SurfaceHit { t, normal }, t_min, t_max)
-    } else {
-        best
+        best.take(SurfaceHit { t, normal });
     }
 }
 

@@ -23,7 +23,7 @@
 use super::sphere;
 use super::uv::{around_y, ShapeUv};
 use crate::layout::Primitive;
-use crate::surface::SurfaceHit;
+use crate::surface::{Nearest, SurfaceHit};
 use glam::{Vec2, Vec3};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
@@ -192,18 +192,17 @@ struct Candidate {
     to_t: f32,
     on_surface: bool,
     t_min: f32,
-    t_max: f32,
     /// Newton steps on each root, and the check that it lies on the surface (off only in the
     /// naive variant).
     polish: bool,
 }
 
 impl Candidate {
-    /// `best`, or the root that `guess` (from `start`) polishes to, if it lies on the surface
-    /// and is a nearer hit in range (and not the ray's own origin when it starts on it).
-    fn consider(&self, best: Option<SurfaceHit>, (valid, guess): (bool, f32)) -> Option<SurfaceHit> {
+    /// Takes into `best` the root that `guess` (from `start`) polishes to, if it lies on the
+    /// surface and is a nearer hit in range (and not the ray's own origin when it starts on it).
+    fn consider(&self, best: &mut Nearest, (valid, guess): (bool, f32)) {
         if !valid {
-            return best;
+            return;
         }
         let s = if self.polish { polish(self.start, self.d, self.r, guess) } else { guess };
         if self.polish {
@@ -213,45 +212,40 @@ impl Candidate {
             let g = distance(p, self.r).0;
             let on_surface = g.abs() <= ROOT_TOLERANCE * p.length().max(1.0);
             if !on_surface {
-                return best;
+                return;
             }
         }
         let s = s + self.shift;
         if self.on_surface && s.abs() <= SELF_BAND * self.r {
-            return best;
+            return;
         }
         let t = s * self.to_t;
-        let limit = match best {
-            Some(b) => b.t,
-            None => self.t_max,
-        };
-        if t >= self.t_min && t <= limit {
+        // Checked before the normal is made, which only a hit taken needs.
+        if t >= self.t_min && t <= best.limit() {
             let p = self.o + self.d * s;
             let ring = Vec3::new(p.x, 0.0, p.z).normalize();
-            Some(SurfaceHit { t, normal: p - ring })
-        } else {
-            best
+            best.take(SurfaceHit { t, normal: p - ring });
         }
     }
 
-    /// `best`, or the entry or exit of the tube near `around`, where the ray passes closest
-    /// to the ring: found from the distance function alone, they catch the roots a thin
-    /// tube's quartic loses.
-    fn consider_approach(&self, best: Option<SurfaceHit>, around: f32) -> Option<SurfaceHit> {
+    /// Takes into `best` the entry or exit of the tube near `around`, where the ray passes
+    /// closest to the ring: found from the distance function alone, they catch the roots a
+    /// thin tube's quartic loses.
+    fn consider_approach(&self, best: &mut Nearest, around: f32) {
         let s = closest_approach(self.start, self.d, around);
         let p = self.start + self.d * s;
         let ring = (p.x * p.x + p.z * p.z).sqrt();
         let dist = ((ring - 1.0) * (ring - 1.0) + p.y * p.y).sqrt();
         if dist >= self.r {
-            return best;
+            return;
         }
         // D is nearly a parabola about its minimum: D(s) = D(m) + D''(m)/2 (s - m)^2.
         let ring1 = if ring > 0.0 { (p.x * self.d.x + p.z * self.d.z) / ring } else { 0.0 };
         let ring2 = if ring > 0.0 { (self.d.x * self.d.x + self.d.z * self.d.z - ring1 * ring1) / ring } else { 0.0 };
         let curvature = (ring1 * ring1 + (ring - 1.0) * ring2 + self.d.y * self.d.y).max(1.0e-12);
         let half = ((self.r - dist) * (self.r + dist) / curvature).sqrt();
-        let best = self.consider(best, (true, s - half));
-        self.consider(best, (true, s + half))
+        self.consider(best, (true, s - half));
+        self.consider(best, (true, s + half));
     }
 }
 
@@ -273,14 +267,16 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
     // The four roots one by one, not by index: rust-gpu turns an index's bounds-check panic
     // path inside a loop into control flow NVIDIA's driver miscompiles (see the shaders' trace.rs).
     let [r0, r1, r2, r3] = quartic_roots(start, d, r);
-    let candidate = Candidate { o, d, start, r, shift, to_t, on_surface, t_min, t_max, polish: true };
-    let best = candidate.consider(None, r0);
-    let best = candidate.consider(best, r1);
-    let best = candidate.consider(best, r2);
-    let best = candidate.consider(best, r3);
+    let candidate = Candidate { o, d, start, r, shift, to_t, on_surface, t_min, polish: true };
+    let mut best = Nearest::new(t_min, t_max);
+    candidate.consider(&mut best, r0);
+    candidate.consider(&mut best, r1);
+    candidate.consider(&mut best, r2);
+    candidate.consider(&mut best, r3);
     let (near, far) = ring_crossings(start, d);
-    let best = candidate.consider_approach(best, near);
-    candidate.consider_approach(best, far)
+    candidate.consider_approach(&mut best, near);
+    candidate.consider_approach(&mut best, far);
+    best.hit()
 }
 
 /// The quartic solved from the ray's own origin, without the shift onto the bounding sphere,
@@ -300,11 +296,13 @@ pub fn naive_intersect(
     let o = origin / big_r;
     let to_t = big_r / length;
     let [r0, r1, r2, r3] = quartic_roots(o, d, r);
-    let candidate = Candidate { o, d, start: o, r, shift: 0.0, to_t, on_surface: false, t_min, t_max, polish: false };
-    let best = candidate.consider(None, r0);
-    let best = candidate.consider(best, r1);
-    let best = candidate.consider(best, r2);
-    candidate.consider(best, r3)
+    let candidate = Candidate { o, d, start: o, r, shift: 0.0, to_t, on_surface: false, t_min, polish: false };
+    let mut best = Nearest::new(t_min, t_max);
+    candidate.consider(&mut best, r0);
+    candidate.consider(&mut best, r1);
+    candidate.consider(&mut best, r2);
+    candidate.consider(&mut best, r3);
+    best.hit()
 }
 
 /// The texture coordinates at `p` (`shapes::uv`): u by the turn about y, v by the turn about
