@@ -21,17 +21,19 @@ bool poisoned(float x) {
 }
 
 // Whether the stage that took the ray left what its reader needs of the poison: every field
-// (all), or only what the probe reads.
+// (all), or only what the probe reads. Each test in a variable first: glslang writes `||` over
+// a function call as a branch, over variables as one instruction (the Rust twin uses `|`).
 bool payload_unwritten(HitPayload p, bool all) {
-    if (p.ids.w == UNWRITTEN) {
-        return true;
-    }
+    bool unwritten = p.ids.w == UNWRITTEN;
     bool hit = p.ids.w != NO_HIT;
-    if (all) {
-        return poisoned(p.color.x) || (hit && (poisoned(p.position.x) || poisoned(p.geometric_normal.x)))
-            || (hit && (poisoned(p.position.w) || poisoned(p.shading_normal.x)));
-    }
-    return hit && (poisoned(p.position.w) || poisoned(p.shading_normal.x));
+    bool color = poisoned(p.color.x);
+    bool position = poisoned(p.position.x);
+    bool geometric = poisoned(p.geometric_normal.x);
+    bool t = poisoned(p.position.w);
+    bool shading = poisoned(p.shading_normal.x);
+    bool seen_by_all = color || (hit && (position || geometric));
+    bool seen_by_probe = hit && (t || shading);
+    return unwritten || (all && seen_by_all) || seen_by_probe;
 }
 
 uint no_payload_word(uint word, uint sample_index) {

@@ -244,17 +244,13 @@ impl HitPayload {
     /// of each vector stands for it: stages write vectors whole.
     pub fn unwritten(&self, all: bool) -> bool {
         let poisoned = |x: f32| x.to_bits() == crate::bindings::UNWRITTEN;
-        if self.ids.w == crate::bindings::UNWRITTEN {
-            return true;
-        }
+        // `|` and `&`, not `||` and `&&`: every operand is a comparison, and rust-gpu writes
+        // each short circuit as a branch with a phi after the trace.
         let hit = self.ids.w != crate::bindings::NO_HIT;
-        if all {
-            poisoned(self.color.x)
-                || (hit && (poisoned(self.position.x) || poisoned(self.geometric_normal.x)))
-                || (hit && (poisoned(self.position.w) || poisoned(self.shading_normal.x)))
-        } else {
-            hit && (poisoned(self.position.w) || poisoned(self.shading_normal.x))
-        }
+        let seen_by_all =
+            poisoned(self.color.x) | (hit & (poisoned(self.position.x) | poisoned(self.geometric_normal.x)));
+        let seen_by_probe = hit & (poisoned(self.position.w) | poisoned(self.shading_normal.x));
+        (self.ids.w == crate::bindings::UNWRITTEN) | (all & seen_by_all) | seen_by_probe
     }
 
     /// All zeros: the compute stages' payload before their ray query describes a hit into it.
@@ -350,3 +346,46 @@ pub struct ExplainResult {
     pub occluded: UVec4,
 }
 const _: () = assert!(core::mem::size_of::<ExplainResult>() == 96);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::bindings::{NO_HIT, UNWRITTEN};
+
+    /// A stage that wrote nothing, a miss, a hit, and a hit missing each word the readers
+    /// check: what ray generation (`all`) and the probe see.
+    #[test]
+    fn unwritten_sees_each_poisoned_word_its_reader_needs() {
+        let mut poisoned = HitPayload::NONE;
+        poisoned.poison();
+        assert!(poisoned.unwritten(true) && poisoned.unwritten(false));
+        let mut miss = poisoned;
+        miss.ids = UVec4::new(0, 0, 0, NO_HIT);
+        assert!(miss.unwritten(true), "a miss that leaves its colour poisoned");
+        assert!(!miss.unwritten(false), "the probe reads no colour");
+        miss.color = Vec4::ONE;
+        assert!(!miss.unwritten(true));
+        let written = HitPayload {
+            position: Vec4::ONE,
+            shading_normal: Vec4::Y,
+            geometric_normal: Vec4::Y,
+            color: Vec4::ONE,
+            ids: UVec4::new(1, 2, 0, 3),
+        };
+        assert!(!written.unwritten(true) && !written.unwritten(false));
+        let f = f32::from_bits(UNWRITTEN);
+        let cases: [(fn(&mut HitPayload, f32), bool); 5] = [
+            (|p, f| p.color.x = f, false),
+            (|p, f| p.position.x = f, false),
+            (|p, f| p.geometric_normal.x = f, false),
+            (|p, f| p.position.w = f, true),
+            (|p, f| p.shading_normal.x = f, true),
+        ];
+        for (i, (poison, probe_sees)) in cases.iter().enumerate() {
+            let mut p = written;
+            poison(&mut p, f);
+            assert!(p.unwritten(true), "case {i}");
+            assert_eq!(p.unwritten(false), *probe_sees, "case {i}");
+        }
+    }
+}
