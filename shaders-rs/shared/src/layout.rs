@@ -374,7 +374,8 @@ mod tests {
         };
         assert!(!written.unwritten(true) && !written.unwritten(false));
         let f = f32::from_bits(UNWRITTEN);
-        let cases: [(fn(&mut HitPayload, f32), bool); 5] = [
+        type Poison = fn(&mut HitPayload, f32);
+        let cases: [(Poison, bool); 5] = [
             (|p, f| p.color.x = f, false),
             (|p, f| p.position.x = f, false),
             (|p, f| p.geometric_normal.x = f, false),
