@@ -1,0 +1,25 @@
+#!/bin/sh
+# Issue 53: the sets SETS (bench's --sets: folders of modules under target/, built-in sets,
+# mixes) on each scene, every set alone on ROUNDS fresh devices at 1920x1080 and SPP. Run
+# from the repository root with the bundle.
+#   sh bench/reports/issue53-branches/device-sets.sh NAME ROUNDS SPP SETS SCENE...
+set -u
+[ -x /tmp/twinray-bench/bin/twinray ] || tar xzf target/twinray-bench.tar.gz -C /tmp
+B=/tmp/twinray-bench
+export LD_LIBRARY_PATH=$B/lib PATH=$B/bin:$PATH
+T=$B/bin/twinray
+name=$1 rounds=$2 spp=$3 sets=$4
+shift 4
+R=$OUT/$name
+mkdir -p $R
+$T info > $R/info.txt 2>&1
+for scene in "$@"; do
+  s=$(date +%s)
+  out=$R/$(basename $scene)
+  $T bench $scene --sets "$sets" --width 1920 --height 1080 \
+    --spp $spp --runs 10 --warmup 2 --placements 1 --processes $rounds --alone-in devices \
+    --reference-spp 16 --shadow-spp none --probes none --images none --cache /tmp/refs --out $out > $out.log 2>&1
+  echo "== $scene: exit $?, $(( $(date +%s) - s )) s"
+  grep " / " $out.log | cut -c1-130
+done
+cd $OUT && tar czf $name.tgz $(find $name -name results.json -o -name '*.txt' -o -name '*.log') && rm -rf $name
