@@ -263,3 +263,72 @@ fn meshes_with_shared_diagonals_pass_compare() {
         assert_eq!(edges > 0, on_centres, "{edges} pixels on internal edges, camera at x = {eye_x}");
     }
 }
+
+/// A 16384 x 16384 picture in a 64 KB PNG (one bit per pixel, all black), as a model's base
+/// colour texture: refused by the size its header gives, against the model's budget, before
+/// it is decoded, with one line naming the image, under a 1 GiB address-space limit on the
+/// whole render. Decoded to RGBA with its mips it would take 1.3 GiB; the build before issue
+/// 54 decoded such a file and peaked at 4.3 GB.
+#[test]
+fn a_small_file_of_a_huge_image_is_refused_before_it_is_decoded() {
+    let dir = tempfile::tempdir().unwrap();
+    let side = 16384u32;
+    let mut png = Vec::new();
+    let mut encoder = png::Encoder::new(&mut png, side, side);
+    encoder.set_color(png::ColorType::Grayscale);
+    encoder.set_depth(png::BitDepth::One);
+    let mut writer = encoder.write_header().unwrap();
+    writer.write_image_data(&vec![0u8; (side as usize / 8) * side as usize]).unwrap();
+    writer.finish().unwrap();
+    assert!(png.len() < 128 << 10, "{} bytes encoded", png.len());
+    std::fs::write(dir.path().join("huge.png"), &png).unwrap();
+    let mut bin = quad_bytes();
+    bin.extend([0.0f32, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0].iter().flat_map(|v| v.to_le_bytes()));
+    std::fs::write(dir.path().join("quad.bin"), &bin).unwrap();
+    let gltf = quad_gltf("quad.bin")
+        .replace(r#""byteLength": 56, "uri""#, r#""byteLength": 88, "uri""#)
+        .replace(
+            r#"{"buffer": 0, "byteOffset": 48, "byteLength": 8}]"#,
+            r#"{"buffer": 0, "byteOffset": 48, "byteLength": 8}, {"buffer": 0, "byteOffset": 56, "byteLength": 32}]"#,
+        )
+        .replace(
+            r#""type": "SCALAR"}],"#,
+            r#""type": "SCALAR"}, {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}],
+            "images": [{"uri": "huge.png"}], "textures": [{"source": 0}],
+            "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],"#,
+        )
+        .replace(
+            r#"{"POSITION": 0}, "indices": 1}"#,
+            r#"{"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1, "material": 0}"#,
+        );
+    assert!(gltf.contains("TEXCOORD_0") && gltf.contains("\"byteOffset\": 56"), "{gltf}");
+    let model = dir.path().join("huge.gltf");
+    std::fs::write(&model, gltf).unwrap();
+    let model = model.to_str().unwrap();
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_twinray"))
+        .args(["render", model, "--width", "16", "--height", "16", "--out", "x.png"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("huge.png") && stderr.contains("16384x16384"), "{stderr}");
+    assert!(!dir.path().join("x.png").exists());
+    // The same model with a small picture in that file renders under the same limit.
+    let mut small = Vec::new();
+    image::GrayImage::new(64, 64).write_to(&mut std::io::Cursor::new(&mut small), image::ImageFormat::Png).unwrap();
+    std::fs::write(dir.path().join("huge.png"), &small).unwrap();
+    let out = std::process::Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_twinray"))
+        .args(["render", model, "--width", "16", "--height", "16", "--out", "x.png"])
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}

@@ -52,7 +52,8 @@ impl SamplerDesc {
 #[serde(deny_unknown_fields)]
 pub struct TextureDesc {
     /// The image: a PNG or JPEG file relative to the scene file; for a glTF model's texture,
-    /// the model's file and the image's index (`model.glb#image 2`).
+    /// the model's file and the image's index, and its file if it has one (`model.glb#image 2`,
+    /// `model.gltf#image 0 (wood.png)`).
     pub file: String,
     /// The vertex texture coordinate set it reads: 0 or 1.
     #[serde(default)]

@@ -34,7 +34,13 @@ pub fn read(
     let decoded = match images.get(&image.index()) {
         Some(i) => i.clone(),
         None => {
-            let name = format!("{source}#image {}", image.index());
+            // The file too, where the image is one: a user looks for it by that name.
+            let name = match image.source() {
+                gltf::image::Source::Uri { uri, .. } if !uri.starts_with("data:") => {
+                    format!("{source}#image {} ({uri})", image.index())
+                }
+                _ => format!("{source}#image {}", image.index()),
+            };
             let bytes = image_bytes(&image, files).map_err(|e| format!("image {}: {e}", image.index()))?;
             let decoded = Arc::new(texture::decode(&name, &bytes, true, files.budget).map_err(|e| e.to_string())?);
             images.insert(image.index(), decoded.clone());
