@@ -332,3 +332,39 @@ fn a_small_file_of_a_huge_image_is_refused_before_it_is_decoded() {
         .unwrap();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
+
+/// A valid model whose `extras` are an array, a number, a string, null and a boolean (the
+/// schema allows any JSON value), one type at each place: the root, buffer, views, accessor,
+/// mesh, primitive, node and scene, and an unknown extension's object of each type on the
+/// node. `compare` renders it with both sets and passes. The build before issue 54 refused an
+/// array, number or string there.
+#[test]
+fn a_model_with_extras_of_every_json_type_passes_compare() {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("quad.bin"), quad_bytes()).unwrap();
+    let values = ["[1, \"two\"]", "3.5", "\"text\"", "null", "false"];
+    let places = [
+        "{\"asset\": ",
+        "{\"byteLength\"",
+        "{\"buffer\": 0",
+        "{\"bufferView\": 0",
+        "{\"primitives\"",
+        "{\"attributes\"",
+        "{\"nodes\"",
+    ];
+    let mut gltf = quad_gltf("quad.bin");
+    for (i, place) in places.iter().enumerate() {
+        gltf = gltf.replace(place, &format!("{{\"extras\": {}, {}", values[i % values.len()], &place[1..]));
+    }
+    let unknown: Vec<String> = values.iter().enumerate().map(|(i, v)| format!("\"EXT_nobody_{i}\": {v}")).collect();
+    gltf = gltf.replace(
+        "{\"mesh\": 0}",
+        &format!("{{\"extras\": true, \"extensions\": {{{}}}, \"mesh\": 0}}", unknown.join(", ")),
+    );
+    assert_eq!(gltf.matches("\"extras\"").count(), 9, "{gltf}");
+    std::fs::write(dir.path().join("extras.gltf"), &gltf).unwrap();
+    let out = twinray(&["compare", "extras.gltf", "--width", "32", "--height", "32", "--runs", "1"], dir.path());
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{}\n{stdout}", String::from_utf8_lossy(&out.stderr));
+    assert!(stdout.contains("PASS"), "{stdout}");
+}
