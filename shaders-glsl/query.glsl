@@ -8,6 +8,7 @@
 #include "shading.glsl"
 #include "shape_dispatch.glsl"
 #include "texture.glsl"
+#include "transform.glsl"
 
 // The ray parameter of the query's candidate if it is a hit, decided as the pipeline's stages
 // would, else -1: a triangle at its t (up to t_max), a procedural primitive by its shape's
@@ -29,9 +30,15 @@ float candidate_hit(rayQueryEXT query, float t_min, float t_max, out vec3 normal
     } else {
         uint primitive = rayQueryGetIntersectionInstanceCustomIndexEXT(query, false) +
                          rayQueryGetIntersectionPrimitiveIndexEXT(query, false);
+        // The shape sees the object-space ray from the world ray, as its intersection stage
+        // does (transform.glsl); the cutout's pattern below, the driver's.
+        vec3 so, sd;
+        object_ray(rayQueryGetWorldRayOriginEXT(query), rayQueryGetWorldRayDirectionEXT(query),
+                   rayQueryGetIntersectionObjectToWorldEXT(query, false)[3],
+                   mat3(rayQueryGetIntersectionWorldToObjectEXT(query, false)), so, sd);
         float hit_t;
         vec3 n;
-        if (shape_intersect(data.shape, o, d, primitives[primitive], t_min, t_max, hit_t, n)) {
+        if (shape_intersect(data.shape, so, sd, primitives[primitive], t_min, t_max, hit_t, n)) {
             t = hit_t;
             normal = n;
         }

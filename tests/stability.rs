@@ -2,7 +2,7 @@
 //! on: the robust formulas of both sets meet every case's targets (no false hit, false miss
 //! or wrong object outside the ambiguous band; p99 relative t error within the case's bound,
 //! 1e-6 for quadrics and planes, 1e-5 for tori), and the naive formulas fail where
-//! NUMERICS.md says they do.
+//! docs/numerics.md says they do.
 
 use twinray::probe::stability::{case_files, run, Timing};
 use twinray::scene::shape::Formula;
@@ -27,7 +27,7 @@ fn robust_formulas_meet_every_target_and_naive_ones_fail_where_expected() {
         missed.push(format!("{} {}: {:?}", row.report.case, row.report.set, row.failures));
     }
     assert!(missed.is_empty(), "{missed:#?}");
-    // The naive forms fail where NUMERICS.md measured them failing.
+    // The naive forms fail where docs/numerics.md measured them failing.
     let naive_wrong = |case: &str| {
         rows.iter()
             .filter(|r| r.formula == "naive" && r.report.case == case)

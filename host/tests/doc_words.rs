@@ -225,3 +225,51 @@ fn code_quoted_from_the_source_is_what_the_source_says() {
     }
     assert!(checked >= 7, "only {checked} quoted blocks: docs/rust-stages.md shows a stage of each kind");
 }
+
+/// The repository explains itself: no tracked text file names a relative path (`../x`) that,
+/// from the file's folder, leaves the repository (nor, in a Markdown file, one that does not
+/// exist), nor a team note the repository does not hold (an upper-case Markdown file name
+/// with no file of that name in it). Fuzz inputs and the hostile corpus, and code that tests
+/// confinement, name escaping paths on purpose: only those leaving from the file's own folder
+/// count, and the fuzz and hostile folders are not read.
+#[test]
+fn no_file_names_a_path_outside_the_repository() {
+    let root = root();
+    let listed = Command::new("git").args(["ls-files", "-z"]).current_dir(&root).output().unwrap();
+    let files: Vec<String> =
+        listed.stdout.split(|&b| b == 0).filter(|f| !f.is_empty()).map(|f| String::from_utf8_lossy(f).into()).collect();
+    let names: BTreeSet<&str> = files.iter().filter_map(|f| f.rsplit('/').next()).collect();
+    let mut out = Vec::new();
+    for file in files.iter().filter(|f| !f.starts_with("fuzz/corpus/") && !f.starts_with("tests/hostile/")) {
+        let Ok(text) = std::fs::read_to_string(root.join(file)) else { continue };
+        let depth = file.matches('/').count();
+        for (line, words) in text.lines().enumerate() {
+            for word in words.split(|c: char| c.is_whitespace() || "`'\"()[]<>,;:=".contains(c)) {
+                let path = word.trim_end_matches(['.', ')']);
+                if path.starts_with("../") {
+                    let ups = path.matches("../").count();
+                    let folder = Path::new(file).parent().unwrap_or(Path::new(""));
+                    let placeholder = path.contains(['*', '$', '{']) || path.contains("...");
+                    if ups > depth {
+                        out.push(format!("{file}:{}: `{path}` leaves the repository", line + 1));
+                    } else if file.ends_with(".md") && !placeholder && !root.join(folder).join(path).exists() {
+                        out.push(format!("{file}:{}: `{path}` does not exist", line + 1));
+                    }
+                }
+                let name = path.rsplit('/').next().unwrap_or(path);
+                let upper = name
+                    .strip_suffix(".md")
+                    .is_some_and(|n| !n.is_empty() && n.chars().all(|c| c.is_ascii_uppercase() || c == '_'));
+                if upper && !names.contains(name) && !generated(name) {
+                    out.push(format!("{file}:{}: `{path}` is not in the repository", line + 1));
+                }
+            }
+        }
+    }
+    assert!(out.is_empty(), "{}", out.join("\n"));
+}
+
+/// Notes a command writes into its output folder (`bench/nvidia-run.sh` writes `COMMANDS.md`).
+fn generated(note: &str) -> bool {
+    note == "COMMANDS.md"
+}

@@ -56,7 +56,7 @@ pub fn run(name: &str) -> Result<()> {
         .with_context(|| format!("comparing the Rust and GLSL renders of scene {name}"))?;
     println!(
         "\nnew-shape: {name} renders alike with both sets. Next:\n\
-         - write its intersection in {rust} (robust forms: NUMERICS.md) and its twin in {glsl};\n\
+         - write its intersection in {rust} (robust forms: docs/numerics.md) and its twin in {glsl};\n\
          - set its scene keys and primitive in SHAPE (same file), and its scene in {scene};\n\
          - `cargo xtask watch {name}` rebuilds and compares both sets on every save;\n\
          - `cargo xtask golden {name}` writes its golden images; review them, then `cargo xtask ci`;\n\

@@ -3,7 +3,7 @@
 
 use super::case::Generated;
 use super::case::ProbeCase;
-use super::run::{count_written, judgeable, no_payload};
+use super::run::{count_written, judgeable, no_payload, Records};
 use super::split::{relative, split, AgreedHit, TErrorSplit};
 use crate::reference::scene::SceneVerdict;
 use crate::reference::stage::{lines, stage_of};
@@ -136,13 +136,8 @@ pub fn judge(case: &ProbeCase, results: &[ProbeResult]) -> Vec<Judged> {
 
 /// Judges each result against the reference of its ray; with the records of the witness pass,
 /// splits the t error by source.
-pub fn evaluate(
-    case: &ProbeCase,
-    (results, witness): (&[ProbeResult], Option<&[ProbeResult]>),
-    set: &str,
-    device: &str,
-    gpu_ms: Option<f64>,
-) -> ProbeReport {
+pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str, gpu_ms: Option<f64>) -> ProbeReport {
+    let results = records.results;
     let mut report = ProbeReport {
         case: case.file.name.clone(),
         set: set.into(),
@@ -211,11 +206,14 @@ pub fn evaluate(
                 .count(),
         );
     }
-    report.t_error_by_source = witness.map(|witness| {
-        let hits = judged.iter().zip(results).zip(witness).filter_map(|((judged, result), witness)| {
-            let SceneVerdict::Hit { t, .. } = judged.verdict else { return None };
-            (judged.outcome == Outcome::Agrees).then_some(AgreedHit { ray: &judged.ray, t_ref: t, result, witness })
-        });
+    report.t_error_by_source = records.witness.map(|witness| {
+        let hits =
+            judged.iter().zip(results).zip(witness).enumerate().filter_map(|(i, ((judged, result), witness))| {
+                let SceneVerdict::Hit { t, .. } = judged.verdict else { return None };
+                let driver = records.driver.and_then(|d| d.get(i));
+                let hit = AgreedHit { ray: &judged.ray, t_ref: t, result, witness, driver };
+                (judged.outcome == Outcome::Agrees).then_some(hit)
+            });
         split(&case.reference, hits)
     });
     report.relative_t_error = Quantiles::of(rel);

@@ -24,9 +24,12 @@ pub use twinray_shared::layout::{ProbeRay, ProbeResult};
 pub struct ProbeOutput {
     /// One per ray, in order.
     pub results: Vec<ProbeResult>,
-    /// One per ray, in order, from the witness pass (see [`super::split::witness`]); none for a scene
-    /// without hit groups, or one the compute renderer renders.
+    /// One per ray, in order, from the witness pass of the stages' object-space ray (see
+    /// [`super::split::witness`]); none for a scene without hit groups, or one the compute
+    /// renderer renders.
     pub witness: Option<Vec<ProbeResult>>,
+    /// The same from the witness pass of the driver's object-space ray.
+    pub driver_witness: Option<Vec<ProbeResult>>,
     /// GPU milliseconds of each timed trace of all the rays.
     pub gpu_ms: Vec<f64>,
     /// Stack bytes the probe ray generation stage needs, as the driver reports it.
@@ -34,10 +37,18 @@ pub struct ProbeOutput {
 }
 
 impl ProbeOutput {
-    /// The probe's records and the witness pass's, as `report::evaluate` takes them.
-    pub fn records(&self) -> (&[ProbeResult], Option<&[ProbeResult]>) {
-        (&self.results, self.witness.as_deref())
+    /// The probe's records and the witness passes', as `report::evaluate` takes them.
+    pub fn records(&self) -> Records<'_> {
+        Records { results: &self.results, witness: self.witness.as_deref(), driver: self.driver_witness.as_deref() }
     }
+}
+
+/// A probe's records: one per ray, and those of its witness passes where it had them.
+#[derive(Clone, Copy)]
+pub struct Records<'a> {
+    pub results: &'a [ProbeResult],
+    pub witness: Option<&'a [ProbeResult]>,
+    pub driver: Option<&'a [ProbeResult]>,
 }
 
 /// Whether the stage wrote this record: no word of it still holds the sentinel.
@@ -119,18 +130,18 @@ fn probe_and_release(
     let timestamps = Timestamps::new(ctx, runs)?;
     let label = format!("the probe trace of {set} ({})", p.pipeline.modules.join(", "));
     let _doing = activity::doing(label);
-    // The witness pass first, untimed, so that the timed traces are the probe's as before.
-    let witness = match &p.witness_sbt {
-        Some(sbt) => {
-            let pass = Trace { sbt: Some(sbt), ..p.trace(ctx, None, (count, 1), (0, 1))? };
-            Some(read_pass(ctx, &p, pass, &results, bytes)?)
-        }
-        None => None,
-    };
+    // The witness passes first, untimed, so that the timed traces are the probe's as before.
+    let mut witnesses = Vec::new();
+    for sbt in &p.witness_sbts {
+        let pass = Trace { sbt: Some(sbt), ..p.trace(ctx, None, (count, 1), (0, 1))? };
+        witnesses.push(read_pass(ctx, &p, pass, &results, bytes)?);
+    }
+    let mut witnesses = witnesses.into_iter();
+    let (witness, driver_witness) = (witnesses.next(), witnesses.next());
     let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
     let results = read_pass(ctx, &p, trace, &results, bytes)?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
-    Ok(ProbeOutput { results, witness, gpu_ms, raygen_stack_bytes: p.pipeline.raygen_stack_bytes() })
+    Ok(ProbeOutput { results, witness, driver_witness, gpu_ms, raygen_stack_bytes: p.pipeline.raygen_stack_bytes() })
 }
 
 /// The buffers a pass of chosen rays binds besides the scene's: the rays, the results (of

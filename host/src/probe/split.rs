@@ -1,10 +1,12 @@
-//! The t error of a probe split by where it comes from. A hit group's stages never see the
-//! world-space ray: the driver hands them the ray in object space, transformed in f32. The
-//! witness pass reads that object-space ray back with the t the stages reported, so the f64
-//! reference can judge the stages against the very ray they were given (their own error) and,
-//! apart from it, how far the driver's transform moved the true answer (the driver's error).
-//! On lavapipe an instance translated 1e4 away and seen from 10 units gets a relative t error
-//! of 2.5e-4 in both sets, all of it the transform's; a user can fix only the other part.
+//! The t error of a probe split by where it comes from. The intersection stages compute their
+//! object-space ray from the world ray and the instance's transform, in f32
+//! (`twinray_shared::transform`). The witness pass reads that ray back with the t the stages
+//! reported, so the f64 reference can judge the stages against the very ray they used (their
+//! own error) and, apart from it, how far the transform moved the true answer. A second
+//! witness pass reads the object-space ray the driver hands a hit group, which the stages no
+//! longer use: how far the driver's transform would have moved it. On lavapipe an instance
+//! translated 1e4 away and seen from 10 units gets 2.5e-4 from the driver's transform, and
+//! a few f32 ulps from the stages' (docs/numerics.md).
 
 use super::run::{record_written, ProbeResult};
 use crate::reference::scene::SceneReference;
@@ -25,7 +27,7 @@ pub struct Witness {
     pub t: f32,
 }
 
-/// The witness in a record of the witness pass; none where the ray missed or the record was
+/// The witness in a record of a witness pass; none where the ray missed or the record was
 /// never written.
 pub fn witness(r: &ProbeResult) -> Option<Witness> {
     if !record_written(r) || r.ids.w == NO_HIT {
@@ -45,8 +47,12 @@ pub struct TErrorSplit {
     /// stages: the stages' own error.
     pub stage: Quantiles,
     /// |t_obj - t_ref| / t_ref, t_ref the f64 first hit of the world-space ray: how far the
-    /// driver's world-to-object transform moved the true answer.
+    /// stages' world-to-object transform moved the true answer.
     pub transform: Quantiles,
+    /// The same for the object-space ray the driver hands a hit group, over the hits whose
+    /// driver witness repeated the t and the reference decides: what the driver's transform
+    /// would have cost. None without that witness pass.
+    pub driver: Option<Quantiles>,
     /// Hits whose object-space ray the reference finds ambiguous, or a miss (left out).
     pub undecided: usize,
     /// Hits the witness pass answered with another t, or none: the GPU's answer did not repeat
@@ -60,42 +66,56 @@ pub struct AgreedHit<'a> {
     pub t_ref: f64,
     pub result: &'a ProbeResult,
     pub witness: &'a ProbeResult,
+    /// The record of the driver's witness pass, where there was one.
+    pub driver: Option<&'a ProbeResult>,
 }
 
 /// The split over `hits`.
 pub fn split<'a>(reference: &SceneReference, hits: impl Iterator<Item = AgreedHit<'a>>) -> TErrorSplit {
     let mut out = TErrorSplit::default();
-    let (mut stage, mut transform) = (Vec::new(), Vec::new());
+    let (mut stage, mut transform, mut driver, mut driven) = (Vec::new(), Vec::new(), Vec::new(), false);
     for hit in hits {
         let t = hit.result.normal_t.w;
-        let Some(w) = witness(hit.witness).filter(|w| w.t.to_bits() == t.to_bits()) else {
+        driven |= hit.driver.is_some();
+        if let Some(t_obj) = hit.driver.and_then(|d| object_t(reference, &hit, d)) {
+            driver.push(relative(t_obj, hit.t_ref));
+        }
+        if witness(hit.witness).filter(|w| w.t.to_bits() == t.to_bits()).is_none() {
             out.unrepeated += 1;
             continue;
-        };
-        let Some(object) = reference.objects.get(hit.result.ids.x as usize) else {
-            out.undecided += 1;
-            continue;
-        };
-        let ray = RefRay {
-            origin: w.origin.as_dvec3(),
-            direction: w.direction.as_dvec3(),
-            t_min: f64::from(hit.ray.origin.w),
-            t_max: f64::from(hit.ray.direction.w),
-            // Given in the object's own space: rounded at its own magnitude.
-            noise_floor: 0.0,
-        };
-        match object.first_hit(&ray) {
-            Verdict::Hit { t: t_obj, .. } => {
+        }
+        match object_t(reference, &hit, hit.witness) {
+            Some(t_obj) => {
                 stage.push(relative(f64::from(t), t_obj));
                 transform.push(relative(t_obj, hit.t_ref));
                 out.rays += 1;
             }
-            Verdict::Miss | Verdict::Ambiguous => out.undecided += 1,
+            None => out.undecided += 1,
         }
     }
     out.stage = Quantiles::of(stage);
     out.transform = Quantiles::of(transform);
+    out.driver = driven.then(|| Quantiles::of(driver));
     out
+}
+
+/// The f64 first hit of the object-space ray a witness record holds, where its t repeats the
+/// probe's and the reference decides the ray.
+fn object_t(reference: &SceneReference, hit: &AgreedHit, record: &ProbeResult) -> Option<f64> {
+    let w = witness(record).filter(|w| w.t.to_bits() == hit.result.normal_t.w.to_bits())?;
+    let object = reference.objects.get(hit.result.ids.x as usize)?;
+    let ray = RefRay {
+        origin: w.origin.as_dvec3(),
+        direction: w.direction.as_dvec3(),
+        t_min: f64::from(hit.ray.origin.w),
+        t_max: f64::from(hit.ray.direction.w),
+        // Given in the object's own space: rounded at its own magnitude.
+        noise_floor: 0.0,
+    };
+    match object.first_hit(&ray) {
+        Verdict::Hit { t, .. } => Some(t),
+        Verdict::Miss | Verdict::Ambiguous => None,
+    }
 }
 
 /// |got - want| / |want|.
@@ -111,8 +131,12 @@ impl TErrorSplit {
             (u, 0) => format!("; {u} left out, ambiguous in object space"),
             (u, r) => format!("; {u} left out, ambiguous in object space, {r} whose t did not repeat"),
         };
+        let driver = match &self.driver {
+            Some(d) => format!(" (the driver's transform would have given p99 {:.2e})", d.p99),
+            None => String::new(),
+        };
         format!(
-            "relative t error by source, over {} hit{}: stages p99 {:.2e} (against the object-space ray the GPU handed them), driver's transform p99 {:.2e}{left_out}",
+            "relative t error by source, over {} hit{}: stages p99 {:.2e} (against the object-space ray they computed), their transform p99 {:.2e}{driver}{left_out}",
             self.rays,
             if self.rays == 1 { "" } else { "s" },
             self.stage.p99,
@@ -151,7 +175,7 @@ mod tests {
         let result = ProbeResult { normal_t: Vec4::new(0.0, 0.0, -1.0, 9.0), ids: UVec4::new(0, 0, 0, 1) };
         // The driver moved the origin 2^-10 towards the sphere; the stage answered as before.
         let moved = witnessed(Vec3::new(0.0, 0.0, -10.0 + 0.0009765625), Vec3::Z, 9.0);
-        let hits = [AgreedHit { ray: &ray, t_ref: 9.0, result: &result, witness: &moved }];
+        let hits = [AgreedHit { ray: &ray, t_ref: 9.0, result: &result, witness: &moved, driver: None }];
         let s = split(&reference, hits.into_iter());
         assert_eq!((s.rays, s.undecided, s.unrepeated), (1, 0, 0));
         // The truth moved to t_obj = 9 - 2^-10, and the stage's 9 is 2^-10 off it.
@@ -169,8 +193,13 @@ mod tests {
         let missed = ProbeResult { normal_t: Vec4::ZERO, ids: UVec4::splat(NO_HIT) };
         // Grazing the sphere's silhouette in object space: the reference cannot decide it.
         let grazing = witnessed(Vec3::new(1.0, 0.0, -10.0), Vec3::Z, 9.0);
-        let hits =
-            [&other_t, &missed, &grazing].map(|w| AgreedHit { ray: &ray, t_ref: 9.0, result: &result, witness: w });
+        let hits = [&other_t, &missed, &grazing].map(|w| AgreedHit {
+            ray: &ray,
+            t_ref: 9.0,
+            result: &result,
+            witness: w,
+            driver: None,
+        });
         let s = split(&reference, hits.into_iter());
         assert_eq!((s.rays, s.unrepeated, s.undecided), (0, 2, 1), "{s:?}");
         assert_eq!(witness(&missed), None);

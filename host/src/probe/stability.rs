@@ -154,7 +154,7 @@ fn measure(
     let rays: Vec<_> = case.rays.iter().copied().cycle().take(n * copies).collect();
     let mut out = probe(ctx, &case.scene, set, &rays, timing.warmup, timing.runs)?;
     out.results.truncate(n);
-    if let Some(witness) = &mut out.witness {
+    for witness in [&mut out.witness, &mut out.driver_witness].into_iter().flatten() {
         witness.truncate(n);
     }
     let ms = crate::util::stats::median(&out.gpu_ms).map(|ms| ms / copies as f64);
@@ -231,7 +231,7 @@ fn generators(rows: &[StabilityRow]) -> String {
 
 fn results(rows: &[StabilityRow]) -> String {
     let mut s = format!(
-        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>10} {:>10} {:>8} {:>9} {:>9}  targets\n",
+        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>10} {:>10} {:>11} {:>8} {:>9} {:>9}  targets\n",
         "case",
         "set",
         "formula",
@@ -242,14 +242,20 @@ fn results(rows: &[StabilityRow]) -> String {
         "t p99",
         "stage p99",
         "xform p99",
+        "driver p99",
         "ulp p99",
         "n p99",
         "ms/Mray"
     );
-    // The t error by source (`split`): the stages' own, and the driver's transform's.
+    // The t error by source (`split`): the stages' own, their transform's, and what the
+    // driver's transform would have given.
     let by_source = |r: &ProbeReport| match &r.t_error_by_source {
-        Some(split) => (format!("{:.2e}", split.stage.p99), format!("{:.2e}", split.transform.p99)),
-        None => ("n/a".into(), "n/a".into()),
+        Some(split) => (
+            format!("{:.2e}", split.stage.p99),
+            format!("{:.2e}", split.transform.p99),
+            split.driver.as_ref().map_or("n/a".into(), |d| format!("{:.2e}", d.p99)),
+        ),
+        None => ("n/a".into(), "n/a".into(), "n/a".into()),
     };
     for row in rows {
         let r = &row.report;
@@ -260,9 +266,9 @@ fn results(rows: &[StabilityRow]) -> String {
         } else {
             format!("MISSED: {}", row.failures.join("; "))
         };
-        let (stage, transform) = by_source(r);
+        let (stage, transform, driver) = by_source(r);
         s += &format!(
-            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>10} {:>10} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
+            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>10} {:>10} {:>11} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
             r.case,
             r.set,
             row.formula,
@@ -273,6 +279,7 @@ fn results(rows: &[StabilityRow]) -> String {
             r.relative_t_error.p99,
             stage,
             transform,
+            driver,
             r.ulp_error_p99,
             r.normal_angle_error_p99,
             r.gpu_ms_per_million_rays.map_or("n/a".into(), |m| format!("{m:.2}")),

@@ -22,9 +22,9 @@ pub struct ScenePipeline {
     pub rt: RtPipeline,
     /// The group of each record of each SBT region (raygen, miss, hit, callable).
     pub sbt_records: [Vec<u32>; 4],
-    /// Of a probe's pipeline: the records of its witness pass, each hit group's record
-    /// replaced by the group's witness (see [`PROBE_WITNESS`]).
-    pub witness_records: Option<[Vec<u32>; 4]>,
+    /// Of a probe's pipeline: the records of each witness pass ([`PROBE_WITNESSES`] the set
+    /// has, in order), each hit group's record replaced by the group's witness.
+    pub witness_records: Vec<[Vec<u32>; 4]>,
     /// Groups in the pipeline.
     pub group_count: u32,
     /// Names of the modules in the pipeline, in stage order (for tests and reports).
@@ -35,17 +35,22 @@ pub struct ScenePipeline {
     _libraries: Vec<std::rc::Rc<RtPipeline>>,
 }
 
-/// The probe's witness closest-hit stage. A probe's pipeline holds, besides the scene's hit
-/// groups, a witness of each: the same intersection and any-hit stages with this closest-hit
-/// stage, which reports the object-space ray the GPU handed them. A pass of the probe over an
+/// The probe's witness closest-hit stages: the object-space ray the intersection stages
+/// computed, and the one the driver hands a hit group. A probe's pipeline holds, besides the
+/// scene's hit groups, a witness of each per witness stage: the same intersection and any-hit
+/// stages with the witness as closest hit, which reports the ray. A pass of the probe over an
 /// SBT of witnesses reads those rays back; the scene's own stages are not changed.
-pub const PROBE_WITNESS: &str = "probe_witness";
+pub const PROBE_WITNESSES: [&str; 2] = ["probe_witness", "probe_witness_driver"];
 
-/// Whether a pipeline of `set` with ray generation stage `raygen` over `plan` holds witness
-/// groups: the ray tracing probe's, when the scene has hit groups and the set has the witness
-/// (a folder of modules built before it existed lacks it, and probes without it).
-fn witnessed(set: &ShaderSet, plan: &PipelinePlan, raygen: &str) -> bool {
-    raygen == "probe" && !plan.hit_groups.is_empty() && !set.lacks(PROBE_WITNESS)
+/// The witness stages a pipeline of `set` with ray generation stage `raygen` over `plan` holds:
+/// the ray tracing probe's, when the scene has hit groups, those the set has (a folder of
+/// modules built before one existed lacks it, and probes without it; the driver's witness
+/// alone is not taken, as it would be read as the stages').
+fn witnesses(set: &ShaderSet, plan: &PipelinePlan, raygen: &str) -> Vec<&'static str> {
+    if raygen != "probe" || plan.hit_groups.is_empty() || set.lacks(PROBE_WITNESSES[0]) {
+        return Vec::new();
+    }
+    PROBE_WITNESSES.into_iter().filter(|w| !set.lacks(w)).collect()
 }
 
 /// (binding, type, stages) of every descriptor, from the shared layout.
@@ -130,10 +135,8 @@ impl ScenePipeline {
         libraries: Option<&Libraries>,
     ) -> Result<Self> {
         let mut names = plan_modules(plan, raygen);
-        let witness = witnessed(set, plan, raygen);
-        if witness {
-            names.push(PROBE_WITNESS);
-        }
+        let witness = witnesses(set, plan, raygen);
+        names.extend(&witness);
         let modules = names.iter().map(|name| set.module(name)).collect::<Result<Vec<StageModule>>>()?;
         let origins: Vec<String> = modules.iter().map(|m| format!("{}={}", m.spec.name, m.origin)).collect();
         let doing = format!("creating the pipeline of {set} ({})", origins.join(", "));
@@ -149,13 +152,13 @@ impl ScenePipeline {
         ctx: &Arc<Context>,
         plan: &PipelinePlan,
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
-        (witness, libraries): (bool, Option<&Libraries>),
+        (witness, libraries): (Vec<&'static str>, Option<&Libraries>),
     ) -> Result<Self> {
         let specialised = Specialisation::of_plan(plan);
         let (spec, spec_bytes) = (specialised.info(), specialised.bytes());
         // A compute pipeline has no groups and no SBT.
         let compute = workgroup(raygen).is_some();
-        let groups = if compute { Vec::new() } else { groups(plan, &names, witness) };
+        let groups = if compute { Vec::new() } else { groups(plan, &names, &witness) };
         require_device_features(ctx, modules)?;
         let bindings = descriptor_bindings();
         let stages = stage_descs(modules, &spec);
@@ -174,7 +177,7 @@ impl ScenePipeline {
         let records = if compute { Default::default() } else { sbt_records(plan) };
         Ok(ScenePipeline {
             rt,
-            witness_records: witness.then(|| witness_records(records.clone(), groups.len())),
+            witness_records: witness_records(&records, groups.len(), witness.len()),
             sbt_records: records,
             group_count: groups.len() as u32,
             modules: names,
@@ -306,16 +309,25 @@ fn sbt_records(plan: &PipelinePlan) -> [Vec<u32>; 4] {
     [vec![0], (1..hits).collect(), (hits..first_callable).collect(), callable_records]
 }
 
-/// The records of the witness pass: those of `sbt_records`, with the hit region's records the
-/// witness groups, which are the last of the pipeline's `groups` (one per hit group, in order).
-fn witness_records([raygen, miss, hit, callable]: [Vec<u32>; 4], groups: usize) -> [Vec<u32>; 4] {
-    let first = (groups - hit.len()) as u32;
-    [raygen, miss, (first..first + hit.len() as u32).collect(), callable]
+/// The records of each of `witnesses` witness passes: those of `sbt_records`, with the hit
+/// region's records the pass's witness groups. They are the last of the pipeline's `groups`:
+/// one per hit group, in order, for each witness stage in turn.
+fn witness_records(
+    [raygen, miss, hit, callable]: &[Vec<u32>; 4],
+    groups: usize,
+    witnesses: usize,
+) -> Vec<[Vec<u32>; 4]> {
+    let hits = hit.len() as u32;
+    let first = (groups - hit.len() * witnesses) as u32;
+    (0..witnesses as u32)
+        .map(|k| [raygen.clone(), miss.clone(), (first + k * hits..first + (k + 1) * hits).collect(), callable.clone()])
+        .collect()
 }
 
 /// SBT order: raygen, miss (`MISS_PRIMARY`), shadow miss (`MISS_SHADOW`), the hit groups in the
-/// plan's order, the material callables, then (when `witness`) the witness of each hit group.
-fn groups(plan: &PipelinePlan, names: &[&'static str], witness: bool) -> Vec<GroupDesc> {
+/// plan's order, the material callables, then for each of `witnesses` the witness of each hit
+/// group.
+fn groups(plan: &PipelinePlan, names: &[&'static str], witnesses: &[&'static str]) -> Vec<GroupDesc> {
     let index = |name: &str| names.iter().position(|n| *n == name).map_or(vk::SHADER_UNUSED_KHR, |i| i as u32);
     let mut groups = vec![GroupDesc::General(0), GroupDesc::General(index("miss"))];
     if plan.shadow_miss() {
@@ -331,8 +343,8 @@ fn groups(plan: &PipelinePlan, names: &[&'static str], witness: bool) -> Vec<Gro
     };
     groups.extend(plan.hit_groups.iter().map(|g| hit_group(g, g.closest_hit_module())));
     groups.extend(plan.callables().iter().map(|c| GroupDesc::General(index(c))));
-    if witness {
-        groups.extend(plan.hit_groups.iter().map(|g| hit_group(g, PROBE_WITNESS)));
+    for witness in witnesses {
+        groups.extend(plan.hit_groups.iter().map(|g| hit_group(g, witness)));
     }
     groups
 }

@@ -32,8 +32,8 @@ pub(crate) struct Prepared {
     pub descriptors: DescriptorSet,
     /// None for the compute renderer.
     pub sbt: Option<ShaderBindingTable>,
-    /// The probe's witness pass (see `pipeline::PROBE_WITNESS`), when its pipeline has one.
-    pub witness_sbt: Option<ShaderBindingTable>,
+    /// The probe's witness passes (see `pipeline::PROBE_WITNESSES`), those its pipeline has.
+    pub witness_sbts: Vec<ShaderBindingTable>,
     _resources: Rc<SceneResources>,
 }
 
@@ -166,8 +166,16 @@ pub(crate) fn prepare_on(
     let descriptors = DescriptorSet::new(ctx, pipeline.rt.set_layout, &pool_sizes(&descriptor_bindings()), &targets)?;
     let table = |records: &[Vec<u32>; 4]| ShaderBindingTable::new(ctx, pipeline.rt.raw, pipeline.group_count, records);
     let sbt = if pipeline.group_count == 0 { None } else { Some(table(&pipeline.sbt_records)?) };
-    let witness_sbt = pipeline.witness_records.as_ref().map(table).transpose()?;
-    Ok(Prepared { one_shot: OneShot::new(ctx)?, image, pipeline, descriptors, sbt, witness_sbt, _resources: resources })
+    let witness_sbts = pipeline.witness_records.iter().map(table).collect::<Result<Vec<_>>>()?;
+    Ok(Prepared {
+        one_shot: OneShot::new(ctx)?,
+        image,
+        pipeline,
+        descriptors,
+        sbt,
+        witness_sbts,
+        _resources: resources,
+    })
 }
 
 /// A device-local storage buffer of `size` bytes that can be copied out and filled (with the

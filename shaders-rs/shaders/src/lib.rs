@@ -248,8 +248,10 @@ macro_rules! procedural_intersection {
         pub fn $name(
             #[spirv(instance_custom_index)] primitive_base: u32,
             #[spirv(primitive_id)] primitive_id: u32,
-            #[spirv(object_ray_origin)] origin: Vec3,
-            #[spirv(object_ray_direction)] direction: Vec3,
+            #[spirv(world_ray_origin)] world_origin: Vec3,
+            #[spirv(world_ray_direction)] world_direction: Vec3,
+            #[spirv(object_to_world)] object_to_world: Matrix4x3,
+            #[spirv(world_to_object)] world_to_object: Matrix4x3,
             #[spirv(ray_tmin)] t_min: f32,
             #[spirv(ray_tmax)] t_max: f32,
             #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
@@ -262,6 +264,14 @@ macro_rules! procedural_intersection {
             // `showcase` was where the driver put the code: bench/reports/rust-raygen, 0).
             // SAFETY: see above; every AABB of a BLAS has its primitive at that index.
             let p = unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
+            // The object-space ray from the world ray, not `object_ray_origin`: the driver's
+            // transform loses precision far from the world origin (twinray_shared::transform).
+            let (origin, direction) = twinray_shared::transform::object_ray(
+                world_origin,
+                world_direction,
+                object_to_world.w_axis,
+                world_to_object.to_mat3(),
+            );
             if let Some(hit) = $intersect(origin, direction, &p, t_min, t_max) {
                 // Put back what was there if the hit is not taken (a cutout's any-hit stage
                 // ignored it): lavapipe 25.0.7 hands closest-hit the attribute last written,

@@ -2,7 +2,8 @@
 //! (an entry point's name is its path): rays read from a buffer, traced as the renderers trace
 //! them, and what they met written back.
 
-/// Defines the probe and explain entry points: `probe` and its witness `probe_witness`,
+/// Defines the probe and explain entry points: `probe` and its witnesses `probe_witness` and
+/// `probe_witness_driver`,
 /// `explain`, and the inline-ray (ray query) forms `explain_query` and `probe_query`.
 macro_rules! probe_stages {
     () => {
@@ -54,21 +55,48 @@ macro_rules! probe_stages {
         }
 
         /// The probe's witness: a closest-hit stage twinray puts in place of a hit group's own (same
-        /// intersection and any-hit stages) for one extra pass of the probe. It packs the object-space
-        /// ray the GPU handed the hit group, and the t its stages reported, into the payload fields the
-        /// probe ray generation stage copies out (as `ProbeResult` documents), so a probe can judge the
-        /// stages against the ray they were given, apart from the driver's world-to-object transform.
+        /// intersection and any-hit stages) for one extra pass of the probe. It packs the
+        /// object-space ray the intersection stages computed (`twinray_shared::transform`, from the
+        /// world ray as they compute it), and the t they reported, into the payload fields the
+        /// probe ray generation stage copies out (as `ProbeResult` documents), so a probe can judge
+        /// the stages against the ray they used, apart from the transform's error.
         #[spirv(closest_hit)]
         pub fn probe_witness(
+            #[spirv(hit_kind)] hit_kind: u32,
+            #[spirv(world_ray_origin)] world_origin: Vec3,
+            #[spirv(world_ray_direction)] world_direction: Vec3,
+            #[spirv(object_to_world)] object_to_world: Matrix4x3,
+            #[spirv(world_to_object)] world_to_object: Matrix4x3,
+            #[spirv(ray_tmax)] t: f32,
+            #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+        ) {
+            let (origin, direction) = twinray_shared::transform::object_ray(
+                world_origin,
+                world_direction,
+                object_to_world.w_axis,
+                world_to_object.to_mat3(),
+            );
+            witness(payload, (origin, direction), t, hit_kind);
+        }
+
+        /// The second witness, of what the driver's transform would have cost: as
+        /// `probe_witness`, with the object-space ray the driver hands a hit group
+        /// (`ObjectRayOriginKHR`, `ObjectRayDirectionKHR`), which the intersection stages do not use.
+        #[spirv(closest_hit)]
+        pub fn probe_witness_driver(
             #[spirv(hit_kind)] hit_kind: u32,
             #[spirv(object_ray_origin)] object_origin: Vec3,
             #[spirv(object_ray_direction)] object_direction: Vec3,
             #[spirv(ray_tmax)] t: f32,
             #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
         ) {
+            witness(payload, (object_origin, object_direction), t, hit_kind);
+        }
+
+        /// A witness's record: the object-space ray and t in the fields `probe` copies out.
+        fn witness(payload: &mut HitPayload, (origin, d): (Vec3, Vec3), t: f32, hit_kind: u32) {
             payload.position.w = t;
-            payload.shading_normal = object_origin.extend(payload.shading_normal.w);
-            let d = object_direction;
+            payload.shading_normal = origin.extend(payload.shading_normal.w);
             payload.ids = UVec4::new(d.x.to_bits(), d.y.to_bits(), d.z.to_bits(), hit_kind);
         }
 

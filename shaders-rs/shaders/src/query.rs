@@ -19,7 +19,7 @@ use twinray_shared::bindings::{
 use twinray_shared::camera::Ray;
 use twinray_shared::features::{Features, ALPHA_MASKS};
 use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
-use twinray_shared::shading;
+use twinray_shared::{shading, transform};
 use twinray_shared::shapes::{self, SHAPE_NAIVE};
 
 /// The ray parameter of the query's candidate if it is a hit, decided as the pipeline's stages
@@ -55,7 +55,15 @@ unsafe fn candidate_hit(
             }
         } else if primitive < primitives.len() {
             let p = *primitives.get_unchecked(primitive);
-            if let Some(hit) = shapes::intersect_shape(data.shape, o, d, &p, t_min, t_max) {
+            // The shape sees the object-space ray from the world ray, as its intersection stage
+            // does (twinray_shared::transform); the cutout's pattern below, the driver's.
+            let (so, sd) = transform::object_ray(
+                query.get_world_ray_origin(),
+                query.get_world_ray_direction(),
+                query.get_candidate_intersection_object_to_world().w_axis,
+                candidate_world_to_object(query).to_mat3(),
+            );
+            if let Some(hit) = shapes::intersect_shape(data.shape, so, sd, &p, t_min, t_max) {
                 (t, normal) = (hit.t, hit.normal);
             }
         }
@@ -230,6 +238,24 @@ pub fn trace_query(
 /// The current candidate is an AABB, and `t` lies between the ray's t_min and the committed t.
 unsafe fn generate_intersection(query: &RayQuery, t: f32) {
     asm!("OpRayQueryGenerateIntersectionKHR {query} {t}", query = in(reg) query, t = in(reg) t);
+}
+
+/// The candidate intersection's world-to-object transform
+/// (`OpRayQueryGetIntersectionWorldToObjectKHR`, which spirv-std 0.11 lacks).
+///
+/// # Safety
+/// `query` has a current candidate: `proceed` returned true.
+unsafe fn candidate_world_to_object(query: &RayQuery) -> Matrix4x3 {
+    let mut result = Matrix4x3::default();
+    asm! {
+        "%u32 = OpTypeInt 32 0",
+        "%candidate = OpConstant %u32 0",
+        "%result = OpRayQueryGetIntersectionWorldToObjectKHR typeof*{result} {query} %candidate",
+        "OpStore {result} %result",
+        query = in(reg) query,
+        result = in(reg) &mut result,
+    }
+    result
 }
 
 /// The committed intersection's world-to-object transform (`WORLD_TO_OBJECT`) or

@@ -154,6 +154,11 @@ macro_rules! module_table {
                 glsl: GlslSource::File("triangle_cutout.rahit"),
             },
             ModuleSpec { name: "probe_witness", stage: Stage::ClosestHit, glsl: GlslSource::File("probe_witness.rchit") },
+            ModuleSpec {
+                name: "probe_witness_driver",
+                stage: Stage::ClosestHit,
+                glsl: GlslSource::Variant { file: "probe_witness.rchit", define: "DRIVER_RAY" },
+            },
             ModuleSpec { name: "explain", stage: Stage::Raygen, glsl: GlslSource::File("explain.rgen") },
             ModuleSpec { name: "explain_query", stage: Stage::Compute, glsl: GlslSource::File("explain_query.comp") },
         ];

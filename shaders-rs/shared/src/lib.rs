@@ -13,6 +13,7 @@ pub mod shading;
 pub mod shapes;
 pub mod surface;
 pub mod texture;
+pub mod transform;
 
 #[cfg(not(target_arch = "spirv"))]
 pub mod catalog;

@@ -1,7 +1,7 @@
 //! Origins of secondary rays: Wächter and Binder, "A Fast and Robust Method for Avoiding
 //! Self-Intersection" (Ray Tracing Gems ch. 6). The point moves along the geometric normal by a
 //! number of ULPs that scales with its magnitude, so shadow rays start off the surface at any
-//! distance from the origin and can use t_min = 0 (see NUMERICS.md).
+//! distance from the origin and can use t_min = 0 (docs/numerics.md).
 
 use glam::Vec3;
 

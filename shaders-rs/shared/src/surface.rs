@@ -64,7 +64,7 @@ pub fn closer(best: Option<SurfaceHit>, candidate: SurfaceHit, t_min: f32, t_max
 }
 
 /// Stable roots of `a t^2 + 2 half_b t + c` given the discriminant `half_b^2 - a c >= 0`:
-/// q = -(half_b + sign(half_b) sqrt(disc)), roots c / q and q / a (NUMERICS.md). A root whose
+/// q = -(half_b + sign(half_b) sqrt(disc)), roots c / q and q / a (docs/numerics.md). A root whose
 /// denominator is zero (a ray parallel to a cone's generator) is returned as `None`.
 pub fn stable_roots(a: f32, half_b: f32, c: f32, discriminant: f32) -> (Option<f32>, Option<f32>) {
     #[cfg(target_arch = "spirv")]

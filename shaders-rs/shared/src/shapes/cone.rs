@@ -1,5 +1,5 @@
 //! Capped cone about the object's y axis, centred at its origin: apex at y = `a.y`, base of
-//! radius `a.x` at y = -`a.y`. The quadratic of NUMERICS.md with apex A, axis v = -y and
+//! radius `a.x` at y = -`a.y`. The quadratic of docs/numerics.md with apex A, axis v = -y and
 //! cos^2 of the half-angle; roots as c / q and q / a with the stable q, since a -> 0 for rays
 //! parallel to a generator. Only the nappe between apex and base counts, plus the base disk.
 //!

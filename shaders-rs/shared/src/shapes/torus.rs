@@ -1,5 +1,5 @@
 //! Torus about the object's y axis, centred at its origin: ring radius R = `a.x` in the xz
-//! plane, tube radius r = `a.y`. The recipe of NUMERICS.md: work with R = 1 and a unit
+//! plane, tube radius r = `a.y`. The recipe of docs/numerics.md: work with R = 1 and a unit
 //! direction; move the origin along the ray onto the bounding sphere of radius R + 2r (not
 //! R + r: grazing rays would be lost); solve the quartic from there with Inigo Quilez's closed
 //! form; add the shift back; polish each root with Newton steps on the distance function
@@ -15,7 +15,7 @@
 //!   the quartic's roots (the roots the quartic lost: false misses).
 //!
 //! One change to the recipe: the origin moves to the sphere's entry point even when that lies
-//! behind it (NUMERICS.md's max(0, entry) keeps origins inside the sphere). A ray starting on
+//! behind it (max(0, entry), the usual form, keeps origins inside the sphere). A ray starting on
 //! the torus, as every shadow ray from it does, would otherwise give the quartic a root at 0
 //! (k0 = 0), which the solver's 1/t branch divides by; from the entry point the self root is
 //! an ordinary root, found accurately and then dropped.
@@ -280,8 +280,9 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
 }
 
 /// The quartic solved from the ray's own origin, without the shift onto the bounding sphere,
-/// without polish and without self-root rejection. Kept on purpose: NUMERICS.md measured a
-/// common closed-form solver wrong on 15% / 18% / 51% of rays from 40 / 400 / 4000 away.
+/// without polish and without self-root rejection. Kept on purpose: on lavapipe it gets 544,
+/// 782 and 692 of about 2300 decided rays wrong from 40, 400 and 4000 away (docs/numerics.md,
+/// `torus-far-*`).
 pub fn naive_intersect(
     origin: Vec3,
     direction: Vec3,
@@ -370,8 +371,8 @@ mod tests {
         assert!(intersect(Vec3::new(0.0, 5.0, 0.0), -Vec3::Y, &torus(1.0, 0.25), 0.0, 100.0).is_none());
     }
 
-    /// Seen from far away, the unshifted quartic gets hit/miss wrong on 15-51% of rays
-    /// (NUMERICS.md); with the shift and the polish the answer matches the exact one, and t is
+    /// Seen from far away, the unshifted quartic gets 24-34% of rays wrong
+    /// (docs/numerics.md, `torus-far-*`); with the shift and the polish the answer matches the exact one, and t is
     /// relatively accurate.
     #[test]
     fn far_camera_keeps_hit_miss_and_t() {
