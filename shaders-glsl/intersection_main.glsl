@@ -11,9 +11,11 @@ hitAttributeEXT vec3 normal;
 void main() {
     // The instance custom index is the object's first primitive.
     Primitive p = primitives[gl_InstanceCustomIndexEXT + gl_PrimitiveID];
-    // The object-space ray from the world ray, not gl_ObjectRayOriginEXT (see transform.glsl).
+    // Where the scene has far instances, the object-space ray from the world ray, not the
+    // driver's (see transform.glsl).
     vec3 o, d;
-    object_ray(gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT, gl_ObjectToWorldEXT[3], mat3(gl_WorldToObjectEXT), o, d);
+    stage_ray(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT,
+              gl_ObjectToWorldEXT[3], mat3(gl_WorldToObjectEXT), o, d);
     float t;
     vec3 n;
     if (SHAPE_INTERSECT(o, d, p, gl_RayTminEXT, gl_RayTmaxEXT, t, n)) {

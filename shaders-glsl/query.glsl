@@ -30,12 +30,12 @@ float candidate_hit(rayQueryEXT query, float t_min, float t_max, out vec3 normal
     } else {
         uint primitive = rayQueryGetIntersectionInstanceCustomIndexEXT(query, false) +
                          rayQueryGetIntersectionPrimitiveIndexEXT(query, false);
-        // The shape sees the object-space ray from the world ray, as its intersection stage
-        // does (transform.glsl); the cutout's pattern below, the driver's.
+        // The shape sees the object-space ray its intersection stage would (transform.glsl);
+        // the cutout's pattern below, the driver's.
         vec3 so, sd;
-        object_ray(rayQueryGetWorldRayOriginEXT(query), rayQueryGetWorldRayDirectionEXT(query),
-                   rayQueryGetIntersectionObjectToWorldEXT(query, false)[3],
-                   mat3(rayQueryGetIntersectionWorldToObjectEXT(query, false)), so, sd);
+        stage_ray(o, d, rayQueryGetWorldRayOriginEXT(query), rayQueryGetWorldRayDirectionEXT(query),
+                  rayQueryGetIntersectionObjectToWorldEXT(query, false)[3],
+                  mat3(rayQueryGetIntersectionWorldToObjectEXT(query, false)), so, sd);
         float hit_t;
         vec3 n;
         if (shape_intersect(data.shape, so, sd, primitives[primitive], t_min, t_max, hit_t, n)) {

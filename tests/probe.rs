@@ -204,6 +204,9 @@ fn the_stages_own_transform_keeps_a_far_instance_precise_and_the_drivers_is_repo
         let driver = split.driver.expect("the driver's witness pass");
         assert!(driver.p99 > 1e-5, "{set_text}: the driver's transform gave only {:e}", driver.p99);
     }
+    // The host chose the stages' transform for this scene: its instances are far for their size.
+    let features = case.scene.build().plan.features;
+    assert_ne!(features & twinray_shared::features::FAR_INSTANCES, 0, "far-instances not set: {features:#b}");
     // The twins' witnesses hand back the same object-space rays, bit for bit: one formula in
     // both languages (twinray_shared::transform and transform.glsl).
     let ray = |r: &twinray::probe::ProbeResult| twinray::probe::split::witness(r).map(|w| (w.origin, w.direction));
@@ -211,6 +214,31 @@ fn the_stages_own_transform_keeps_a_far_instance_precise_and_the_drivers_is_repo
     let same = rust.iter().zip(glsl).filter(|(r, g)| ray(r) == ray(g)).count();
     assert_eq!(same, rust.len(), "rays whose witnessed object-space ray (or miss) differs between the twins");
     assert!(rust.iter().filter_map(ray).count() > 1000, "the witness saw the hits");
+}
+
+/// The switch works in both sets: the same far case with its `features` forced to none takes
+/// the driver's object-space ray, and its totals show the driver's error again (lavapipe: about
+/// 4e-4), with no ray wrong.
+#[test]
+fn without_far_instances_the_stages_take_the_drivers_ray() {
+    let text = std::fs::read_to_string(twinray_tests::repo_root().join("probes/far-instances.toml")).unwrap();
+    let text = text.replacen("[scene.materials.m]", "[scene]\nfeatures = []\n\n[scene.materials.m]", 1);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("far-driver.toml");
+    std::fs::write(&path, text).unwrap();
+    let case = twinray::probe::case::ProbeCase::load(&path).expect("case");
+    assert_eq!(case.scene.build().plan.features, 0);
+    let ctx = validated_context();
+    for set_text in ["rust", "glsl"] {
+        let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+        let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
+        let split = r.t_error_by_source.clone().expect("a witness pass");
+        let driver = split.driver.expect("the driver's witness").p99;
+        assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{set_text}");
+        // The stages used the driver's ray, so their transform is the driver's.
+        assert_eq!(split.transform.p99, driver, "{set_text}: {}", split.summary());
+        assert!(r.relative_t_error.p99 > 1e-5, "{set_text}: {}", r.summary());
+    }
 }
 
 /// A folder of modules built before the witness existed still probes, with the same answers,

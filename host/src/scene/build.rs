@@ -172,7 +172,16 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>) -> Sce
         },
     };
     let Geometry { blases, primitives, vertices, indices } = geometry;
-    SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures }
+    let mut data =
+        SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures };
+    // Far instances are a matter of where objects stand: a moving scene is taken to have them,
+    // as its objects may move anywhere.
+    let transforms: Vec<Mat4> = data.instances.iter().map(|i| i.object_to_world).collect();
+    let far = scene.animation.is_some() || reach::far_instances(&data.object_bounds(), &transforms);
+    if scene.features.is_none() && far {
+        data.plan.features |= features::FAR_INSTANCES;
+    }
+    data
 }
 
 /// The kinds of `materials`, each once, in kind order.

@@ -32,6 +32,23 @@ fn corners(b: &Aabb) -> [Vec3; 8] {
     })
 }
 
+/// How many times its own size (half its world box's diagonal) an object's translation may
+/// reach before the driver's f32 world-to-object transform, which works at the magnitude of the
+/// translation, costs more than about 1e-6 of the object's size: past it the scene has far
+/// instances (`features::FAR_INSTANCES`), and the intersection stages compute their own
+/// object-space ray (docs/numerics.md).
+pub const FAR_FACTOR: f32 = 16.0;
+
+/// Whether any object lies far from the world origin for its size (see [`FAR_FACTOR`]), its
+/// own bounds being `object_bounds` and its transform `transforms`.
+pub fn far_instances(object_bounds: &[Aabb], transforms: &[Mat4]) -> bool {
+    let boxes = world_boxes(object_bounds, transforms);
+    boxes.iter().zip(transforms).any(|(b, t)| {
+        let size = 0.5 * (b.max - b.min).length();
+        t.w_axis.truncate().abs().max_element() > FAR_FACTOR * size
+    })
+}
+
 /// Each object's world-space bounds under `transforms` (object order).
 pub fn world_boxes(object_bounds: &[Aabb], transforms: &[Mat4]) -> Vec<Aabb> {
     object_bounds
@@ -170,5 +187,21 @@ mod tests {
         let b = world_boxes(&[cube(Vec3::ZERO, 1.0)], &[m]);
         assert_eq!(b[0].min, Vec3::new(8.0, -2.0, -2.0));
         assert_eq!(b[0].max, Vec3::new(12.0, 2.0, 2.0));
+    }
+
+    #[test]
+    fn an_object_is_far_where_its_translation_passes_sixteen_times_its_size() {
+        let unit = [cube(Vec3::ZERO, 1.0)];
+        let at = |x: f32, scale: f32| {
+            [Mat4::from_translation(Vec3::new(x, 0.0, 0.0)) * Mat4::from_scale(Vec3::splat(scale))]
+        };
+        // Half the diagonal of a cube of side 2: sqrt(3).
+        let size = 3.0f32.sqrt();
+        assert!(!far_instances(&unit, &at(FAR_FACTOR * size * 0.99, 1.0)));
+        assert!(far_instances(&unit, &at(FAR_FACTOR * size * 1.01, 1.0)));
+        // Scaled up, the same place is near again.
+        assert!(!far_instances(&unit, &at(FAR_FACTOR * size * 1.01, 2.0)));
+        assert!(far_instances(&unit, &at(1.0e4, 1.0)));
+        assert!(!far_instances(&[], &[]));
     }
 }

@@ -22,7 +22,7 @@ macro_rules! any_hit_stages {
             #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
             #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
             #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
-            #[spirv(spec_constant(id = 3, default = 15))] features: u32,
+            #[spirv(spec_constant(id = 3, default = 31))] features: u32,
         ) {
             let data = objects[object as usize];
             let material = materials[data.material as usize];

@@ -43,8 +43,8 @@ pub fn $name(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    // The scene's features (twinray_shared::features; 15 is `ALL`, for a host that sets none).
-    #[spirv(spec_constant(id = 3, default = 15))] features: u32,
+    // The scene's features (twinray_shared::features; 31 is `ALL`, for a host that sets none).
+    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
     $($params)*
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
@@ -97,7 +97,7 @@ pub fn $name(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 15))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
     $($params)*
 ) {
     let features = Features::new(features);

@@ -70,8 +70,8 @@ pub fn $name(
     #[spirv(spec_constant(id = 0, default = 0))] shadows: u32,
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
     #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
-    // The scene's features (twinray_shared::features; 15 is `ALL`, for a host that sets none).
-    #[spirv(spec_constant(id = 3, default = 15))] features: u32,
+    // The scene's features (twinray_shared::features; 31 is `ALL`, for a host that sets none).
+    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
     $($params)*
 ) {
     $($setup)*
@@ -250,12 +250,15 @@ macro_rules! procedural_intersection {
             #[spirv(primitive_id)] primitive_id: u32,
             #[spirv(world_ray_origin)] world_origin: Vec3,
             #[spirv(world_ray_direction)] world_direction: Vec3,
+            #[spirv(object_ray_origin)] object_origin: Vec3,
+            #[spirv(object_ray_direction)] object_direction: Vec3,
             #[spirv(object_to_world)] object_to_world: Matrix4x3,
             #[spirv(world_to_object)] world_to_object: Matrix4x3,
             #[spirv(ray_tmin)] t_min: f32,
             #[spirv(ray_tmax)] t_max: f32,
             #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
             #[spirv(hit_attribute)] normal: &mut Vec3,
+            #[spirv(spec_constant(id = 3, default = 31))] features: u32,
         ) {
             // Not bounds-checked, as GLSL's twin is not: the index is the instance's custom index
             // (its object's first primitive) plus the AABB's index in its BLAS, both made by the
@@ -264,11 +267,12 @@ macro_rules! procedural_intersection {
             // `showcase` was where the driver put the code: bench/reports/rust-raygen, 0).
             // SAFETY: see above; every AABB of a BLAS has its primitive at that index.
             let p = unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
-            // The object-space ray from the world ray, not `object_ray_origin`: the driver's
-            // transform loses precision far from the world origin (twinray_shared::transform).
-            let (origin, direction) = twinray_shared::transform::object_ray(
-                world_origin,
-                world_direction,
+            // Where the scene has far instances, the object-space ray from the world ray, not
+            // the driver's, which loses precision there (twinray_shared::transform).
+            let (origin, direction) = twinray_shared::transform::stage_ray(
+                Features::new(features),
+                (object_origin, object_direction),
+                (world_origin, world_direction),
                 object_to_world.w_axis,
                 world_to_object.to_mat3(),
             );

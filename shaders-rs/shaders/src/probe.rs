@@ -56,8 +56,8 @@ macro_rules! probe_stages {
 
         /// The probe's witness: a closest-hit stage twinray puts in place of a hit group's own (same
         /// intersection and any-hit stages) for one extra pass of the probe. It packs the
-        /// object-space ray the intersection stages computed (`twinray_shared::transform`, from the
-        /// world ray as they compute it), and the t they reported, into the payload fields the
+        /// object-space ray the intersection stages use (`twinray_shared::transform::stage_ray`,
+        /// chosen as they choose it), and the t they reported, into the payload fields the
         /// probe ray generation stage copies out (as `ProbeResult` documents), so a probe can judge
         /// the stages against the ray they used, apart from the transform's error.
         #[spirv(closest_hit)]
@@ -65,14 +65,18 @@ macro_rules! probe_stages {
             #[spirv(hit_kind)] hit_kind: u32,
             #[spirv(world_ray_origin)] world_origin: Vec3,
             #[spirv(world_ray_direction)] world_direction: Vec3,
+            #[spirv(object_ray_origin)] object_origin: Vec3,
+            #[spirv(object_ray_direction)] object_direction: Vec3,
             #[spirv(object_to_world)] object_to_world: Matrix4x3,
             #[spirv(world_to_object)] world_to_object: Matrix4x3,
             #[spirv(ray_tmax)] t: f32,
             #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+            #[spirv(spec_constant(id = 3, default = 31))] features: u32,
         ) {
-            let (origin, direction) = twinray_shared::transform::object_ray(
-                world_origin,
-                world_direction,
+            let (origin, direction) = twinray_shared::transform::stage_ray(
+                Features::new(features),
+                (object_origin, object_direction),
+                (world_origin, world_direction),
                 object_to_world.w_axis,
                 world_to_object.to_mat3(),
             );
@@ -150,7 +154,7 @@ macro_rules! probe_stages {
             #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
             #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ExplainRay],
             #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ExplainResult],
-            #[spirv(spec_constant(id = 3, default = 15))] features: u32,
+            #[spirv(spec_constant(id = 3, default = 31))] features: u32,
         ) {
             let features = Features::new(features);
             let i = id.x as usize;
@@ -201,7 +205,7 @@ macro_rules! probe_stages {
             #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
             #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ProbeRay],
             #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ProbeResult],
-            #[spirv(spec_constant(id = 3, default = 15))] features: u32,
+            #[spirv(spec_constant(id = 3, default = 31))] features: u32,
         ) {
             let i = id.x as usize;
             // Whole workgroups cover the rays.

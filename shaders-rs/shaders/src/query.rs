@@ -55,11 +55,12 @@ unsafe fn candidate_hit(
             }
         } else if primitive < primitives.len() {
             let p = *primitives.get_unchecked(primitive);
-            // The shape sees the object-space ray from the world ray, as its intersection stage
-            // does (twinray_shared::transform); the cutout's pattern below, the driver's.
-            let (so, sd) = transform::object_ray(
-                query.get_world_ray_origin(),
-                query.get_world_ray_direction(),
+            // The shape sees the object-space ray its intersection stage would
+            // (twinray_shared::transform); the cutout's pattern below, the driver's.
+            let (so, sd) = transform::stage_ray(
+                features,
+                (o, d),
+                (query.get_world_ray_origin(), query.get_world_ray_direction()),
                 query.get_candidate_intersection_object_to_world().w_axis,
                 candidate_world_to_object(query).to_mat3(),
             );

@@ -27,17 +27,22 @@ pub const AREA_LIGHTS: u32 = 1 << 1;
 pub const ALPHA_MASKS: u32 = 1 << 2;
 /// Emission: a material that emits (an emissive material, or one with emission).
 pub const EMISSION: u32 = 1 << 3;
+/// Far instances: an object placed far from the world origin for its size, whose
+/// intersection stages compute their object-space ray themselves, the translation taken off
+/// first (`crate::transform`); elsewhere they take the driver's, which costs nothing.
+pub const FAR_INSTANCES: u32 = 1 << 4;
 
 /// Every feature, in bit order.
-pub const FEATURES: [Feature; 4] = [
+pub const FEATURES: [Feature; 5] = [
     Feature { bit: TEXTURES, name: "textures", used_by: "a material with a texture" },
     Feature { bit: AREA_LIGHTS, name: "area-lights", used_by: "a rect light" },
     Feature { bit: ALPHA_MASKS, name: "alpha-masks", used_by: "a cutout material" },
     Feature { bit: EMISSION, name: "emission", used_by: "an emissive material or one with emission" },
+    Feature { bit: FAR_INSTANCES, name: "far-instances", used_by: "an object far from the origin for its size" },
 ];
 
 /// Every feature's bit: what a stage assumes when nothing specialises it.
-pub const ALL: u32 = TEXTURES | AREA_LIGHTS | ALPHA_MASKS | EMISSION;
+pub const ALL: u32 = TEXTURES | AREA_LIGHTS | ALPHA_MASKS | EMISSION | FAR_INSTANCES;
 
 /// The features whose code this build of the crate holds: all but those its cargo features
 /// `without-NAME` leave out (only a baseline set for measuring is built so).
@@ -45,7 +50,8 @@ pub const BUILT: u32 = ALL
     & !(if cfg!(feature = "without-textures") { TEXTURES } else { 0 })
     & !(if cfg!(feature = "without-area-lights") { AREA_LIGHTS } else { 0 })
     & !(if cfg!(feature = "without-alpha-masks") { ALPHA_MASKS } else { 0 })
-    & !(if cfg!(feature = "without-emission") { EMISSION } else { 0 });
+    & !(if cfg!(feature = "without-emission") { EMISSION } else { 0 })
+    & !(if cfg!(feature = "without-far-instances") { FAR_INSTANCES } else { 0 });
 
 /// The features a stage may use: the bits of its `SPEC_FEATURES` that this build holds code for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

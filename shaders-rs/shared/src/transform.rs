@@ -10,6 +10,7 @@
 //! Rendering*, 3rd ed., §3.9.4), γ₃ |M⁻¹| |o - T|, with |o - T| in place of |o| + |T|.
 //! The GLSL twin is `object_ray` in shaders-glsl/transform.glsl.
 
+use crate::features::{Features, FAR_INSTANCES};
 use glam::{Mat3, Vec3};
 
 /// The object-space origin and direction of the world ray (`origin`, `direction`) for an
@@ -19,6 +20,25 @@ use glam::{Mat3, Vec3};
 #[inline(always)]
 pub fn object_ray(origin: Vec3, direction: Vec3, translation: Vec3, inverse: Mat3) -> (Vec3, Vec3) {
     (inverse * (origin - translation), inverse * direction)
+}
+
+/// The object-space ray an intersection stage uses: its own (`object_ray` of the world ray)
+/// where the scene has far instances (`features::FAR_INSTANCES`, a specialisation constant,
+/// so the other branch is compiled out), else the `driver`'s, which costs nothing and is as
+/// good near the origin.
+#[inline(always)]
+pub fn stage_ray(
+    features: Features,
+    driver: (Vec3, Vec3),
+    (origin, direction): (Vec3, Vec3),
+    translation: Vec3,
+    inverse: Mat3,
+) -> (Vec3, Vec3) {
+    if features.has::<FAR_INSTANCES>() {
+        object_ray(origin, direction, translation, inverse)
+    } else {
+        driver
+    }
 }
 
 #[cfg(test)]
