@@ -279,3 +279,75 @@ fn a_folder_set_without_the_witness_probes_without_the_split() {
     let split = r.t_error_by_source.expect("the stages' witness");
     assert!(split.driver.is_none() && !split.summary().contains("driver"), "{}", split.summary());
 }
+
+/// Five turned shapes near the origin, and the same scene (camera, light and objects) moved by
+/// `offset`.
+fn shapes_at(offset: [f64; 3]) -> Scene {
+    let at = |p: [f64; 3]| format!("[{:.1}, {:.1}, {:.1}]", p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]);
+    let mut text = format!(
+        "[image]\nwidth = 96\nheight = 72\n\
+         [camera]\neye = {}\ntarget = {}\nup = [0.0, 1.0, 0.0]\nfov_y_degrees = 40.0\n\
+         [materials.m]\nkind = \"diffuse\"\ncolor = [0.8, 0.8, 0.8]\n\
+         [[lights]]\nkind = \"point\"\nposition = {}\ncolor = [1.0, 1.0, 1.0]\nintensity = 20.0\n\
+         [shapes.ball]\nkind = \"sphere\"\nradius = 0.8\n\
+         [shapes.can]\nkind = \"cylinder\"\nradius = 0.6\nheight = 1.5\n\
+         [shapes.slab]\nkind = \"box\"\nsize = [1.4, 0.5, 1.0]\n\
+         [shapes.cone]\nkind = \"cone\"\nradius = 0.7\nheight = 1.4\n\
+         [shapes.ring]\nkind = \"torus\"\nmajor_radius = 0.7\nminor_radius = 0.2\n",
+        at([0.0, 1.5, 8.0]),
+        at([0.0, 0.0, 0.0]),
+        at([-3.0, 5.0, 4.0])
+    );
+    let placed = [
+        ("ball", [-2.4, 0.0, 0.0], [0.0, 0.0, 0.0]),
+        ("can", [-1.2, 0.0, -0.5], [35.0, 20.0, 50.0]),
+        ("slab", [0.0, 0.0, 0.3], [10.0, 40.0, 25.0]),
+        ("cone", [1.2, 0.0, -0.5], [60.0, 0.0, 30.0]),
+        ("ring", [2.4, 0.0, 0.0], [70.0, 15.0, 0.0]),
+    ];
+    for (shape, p, r) in placed {
+        text += &format!(
+            "[[objects]]\nshape = \"{shape}\"\nmaterial = \"m\"\ntranslate = {}\nrotate = [{:.1}, {:.1}, {:.1}]\n",
+            at(p),
+            r[0],
+            r[1],
+            r[2]
+        );
+    }
+    Scene::parse(&text, "far-scene.toml", MeshFiles::Builtin).expect("scene")
+}
+
+/// A scene moved 1.7e4 from the origin renders the same hit ids as at the origin, in both sets,
+/// but where a pixel's ray passes within f32 rounding of a silhouette: every pixel that differs
+/// has a 4-neighbour of another id in the render at the origin (the band where the camera's
+/// own position, rounded to f32 at 1e4, may move an edge by a fraction of a pixel).
+#[test]
+fn a_scene_far_from_the_origin_hits_what_it_hits_at_the_origin() {
+    let near = shapes_at([0.0; 3]);
+    let far = shapes_at([10000.0, -10000.0, 10000.0]);
+    assert_ne!(far.build().plan.features & twinray_shared::features::FAR_INSTANCES, 0);
+    let ctx = validated_context();
+    for set_text in ["rust", "glsl"] {
+        let a = twinray_tests::render(&ctx, &near, set_text);
+        let b = twinray_tests::render(&ctx, &far, set_text);
+        let (w, h) = (a.width as usize, a.height as usize);
+        let id = |x: usize, y: usize| a.hit_ids[y * w + x];
+        let edge = |x: usize, y: usize| {
+            let n = [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)];
+            n.iter().any(|&(nx, ny)| nx < w && ny < h && id(nx, ny) != id(x, y))
+        };
+        let hits = a.hit_ids.iter().filter(|&&i| i != twinray::render::NO_HIT_ID).count();
+        assert!(hits > w * h / 10, "{set_text}: the shapes fill the view ({hits} pixels)");
+        let (mut differ, mut off_edge) = (0, Vec::new());
+        for (i, (x, y)) in (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).enumerate() {
+            if a.hit_ids[i] != b.hit_ids[i] {
+                differ += 1;
+                if !edge(x, y) {
+                    off_edge.push((x, y));
+                }
+            }
+        }
+        eprintln!("{set_text}: {differ} of {} pixels differ, all on edges: {}", w * h, off_edge.is_empty());
+        assert!(off_edge.is_empty(), "{set_text}: pixels away from any edge hit something else: {off_edge:?}");
+    }
+}

@@ -273,3 +273,14 @@ fn no_file_names_a_path_outside_the_repository() {
 fn generated(note: &str) -> bool {
     note == "COMMANDS.md"
 }
+
+/// The module comment of `host/src/cli/main.rs` names every command `twinray --help` lists, so
+/// a reader of the code finds each command's module from there.
+#[test]
+fn the_command_module_comment_names_every_command() {
+    let main = std::fs::read_to_string(root().join("host/src/cli/main.rs")).unwrap();
+    let comment: String = main.lines().take_while(|l| l.starts_with("//!")).collect::<Vec<_>>().join("\n");
+    let missing: Vec<String> =
+        commands(&help(&[])).into_iter().filter(|c| c != "help" && !comment.contains(&format!("`{c}`"))).collect();
+    assert!(missing.is_empty(), "host/src/cli/main.rs's module comment does not name: {missing:?}");
+}

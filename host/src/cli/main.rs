@@ -1,6 +1,17 @@
-//! The `twinray` command: `info`, `render` and `compare`. Bad input exits with code 2 and a
-//! one-line error; a failed comparison exits with 1; GPU work that did not finish in time (or
-//! a lost device) with 3; a crash (a fatal signal, usually in the driver) with 4.
+//! The `twinray` command. Each subcommand and the module that handles it (docs/commands.md
+//! documents them all):
+//! - `info`, `scenes`: `summary`;
+//! - `render`, `compare`: `render` (moving scenes' frames: `frames`);
+//! - `bisect`: `bisect`; `explain`: `explain`; `view`: `view`; `inspect`: `inspect`;
+//! - `probe`, `stability`: `probe`;
+//! - `reference`, `bench`: `bench`; `animate-bench`: `animate`;
+//! - `pipeline-bench`, `stage-bench`: `pipelines`; `places`: `places`;
+//! - `crosscheck`: `crosscheck`.
+//!
+//! Arguments live in `args` and `image_args`, and beside their handlers in `crosscheck` and
+//! `inspect`. Bad input exits with code 2 and a one-line error; a failed comparison exits
+//! with 1; GPU work that did not finish in time (or a lost device) with 3; a crash (a fatal
+//! signal, usually in the driver) with 4.
 
 mod alone;
 mod animate;
