@@ -18,7 +18,7 @@ fn every_module_declares_what_the_host_expects() {
     for spec in MODULES {
         for language in Language::ALL {
             let info = read(&spec.spirv_path(language));
-            if let Err(e) = spec.check_declarations(&info, language) {
+            if let Err(e) = twinray_shared::module_check::check_declarations(spec, &info, language) {
                 panic!("{} {}: {e}", language.name(), spec.name);
             }
         }

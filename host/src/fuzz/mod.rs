@@ -48,7 +48,7 @@ pub fn module(bytes: &[u8]) {
     let Ok(info) = twinray_shared::spirv_info::parse(bytes) else { return };
     for spec in crate::shaders::MODULES {
         let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
-        let _ = spec.check_module(&info, &entry);
+        let _ = twinray_shared::module_check::check_module(spec, &info, &entry);
     }
     let _ = twinray_shared::spirv_info::without_unused_ray_query(bytes);
 }

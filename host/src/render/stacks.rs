@@ -86,6 +86,6 @@ fn refusal(ctx: &Context, module: &StageModule) -> Result<Option<String>> {
         return Ok(Some("a compute stage: no ray tracing stack".into()));
     }
     let info = twinray_shared::spirv_info::parse(&module.spirv)
-        .map_err(|e| crate::Error::Input(format!("{}: {e}", module.spec.name)))?;
+        .map_err(|e| crate::error::Error::Input(format!("{}: {e}", module.spec.name)))?;
     Ok(capabilities::missing(module.spec.name, &module.origin, &info, &ctx.info))
 }

@@ -46,7 +46,8 @@ pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String>
     // validator's after, for everything else a driver would trip on.
     let info = spirv_info::parse(&bytes).map_err(|e| format!("{file}: not a SPIR-V module ({e})"))?;
     let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
-    spec.check_module(&info, &entry).map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;
+    twinray_shared::module_check::check_module(spec, &info, &entry)
+        .map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;
     super::validate::validate(&bytes).map_err(|e| format!("{file}: {e}"))?;
     let faults = twinray_build::uniformity::check(&bytes).map_err(|e| format!("{file}: {e}"))?;
     let non_uniform = faults.iter().map(|f| format!("{file} ({} stage): {f}", spec.stage.name())).collect();

@@ -7,7 +7,7 @@
 use super::jobs::{Compared, Failed, Jobs, Shot, Timing};
 use super::sets;
 use super::state::{Problem, RenderInfo, SceneInfo, Store, TimingInfo};
-use crate::Scene;
+use crate::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::sync::Mutex;
 use std::time::{Instant, SystemTime};

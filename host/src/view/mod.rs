@@ -13,7 +13,7 @@ pub mod state;
 pub mod watch;
 
 use crate::error::{Error, Result};
-use crate::Scene;
+use crate::scene::Scene;
 use jobs::{Jobs, Shot};
 use live::Live;
 use state::{PageState, SceneInfo, Store, TimingInfo};

@@ -2,7 +2,7 @@
 //! events), and the images of the last few renders, served from memory.
 
 use super::jobs::{Compared, Shot};
-use crate::Scene;
+use crate::scene::Scene;
 use serde::Serialize;
 use serde_json::Value;
 use std::collections::BTreeMap;

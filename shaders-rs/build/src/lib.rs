@@ -87,7 +87,8 @@ pub fn build_set_without(root: &Path, language: Language, dir: &Path, output: Ou
         process::output(Command::new("spirv-val").args(twinray_shared::catalog::SPIRV_VAL_ARGS).arg(&path))
             .with_context(|| format!("spirv-val rejected {label}"))?;
         let (info, _) = read_module(dir, spec)?;
-        spec.check_declarations(&info, language).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        twinray_shared::module_check::check_declarations(spec, &info, language)
+            .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     }
     Ok(())
 }

@@ -15,7 +15,7 @@
 
 use rspirv::binary::Assemble;
 use rspirv::dr::{self, Instruction, Operand};
-use rspirv::spirv::{BuiltIn, Capability, Decoration, Op, StorageClass, Word};
+use rspirv::spirv::{Capability, Decoration, Op, Word};
 use std::collections::{HashMap, HashSet};
 
 /// An access of a descriptor array at an index that may differ between invocations, without
@@ -47,7 +47,7 @@ pub fn check(bytes: &[u8]) -> Result<Vec<Fault>, String> {
     let taint = Taint::of(&module, &facts);
     let decorated = facts.non_uniform.clone();
     let mut faults = Vec::new();
-    for access in facts.accesses(&module, &taint) {
+    for access in accesses(&facts, &module, &taint) {
         let Some(source) = taint.values.get(&access.index) else { continue };
         if let Some(missing) = access.reads.iter().find(|id| !decorated.contains(id)) {
             let op = if *missing == access.id { "OpAccessChain" } else { "OpLoad" };
@@ -69,7 +69,7 @@ pub fn decorate(bytes: &[u8]) -> Result<Vec<u8>, String> {
     let taint = Taint::of(&module, &facts);
     let mut needed = HashSet::new();
     let mut ids = Vec::new();
-    for access in facts.accesses(&module, &taint) {
+    for access in accesses(&facts, &module, &taint) {
         if facts.constants.contains(&access.index) {
             continue;
         }
@@ -123,126 +123,48 @@ struct Access {
     capability: Capability,
 }
 
-/// What the module declares: decorations, variables, types and constants.
-#[derive(Default)]
-struct Facts {
-    builtins: HashMap<Word, BuiltIn>,
-    bindings: HashMap<Word, (u32, u32)>,
-    non_uniform: HashSet<Word>,
-    /// Variable id: (storage class, pointer type).
-    variables: HashMap<Word, (StorageClass, Word)>,
-    types: HashMap<Word, Instruction>,
-    constants: HashSet<Word>,
-}
-
-impl Facts {
-    fn of(module: &dr::Module) -> Facts {
-        let mut facts = Facts::default();
-        for a in &module.annotations {
-            let (Some(Operand::IdRef(id)), Some(Operand::Decoration(d))) = (a.operands.first(), a.operands.get(1))
-            else {
-                continue;
-            };
-            match (a.class.opcode, d, a.operands.get(2)) {
-                (Op::Decorate, Decoration::BuiltIn, Some(Operand::BuiltIn(b))) => {
-                    facts.builtins.insert(*id, *b);
-                }
-                (Op::Decorate, Decoration::DescriptorSet, Some(Operand::LiteralBit32(set))) => {
-                    facts.bindings.entry(*id).or_insert((0, 0)).0 = *set;
-                }
-                (Op::Decorate, Decoration::Binding, Some(Operand::LiteralBit32(binding))) => {
-                    facts.bindings.entry(*id).or_insert((0, 0)).1 = *binding;
-                }
-                (Op::Decorate, Decoration::NonUniform, _) => {
-                    facts.non_uniform.insert(*id);
-                }
-                _ => {}
+/// Every access chain into an array of descriptors (the variable itself, or a parameter it
+/// is passed as: rust-gpu leaves functions that take it), with the ids that read through it.
+fn accesses(facts: &Facts, module: &dr::Module, taint: &Taint) -> Vec<Access> {
+    let mut users: HashMap<Word, Vec<Word>> = HashMap::new();
+    let body: Vec<&Instruction> =
+        module.functions.iter().flat_map(|f| f.blocks.iter().flat_map(|b| b.instructions.iter())).collect();
+    for i in &body {
+        if let (Some(id), true) = (i.result_id, reads_through(i.class.opcode)) {
+            if let Some(base) = i.operands.first().and_then(|o| o.id_ref_any()) {
+                users.entry(base).or_default().push(id);
             }
-        }
-        let locals = module.functions.iter().flat_map(|f| f.blocks.iter().flat_map(|b| b.instructions.iter()));
-        for i in module.types_global_values.iter().chain(locals) {
-            let Some(id) = i.result_id else { continue };
-            match i.class.opcode {
-                Op::Variable => {
-                    if let (Some(Operand::StorageClass(class)), Some(ty)) = (i.operands.first(), i.result_type) {
-                        facts.variables.insert(id, (*class, ty));
-                    }
-                }
-                op if is_constant(op) => {
-                    facts.constants.insert(id);
-                }
-                op if i.result_type.is_none() && format!("{op:?}").starts_with("Type") => {
-                    facts.types.insert(id, i.clone());
-                }
-                _ => {}
-            }
-        }
-        facts
-    }
-
-    /// The type `pointer` points to.
-    fn pointee(&self, pointer: Word) -> Option<&Instruction> {
-        let ty = self.types.get(&pointer)?;
-        (ty.class.opcode == Op::TypePointer).then(|| self.types.get(&ty.operands.get(1)?.id_ref_any()?)).flatten()
-    }
-
-    /// The capability non-uniform indexing of an array of `element` needs, in storage `class`.
-    fn capability(&self, element: Word, class: StorageClass) -> Capability {
-        let ty = self.types.get(&element);
-        match ty.map(|t| t.class.opcode) {
-            Some(Op::TypeImage) => match ty.and_then(|t| t.operands.get(5)) {
-                Some(Operand::LiteralBit32(2)) => Capability::StorageImageArrayNonUniformIndexing,
-                _ => Capability::SampledImageArrayNonUniformIndexing,
-            },
-            Some(Op::TypeStruct) if class == StorageClass::Uniform => Capability::UniformBufferArrayNonUniformIndexing,
-            Some(Op::TypeStruct) => Capability::StorageBufferArrayNonUniformIndexing,
-            _ => Capability::SampledImageArrayNonUniformIndexing,
         }
     }
-
-    /// Every access chain into an array of descriptors (the variable itself, or a parameter it
-    /// is passed as: rust-gpu leaves functions that take it), with the ids that read through it.
-    fn accesses(&self, module: &dr::Module, taint: &Taint) -> Vec<Access> {
-        let mut users: HashMap<Word, Vec<Word>> = HashMap::new();
-        let body: Vec<&Instruction> =
-            module.functions.iter().flat_map(|f| f.blocks.iter().flat_map(|b| b.instructions.iter())).collect();
-        for i in &body {
-            if let (Some(id), true) = (i.result_id, reads_through(i.class.opcode)) {
-                if let Some(base) = i.operands.first().and_then(|o| o.id_ref_any()) {
-                    users.entry(base).or_default().push(id);
-                }
-            }
+    let mut accesses = Vec::new();
+    for i in &body {
+        let chain = matches!(i.class.opcode, Op::AccessChain | Op::InBoundsAccessChain);
+        let (Some(id), true) = (i.result_id, chain) else { continue };
+        let Some(base) = i.operands.first().and_then(|o| o.id_ref_any()) else { continue };
+        let Some(base) = taint.roots(base).into_iter().find(|r| facts.bindings.contains_key(r)) else { continue };
+        let (Some(binding), Some((class, pointer))) = (facts.bindings.get(&base), facts.variables.get(&base)) else {
+            continue;
+        };
+        let Some(array) = facts.pointee(*pointer) else { continue };
+        if !matches!(array.class.opcode, Op::TypeArray | Op::TypeRuntimeArray) {
+            continue;
         }
-        let mut accesses = Vec::new();
-        for i in &body {
-            let chain = matches!(i.class.opcode, Op::AccessChain | Op::InBoundsAccessChain);
-            let (Some(id), true) = (i.result_id, chain) else { continue };
-            let Some(base) = i.operands.first().and_then(|o| o.id_ref_any()) else { continue };
-            let Some(base) = taint.roots(base).into_iter().find(|r| self.bindings.contains_key(r)) else { continue };
-            let (Some(binding), Some((class, pointer))) = (self.bindings.get(&base), self.variables.get(&base)) else {
-                continue;
-            };
-            let Some(array) = self.pointee(*pointer) else { continue };
-            if !matches!(array.class.opcode, Op::TypeArray | Op::TypeRuntimeArray) {
-                continue;
-            }
-            let Some(index) = i.operands.get(1).and_then(|o| o.id_ref_any()) else { continue };
-            let element = array.operands.first().and_then(|o| o.id_ref_any()).unwrap_or(0);
-            let element = match self.types.get(&element) {
-                Some(t) if t.class.opcode == Op::TypeSampledImage => t.operands[0].id_ref_any().unwrap_or(element),
-                _ => element,
-            };
-            let mut reads = vec![id];
-            let mut at = 0;
-            while at < reads.len() && reads.len() < 64 {
-                reads.extend(users.get(&reads[at]).into_iter().flatten().copied());
-                at += 1;
-            }
-            let capability = self.capability(element, *class);
-            accesses.push(Access { id, binding: *binding, index, reads, capability });
+        let Some(index) = i.operands.get(1).and_then(|o| o.id_ref_any()) else { continue };
+        let element = array.operands.first().and_then(|o| o.id_ref_any()).unwrap_or(0);
+        let element = match facts.types.get(&element) {
+            Some(t) if t.class.opcode == Op::TypeSampledImage => t.operands[0].id_ref_any().unwrap_or(element),
+            _ => element,
+        };
+        let mut reads = vec![id];
+        let mut at = 0;
+        while at < reads.len() && reads.len() < 64 {
+            reads.extend(users.get(&reads[at]).into_iter().flatten().copied());
+            at += 1;
         }
-        accesses
+        let capability = facts.capability(element, *class);
+        accesses.push(Access { id, binding: *binding, index, reads, capability });
     }
+    accesses
 }
 
 /// Instructions whose result still reads the descriptor an access chain points at.
@@ -250,33 +172,9 @@ fn reads_through(op: Op) -> bool {
     matches!(op, Op::Load | Op::AccessChain | Op::InBoundsAccessChain | Op::CopyObject | Op::SampledImage | Op::Image)
 }
 
-fn is_constant(op: Op) -> bool {
-    matches!(
-        op,
-        Op::Constant
-            | Op::ConstantTrue
-            | Op::ConstantFalse
-            | Op::ConstantNull
-            | Op::ConstantComposite
-            | Op::SpecConstant
-            | Op::SpecConstantTrue
-            | Op::SpecConstantFalse
-            | Op::SpecConstantComposite
-            | Op::SpecConstantOp
-            | Op::Undef
-    )
-}
-
-/// Built-ins the same for every invocation of a dispatch.
-const UNIFORM_BUILTINS: [BuiltIn; 5] = [
-    BuiltIn::LaunchSizeKHR,
-    BuiltIn::NumWorkgroups,
-    BuiltIn::WorkgroupSize,
-    BuiltIn::SubgroupSize,
-    BuiltIn::NumSubgroups,
-];
-
+use facts::Facts;
 use taint::Taint;
+mod facts;
 mod taint;
 
 #[cfg(test)]

@@ -19,8 +19,8 @@ use twinray_shared::bindings::{
 use twinray_shared::camera::Ray;
 use twinray_shared::features::{Features, ALPHA_MASKS};
 use twinray_shared::layout::{FrameUniform, HitPayload, Material, ObjectData, Primitive, Vertex};
-use twinray_shared::{shading, transform};
 use twinray_shared::shapes::{self, SHAPE_NAIVE};
+use twinray_shared::{shading, transform};
 
 /// The ray parameter of the query's candidate if it is a hit, decided as the pipeline's stages
 /// would, else -1: a triangle at its t (up to `t_max`), a procedural primitive by its shape's

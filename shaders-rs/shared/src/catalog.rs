@@ -324,47 +324,10 @@ pub const LAYOUT: [BindingSpec; 13] = {
 };
 
 impl ModuleSpec {
-    /// Checks what a compiled module of this spec in `language` declares: SPIR-V 1.4 to 1.6, the
-    /// language's entry point with the stage's execution model, only bindings of [`LAYOUT`]
-    /// that the stage can see, and the payloads, attributes and callable data of
-    /// [`crate::interface`].
-    pub fn check_declarations(&self, info: &ModuleInfo, language: Language) -> Result<(), String> {
-        self.check_module(info, self.entry_point(language))
-    }
-
-    /// As [`Self::check_declarations`], for an entry point called `entry`.
-    pub fn check_module(&self, info: &ModuleInfo, entry: &str) -> Result<(), String> {
-        if spirv_version(info.version).is_none() {
-            return Err(format!("SPIR-V {}.{}, where twinray reads 1.4 to 1.6", info.version.0, info.version.1));
-        }
-        let want = (self.stage.execution_model(), entry.to_string());
-        if !info.entry_points.contains(&want) {
-            return Err(format!("no {} entry point {entry:?} ({})", self.stage.name(), describe_entries(info)));
-        }
-        // What the stage passes first: a stage that traces also binds the TLAS, and the
-        // recursion depth is the cause to name.
-        crate::interface::check(self, info)?;
-        for &(set, binding) in &info.bindings {
-            let spec = LAYOUT.iter().find(|l| set == b::DESCRIPTOR_SET && l.binding == binding);
-            match spec {
-                None => {
-                    return Err(format!(
-                        "binds set {set} binding {binding}, which twinray_shared::bindings does not define"
-                    ))
-                }
-                Some(l) if !l.stages.contains(&self.stage) => {
-                    return Err(format!("uses binding {binding}, which the {} stage cannot see", self.stage.name()))
-                }
-                Some(_) => {}
-            }
-        }
-        Ok(())
-    }
-
     /// The entry point a module built elsewhere offers for this spec: the only one with the
     /// stage's execution model, or among several the one named like the module (rust-gpu's
-    /// way) or `main` (glslang's). `None` when there is no such choice; [`Self::check_module`]
-    /// then says what the module has.
+    /// way) or `main` (glslang's). `None` when there is no such choice;
+    /// [`crate::module_check::check_module`] then says what the module has.
     pub fn find_entry(&self, info: &ModuleInfo) -> Option<String> {
         let model = self.stage.execution_model();
         let names: Vec<&str> = info.entry_points.iter().filter(|(m, _)| *m == model).map(|(_, n)| n.as_str()).collect();
@@ -373,20 +336,4 @@ impl ModuleSpec {
             several => several.iter().find(|n| **n == self.name || **n == "main").map(|n| n.to_string()),
         }
     }
-}
-
-/// What entry points a module has, for error messages: `it has a miss entry point "main"`.
-fn describe_entries(info: &ModuleInfo) -> String {
-    if info.entry_points.is_empty() {
-        return "it has none".into();
-    }
-    let list: Vec<String> = info
-        .entry_points
-        .iter()
-        .map(|(model, name)| match Stage::ALL.iter().find(|s| s.execution_model() == *model) {
-            Some(stage) => format!("a {} entry point {name:?}", stage.name()),
-            None => format!("an entry point {name:?} of execution model {model}"),
-        })
-        .collect();
-    format!("it has {}", list.join(", "))
 }

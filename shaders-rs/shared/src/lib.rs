@@ -22,6 +22,8 @@ pub mod glsl;
 #[cfg(not(target_arch = "spirv"))]
 pub mod interface;
 #[cfg(not(target_arch = "spirv"))]
+pub mod module_check;
+#[cfg(not(target_arch = "spirv"))]
 pub mod spirv_info;
 
 pub use glam;

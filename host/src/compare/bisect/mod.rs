@@ -216,7 +216,7 @@ fn swaps<T>(
     }
     let mut runs = subject.run(&sets)?.into_iter();
     let (Some(run_a), Some(run_b)) = (runs.next(), runs.next()) else {
-        return Err(crate::Error::Unsupported("a bisect run returned fewer runs than sets".into()));
+        return Err(crate::error::Error::Unsupported("a bisect run returned fewer runs than sets".into()));
     };
     let base = Base::new(subject, &run_a, &run_b);
     let rest: Vec<Run<T>> = runs.collect();

@@ -183,7 +183,7 @@ impl Subject for ProbeSubject<'_> {
             }
         }
         runs.into_iter()
-            .map(|r| r.ok_or_else(|| crate::Error::Unsupported("a probe placement left a set out".into())))
+            .map(|r| r.ok_or_else(|| crate::error::Error::Unsupported("a probe placement left a set out".into())))
             .collect()
     }
 

@@ -8,7 +8,7 @@
 //! element or point in the program: it may call a value non-uniform that is not, never the
 //! other way round.
 
-use super::{Facts, UNIFORM_BUILTINS};
+use super::facts::{Facts, UNIFORM_BUILTINS};
 use rspirv::dr::{self, Instruction, Operand};
 use rspirv::spirv::{Op, StorageClass, Word};
 use std::collections::hash_map::Entry;

@@ -169,11 +169,11 @@ pub fn cube(half: Vec3) -> Vec<MitsubaPart> {
 }
 
 /// Spheres at the primitives' centres (`a.xyz`) with their radii (`a.w`) and tints.
-pub fn spheres(primitives: &[(crate::layout::Primitive, super::spec::Aabb)]) -> Vec<MitsubaPart> {
+pub fn spheres<'a>(primitives: impl IntoIterator<Item = &'a crate::layout::Primitive>) -> Vec<MitsubaPart> {
     use glam::Vec4Swizzles;
     primitives
-        .iter()
-        .map(|(p, _)| MitsubaPart {
+        .into_iter()
+        .map(|p| MitsubaPart {
             kind: MitsubaKind::Sphere,
             to_object: Mat4::from_translation(p.a.xyz()) * Mat4::from_scale(Vec3::splat(p.a.w)),
             tint: p.tint.xyz(),
@@ -223,8 +223,9 @@ pub fn torus(major: f32, minor: f32) -> Vec<MitsubaPart> {
     vec![MitsubaPart::new(MitsubaKind::Mesh(lathe(&profile)), Mat4::IDENTITY)]
 }
 
-/// No Mitsuba equivalent: `crosscheck` refuses scenes that use the kind.
-pub fn none(_: &super::spec::Values) -> Vec<MitsubaPart> {
+/// No Mitsuba equivalent: `crosscheck` refuses scenes that use the kind. Generic over the
+/// shape's values, so that this module needs nothing of `spec` (which names its parts).
+pub fn none<V>(_: &V) -> Vec<MitsubaPart> {
     Vec::new()
 }
 

@@ -150,7 +150,7 @@ mod scene {
         relations: "",
         count: one,
         primitives: |v| vec![sphere(Vec3::ZERO, v.number("radius"), Vec3::ONE)],
-        mitsuba: |v| super::super::mitsuba::spheres(&[sphere(Vec3::ZERO, v.number("radius"), Vec3::ONE)]),
+        mitsuba: |v| super::super::mitsuba::spheres([&sphere(Vec3::ZERO, v.number("radius"), Vec3::ONE).0]),
     };
 
     pub const SPHERE_FIELD: ShapeKind = ShapeKind {
@@ -170,7 +170,7 @@ mod scene {
         relations: "`center_min` <= `center_max`, `radius_max` >= `radius_min`",
         count: |v| u64::from(v.count("count")),
         primitives: field,
-        mitsuba: |v| super::super::mitsuba::spheres(&field(v)),
+        mitsuba: |v| super::super::mitsuba::spheres(field(v).iter().map(|(p, _)| p)),
     };
 
     fn field_check(v: &Values) -> Result<(), String> {
