@@ -284,3 +284,22 @@ fn the_command_module_comment_names_every_command() {
         commands(&help(&[])).into_iter().filter(|c| c != "help" && !comment.contains(&format!("`{c}`"))).collect();
     assert!(missing.is_empty(), "host/src/cli/main.rs's module comment does not name: {missing:?}");
 }
+
+/// docs/architecture.md is a code map a reader can hold: no line over 100 characters, and every
+/// folder the repository tracks at its top level (and each crate's folder) named in it.
+#[test]
+fn the_code_map_names_every_folder_in_short_lines() {
+    let doc = std::fs::read_to_string(root().join("docs/architecture.md")).unwrap();
+    let long: Vec<usize> =
+        doc.lines().enumerate().filter(|(_, l)| l.chars().count() > 100).map(|(i, _)| i + 1).collect();
+    assert!(long.is_empty(), "docs/architecture.md: lines over 100 characters: {long:?}");
+    let listed =
+        Command::new("git").args(["ls-tree", "-d", "--name-only", "HEAD"]).current_dir(root()).output().unwrap();
+    let mut folders: Vec<String> = String::from_utf8_lossy(&listed.stdout).lines().map(|f| format!("{f}/")).collect();
+    folders.extend(
+        ["host/src/cli/", "host/tests/", "shaders-rs/shared/", "shaders-rs/shaders/", "shaders-rs/build/"]
+            .map(String::from),
+    );
+    let missing: Vec<&String> = folders.iter().filter(|f| !doc.contains(f.trim_start_matches("host/"))).collect();
+    assert!(missing.is_empty(), "docs/architecture.md does not name: {missing:?}");
+}
