@@ -3,7 +3,8 @@
 //! placement medians are read back from its results.json; or, with `--alone-in devices`, on a
 //! fresh Vulkan device in this process (see `twinray::bench::Isolation`).
 
-use crate::args::{BenchArgs, GlobalArgs};
+use crate::args::BenchArgs;
+use crate::args::GlobalArgs;
 use std::path::PathBuf;
 use std::process::Command;
 use std::sync::atomic::{AtomicU32, Ordering};

@@ -1,11 +1,13 @@
-//! The arguments of every `twinray` command, as clap reads them.
+//! The arguments several `twinray` commands share, as clap reads them: the global flags, a
+//! frame, an animation, `--alone-in`; and those of `render`, `compare` and `bench`, which the
+//! helper modules `frames` and `alone` read too (every other command's sit beside its handler).
 
 use clap::Args;
 use std::path::PathBuf;
 use twinray::render::{FrameRange, TlasKind, TlasMode};
 use twinray::ShaderSet;
 
-pub use crate::image_args::{ExplainArgs, ViewArgs, ViewpointArgs};
+pub use crate::image_args::ViewpointArgs;
 
 /// Most timed traces a command takes: past it, a typo (an extra zero or three) would hold the
 /// GPU for hours. Work over 100 rounds shows progress.
@@ -156,6 +158,16 @@ impl AnimationArgs {
     }
 }
 
+/// Where `--processes` times each set alone (bench, compare, bisect).
+#[derive(Args)]
+pub struct AloneArgs {
+    /// With --processes: what each set is timed alone in. `processes`: child processes;
+    /// `devices`: a fresh Vulkan device each, in this process, which times a set as a child
+    /// process starting at the same place does, in half the time (docs/measuring.md).
+    #[arg(long, value_enum, default_value = "processes", requires = "processes")]
+    pub alone_in: twinray::bench::AloneIn,
+}
+
 #[derive(Args)]
 pub struct RenderArgs {
     /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
@@ -202,116 +214,6 @@ pub struct CompareArgs {
     pub processes: u32,
     #[command(flatten)]
     pub alone: AloneArgs,
-}
-
-/// Where `--processes` times each set alone (bench, compare, bisect).
-#[derive(Args)]
-pub struct AloneArgs {
-    /// With --processes: what each set is timed alone in. `processes`: child processes;
-    /// `devices`: a fresh Vulkan device each, in this process, which times a set as a child
-    /// process starting at the same place does, in half the time (docs/measuring.md).
-    #[arg(long, value_enum, default_value = "processes", requires = "processes")]
-    pub alone_in: twinray::bench::AloneIn,
-}
-
-#[derive(Args)]
-pub struct BisectArgs {
-    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
-    #[arg(conflicts_with = "probe")]
-    pub scene: Option<String>,
-    /// Bisect on a probe case's rays (TOML; see docs/probe-format.md) instead of a scene's
-    /// image: which stage makes false hits or misses.
-    #[arg(long, value_name = "CASE")]
-    pub probe: Option<PathBuf>,
-    /// Set A.
-    #[arg(long, default_value = "rust")]
-    pub a: ShaderSet,
-    /// Set B.
-    #[arg(long, default_value = "glsl")]
-    pub b: ShaderSet,
-    #[command(flatten)]
-    pub frame: FrameArgs,
-    /// Time each set alone in N processes of its own, as `compare --processes` does (not with
-    /// --probe). 0: every set timed in this process.
-    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
-    pub processes: u32,
-    #[command(flatten)]
-    pub alone: AloneArgs,
-}
-
-#[derive(Args)]
-pub struct ProbeArgs {
-    /// Probe case file (TOML; see docs/probe-format.md).
-    pub case: PathBuf,
-    /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
-    #[arg(long, default_value = "rust")]
-    pub shaders: ShaderSet,
-    /// Intersection formula for every shape that has both: robust, or naive (the textbook
-    /// forms kept on purpose) [default: as the scene says].
-    #[arg(long, value_parser = ["robust", "naive"])]
-    pub formula: Option<String>,
-    /// Timed passes over all the rays; the median is reported.
-    #[arg(long, default_value_t = 10, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
-    pub runs: u32,
-    /// Untimed passes before the timed ones.
-    #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
-    pub warmup: u32,
-    /// Print one JSON object.
-    #[arg(long)]
-    pub json: bool,
-    /// Write one CSV row per ray to FILE: origin, direction, t range, the reference's hit, t,
-    /// object and ambiguity, the set's hit, t, object and normal, and the verdict.
-    #[arg(long, value_name = "FILE")]
-    pub rays_out: Option<PathBuf>,
-}
-
-#[derive(Args)]
-pub struct StabilityArgs {
-    /// Folder of probe cases.
-    #[arg(long, default_value = "probes/stability")]
-    pub dir: PathBuf,
-    /// Shader sets, comma-separated with ';' between sets, e.g. "rust;glsl".
-    #[arg(long, default_value = "rust;glsl")]
-    pub sets: String,
-    /// Timed passes per case, set and formula.
-    #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
-    pub runs: u32,
-    /// Untimed passes before the timed ones.
-    #[arg(long, default_value_t = 1, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
-    pub warmup: u32,
-    /// Time each case over its rays repeated up to at least this many (0: the case's rays).
-    #[arg(long, default_value_t = 262_144, value_parser = clap::value_parser!(u64).range(0..=MAX_TIMING_RAYS))]
-    pub timing_rays: u64,
-    /// Print one JSON array of rows.
-    #[arg(long)]
-    pub json: bool,
-}
-
-#[derive(Args)]
-pub struct ReferenceArgs {
-    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
-    pub scene: Option<String>,
-    /// Samples per pixel: a square up to 256, or a multiple of 256.
-    #[arg(long, default_value_t = 1024)]
-    pub spp: u32,
-    /// Shader set that renders it.
-    #[arg(long, default_value = "glsl")]
-    pub shaders: ShaderSet,
-    /// Image width in pixels [default: the scene's].
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Image height in pixels [default: the scene's].
-    #[arg(long)]
-    pub height: Option<u32>,
-    /// Cache folder [default: $XDG_CACHE_HOME/twinray/references or ~/.cache/twinray/references].
-    #[arg(long)]
-    pub cache: Option<PathBuf>,
-    /// Also write the reference as an 8-bit PNG.
-    #[arg(long)]
-    pub out: Option<PathBuf>,
-    /// Print one JSON object.
-    #[arg(long)]
-    pub json: bool,
 }
 
 #[derive(Args)]
@@ -384,113 +286,4 @@ pub struct BenchArgs {
     /// process starts N further on, so that a second run times places the first did not.
     #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_PLACEMENTS) * 64))]
     pub first_placement: u32,
-}
-
-#[derive(Args)]
-pub struct AnimateBenchArgs {
-    /// A moving scene with a [[grids]] table (its first grid is resized) [default: swarm].
-    #[arg(default_value = "swarm")]
-    pub scene: String,
-    /// Instance counts, comma-separated (each made an n x n grid, n the nearest square root).
-    #[arg(long, default_value = "1000,10000,100000")]
-    pub instances: String,
-    /// TLAS modes, comma-separated: rebuild, fast-build, update.
-    #[arg(long, default_value = "rebuild,fast-build,update")]
-    pub modes: String,
-    /// For the update mode: a full rebuild every N frames (0: the first frame only, so the
-    /// TLAS is refitted through the whole motion).
-    #[arg(long, value_name = "N", default_value_t = 0)]
-    pub rebuild_every: u32,
-    /// Frames 0..N of the scene [default: all of them].
-    #[arg(long)]
-    pub frames: Option<u32>,
-    /// Shader set that traces.
-    #[arg(long, default_value = "rust")]
-    pub shaders: ShaderSet,
-    /// Image width [default: the scene's].
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Image height [default: the scene's].
-    #[arg(long)]
-    pub height: Option<u32>,
-    /// Timed traces per frame.
-    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
-    pub runs: u32,
-    /// Untimed traces before the first frame (and at least 1000 ms of GPU time when above 0;
-    /// before each later frame, at least a fifth of that).
-    #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
-    pub warmup: u32,
-    /// Renderings of the whole animation, each mode's pipeline made afresh in an order of its
-    /// own; the trace-time ratios' 95% intervals are over them.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PLACEMENTS)))]
-    pub placements: u32,
-    /// Output folder (created if missing).
-    #[arg(long, default_value = "bench/out-animation")]
-    pub out: PathBuf,
-}
-
-#[derive(Args)]
-pub struct PipelineBenchArgs {
-    /// Scene whose pipelines are made [default: showcase, every hit group kind].
-    #[arg(default_value = "showcase")]
-    pub scene: String,
-    /// Joining thread counts to compare, comma-separated [default: 1 and the machine's cores].
-    #[arg(long)]
-    pub thread_counts: Option<String>,
-    /// Timed repeats per configuration (the median is reported), each on a fresh device.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
-    pub repeats: u32,
-    /// Scenes whose trace time is measured whole against linked, comma-separated ("" for
-    /// none); each renders at its own size unless --width and --height are given.
-    #[arg(long, default_value = "showcase,spheres,meshes,lights")]
-    pub trace_scenes: String,
-    /// Image size and trace counts of the trace-time part [default: each scene's size, 10
-    /// timed traces after 2 untimed].
-    #[command(flatten)]
-    pub frame: FrameArgs,
-    /// Measure every configuration in this process instead of one process each (NVIDIA's
-    /// driver 580 stops making instances after about 30 in one process).
-    #[arg(long)]
-    pub in_process: bool,
-    /// Internal: measure one configuration (JSON) with caches under --out and print the result.
-    #[arg(long, hide = true)]
-    pub measure_one: Option<String>,
-    /// Output folder for table.md, linking.md and results.json (created if missing).
-    #[arg(long, default_value = "bench/out-pipelines")]
-    pub out: PathBuf,
-}
-
-#[derive(Args)]
-pub struct StageBenchArgs {
-    /// Built-in scene names or scene files [default: cutout and showcase].
-    #[arg(default_values_t = ["cutout".to_string(), "showcase".to_string()])]
-    pub scenes: Vec<String>,
-    /// Variants, comma-separated; each is timed against the first: as-is, opaque (cutouts made
-    /// diffuse), solid-cutouts (any-hit without holes), trace-shadows, query-shadows,
-    /// inline-materials, callable-materials, per-shape-hits, per-material-hits, pipeline,
-    /// compute (the compute renderer with ray queries).
-    #[arg(long, default_value = "opaque,solid-cutouts,as-is")]
-    pub variants: String,
-    /// Shader sets, as for `bench --sets`; each variant is also timed against the first set.
-    #[arg(long, default_value = "rust,glsl")]
-    pub sets: String,
-    /// Rounds: every variant and set renders once per round, in an order rotated each round.
-    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
-    pub rounds: u32,
-    /// Time each round's render of each variant and set alone in a fresh process (a child
-    /// `twinray stage-bench`), as `bench --processes` does; the renders here give the images.
-    #[arg(long)]
-    pub alone: bool,
-    /// Number the rounds from N: each round makes the spacers of a placement of its own
-    /// (see `compare --placements`), so the rounds time at different places; --alone gives
-    /// each child its round. Give it to repeat a round.
-    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=100))]
-    pub first_round: u32,
-    /// Image size and trace counts per render [default: each scene's size, 10 timed traces
-    /// after 2 untimed].
-    #[command(flatten)]
-    pub frame: FrameArgs,
-    /// Output folder for table.md and results.json (created if missing).
-    #[arg(long, default_value = "bench/out-stages")]
-    pub out: PathBuf,
 }

@@ -1,54 +1,11 @@
-//! `twinray reference` and `twinray bench`.
+//! `twinray bench`: speed against error, per scene, set and samples per pixel.
 
-use crate::args::{BenchArgs, GlobalArgs, ReferenceArgs};
+use crate::args::{BenchArgs, GlobalArgs};
 use crate::session::context;
 use anyhow::Result;
 use std::process::ExitCode;
 use twinray::scene::check_size;
-use twinray::util::output::{check_image_target, write_image};
 use twinray::{Error, Scene};
-
-pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
-    let scene = Scene::load(args.scene.as_deref())?;
-    let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
-    check_size(size.0, size.1).map_err(Error::Input)?;
-    twinray::reference::image::frames(args.spp)?;
-    if let Some(out) = &args.out {
-        check_image_target(out)?;
-    }
-    let cache = args.cache.unwrap_or_else(twinray::reference::image::default_cache);
-    let ctx = context(global)?;
-    let start = std::time::Instant::now();
-    let r = twinray::reference::image::reference(&ctx, &scene, &args.shaders, size, args.spp, &cache)?;
-    if let Some(out) = &args.out {
-        write_image(out, (r.width, r.height), &r.linear, &twinray::render::to_picture(&r.linear))?;
-    }
-    if args.json {
-        let value = serde_json::json!({
-            "scene": scene.name(),
-            "set": args.shaders.to_string(),
-            "width": r.width,
-            "height": r.height,
-            "spp": r.spp,
-            "path": r.path,
-            "cached": r.cached,
-            "seconds": start.elapsed().as_secs_f64(),
-        });
-        println!("{value}");
-    } else {
-        let how = if r.cached { "read from the cache" } else { "rendered" };
-        println!(
-            "{} {}x{} at {} spp with {}: {how}, {}",
-            scene.name(),
-            r.width,
-            r.height,
-            r.spp,
-            args.shaders,
-            r.path.display()
-        );
-    }
-    Ok(ExitCode::SUCCESS)
-}
 
 pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     use twinray::bench;

@@ -1,11 +1,14 @@
 //! `twinray bisect`: which stage makes two sets differ, in image (or probe results) and time.
 
-use crate::args::{BisectArgs, GlobalArgs};
+use crate::args::{AloneArgs, FrameArgs, GlobalArgs};
 use crate::session::{context, render_options, COMPARE_TRACES};
 use anyhow::Result;
+use clap::Args;
+use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::compare::bisect::{bisect as run_bisect, BisectReport, ImageSubject, ProbeSubject};
 use twinray::probe::case::ProbeCase;
+use twinray::ShaderSet;
 use twinray::{Error, Scene};
 
 pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
@@ -50,4 +53,29 @@ fn print_report(report: &BisectReport, json: bool) -> Result<()> {
         print!("{}", report.summary());
     }
     Ok(())
+}
+
+#[derive(Args)]
+pub struct BisectArgs {
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
+    #[arg(conflicts_with = "probe")]
+    pub scene: Option<String>,
+    /// Bisect on a probe case's rays (TOML; see docs/probe-format.md) instead of a scene's
+    /// image: which stage makes false hits or misses.
+    #[arg(long, value_name = "CASE")]
+    pub probe: Option<PathBuf>,
+    /// Set A.
+    #[arg(long, default_value = "rust")]
+    pub a: ShaderSet,
+    /// Set B.
+    #[arg(long, default_value = "glsl")]
+    pub b: ShaderSet,
+    #[command(flatten)]
+    pub frame: FrameArgs,
+    /// Time each set alone in N processes of its own, as `compare --processes` does (not with
+    /// --probe). 0: every set timed in this process.
+    #[arg(long, value_name = "N", default_value_t = 0, value_parser = clap::value_parser!(u32).range(0..=64))]
+    pub processes: u32,
+    #[command(flatten)]
+    pub alone: AloneArgs,
 }

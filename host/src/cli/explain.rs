@@ -1,9 +1,10 @@
 //! `twinray explain`: every ray of one pixel, in each set and in the f64 reference, with the
 //! first place they part.
 
-use crate::args::{ExplainArgs, GlobalArgs};
+use crate::args::{GlobalArgs, ViewpointArgs};
 use crate::session::{context, load_still};
 use anyhow::Result;
+use clap::Args;
 use std::process::ExitCode;
 use twinray::explain::pixel::explain_pixel;
 use twinray::explain::report::{Converged, ExplainReport};
@@ -11,6 +12,7 @@ use twinray::probe::report::Outcome::NoPayload;
 use twinray::reference::image::{default_cache, reference};
 use twinray::scene::check_size;
 use twinray::Error;
+use twinray::ShaderSet;
 
 pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
     let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
@@ -73,4 +75,55 @@ fn label(set: &twinray::ShaderSet, which: &str) -> String {
     } else {
         format!("set {which}")
     }
+}
+
+#[derive(Args)]
+pub struct ExplainArgs {
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
+    pub scene: Option<String>,
+    /// The pixel: column X and row Y from the top left, as compare's images number them.
+    #[arg(long, value_name = "X,Y", value_parser = parse_pixel, allow_hyphen_values = true)]
+    pub pixel: (u32, u32),
+    /// Set A.
+    #[arg(long, default_value = "rust")]
+    pub a: ShaderSet,
+    /// Set B; without it, set A alone against the f64 reference.
+    #[arg(long)]
+    pub b: Option<ShaderSet>,
+    #[command(flatten)]
+    pub viewpoint: ViewpointArgs,
+    /// Image width in pixels [default: the scene's].
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels [default: the scene's].
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// What the report calls sets A and B, as A,B [default: their specs, or "set A" and
+    /// "set B" where a spec is long].
+    #[arg(long, value_name = "A,B", value_parser = parse_names)]
+    pub names: Option<(String, String)>,
+    /// Also show the pixel of a converged reference image of SPP samples per pixel, rendered
+    /// by set A (or read from the cache `twinray reference` keeps).
+    #[arg(long, value_name = "SPP")]
+    pub converged: Option<u32>,
+    /// Print one JSON object instead of text.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// "A,B" as two names, neither empty.
+fn parse_names(text: &str) -> Result<(String, String), String> {
+    match text.split_once(',') {
+        Some((a, b)) if !a.trim().is_empty() && !b.trim().is_empty() && a.trim() != b.trim() => {
+            Ok((a.trim().to_string(), b.trim().to_string()))
+        }
+        _ => Err(format!("names are A,B: two different names (got {text:?})")),
+    }
+}
+
+/// "X,Y" as two pixel coordinates.
+fn parse_pixel(text: &str) -> Result<(u32, u32), String> {
+    let bad = || format!("a pixel is X,Y with two whole numbers (got {text:?})");
+    let (x, y) = text.split_once(',').ok_or_else(bad)?;
+    Ok((x.trim().parse().map_err(|_| bad())?, y.trim().parse().map_err(|_| bad())?))
 }

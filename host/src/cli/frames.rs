@@ -1,6 +1,8 @@
 //! `twinray render --frames` and `twinray compare --frames`: a moving scene, frame by frame.
 
-use crate::args::{CompareArgs, GlobalArgs, RenderArgs};
+use crate::args::CompareArgs;
+use crate::args::GlobalArgs;
+use crate::args::RenderArgs;
 use crate::session::{context, render_options, COMPARE_TRACES, RENDER_TRACES};
 use anyhow::Result;
 use std::path::{Path, PathBuf};

@@ -1,43 +1,57 @@
-//! The `twinray` command. Each subcommand and the module that handles it (docs/commands.md
-//! documents them all):
-//! - `info`, `scenes`: `summary`;
-//! - `render`, `compare`: `render` (moving scenes' frames: `frames`);
-//! - `bisect`: `bisect`; `explain`: `explain`; `view`: `view`; `inspect`: `inspect`;
-//! - `probe`, `stability`: `probe`;
-//! - `reference`, `bench`: `bench`; `animate-bench`: `animate`;
-//! - `pipeline-bench`, `stage-bench`: `pipelines`; `places`: `places`;
-//! - `crosscheck`: `crosscheck`.
+//! The `twinray` command: one module per subcommand, named after it (`render`, `compare`,
+//! `bench`, `pipeline-bench` in `pipeline_bench`, ...), its arguments beside its handler but
+//! where a helper module takes them too (`render`'s, `compare`'s and `bench`'s are in `args`,
+//! as `frames` and `alone` read them):
+//! `info`, `scenes`, `render`, `compare`, `bisect`, `explain`, `view`, `inspect`, `probe`,
+//! `stability`, `reference`, `bench`, `animate-bench`, `pipeline-bench`, `stage-bench`,
+//! `places`, `crosscheck`. What several share: `args` (global flags, frame, animation and
+//! `--alone-in` arguments), `image_args` (the viewpoint), `session` (the context and render
+//! options), `frames` (moving scenes' frames for `render` and `compare`), `alone` (sets timed
+//! in processes or devices of their own).
 //!
-//! Arguments live in `args` and `image_args`, and beside their handlers in `crosscheck` and
-//! `inspect`. Bad input exits with code 2 and a one-line error; a failed comparison exits
-//! with 1; GPU work that did not finish in time (or a lost device) with 3; a crash (a fatal
-//! signal, usually in the driver) with 4.
+//! Bad input exits with code 2 and a one-line error; a failed comparison exits with 1; GPU
+//! work that did not finish in time (or a lost device) with 3; a crash (a fatal signal,
+//! usually in the driver) with 4.
 
 mod alone;
-mod animate;
+mod animate_bench;
 mod args;
 mod bench;
 mod bisect;
+mod compare;
 mod crosscheck;
 mod explain;
 mod frames;
 mod image_args;
+mod info;
 mod inspect;
-mod pipelines;
+mod pipeline_bench;
 mod places;
 mod probe;
+mod reference;
 mod render;
+mod scenes;
 mod session;
-mod summary;
+mod stability;
+mod stage_bench;
 mod view;
 
-use args::{
-    AnimateBenchArgs, BenchArgs, BisectArgs, CompareArgs, ExplainArgs, GlobalArgs, PipelineBenchArgs, ProbeArgs,
-    ReferenceArgs, RenderArgs, StabilityArgs, StageBenchArgs, ViewArgs,
-};
+use animate_bench::AnimateBenchArgs;
+use args::BenchArgs;
+use args::CompareArgs;
+use args::GlobalArgs;
+use args::RenderArgs;
+use bisect::BisectArgs;
 use clap::{CommandFactory, FromArgMatches, Parser, Subcommand};
+use explain::ExplainArgs;
+use pipeline_bench::PipelineBenchArgs;
+use probe::ProbeArgs;
+use reference::ReferenceArgs;
+use stability::StabilityArgs;
+use stage_bench::StageBenchArgs;
 use std::process::ExitCode;
 use twinray::util::{activity, crash, watchdog};
+use view::ViewArgs;
 
 #[derive(Parser)]
 #[command(
@@ -154,21 +168,21 @@ fn main() -> ExitCode {
         return ExitCode::from(2);
     }
     let result = match cli.command {
-        Command::Info { json } => summary::info(&cli.global, json),
-        Command::Scenes { json } => summary::scenes(json),
+        Command::Info { json } => info::info(&cli.global, json),
+        Command::Scenes { json } => scenes::scenes(json),
         Command::Render(args) => render::render(&cli.global, args),
-        Command::Compare(args) => render::compare(&cli.global, args),
+        Command::Compare(args) => compare::compare(&cli.global, args),
         Command::Bisect(args) => bisect::bisect(&cli.global, args),
         Command::Explain(args) => explain::explain(&cli.global, args),
         Command::View(args) => view::view(&cli.global, args),
         Command::Inspect(args) => inspect::inspect(&cli.global, args),
         Command::Probe(args) => probe::probe(&cli.global, args),
-        Command::Stability(args) => probe::stability(&cli.global, args),
-        Command::Reference(args) => bench::reference(&cli.global, args),
+        Command::Stability(args) => stability::stability(&cli.global, args),
+        Command::Reference(args) => reference::reference(&cli.global, args),
         Command::Bench(args) => bench::bench(&cli.global, args),
-        Command::AnimateBench(args) => animate::animate_bench(&cli.global, args),
-        Command::PipelineBench(args) => pipelines::pipeline_bench(&cli.global, args),
-        Command::StageBench(args) => pipelines::stage_bench(&cli.global, args),
+        Command::AnimateBench(args) => animate_bench::animate_bench(&cli.global, args),
+        Command::PipelineBench(args) => pipeline_bench::pipeline_bench(&cli.global, args),
+        Command::StageBench(args) => stage_bench::stage_bench(&cli.global, args),
         Command::Places(args) => places::places(&cli.global, args),
         Command::Crosscheck(args) => crosscheck::crosscheck(&cli.global, args),
     };

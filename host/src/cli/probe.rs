@@ -1,10 +1,13 @@
-//! `twinray probe` and `twinray stability`.
+//! `twinray probe`: a probe case's rays traced with one set, judged against the f64 reference.
 
-use crate::args::{GlobalArgs, ProbeArgs, StabilityArgs};
+use crate::args::{GlobalArgs, MAX_RUNS, MAX_WARMUP};
 use crate::session::context;
 use anyhow::Result;
+use clap::Args;
+use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::scene::shape::Formula;
+use twinray::ShaderSet;
 
 pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
     let mut case = twinray::probe::case::ProbeCase::load(&args.case)?;
@@ -36,37 +39,28 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
     Ok(if report.pass { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
-pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
-    let files = twinray::probe::stability::case_files(&args.dir)?;
-    let sets = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::ShaderSet>, _>>()?;
-    let ctx = context(global)?;
-    let formulas = [Formula::Robust, Formula::Naive];
-    let timing =
-        twinray::probe::stability::Timing { warmup: args.warmup, runs: args.runs, rays: args.timing_rays as usize };
-    // Each skip is said as it happens, on stderr, so JSON on stdout stays the rows.
-    let skip = |s: &twinray::probe::stability::Skipped| eprintln!("{}", s.line());
-    let suite = twinray::probe::stability::run(&ctx, &files, &sets, &formulas, timing, skip)?;
-    let rows = &suite.rows;
-    if args.json {
-        println!("{}", serde_json::to_string(rows)?);
-    } else {
-        print!("{}", twinray::probe::stability::table(rows));
-    }
-    if !suite.skipped.is_empty() {
-        let names: Vec<&str> = suite.skipped.iter().map(|s| s.name.as_str()).collect();
-        let line = format!(
-            "skipped {} of {} cases, which need what {} lacks: {}",
-            names.len(),
-            files.len(),
-            ctx.info.name,
-            names.join(", ")
-        );
-        if args.json {
-            eprintln!("{line}")
-        } else {
-            println!("{line}")
-        }
-    }
-    let missed = rows.iter().filter(|r| !r.failures.is_empty()).count();
-    Ok(if missed == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+#[derive(Args)]
+pub struct ProbeArgs {
+    /// Probe case file (TOML; see docs/probe-format.md).
+    pub case: PathBuf,
+    /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
+    #[arg(long, default_value = "rust")]
+    pub shaders: ShaderSet,
+    /// Intersection formula for every shape that has both: robust, or naive (the textbook
+    /// forms kept on purpose) [default: as the scene says].
+    #[arg(long, value_parser = ["robust", "naive"])]
+    pub formula: Option<String>,
+    /// Timed passes over all the rays; the median is reported.
+    #[arg(long, default_value_t = 10, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
+    pub runs: u32,
+    /// Untimed passes before the timed ones.
+    #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
+    pub warmup: u32,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+    /// Write one CSV row per ray to FILE: origin, direction, t range, the reference's hit, t,
+    /// object and ambiguity, the set's hit, t, object and normal, and the verdict.
+    #[arg(long, value_name = "FILE")]
+    pub rays_out: Option<PathBuf>,
 }

@@ -1,15 +1,11 @@
-//! `twinray render` and `twinray compare`.
+//! `twinray render`: one scene with one set, to a PNG (a moving scene's frames: `frames`).
 
-use crate::args::{CompareArgs, GlobalArgs, RenderArgs};
-use crate::session::{
-    context, load_still, refuse_viewpoint_with_frames, render_options, COMPARE_TRACES, RENDER_TRACES,
-};
+use crate::args::{GlobalArgs, RenderArgs};
+use crate::session::{context, load_still, refuse_viewpoint_with_frames, render_options, RENDER_TRACES};
 use anyhow::Result;
 use std::process::ExitCode;
 use twinray::compare::hit_count;
-use twinray::compare::report::compare_sets;
 use twinray::util::output::{check_image_target, write_image};
-use twinray::Error;
 
 pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     if let Some(range) = args.animation.frames {
@@ -71,38 +67,4 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
         println!("wrote {}", args.out.display());
     }
     Ok(if problems.is_empty() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
-}
-
-pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
-    if args.processes > 0 && (args.animation.frames.is_some() || args.viewpoint.given()) {
-        let message = "--processes times the scene's own still image: not with --frames, --frame, --eye or --look-at";
-        return Err(Error::Input(message.into()).into());
-    }
-    if let Some(range) = args.animation.frames {
-        refuse_viewpoint_with_frames(&args.viewpoint)?;
-        return crate::frames::compare(global, args, range);
-    }
-    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
-    let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
-    crate::alone::check_runs(args.processes, opts.runs)?;
-    if args.out_dir.exists() && !args.out_dir.is_dir() {
-        return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
-    }
-    let ctx = context(global)?;
-    let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
-    let (isolation, cache) =
-        crate::alone::for_scene(global, scene_arg, &opts, &args.a, (args.processes, args.alone.alone_in));
-    let comparison = compare_sets(&ctx, &scene, (&args.a, &args.b), &opts, isolation.as_ref());
-    let _ = std::fs::remove_dir_all(cache);
-    let comparison = comparison?;
-    comparison.write_images(&args.out_dir)?;
-    let report = &comparison.report;
-    if args.frame.json {
-        println!("{}", serde_json::to_string(report)?);
-    } else {
-        print!("{}", report.summary());
-        println!("  wrote a.png, b.png, diff.png in {}", args.out_dir.display());
-        println!("  diff.png: {}", twinray::compare::DIFF_LEGEND);
-    }
-    Ok(if report.pass { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }

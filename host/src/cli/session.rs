@@ -105,3 +105,7 @@ pub fn show_progress() {
         }
     }));
 }
+
+pub fn create_dir(dir: &std::path::Path) -> Result<(), Error> {
+    std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.to_path_buf(), source })
+}

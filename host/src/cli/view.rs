@@ -1,7 +1,9 @@
 //! `twinray view`: serves the live page and prints its address.
 
-use crate::args::{GlobalArgs, ViewArgs};
+use crate::args::GlobalArgs;
 use anyhow::{Context, Result};
+use clap::Args;
+use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::view::{serve, ViewConfig};
 use twinray::Error;
@@ -51,4 +53,37 @@ pub fn view(global: &GlobalArgs, args: ViewArgs) -> Result<ExitCode> {
 /// The twinray checkout `dir` lies in (it holds `shaders-glsl/` and `shaders-rs/`), if any.
 fn checkout_above(dir: &std::path::Path) -> Option<std::path::PathBuf> {
     dir.ancestors().find(|d| d.join("shaders-glsl").is_dir() && d.join("shaders-rs").is_dir()).map(|d| d.to_path_buf())
+}
+
+#[derive(Args)]
+pub struct ViewArgs {
+    /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
+    pub scene: Option<String>,
+    /// Set A: rust, glsl, a folder of modules, or a mix (as for compare).
+    #[arg(long, default_value = "rust")]
+    pub a: String,
+    /// Set B.
+    #[arg(long, default_value = "glsl")]
+    pub b: String,
+    /// Port to listen on (0: any free port, printed).
+    #[arg(long, default_value_t = 7878)]
+    pub port: u16,
+    /// Address to listen on. Anything but loopback lets other machines see the renders and
+    /// make this one render: prefer `ssh -L` [default: 127.0.0.1].
+    #[arg(long, value_name = "ADDR", default_value = "127.0.0.1")]
+    pub bind: std::net::IpAddr,
+    /// A twinray checkout whose shader sources rebuild the built-in sets (rust, glsl) on every
+    /// save [default: the checkout the current folder is in, if any; else their embedded
+    /// modules, not rebuilt].
+    #[arg(long, value_name = "DIR")]
+    pub sources: Option<PathBuf>,
+    /// Image width in pixels [default: the scene's].
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height in pixels [default: the scene's].
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Width of the quick render shown first after every change, before the full size.
+    #[arg(long, default_value_t = 320, value_parser = clap::value_parser!(u32).range(8..=4096))]
+    pub preview_width: u32,
 }

@@ -1,10 +1,11 @@
 //! `twinray pipeline-bench`: pipeline creation time per configuration, each measured in a
-//! process of its own, and the trace time of linked pipelines against whole ones; and
-//! `twinray stage-bench`: what stage kinds and tracing methods cost.
+//! process of its own, and the trace time of linked pipelines against whole ones.
 
-use crate::args::{GlobalArgs, PipelineBenchArgs, StageBenchArgs};
-use crate::session::{context, options, render_options, COMPARE_TRACES};
+use crate::args::{FrameArgs, GlobalArgs};
+use crate::session::{context, create_dir, options, render_options, COMPARE_TRACES};
 use anyhow::Result;
+use clap::Args;
+use std::path::PathBuf;
 use std::process::{Command, ExitCode};
 use twinray::bench::linking::{linking_table, trace_linking};
 use twinray::bench::pipelines::{measure, run, table, Config, Measured};
@@ -62,56 +63,6 @@ pub fn pipeline_bench(global: &GlobalArgs, args: PipelineBenchArgs) -> Result<Ex
     Ok(ExitCode::SUCCESS)
 }
 
-/// One placement per render: `stage-bench`'s rounds are its placements.
-const STAGE_TRACES: (u32, u32, u32) = (COMPARE_TRACES.0, COMPARE_TRACES.1, 1);
-
-pub fn stage_bench(global: &GlobalArgs, args: StageBenchArgs) -> Result<ExitCode> {
-    use twinray::bench::stages::{run, table, StagePlan, Variant};
-    let scenes = args.scenes.iter().map(|name| Scene::load(Some(name))).collect::<Result<Vec<_>, _>>()?;
-    let variants = Variant::parse_list(&args.variants)?;
-    let sets = twinray::shaders::parse_sets(&args.sets)?;
-    if args.frame.placements.is_some() {
-        let why =
-            "stage-bench: each round makes every pipeline afresh (a placement); give --rounds instead of --placements";
-        return Err(twinray::Error::Input(why.into()).into());
-    }
-    for scene in &scenes {
-        render_options(scene, &args.frame, STAGE_TRACES)?;
-    }
-    create_dir(&args.out)?;
-    let ctx = context(global)?;
-    let timer = args.alone.then(|| crate::alone::stage_timer(global, &args.frame, args.scenes.clone()));
-    let alone = timer.as_ref().map(|t| t as &twinray::bench::stages::TimeCell);
-    let (rounds, first_round) = (args.rounds, args.first_round);
-    let plan = StagePlan { scenes: &scenes, variants: &variants, sets: &sets, rounds, first_round, alone };
-    let opts = |s: &Scene| render_options(s, &args.frame, STAGE_TRACES).expect("checked above");
-    let (rows, skipped) = run(&ctx, &plan, opts, |step| eprintln!("stage-bench: {step}"))?;
-    let (round, times) = match args.alone {
-        true => ("each render alone in a process of its own", "medians of the rounds' medians"),
-        false => ("each a placement", "medians of every timed trace of every round"),
-    };
-    let text = format!(
-        "{} on {}, {} rounds ({round}); times are {times}, ratios have their 95% interval over rounds\n\n{}",
-        std::env::args().collect::<Vec<_>>().join(" "),
-        ctx.info.name,
-        args.rounds,
-        table(&rows, &skipped)
-    );
-    let json = serde_json::to_string_pretty(&serde_json::json!({
-        "device": ctx.info.name, "driver": ctx.info.driver_info, "alone": args.alone, "first_round": first_round, "rows": rows, "skipped": skipped,
-    }))?;
-    for (name, body) in [("table.md", &text), ("results.json", &json)] {
-        twinray::util::output::write_atomically(&args.out.join(name), body.as_bytes())?;
-    }
-    print!("{text}");
-    println!("report in {}", args.out.display());
-    Ok(ExitCode::SUCCESS)
-}
-
-fn create_dir(dir: &std::path::Path) -> Result<(), Error> {
-    std::fs::create_dir_all(dir).map_err(|source| Error::Io { what: "creating", path: dir.to_path_buf(), source })
-}
-
 fn thread_counts(text: Option<&str>) -> Result<Vec<usize>, Error> {
     let cores = std::thread::available_parallelism().map_or(1, |n| n.get());
     match text {
@@ -147,4 +98,35 @@ fn measure_in_child(global: &GlobalArgs, args: &PipelineBenchArgs, config: &Conf
         return Err(failed(String::from_utf8_lossy(&out.stderr).trim().to_string()));
     }
     serde_json::from_slice(&out.stdout).map_err(|e| failed(format!("{e}: {}", String::from_utf8_lossy(&out.stdout))))
+}
+
+#[derive(Args)]
+pub struct PipelineBenchArgs {
+    /// Scene whose pipelines are made [default: showcase, every hit group kind].
+    #[arg(default_value = "showcase")]
+    pub scene: String,
+    /// Joining thread counts to compare, comma-separated [default: 1 and the machine's cores].
+    #[arg(long)]
+    pub thread_counts: Option<String>,
+    /// Timed repeats per configuration (the median is reported), each on a fresh device.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub repeats: u32,
+    /// Scenes whose trace time is measured whole against linked, comma-separated ("" for
+    /// none); each renders at its own size unless --width and --height are given.
+    #[arg(long, default_value = "showcase,spheres,meshes,lights")]
+    pub trace_scenes: String,
+    /// Image size and trace counts of the trace-time part [default: each scene's size, 10
+    /// timed traces after 2 untimed].
+    #[command(flatten)]
+    pub frame: FrameArgs,
+    /// Measure every configuration in this process instead of one process each (NVIDIA's
+    /// driver 580 stops making instances after about 30 in one process).
+    #[arg(long)]
+    pub in_process: bool,
+    /// Internal: measure one configuration (JSON) with caches under --out and print the result.
+    #[arg(long, hide = true)]
+    pub measure_one: Option<String>,
+    /// Output folder for table.md, linking.md and results.json (created if missing).
+    #[arg(long, default_value = "bench/out-pipelines")]
+    pub out: PathBuf,
 }

@@ -2,13 +2,16 @@
 //! mode's TLAS as objects drift, at several instance counts) and `twinray pipeline-bench`
 //! (pipeline creation time per way of making them).
 
-use crate::args::{AnimateBenchArgs, GlobalArgs};
+use crate::args::{GlobalArgs, MAX_PLACEMENTS, MAX_RUNS, MAX_WARMUP};
 use crate::session::context;
 use anyhow::Result;
+use clap::Args;
+use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::bench::animation::{resize_grid, run, write, AnimateConfig};
 use twinray::render::{TlasKind, TlasMode};
 use twinray::scene::check_size;
+use twinray::ShaderSet;
 use twinray::{Error, Scene};
 
 /// Most instances the bench resizes a grid to: the scene limit.
@@ -74,4 +77,47 @@ pub fn animate_bench(global: &GlobalArgs, args: AnimateBenchArgs) -> Result<Exit
     print!("{}", twinray::bench::animation::report_table(&report));
     println!("report in {}", args.out.display());
     Ok(ExitCode::SUCCESS)
+}
+
+#[derive(Args)]
+pub struct AnimateBenchArgs {
+    /// A moving scene with a [[grids]] table (its first grid is resized) [default: swarm].
+    #[arg(default_value = "swarm")]
+    pub scene: String,
+    /// Instance counts, comma-separated (each made an n x n grid, n the nearest square root).
+    #[arg(long, default_value = "1000,10000,100000")]
+    pub instances: String,
+    /// TLAS modes, comma-separated: rebuild, fast-build, update.
+    #[arg(long, default_value = "rebuild,fast-build,update")]
+    pub modes: String,
+    /// For the update mode: a full rebuild every N frames (0: the first frame only, so the
+    /// TLAS is refitted through the whole motion).
+    #[arg(long, value_name = "N", default_value_t = 0)]
+    pub rebuild_every: u32,
+    /// Frames 0..N of the scene [default: all of them].
+    #[arg(long)]
+    pub frames: Option<u32>,
+    /// Shader set that traces.
+    #[arg(long, default_value = "rust")]
+    pub shaders: ShaderSet,
+    /// Image width [default: the scene's].
+    #[arg(long)]
+    pub width: Option<u32>,
+    /// Image height [default: the scene's].
+    #[arg(long)]
+    pub height: Option<u32>,
+    /// Timed traces per frame.
+    #[arg(long, default_value_t = 3, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_RUNS)))]
+    pub runs: u32,
+    /// Untimed traces before the first frame (and at least 1000 ms of GPU time when above 0;
+    /// before each later frame, at least a fifth of that).
+    #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = clap::value_parser!(u32).range(0..=i64::from(MAX_WARMUP)))]
+    pub warmup: u32,
+    /// Renderings of the whole animation, each mode's pipeline made afresh in an order of its
+    /// own; the trace-time ratios' 95% intervals are over them.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=i64::from(MAX_PLACEMENTS)))]
+    pub placements: u32,
+    /// Output folder (created if missing).
+    #[arg(long, default_value = "bench/out-animation")]
+    pub out: PathBuf,
 }
