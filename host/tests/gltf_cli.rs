@@ -305,14 +305,18 @@ fn a_small_file_of_a_huge_image_is_refused_before_it_is_decoded() {
     let model = dir.path().join("huge.gltf");
     std::fs::write(&model, gltf).unwrap();
     let model = model.to_str().unwrap();
-    let out = std::process::Command::new("sh")
-        .arg("-c")
-        .arg("ulimit -v 1048576; exec \"$0\" \"$@\"")
-        .arg(env!("CARGO_BIN_EXE_twinray"))
-        .args(["render", model, "--width", "16", "--height", "16", "--out", "x.png"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
+    // The render, under a 1 GiB address space.
+    let render = || {
+        std::process::Command::new("sh")
+            .arg("-c")
+            .arg("ulimit -v 1048576; exec \"$0\" \"$@\"")
+            .arg(env!("CARGO_BIN_EXE_twinray"))
+            .args(["render", model, "--width", "16", "--height", "16", "--out", "x.png"])
+            .current_dir(dir.path())
+            .output()
+            .unwrap()
+    };
+    let out = render();
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
@@ -322,14 +326,7 @@ fn a_small_file_of_a_huge_image_is_refused_before_it_is_decoded() {
     let mut small = Vec::new();
     image::GrayImage::new(64, 64).write_to(&mut std::io::Cursor::new(&mut small), image::ImageFormat::Png).unwrap();
     std::fs::write(dir.path().join("huge.png"), &small).unwrap();
-    let out = std::process::Command::new("sh")
-        .arg("-c")
-        .arg("ulimit -v 1048576; exec \"$0\" \"$@\"")
-        .arg(env!("CARGO_BIN_EXE_twinray"))
-        .args(["render", model, "--width", "16", "--height", "16", "--out", "x.png"])
-        .current_dir(dir.path())
-        .output()
-        .unwrap();
+    let out = render();
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
 }
 

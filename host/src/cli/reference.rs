@@ -8,8 +8,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::scene::check_size;
 use twinray::util::output::{check_image_target, write_image};
-use twinray::ShaderSet;
-use twinray::{Error, Scene};
+use twinray::{Error, Scene, ShaderSet};
 
 pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
     let scene = Scene::load(args.scene.as_deref())?;
