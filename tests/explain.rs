@@ -51,6 +51,15 @@ fn with_top_level(name: &str, line: &str) -> twinray::Scene {
     twinray::Scene::parse(&format!("{line}\n{text}"), &source, meshes).expect("scene with {line}")
 }
 
+/// Built-in scene `name` moved by (1e4, -1e4, 1e4), the GPU centred on its camera as a far scene
+/// is: explain must remake the image's rays in the coordinates the image was made in.
+fn far(name: &str) -> twinray::Scene {
+    let mut scene = twinray::Scene::load(Some(name)).expect("built-in scene");
+    twinray::scene::origin::rebase(&mut scene.file, glam::Vec3::new(-1e4, 1e4, -1e4));
+    scene.origin = Some(glam::Vec3::from(scene.file.camera.eye));
+    scene
+}
+
 #[test]
 fn identical_sets_agree_on_every_ray_and_their_rays_add_up_to_their_pixels() {
     let ctx = validated_context();
@@ -59,6 +68,7 @@ fn identical_sets_agree_on_every_ray_and_their_rays_add_up_to_their_pixels() {
         ("cutout", twinray::Scene::load(Some("cutout")).unwrap()),
         ("cutout, ray-query shadows", with_top_level("cutout", "shadow_method = \"query\"")),
         ("cutout, compute renderer", with_top_level("cutout", "renderer = \"compute\"")),
+        ("showcase, 1.7e4 from the origin", far("showcase")),
     ];
     let sets = [("rust".to_string(), set("rust")), ("glsl".to_string(), set("glsl"))];
     let size = (64, 48);

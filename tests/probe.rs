@@ -222,7 +222,7 @@ fn the_stages_own_transform_keeps_a_far_instance_precise_and_the_drivers_is_repo
 #[test]
 fn without_far_instances_the_stages_take_the_drivers_ray() {
     let text = std::fs::read_to_string(twinray_tests::repo_root().join("probes/far-instances.toml")).unwrap();
-    let text = text.replacen("[scene.materials.m]", "[scene]\nfeatures = []\n\n[scene.materials.m]", 1);
+    let text = text.replacen("[scene]\n", "[scene]\nfeatures = []\n", 1);
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("far-driver.toml");
     std::fs::write(&path, text).unwrap();
@@ -281,11 +281,11 @@ fn a_folder_set_without_the_witness_probes_without_the_split() {
 }
 
 /// Five turned shapes near the origin, and the same scene (camera, light and objects) moved by
-/// `offset`.
-fn shapes_at(offset: [f64; 3]) -> Scene {
+/// `offset`, the GPU centred as `gpu_origin` says.
+fn shapes_at(offset: [f64; 3], gpu_origin: &str) -> Scene {
     let at = |p: [f64; 3]| format!("[{:.1}, {:.1}, {:.1}]", p[0] + offset[0], p[1] + offset[1], p[2] + offset[2]);
     let mut text = format!(
-        "[image]\nwidth = 96\nheight = 72\n\
+        "gpu_origin = \"{gpu_origin}\"\n[image]\nwidth = 96\nheight = 72\n\
          [camera]\neye = {}\ntarget = {}\nup = [0.0, 1.0, 0.0]\nfov_y_degrees = 40.0\n\
          [materials.m]\nkind = \"diffuse\"\ncolor = [0.8, 0.8, 0.8]\n\
          [[lights]]\nkind = \"point\"\nposition = {}\ncolor = [1.0, 1.0, 1.0]\nintensity = 20.0\n\
@@ -320,16 +320,25 @@ fn shapes_at(offset: [f64; 3]) -> Scene {
 /// A scene moved 1.7e4 from the origin renders the same hit ids as at the origin, in both sets,
 /// but where a pixel's ray passes within f32 rounding of a silhouette: every pixel that differs
 /// has a 4-neighbour of another id in the render at the origin (the band where the camera's
-/// own position, rounded to f32 at 1e4, may move an edge by a fraction of a pixel).
+/// own position, rounded to f32 at 1e4, may move an edge by a fraction of a pixel). Both ways
+/// of working far out: centred on the camera (the default), and at world coordinates with the
+/// stages' own transform.
 #[test]
 fn a_scene_far_from_the_origin_hits_what_it_hits_at_the_origin() {
-    let near = shapes_at([0.0; 3]);
-    let far = shapes_at([10000.0, -10000.0, 10000.0]);
-    assert_ne!(far.build().plan.features & twinray_shared::features::FAR_INSTANCES, 0);
+    let near = shapes_at([0.0; 3], "local");
+    assert_eq!(near.origin, None, "a scene near the world origin is not moved");
+    let far = [10000.0, -10000.0, 10000.0];
+    let (local, world) = (shapes_at(far, "local"), shapes_at(far, "world"));
+    // Centred on its camera, the scene's objects are near for their size; at world coordinates
+    // they are far, and the stages compute their own object-space ray.
+    assert_eq!(local.origin, Some(glam::Vec3::from(local.file.camera.eye)));
+    assert_eq!(local.build().plan.features & twinray_shared::features::FAR_INSTANCES, 0);
+    assert_ne!(world.build().plan.features & twinray_shared::features::FAR_INSTANCES, 0);
     let ctx = validated_context();
-    for set_text in ["rust", "glsl"] {
+    for (set_text, far) in [("rust", &local), ("glsl", &local), ("rust", &world), ("glsl", &world)] {
+        let label = format!("{set_text} ({:?})", far.file.gpu_origin);
         let a = twinray_tests::render(&ctx, &near, set_text);
-        let b = twinray_tests::render(&ctx, &far, set_text);
+        let b = twinray_tests::render(&ctx, far, set_text);
         let (w, h) = (a.width as usize, a.height as usize);
         let id = |x: usize, y: usize| a.hit_ids[y * w + x];
         let edge = |x: usize, y: usize| {
@@ -337,7 +346,7 @@ fn a_scene_far_from_the_origin_hits_what_it_hits_at_the_origin() {
             n.iter().any(|&(nx, ny)| nx < w && ny < h && id(nx, ny) != id(x, y))
         };
         let hits = a.hit_ids.iter().filter(|&&i| i != twinray::render::NO_HIT_ID).count();
-        assert!(hits > w * h / 10, "{set_text}: the shapes fill the view ({hits} pixels)");
+        assert!(hits > w * h / 10, "{label}: the shapes fill the view ({hits} pixels)");
         let (mut differ, mut off_edge) = (0, Vec::new());
         for (i, (x, y)) in (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).enumerate() {
             if a.hit_ids[i] != b.hit_ids[i] {
@@ -347,7 +356,7 @@ fn a_scene_far_from_the_origin_hits_what_it_hits_at_the_origin() {
                 }
             }
         }
-        eprintln!("{set_text}: {differ} of {} pixels differ, all on edges: {}", w * h, off_edge.is_empty());
-        assert!(off_edge.is_empty(), "{set_text}: pixels away from any edge hit something else: {off_edge:?}");
+        eprintln!("{label}: {differ} of {} pixels differ, all on edges: {}", w * h, off_edge.is_empty());
+        assert!(off_edge.is_empty(), "{label}: pixels away from any edge hit something else: {off_edge:?}");
     }
 }

@@ -57,8 +57,9 @@ fn a_scene_f32_cannot_resolve_is_refused_by_name() {
 /// angle's, which scaling keeps; directional lights have no distance).
 fn scaled(scene: &Scene, s: f32) -> Scene {
     use twinray::scene::file::{LightDesc, Scale};
-    let mut out =
-        Scene { file: scene.file.clone(), source: scene.source.clone(), meshes: scene.meshes.clone(), animation: None };
+    let (file, source, meshes) = (scene.file.clone(), scene.source.clone(), scene.meshes.clone());
+    // The GPU centred as the scene is (on the camera, which moves `s` times as far), or not.
+    let mut out = Scene { file, source, meshes, animation: None, origin: scene.origin.map(|o| o * s) };
     let f = &mut out.file;
     let times = |v: &mut [f32; 3]| v.iter_mut().for_each(|x| *x *= s);
     let grow = |scale: &mut Scale| match scale {

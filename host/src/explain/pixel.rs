@@ -69,7 +69,10 @@ pub struct PixelRays {
 }
 
 /// Traces every ray of `pixel` of `scene` (a still scene, or one frame of an animation) at
-/// `size` with each of `sets`, and judges them with the f64 reference.
+/// `size` with each of `sets`, and judges them with the f64 reference. It works in the GPU's
+/// coordinates (the scene moved to its local origin, `scene::origin`), as the image was made:
+/// a hit point moved back to the scene's own would round at the magnitude of its coordinates,
+/// and the shadow rays remade from it would no longer be the image's.
 pub fn explain_pixel(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -77,6 +80,7 @@ pub fn explain_pixel(
     size: (u32, u32),
     pixel: (u32, u32),
 ) -> Result<PixelRays> {
+    let scene = &*scene.on_gpu();
     let camera = Camera::new(scene, size);
     let samples = camera.primary_samples(pixel)?;
     let reference = SceneReference::new(scene).map_err(|e| Error::Input(format!("{}: {e}", scene.name())))?;

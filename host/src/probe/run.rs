@@ -7,7 +7,7 @@ use crate::error::{Error, Result};
 use crate::render::{
     prepare, sentinel, storage_buffer, submit, transition, Prepared, Trace, Written, STORAGE_IMAGE, UNUSED_IMAGE,
 };
-use crate::scene::{Renderer, Scene, PROBE_QUERY};
+use crate::scene::{origin, Renderer, Scene, PROBE_QUERY};
 use crate::shaders::ShaderSet;
 use crate::util::activity;
 use crate::vk::buffer::Buffer;
@@ -90,6 +90,8 @@ pub fn probe_module(scene: &Scene) -> &'static str {
 }
 
 /// Traces `rays` through `scene` with `set`: `warmup` untimed passes, then `runs` timed ones.
+/// A scene with a local origin is centred on the rays' mean origin, and the rays moved with it
+/// (`scene::origin`); the results (t, normals, object-space rays) do not depend on it.
 pub fn probe(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -98,7 +100,18 @@ pub fn probe(
     warmup: u32,
     runs: u32,
 ) -> Result<ProbeOutput> {
-    let out = probe_and_release(ctx, scene, set, rays, warmup, runs)?;
+    let scene = scene.centred_on(origin::mean(rays.iter().map(|r| r.origin.truncate())));
+    let local: Vec<ProbeRay>;
+    let rays = match scene.origin {
+        Some(o) => {
+            let moved =
+                |r: &ProbeRay| ProbeRay { origin: origin::to_local(r.origin.truncate(), o).extend(r.origin.w), ..*r };
+            local = rays.iter().map(moved).collect();
+            &local
+        }
+        None => rays,
+    };
+    let out = probe_and_release(ctx, &scene, set, rays, warmup, runs)?;
     // Every object of the probe is destroyed by now: catch what the layer said about that too.
     ctx.check_validation()?;
     Ok(out)

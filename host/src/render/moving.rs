@@ -140,7 +140,8 @@ impl<'a> FrameRenderer<'a> {
             return Ok(());
         }
         self.scene.pose(frame, &mut self.posed);
-        let data = frame_data(&self.posed, self.opts.width, self.opts.height, &self.object_bounds);
+        let posed = self.scene.file_on_gpu(&self.posed);
+        let data = frame_data(&posed, self.opts.width, self.opts.height, &self.object_bounds);
         let resources = &self.uploaded.resources;
         if work != AsWork::None {
             for (record, instance) in self.records.iter_mut().zip(&self.uploaded.data.instances) {

@@ -76,6 +76,8 @@ fn upload_scene(
     let _doing = crate::util::activity::doing(format!("building the acceleration structures of {}", scene.name()));
     let started = std::time::Instant::now();
     let one_shot = &OneShot::new(ctx)?;
+    // The GPU works around the scene's local origin (`scene::origin`).
+    let scene = &*scene.on_gpu();
     let built = scene.build();
     let data = &built;
     // Meshes are read by the BLAS builds and by the triangle closest-hit stage.

@@ -118,7 +118,7 @@ impl Geometry {
     }
 }
 
-pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>) -> SceneData {
+pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>, origin: Vec3) -> SceneData {
     let material_index: BTreeMap<&str, u32> =
         scene.materials.keys().enumerate().map(|(i, n)| (n.as_str(), i as u32)).collect();
     let mut slots: BTreeMap<&str, ShapeSlot> = BTreeMap::new();
@@ -174,14 +174,20 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>) -> Sce
     let Geometry { blases, primitives, vertices, indices } = geometry;
     let mut data =
         SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures };
-    // Far instances are a matter of where objects stand: a moving scene is taken to have them,
-    // as its objects may move anywhere.
-    let transforms: Vec<Mat4> = data.instances.iter().map(|i| i.object_to_world).collect();
+    // Far instances are a matter of where objects stand on the GPU, around `origin`: a moving
+    // scene is taken to have them, as its objects may move anywhere.
+    let transforms: Vec<Mat4> = data.instances.iter().map(|i| local(i.object_to_world, origin)).collect();
     let far = scene.animation.is_some() || reach::far_instances(&data.object_bounds(), &transforms);
     if scene.features.is_none() && far {
         data.plan.features |= features::FAR_INSTANCES;
     }
     data
+}
+
+/// `m` with its translation moved by `-origin` (`origin::to_local`).
+fn local(mut m: Mat4, origin: Vec3) -> Mat4 {
+    m.w_axis = super::origin::to_local(m.w_axis.truncate(), origin).extend(1.0);
+    m
 }
 
 /// The kinds of `materials`, each once, in kind order.

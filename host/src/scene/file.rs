@@ -49,6 +49,9 @@ pub struct SceneFile {
     /// What renders the image: the ray tracing pipeline, or a compute shader with ray queries.
     #[serde(default)]
     pub renderer: Renderer,
+    /// Where the GPU's coordinates are centred (`"local"`, the default, or `"world"`).
+    #[serde(default)]
+    pub gpu_origin: GpuOrigin,
     /// The features every stage is specialised on (`twinray_shared::features`, by name); left
     /// out, those the scene uses. A list drops the code of features it leaves out even where
     /// the scene uses them, and keeps that of features it names though unused: what a feature's
@@ -415,6 +418,19 @@ pub enum HitGroups {
     /// One per shape kind and material kind, each instance's SBT offset choosing it: diffuse,
     /// emissive and cutout materials get a closest-hit stage without the branch.
     PerMaterial,
+}
+
+/// `gpu_origin`: where the GPU's world coordinates are centred. `Local`: where an object lies
+/// far from the world origin for its size (`reach::far_instances`), at the camera's eye (a
+/// probe's: its rays' mean origin), so that the driver's f32 transforms and the stages work at
+/// the magnitude of what a ray sees, not of the world's coordinates (`scene::origin`). `World`:
+/// at the world origin, always: what the driver alone makes of a far scene, shown.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Deserialize, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum GpuOrigin {
+    #[default]
+    Local,
+    World,
 }
 
 /// What renders the image.

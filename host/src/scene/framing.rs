@@ -137,6 +137,7 @@ pub fn scene_file(
         material_shading: Default::default(),
         hit_groups: Default::default(),
         renderer: Default::default(),
+        gpu_origin: Default::default(),
         features: None,
         materials,
         lights: view.lights,

@@ -11,6 +11,7 @@ pub mod gltf;
 pub mod mesh;
 mod models;
 pub mod obj;
+pub mod origin;
 pub mod plan;
 pub mod pool;
 pub mod reach;
@@ -23,7 +24,7 @@ pub use animation::Animation;
 pub use build::{frame_data, frame_uniform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
 pub use builtin::{BUILTIN, BUILTIN_MESH_FILES, DEFAULT_SCENE};
 pub use check::{check_size, MAX_OBJECTS, MAX_PIXELS, MAX_PRIMITIVES, MAX_SAMPLES_PER_SIDE, MAX_SIDE};
-pub use file::{object_transform, HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMethod};
+pub use file::{object_transform, GpuOrigin, HitGroups, MaterialShading, Parity, Renderer, SceneFile, ShadowMethod};
 use glam::Vec3;
 pub use mesh::MeshData;
 pub use plan::{
@@ -46,6 +47,8 @@ pub struct Scene {
     pub meshes: BTreeMap<String, Arc<MeshData>>,
     /// What moves, checked; `None` for a still scene. `file` holds frame 0's values.
     pub animation: Option<Animation>,
+    /// Where the GPU's world coordinates are centred (see `origin`); `None`, at the world origin.
+    pub origin: Option<Vec3>,
 }
 
 impl Scene {
@@ -178,16 +181,18 @@ impl Scene {
                 meshes.insert(name.clone(), Arc::new(mesh));
             }
         }
-        let scene = Scene { file, source: source.into(), meshes, animation };
-        scene.check_resolution().map_err(scene_error)?;
+        let mut scene = Scene { file, source: source.into(), meshes, animation, origin: None };
+        let data = scene.build();
+        scene.check_resolution(&data).map_err(scene_error)?;
+        scene.origin = scene.local_origin(&data);
         Ok(scene)
     }
 
     /// An error when f32 cannot resolve an object where it stands (at frame 0), a warning
     /// on the log when it resolves it only coarsely, or comes nearer the eye than primary rays'
     /// near reach (see `reach`).
-    fn check_resolution(&self) -> std::result::Result<(), String> {
-        let boxes = self.build().world_boxes();
+    fn check_resolution(&self, data: &SceneData) -> std::result::Result<(), String> {
+        let boxes = data.world_boxes();
         let eye = Vec3::from(self.file.camera.eye);
         let near = reach::reach(&boxes, eye).z;
         if let Some((i, d)) = reach::within_near(&boxes, eye, near) {
@@ -214,6 +219,40 @@ impl Scene {
             log::warn!("scene {}: {what}, so f32 resolves it only coarsely", self.source);
         }
         Ok(())
+    }
+
+    /// Where the GPU's coordinates should be centred: at the camera's eye where an object lies
+    /// far from the world origin for its size, unless the file asks for the world origin.
+    fn local_origin(&self, data: &SceneData) -> Option<Vec3> {
+        let transforms: Vec<glam::Mat4> = data.instances.iter().map(|i| i.object_to_world).collect();
+        let far = reach::far_instances(&data.object_bounds(), &transforms);
+        (self.file.gpu_origin == file::GpuOrigin::Local && far).then(|| Vec3::from(self.file.camera.eye))
+    }
+
+    /// The scene as the GPU gets it: moved to its local origin, which the copy no longer has
+    /// (its coordinates are local). Borrowed where the origin is the world's.
+    pub fn on_gpu(&self) -> std::borrow::Cow<'_, Scene> {
+        let Some(o) = self.origin else { return std::borrow::Cow::Borrowed(self) };
+        let mut local = self.clone();
+        origin::rebase(&mut local.file, o);
+        local.origin = None;
+        std::borrow::Cow::Owned(local)
+    }
+
+    /// `file` (this scene posed at some frame) as the GPU gets it (see [`Scene::on_gpu`]).
+    pub fn file_on_gpu<'f>(&self, file: &'f SceneFile) -> std::borrow::Cow<'f, SceneFile> {
+        let Some(o) = self.origin else { return std::borrow::Cow::Borrowed(file) };
+        let mut local = file.clone();
+        origin::rebase(&mut local, o);
+        std::borrow::Cow::Owned(local)
+    }
+
+    /// The scene centred on `at` where it is centred at all: a probe centres it on its rays.
+    pub fn centred_on(&self, at: Option<Vec3>) -> std::borrow::Cow<'_, Scene> {
+        match (self.origin, at) {
+            (Some(o), Some(at)) if o != at => std::borrow::Cow::Owned(Scene { origin: Some(at), ..self.clone() }),
+            _ => std::borrow::Cow::Borrowed(self),
+        }
     }
 
     /// Gives every rect light `n` x `n` shadow samples.
@@ -259,6 +298,8 @@ impl Scene {
         camera.eye = eye.unwrap_or(camera.eye);
         camera.target = target.unwrap_or(camera.target);
         check::check_camera(camera).map_err(|e| Error::Input(format!("--eye/--look-at: {e}")))?;
+        // A far scene stays centred on the camera, where it now stands.
+        self.origin = self.origin.map(|_| Vec3::from(self.file.camera.eye));
         Ok(self)
     }
 
@@ -269,7 +310,7 @@ impl Scene {
 
     /// Buffers, acceleration structure contents and pipeline plan of this scene.
     pub fn build(&self) -> SceneData {
-        build::build(&self.file, &self.meshes)
+        build::build(&self.file, &self.meshes, self.origin.unwrap_or(Vec3::ZERO))
     }
 
     /// Camera and frame constants for an image of `width` x `height`.
