@@ -127,13 +127,9 @@ impl Isolation {
 }
 
 /// A round whose process ran this many times slower than its set's median round is timed
-/// again. Where the code lands moves a set's time by up to 5% on the H100 (cylinder at 16
-/// spp, 0.951 to 1.045 of the mean over 4 places, the same in two runs), and another process
-/// at the same place times within 0.5%. With 200 ms of warm-up, 9 of 292 processes of one
-/// session (`bench/reports/issue40-places/`) ran 1.4 to 4.4 times slower than that, on GPU
-/// clocks that had not come up; one such round took box at 1 spp from Rust/GLSL 1.017 (1.008 to
-/// 1.027) to 1.105 (0.893 to 1.369). The warm-up is now 1000 ms (`prepare::MIN_WARM_MS`),
-/// which removed them in 38 processes; this catches what else may slow a whole process.
+/// again: far past what where the code lands can do (a few percent), a whole process whose GPU
+/// clocks did not come up. The warm-up (`prepare::MIN_WARM_MS`) prevents most; this catches
+/// what else may slow a whole process (docs/measuring.md, *Where the timing rules come from*).
 pub const RETIME_ABOVE: f64 = 1.10;
 
 /// Times again, with `again(round)`, every round of `rounds` (each a process's placement

@@ -1,8 +1,9 @@
 //! Places: where a set's pipeline is made, and the rounds and orders that time sets over many.
 //!
-//! Where the driver puts a pipeline's code moves its trace time by up to 10% on the H100, by
-//! an amount of its own for each set, and the same again when the same allocations are made in
-//! the same order (docs/measuring.md, *Places*). So a set is timed over many places, and a
+//! Where the driver puts a pipeline's code moves its trace time, by an amount of its own for
+//! each set, and by the same amount again when the same allocations are made in the same order
+//! (docs/measuring.md, *Places* and *Where the timing rules come from*). So a set is timed
+//! over many places, and a
 //! ratio's uncertainty is taken over them. A place is one making of a set's pipeline, SBT and
 //! descriptors after a drawn number of spacer pipelines ([`spacer_sets`]) that it keeps while
 //! the set is timed, moving where the set's code lands; freed code is reused, so the set's
@@ -32,8 +33,7 @@ pub const DEFAULT_PLACEMENTS: u32 = 6;
 
 /// The order of each round of `sets` sets: the rows of a Williams design, cycled (see
 /// [`design`]). A set's time depends on where it comes in a round and on which set was built
-/// and released just before it (on the H100, a label order once decided a ratio by 12%:
-/// docs/measuring.md); over a whole number of the design's rows every set comes at every
+/// and released just before it (docs/measuring.md); over a whole number of the design's rows every set comes at every
 /// position, and after every other set, equally often, so the label order cannot favour one.
 /// Rounds are numbered from `first`, so that a child process that starts at a later round
 /// (`--processes`) starts at another row.
@@ -85,12 +85,10 @@ pub const MAX_SPACERS: usize = 7;
 
 /// Which of `kinds` timed sets each spacer of place `place` copies: 1 to [`MAX_SPACERS`]
 /// spacers, each of a kind drawn with a seed fixed per place, so that a command repeats its
-/// places exactly and the pipelines made before a timed one are of every kind timed (on the
-/// H100 spacers of the GLSL set alone never reached a regime some set lists made; see
-/// docs/measuring.md). Never none: a set made first on a fresh device times in a regime of
-/// its own, 0.884 to 1.074 times its time after a spacer on the H100, while its devices with
-/// spacers agree within 0.26% (median); 16 draws of 0 to 7 spacers caught that regime in
-/// different numbers, and two runs of the table disagreed (bench/reports/issue53-table).
+/// places exactly and the pipelines made before a timed one are of every kind timed (spacers
+/// of one kind alone miss regimes other kinds make). Never none: a set made first on a fresh
+/// device times in a regime of its own (docs/measuring.md, *Where the timing rules come
+/// from*).
 pub fn spacer_sets(place: u64, kinds: usize) -> Vec<usize> {
     let mut rng = SplitMix64(SEED ^ place.wrapping_mul(0x9e37_79b9_7f4a_7c15));
     let count = 1 + (rng.next_u64() % MAX_SPACERS as u64) as usize;
@@ -131,12 +129,9 @@ impl Spacers {
 }
 
 /// A GPU idle longer than this since its last warmed trace warms up for `MIN_WARM_MS` again,
-/// not `PLACE_WARM_MS`: on the H200 a place made in 0.9 s (spacers compiled cold) timed 1.57
-/// times slower than its neighbours, as at a clock of about 1260 MHz instead of 1980
-/// (`bench/reports/issue53-places/`). On the H100 a fresh device of `--alone-in devices`,
-/// made about 0.3 s after the last one's timed traces, timed its set within 0.2% after 100 ms
-/// of warm-up as after 1000 ms, at 32 first places of two scenes
-/// (`bench/reports/issue53-table/`, `device-warm.sh`).
+/// not `PLACE_WARM_MS`: the GPU's clocks come down while a place is made slowly, and a device
+/// made right after another's timed traces finds them up (docs/measuring.md, *Where the timing
+/// rules come from*).
 pub const LONG_GAP_MS: f64 = 500.0;
 
 /// When each device of this process last ended a warmed trace (name, time): the GPU's clocks are

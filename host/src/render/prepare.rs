@@ -38,20 +38,14 @@ pub(crate) struct Prepared {
 }
 
 /// GPU time warm-up traces take at least, when any are asked for: GPU clocks leave their
-/// idle state over hundreds of milliseconds. Measured on the H200 with 3 warm-up traces of a
-/// few ms: the same configuration timed 1x in one run and 2-3x in the next, with a tight IQR
-/// each time. Measured on the H100 with 200 ms (`bench/reports/issue40-places/`, showcase at
-/// 1 spp, 2.2 ms traces, each process after seconds of idle GPU while it built pipelines): 7
-/// of 8 processes timed one of their two placements 3 to 5 times slower (6.8 to 10.4 ms),
-/// while nvidia-smi saw the SM clock between 800 and 1200 MHz instead of 1980; with 1000 ms,
-/// 0 of 8, and 0 of 30 more processes in two benches, each placement within 1% of the others.
+/// idle state over hundreds of milliseconds, and a trace timed before they are up runs several
+/// times slower (docs/measuring.md, *Where the timing rules come from*).
 pub const MIN_WARM_MS: f64 = 1000.0;
 const MAX_WARM_TRACES: u32 = 10_000;
 
 /// GPU time the warm-up traces of each place after a render's first take at least, when any
 /// are asked for. The clocks are up by then, and a place made in tens of milliseconds (its
-/// spacers made from the driver's cache) finds them up: on the H200 a place's first trace took
-/// 1.003 times its timed median (`twinray places`, bench/reports/issue53-places/). A place whose
+/// spacers made from the driver's cache) finds them up (docs/measuring.md). A place whose
 /// making took longer warms up for `MIN_WARM_MS` (`placement::LONG_GAP_MS`).
 pub const PLACE_WARM_MS: f64 = 20.0;
 

@@ -1,7 +1,7 @@
 //! Recording traces: each pipeline's warm-up traces, then its timed traces interleaved with
 //! every other pipeline's. Timed trace k of each pipeline runs before trace k+1 of any, so a
-//! drift of the GPU's clocks over the submission reaches every pipeline alike; measured on the
-//! H200, two identical GLSL pipelines timed one after the other differed by 4.7% (lights).
+//! drift of the GPU's clocks over the submission reaches every pipeline alike (docs/measuring.md,
+//! *Where the timing rules come from*).
 
 use crate::error::Result;
 use crate::util::progress;
