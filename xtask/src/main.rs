@@ -1,6 +1,7 @@
 //! `cargo xtask <task>`: set-up, shader builds, golden images, the demo and CI.
 
 mod bundle;
+mod caches;
 mod crosscheck;
 mod new_shape;
 mod process;
@@ -181,7 +182,8 @@ fn demo(animated: bool) -> Result<()> {
 
 fn ci() -> Result<()> {
     let started = std::time::Instant::now();
-    setup::run(Scope::Full)?;
+    let caches = caches::survey(&repo_root());
+    process::step("setup", || setup::run(Scope::Full))?;
     process::step("rustfmt", || {
         cargo(&["fmt", "--all", "--", "--check"], &[])?;
         process::run_tool(
@@ -216,8 +218,22 @@ fn ci() -> Result<()> {
         docs?.wait()?;
     }
     tests?;
-    println!("ci: every step passed in {:.0} s", started.elapsed().as_secs_f64());
+    summary(&caches, started.elapsed().as_secs_f64());
     Ok(())
+}
+
+/// The run's steps and total, and whether it started cold or warm: the two figures
+/// docs/testing.md keeps for 2 cores.
+fn summary(caches: &[caches::Cache], total: f64) {
+    println!("ci: caches at the start:");
+    for c in caches {
+        println!("  {:<24} {:<5} {}", c.what, if c.warm { "warm" } else { "cold" }, c.path.display());
+    }
+    println!("ci: steps (\"beside\": in a child process beside the steps after it):");
+    for (name, seconds) in process::steps() {
+        println!("  {name:<28} {seconds:>7.1} s");
+    }
+    println!("ci: every step passed in {total:.0} s, {}", caches::verdict(caches));
 }
 
 /// One test binary per core: run one at a time, the tests kept 1.4 of 2 cores busy on average

@@ -44,8 +44,22 @@ pub fn step(name: &str, body: impl FnOnce() -> Result<()>) -> Result<()> {
     println!("==> {name}");
     let start = Instant::now();
     let result = body().with_context(|| format!("CI step '{name}' failed"));
-    println!("<== {name}: {} in {:.1} s", if result.is_ok() { "ok" } else { "FAILED" }, start.elapsed().as_secs_f64());
+    let took = start.elapsed().as_secs_f64();
+    println!("<== {name}: {} in {took:.1} s", if result.is_ok() { "ok" } else { "FAILED" });
+    record(name, took);
     result
+}
+
+/// Each step's name and seconds, in the order they ended: what `cargo xtask ci` sums up.
+static STEPS: std::sync::Mutex<Vec<(String, f64)>> = std::sync::Mutex::new(Vec::new());
+
+fn record(name: &str, seconds: f64) {
+    STEPS.lock().unwrap_or_else(|e| e.into_inner()).push((name.to_string(), seconds));
+}
+
+/// The steps run so far, each with its seconds.
+pub fn steps() -> Vec<(String, f64)> {
+    STEPS.lock().unwrap_or_else(|e| e.into_inner()).clone()
 }
 
 /// A CI step run by this same program in a child process beside the others, its output kept
@@ -81,6 +95,7 @@ impl Background {
         println!("==> {} (output)\n{}", self.name, std::fs::read_to_string(&self.log).unwrap_or_default().trim_end());
         let verdict = if status.success() { "ok" } else { "FAILED" };
         println!("<== {}: {verdict} in {took:.1} s", self.name);
+        record(&format!("{} (beside)", self.name), took);
         if !status.success() {
             anyhow::bail!("CI step '{}' failed with {status}", self.name);
         }

@@ -102,12 +102,18 @@ pub fn read_module(dir: &Path, spec: &ModuleSpec) -> Result<(ModuleInfo, usize)>
 }
 
 /// Where the builder's build outlives a fresh clone, so CI pays for rustc_codegen_spirv once.
-fn cache_dir() -> PathBuf {
+pub fn cache_dir() -> PathBuf {
     let base = std::env::var_os("XDG_CACHE_HOME")
         .map(PathBuf::from)
         .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
         .unwrap_or_else(std::env::temp_dir);
     base.join("twinray")
+}
+
+/// The rust-gpu builder's own target folder (under [`cache_dir`]), and whether it holds the
+/// builder: a cold machine builds it first (about 9 minutes on 2 cores).
+pub fn builder_target() -> PathBuf {
+    cache_dir().join("builder-target")
 }
 
 /// A command on the pinned nightly, without the outer (stable) cargo's toolchain variables.
@@ -133,7 +139,7 @@ fn without_names(without: u32, f: impl Fn(&twinray_shared::features::Feature) ->
 
 fn build_rust(root: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
     let cache = cache_dir();
-    let target = cache.join("builder-target");
+    let target = builder_target();
     if !target.join("release/twinray-shader-builder").exists() {
         println!("shaders: building the rust-gpu builder (about 9 minutes, once; cached in {})", target.display());
     }
