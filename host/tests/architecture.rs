@@ -4,7 +4,8 @@
 //! others, and no source file is over 500 lines.
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
+use twinray_tests::repo_root as repo;
 
 /// The library's top-level modules from the bottom up; a module may import from its own layer
 /// and the layers before it. The Vulkan layer is third: it sees only the error type and util.
@@ -29,10 +30,6 @@ const LAYERS: &[&str] = &[
 const MAX_LINES: usize = 500;
 
 type Module = Vec<String>;
-
-fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("..")
-}
 
 /// Every `.rs` file under `dir`, by its path relative to `dir`.
 fn sources(dir: &Path) -> BTreeMap<String, String> {

@@ -1,9 +1,7 @@
 //! `twinray bench` end to end on lavapipe, small: two scenes, two sample counts, both sets.
 //! Every report file exists and parses, and what results.json names is there.
 
-mod common;
-
-use common::{assert_bad_input, twinray};
+use twinray_tests::cli::{assert_bad_input, twinray};
 
 #[test]
 fn a_small_bench_writes_every_report_file() {
@@ -43,7 +41,11 @@ fn a_small_bench_writes_every_report_file() {
     ];
     std::fs::create_dir(dir.path().join("cases")).unwrap();
     for case in ["sphere-far-1e5.toml", "cone-apex.toml"] {
-        std::fs::copy(common::repo().join("probes/stability").join(case), dir.path().join("cases").join(case)).unwrap();
+        std::fs::copy(
+            twinray_tests::repo_root().join("probes/stability").join(case),
+            dir.path().join("cases").join(case),
+        )
+        .unwrap();
     }
     let out = twinray(&args, dir.path());
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));

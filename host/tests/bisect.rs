@@ -1,11 +1,10 @@
 //! `twinray bisect` on planted differences: it must name the stage that carries each, on a
 //! scene's image and on a probe case's rays, and exit 0 only when it pinned the difference.
 
-mod common;
-
-use common::{assert_bad_input, naive_sphere, planted_glsl, repo, twinray};
 use serde_json::Value;
 use std::path::Path;
+use twinray_tests::cli::{assert_bad_input, naive_sphere, planted_glsl, twinray};
+use twinray_tests::repo_root as repo;
 
 fn bisect(args: &[&str], dir: &Path) -> (Value, i32) {
     let base = ["--validate", "bisect"];

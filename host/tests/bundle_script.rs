@@ -2,9 +2,8 @@
 //! passes to twinray is one the command accepts (it runs far from here, without network, so
 //! a typo would cost a whole trip).
 
-mod common;
-
-use common::{repo, twinray};
+use twinray_tests::cli::twinray;
+use twinray_tests::repo_root as repo;
 
 #[test]
 fn the_bundle_script_parses_and_uses_only_real_flags() {

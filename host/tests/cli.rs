@@ -2,11 +2,10 @@
 //! exit code 2, no panic and no file written; good input renders, compares and prints JSON.
 //! Renders run on lavapipe with --validate, so a validation error fails them.
 
-mod common;
-
-use common::{assert_bad_input, repo, twinray, with_capability};
 use std::path::Path;
 use std::process::Output;
+use twinray_tests::cli::{assert_bad_input, twinray, with_capability};
+use twinray_tests::repo_root as repo;
 
 #[test]
 fn missing_scene_file() {

@@ -1,9 +1,7 @@
 //! `twinray crosscheck`'s refusals: what Mitsuba cannot render, and missing Mitsuba renders,
 //! each in one line with exit code 2 before any rendering, leaving nothing behind.
 
-mod common;
-
-use common::assert_bad_input;
+use twinray_tests::cli::assert_bad_input;
 
 #[test]
 fn scenes_mitsuba_cannot_render_are_refused_by_name() {

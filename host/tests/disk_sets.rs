@@ -2,10 +2,9 @@
 //! built-in SPIR-V, and every file is checked before use, with a one-line error naming the file
 //! and what is wrong (exit code 2, nothing written).
 
-mod common;
-
-use common::{assert_bad_input, repo, twinray};
 use std::path::{Path, PathBuf};
+use twinray_tests::cli::{assert_bad_input, twinray};
+use twinray_tests::repo_root as repo;
 
 /// A copy of the committed GLSL set, as `cargo xtask shaders` leaves a build folder.
 fn glsl_folder(dir: &Path) -> PathBuf {

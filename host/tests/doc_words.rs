@@ -4,16 +4,12 @@
 //! or `from=FILE macro=NAME with="$a=>x|.."` for a macro's expansion) is still what the
 //! source says. `cargo xtask` words are checked by xtask/tests/doc_words.rs.
 
-#[path = "../../xtask/tests/common/docs.rs"]
-mod docs_text;
+use twinray_tests::docs as docs_text;
+use twinray_tests::repo_root as root;
 
 use std::collections::{BTreeMap, BTreeSet};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
-
-fn root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
-}
 
 fn docs() -> Vec<(String, String)> {
     docs_text::docs(&root())

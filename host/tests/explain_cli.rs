@@ -2,11 +2,10 @@
 //! pixels that differ and prints their explain lines; each line, run, must name the sample and
 //! the stage that carries the planted difference. And bad input gets one line and exit 2.
 
-mod common;
-
-use common::{assert_bad_input, naive_sphere, planted_glsl, planted_include, repo, twinray};
 use serde_json::Value;
 use std::path::Path;
+use twinray_tests::cli::{assert_bad_input, naive_sphere, planted_glsl, planted_include, twinray};
+use twinray_tests::repo_root as repo;
 
 /// `compare --json` of `scene` (with `extra` arguments) between `a` and `b`: the pixels it names.
 fn named_pixels(scene: &str, extra: &[&str], (a, b): (&str, &str), dir: &Path) -> Vec<Value> {

@@ -2,9 +2,7 @@
 //! PNGs and an animated PNG, per-frame JSON, the worst frame, and bad ranges, modes and
 //! animation files refused with exit code 2 and nothing written.
 
-mod common;
-
-use common::{assert_bad_input, planted_glsl, twinray};
+use twinray_tests::cli::{assert_bad_input, planted_glsl, twinray};
 
 const SMALL: [&str; 4] = ["--width", "64", "--height", "48"];
 

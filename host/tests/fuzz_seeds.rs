@@ -2,9 +2,7 @@
 //! points (`twinray::fuzz`) by plain `cargo test`: CI runs the seeds, never the fuzzer.
 //! A seed that panics here is a fuzz finding that came back.
 
-mod common;
-
-use common::repo;
+use twinray_tests::repo_root as repo;
 
 fn run_seeds(target: &str, feed: fn(&[u8])) {
     let dir = repo().join("fuzz/corpus").join(target);

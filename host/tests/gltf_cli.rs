@@ -3,10 +3,8 @@
 //! and one line naming the file, writes nothing and never panics. Which files are malformed is
 //! what the loader says (tests/assimp.rs pins the known ones); a file that loads is skipped.
 
-mod common;
-
-use common::{assert_bad_input, twinray};
 use std::path::{Path, PathBuf};
+use twinray_tests::cli::{assert_bad_input, twinray};
 
 use twinray::scene::gltf::ASSIMP_TEST_MODELS as MODELS;
 

@@ -5,12 +5,11 @@
 //! (each run has a time limit), no file left behind, and memory bounded (each run under a
 //! 1 GiB address-space limit). `cases.json` lists them with why each is there.
 
-mod common;
-
-use common::{repo, wait_within};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::Duration;
+use twinray_tests::cli::wait_within;
+use twinray_tests::repo_root as repo;
 
 /// Wall-clock limit of one run: parsing fails in milliseconds, a Vulkan start takes a second.
 const TIME_LIMIT: Duration = Duration::from_secs(60);

@@ -6,12 +6,11 @@
 //! hang, panic or die silently. Then damaged copies of committed modules: each ends in a
 //! verdict, a refusal or a one-line report, never in a silent crash or a hang.
 
-mod common;
-
-use common::{repo, wait_within};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 use std::time::{Duration, Instant};
+use twinray_tests::cli::wait_within;
+use twinray_tests::repo_root as repo;
 
 /// Wall-clock limit of one run: the deadline cases wait 3 s of GPU time.
 const TIME_LIMIT: Duration = Duration::from_secs(90);

@@ -2,10 +2,9 @@
 //! Rust set may keep no more than its GLSL twin, stage by stage, save for the differences
 //! listed (and explained) here; and the command works on a user's module from disk.
 
-mod common;
-
-use common::{assert_bad_input, repo, twinray};
 use serde_json::Value;
+use twinray_tests::cli::{assert_bad_input, twinray};
+use twinray_tests::repo_root as repo;
 
 /// Rust stages that keep more across some call than their GLSL twins today: (module, the
 /// most bytes the Rust stage may keep across each of its calls, smallest first, why). A change

@@ -1,10 +1,8 @@
 //! The on-disk pipeline cache through the `twinray` command: cold, then warm from the file a
 //! render wrote; a damaged file ignored and replaced; `--no-pipeline-cache` writes nothing.
 
-mod common;
-
-use common::twinray;
 use std::path::Path;
+use twinray_tests::cli::twinray;
 
 /// `twinray --pipeline-cache DIR info --json`'s pipeline cache: (file, bytes read).
 fn cache_state(dir: &Path, work: &Path) -> (String, u64) {

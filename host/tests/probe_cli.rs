@@ -1,9 +1,8 @@
 //! `twinray probe` as a user runs it: rays made and hit per generator, and `--rays-out`, the
 //! CSV that finds the ray behind a false hit.
 
-mod common;
-
-use common::{repo, twinray};
+use twinray_tests::cli::twinray;
+use twinray_tests::repo_root as repo;
 
 #[test]
 fn probe_prints_rays_per_generator_and_writes_every_ray() {

@@ -2,10 +2,8 @@
 //! reference` (and the bench, which reads the cache through the same function) must notice,
 //! render again and overwrite them, never read garbage and never hang.
 
-mod common;
-
-use common::twinray;
 use std::path::Path;
+use twinray_tests::cli::twinray;
 
 /// Runs `twinray reference` of the default scene at 8x8 and 1 spp into `cache`: whether it
 /// came from the cache, and the file's path.

@@ -3,9 +3,7 @@
 //! give the image `traceRay` shadows give, as the compute renderer gives the pipeline's; variants that mean nothing for a scene are
 //! reported, not measured; bad input exits 2.
 
-mod common;
-
-use common::twinray;
+use twinray_tests::cli::twinray;
 
 #[test]
 fn stage_bench_measures_every_variant_against_the_first() {

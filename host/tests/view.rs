@@ -5,17 +5,17 @@
 //! recovers. And, over plain HTTP: a stage that never returns is a message while the server
 //! keeps running, and every request outside what the server serves is refused.
 
-mod common;
 #[path = "view/harness.rs"]
 mod harness;
 
-use common::{assert_bad_input, repo};
 use fantoccini::actions::{InputSource, MouseActions, PointerAction, MOUSE_BUTTON_LEFT};
 use fantoccini::Locator;
 use harness::{Browser, Server};
 use serde_json::Value;
 use std::path::Path;
 use std::time::{Duration, Instant};
+use twinray_tests::cli::assert_bad_input;
+use twinray_tests::repo_root as repo;
 
 /// The planted difference: set B's miss stage shows half the background.
 const MISS: &str = "payload.color = frame.background;";

@@ -29,15 +29,8 @@ pub struct Binary {
 
 /// The slowest binaries of a cold run on 2 cores (docs/testing.md), so that a first run, with
 /// no times of its own yet, starts them first and does not end on one of them alone.
-const SLOW_FIRST: [&str; 7] = [
-    "xtask/tests/tutorial.rs",
-    "tests/animation.rs",
-    "tests/explain.rs",
-    "tests/crosscheck.rs",
-    "tests/stability.rs",
-    "host/tests/bench.rs",
-    "host/tests/hostile_stages.rs",
-];
+const SLOW_FIRST: [&str; 4] =
+    ["xtask/tests/tutorial.rs", "tests/integration.rs", "host/tests/bench.rs", "host/tests/hostile_stages.rs"];
 
 /// Binaries that time GPU work and assert on the ratios: they run alone, before the rest. Beside
 /// another binary, lavapipe's threads share the cores with it, and in one CI run the planted

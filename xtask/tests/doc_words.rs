@@ -2,10 +2,9 @@
 //! exists, and every flag they give it is in that task's `--help`. host/tests/doc_words.rs
 //! checks the rest (links, paths, `twinray` commands, quoted code).
 
-mod common;
-
-use common::{docs::docs, repo};
 use std::process::Command;
+use twinray_tests::docs::docs;
+use twinray_tests::repo_root as repo;
 
 fn help(args: &[&str]) -> String {
     let out = Command::new(env!("CARGO_BIN_EXE_xtask")).args(args).arg("--help").output().unwrap();

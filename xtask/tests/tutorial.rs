@@ -9,21 +9,20 @@
 //!
 //! A block of any other kind fails the test, so nothing the reader is told to do is skipped.
 //! The copy builds in ~/.cache/twinray/scaffold-target/tutorial, kept between runs; the first
-//! run starts from a copy of the workspace's release build (`common::seed`).
+//! run starts from a copy of the workspace's release build (`twinray_tests::scratch`).
 //!
 //! The tutorial's first step is `cargo xtask new-shape`, so the same copy also checks what
-//! new-shape promises (`common::scaffold`): right after that step, the files it touched, its
+//! new-shape promises (`twinray_tests::scaffold`): right after that step, the files it touched, its
 //! registry line, its CPU tests and its refusal of a taken name; after the last step, `cargo
 //! xtask watch` on the new scene.
 
-mod common;
-
-use common::docs::{fenced, Block};
-use common::scaffold::{check_new_shape, files, watch_sees_an_edit_of_the_twin};
-use common::{copy_repo, repo, scaffold_target};
 use std::path::Path;
 use std::process::Command;
 use std::time::Instant;
+use twinray_tests::docs::{fenced, Block};
+use twinray_tests::repo_root as repo;
+use twinray_tests::scaffold::{check_new_shape, files, watch_sees_an_edit_of_the_twin};
+use twinray_tests::scratch::{copy_repo, lock_scaffold_target, scaffold_target};
 
 /// The words of an info string, with `key="quoted text"` kept whole and unquoted.
 fn words(info: &str) -> Vec<(String, String)> {
@@ -103,7 +102,7 @@ fn run(dir: &Path, block: &Block) -> String {
 #[test]
 fn the_tutorial_runs_as_written() {
     let markdown = std::fs::read_to_string(repo().join("docs/tutorial.md")).expect("docs/tutorial.md");
-    let _only_user = common::lock_scaffold_target();
+    let _only_user = lock_scaffold_target();
     let scratch = tempfile::tempdir().unwrap();
     let dir = scratch.path();
     copy_repo(dir);

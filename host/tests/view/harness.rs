@@ -1,7 +1,6 @@
 //! What the view tests share: a `twinray view` server in a child process, plain HTTP requests
 //! to it, and Debian's chromium driven through chromedriver (WebDriver) by fantoccini.
 
-use crate::common;
 use fantoccini::{Client, ClientBuilder, Locator};
 use serde_json::Value;
 use std::io::{BufRead, BufReader, Read, Write};
@@ -22,7 +21,7 @@ impl Drop for Server {
     fn drop(&mut self) {
         // SAFETY: kill(2) on our own child's pid, which `wait` has not reaped yet.
         unsafe { libc::kill(self.child.id() as libc::pid_t, libc::SIGINT) };
-        let ended = common::wait_within(&mut self.child, Duration::from_secs(10));
+        let ended = twinray_tests::cli::wait_within(&mut self.child, Duration::from_secs(10));
         let work = std::env::temp_dir().join(format!("twinray-view-{}", self.child.id()));
         // A second panic while a failed test unwinds would abort the test binary.
         if !std::thread::panicking() {

@@ -1,11 +1,22 @@
-//! What the command-line tests share: running the binary, and the bad-input check.
-#![allow(dead_code)] // each test file uses its own part
+//! What the command-line tests share: running the binary, the bad-input check, and stages
+//! planted for them to catch.
 
+use crate::repo_root as repo;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// The `twinray` binary of the build this test belongs to. Cargo builds a package's binaries
+/// before its integration tests and puts them beside `deps/`, where the test binary runs from
+/// (`CARGO_BIN_EXE_twinray` is only known to the test crate itself, at compile time).
+pub fn exe() -> PathBuf {
+    let test = std::env::current_exe().expect("the test binary's path");
+    let exe = test.parent().and_then(Path::parent).map(|p| p.join("twinray")).expect("a target folder");
+    assert!(exe.is_file(), "{} is missing: command-line tests belong to the twinray package", exe.display());
+    exe
+}
+
 pub fn twinray(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_twinray")).args(args).current_dir(dir).output().expect("running twinray")
+    Command::new(exe()).args(args).current_dir(dir).output().expect("running twinray")
 }
 
 /// Asserts exit code 2, one line on stderr containing each of `needles`, and an empty `dir`.
@@ -40,11 +51,6 @@ pub fn wait_within(
         }
         std::thread::sleep(std::time::Duration::from_millis(20));
     }
-}
-
-/// The repository's root.
-pub fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
 }
 
 /// Set B of the planted formula: the Rust set with the textbook sphere intersection stage.

@@ -1,16 +1,9 @@
 //! What the tests that work in a scratch copy of the repository share: the copy itself, and
 //! cargo run in it with a target folder kept between runs.
-#![allow(dead_code)] // each test crate that includes this module uses a part of it
 
-pub mod docs;
-pub mod scaffold;
-
+use crate::repo_root as repo;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
-
-pub fn repo() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).parent().unwrap().to_path_buf()
-}
 
 /// The target folder of this test binary's scratch copies, kept between runs: one per test
 /// binary, so that `cargo xtask test` can run two such binaries side by side.

@@ -1,5 +1,12 @@
-//! Helpers shared by the integration tests: a validated Vulkan context per test, small
-//! renders, and the repository paths.
+//! The one support library of every integration test (`tests/`, `host/tests/`, `xtask/tests/`):
+//! a validated Vulkan context per test, small renders and the repository's root here; running
+//! the `twinray` binary and planting stages in `cli`; the docs' fenced blocks in `docs`; scratch
+//! copies of the repository in `scratch`, and what `new-shape` promises in `scaffold`.
+
+pub mod cli;
+pub mod docs;
+pub mod scaffold;
+pub mod scratch;
 
 use std::path::PathBuf;
 use std::sync::Arc;

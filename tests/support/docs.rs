@@ -1,5 +1,4 @@
 //! Reading the docs as the docs tests do: which files are the docs, and their fenced blocks.
-//! Included by xtask's tests (through `common`) and by host/tests/doc_words.rs (by path).
 
 use std::path::Path;
 

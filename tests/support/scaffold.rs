@@ -2,7 +2,7 @@
 //! the tutorial's first step runs it (`xtask/tests/tutorial.rs`): one scratch copy builds the
 //! shader sets and the host once for both, where a second copy cost CI about 260 s on 2 cores.
 
-use super::{cargo, scaffold_target, text};
+use crate::scratch::{cargo, scaffold_target, text};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;

@@ -1,0 +1,29 @@
+//! The integration tests on lavapipe, one harness: each module is the file of one subject, its
+//! own comment saying what it checks (`cargo test --release -p twinray-tests --test
+//! integration parity::` runs one). `golden.rs` and `timing.rs` are harnesses of their own.
+
+mod animation;
+mod assimp;
+mod callables;
+mod compute;
+mod crosscheck;
+mod cutout;
+mod docs;
+mod explain;
+mod layout;
+mod libraries;
+mod modules;
+mod parity;
+mod pipeline;
+mod probe;
+mod properties;
+mod ray_query;
+mod rays;
+mod reach;
+mod references;
+mod render_sets;
+mod scenes;
+mod stability;
+mod textures;
+mod thin_torus;
+mod validation;
