@@ -1,14 +1,17 @@
 //! The caches a CI run finds at its start, cold or warm: what its total time depends on most
-//! (docs/testing.md, *CI and its time*, has the figures both ways). A cold machine builds every
-//! crate, the rust-gpu builder and every lavapipe pipeline, and renders every reference.
+//! (docs/testing.md, *CI and its time*, has the figures both ways). A cold machine builds the
+//! rust-gpu builder, the tutorial's scratch copy and every lavapipe pipeline; a fresh clone
+//! builds the workspace whatever the machine holds.
 
 use std::path::{Path, PathBuf};
 
-/// One cache: what it is, where it lies, and whether it held anything at the start.
+/// One cache: what it is, where it lies, whether it held anything at the start, and whether it
+/// outlives a fresh clone (the clone's own build does not).
 pub struct Cache {
     pub what: &'static str,
     pub path: PathBuf,
     pub warm: bool,
+    pub machine: bool,
 }
 
 /// `$XDG_CACHE_HOME`, else `~/.cache`, as twinray, Mesa and the shader builder read it.
@@ -32,24 +35,46 @@ pub fn survey(root: &Path) -> Vec<Cache> {
     let builder = twinray_build::builder_target().join("release/twinray-shader-builder");
     // Mesa keeps one of two layouts, by version and settings.
     let mesa_warm = filled(&mesa.join("mesa_shader_cache_db")) || filled(&mesa.join("mesa_shader_cache"));
+    let clone = target.join("release/.fingerprint");
     [
-        ("cargo's release build", target.join("release/.fingerprint"), None),
-        ("the rust-gpu builder", builder.clone(), Some(builder.is_file())),
-        ("Mesa's shader cache", mesa.join("mesa_shader_cache_db"), Some(mesa_warm)),
-        ("the references", twinray.join("references"), None),
-        ("the tutorial's build", twinray.join("scaffold-target"), None),
+        ("cargo's release build", filled(&clone), clone, false),
+        ("the rust-gpu builder", builder.is_file(), builder, true),
+        ("Mesa's shader cache", mesa_warm, mesa.join("mesa_shader_cache_db"), true),
+        ("the tutorial's build", filled(&twinray.join("scaffold-target")), twinray.join("scaffold-target"), true),
     ]
     .into_iter()
-    .map(|(what, path, warm)| Cache { warm: warm.unwrap_or_else(|| filled(&path)), what, path })
+    .map(|(what, warm, path, machine)| Cache { what, path, warm, machine })
     .collect()
 }
 
-/// "cold" where none was warm, "warm" where all were, else which were cold.
+/// Of the machine's caches: "cold" where none was warm, "warm" where all were, else which were
+/// cold; and whether the clone's own build was there.
 pub fn verdict(caches: &[Cache]) -> String {
-    let cold: Vec<&str> = caches.iter().filter(|c| !c.warm).map(|c| c.what).collect();
-    match cold.len() {
-        0 => "warm (every cache filled)".into(),
-        n if n == caches.len() => "cold (every cache empty)".into(),
+    let machine: Vec<&Cache> = caches.iter().filter(|c| c.machine).collect();
+    let cold: Vec<&str> = machine.iter().filter(|c| !c.warm).map(|c| c.what).collect();
+    let how = match cold.len() {
+        0 => "warm (the machine's caches filled)".to_string(),
+        n if n == machine.len() => "cold (the machine's caches empty)".to_string(),
         _ => format!("partly cold ({} empty)", cold.join(", ")),
+    };
+    let built = caches.iter().any(|c| !c.machine && c.warm);
+    format!("{how}, {}", if built { "the clone built before" } else { "the clone built afresh" })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cache(what: &'static str, warm: bool, machine: bool) -> Cache {
+        Cache { what, path: PathBuf::new(), warm, machine }
+    }
+
+    #[test]
+    fn the_verdict_names_the_empty_caches_of_the_machine() {
+        let all = |warm| vec![cache("clone", false, false), cache("a", warm, true), cache("b", warm, true)];
+        assert_eq!(verdict(&all(true)), "warm (the machine's caches filled), the clone built afresh");
+        assert_eq!(verdict(&all(false)), "cold (the machine's caches empty), the clone built afresh");
+        let mixed = [cache("clone", true, false), cache("a", true, true), cache("b", false, true)];
+        assert_eq!(verdict(&mixed), "partly cold (b empty), the clone built before");
     }
 }
