@@ -45,6 +45,7 @@ T975 = {5: 2.571, 10: 2.228, 15: 2.131, 30: 2.042}
 print("| scene | spp | run 1 Rust/GLSL (95% CI) | run 2 Rust/GLSL | run 2 in run 1's | null, run 1 | null, run 2 |")
 print("|---|---|---|---|---|---|---|")
 inside = within = total = above = nulls = nulls_in = agree = 0
+misses = []
 squares = []
 for key in sorted(one, key=lambda k: (k[0].lower(), k[1])):
     a, b = one[key], two.get(key)
@@ -66,6 +67,8 @@ for key in sorted(one, key=lambda k: (k[0].lower(), k[1])):
         above += low > 1.0
         nulls += 1
         nulls_in += run["null"][1] <= 1.0 <= run["null"][2]
+        if not run["null"][1] <= 1.0 <= run["null"][2]:
+            misses.append(f"{key[0]} {key[1]} spp run {1 + (run is b)}: " + "%.4f (%.4f to %.4f)" % run["null"])
     row = [key[0], str(key[1]), fmt(a["ratio"]), fmt(b["ratio"]), "yes" if ok else "no", fmt(a["null"]), fmt(b["null"])]
     print("| " + " | ".join(row) + " |")
 print()
@@ -74,3 +77,5 @@ print(f"{agree} of {total} cells: the runs' difference inside its 95% interval; 
       f"rms difference {100 * math.sqrt(sum(squares) / len(squares)):.3f}%")
 print(f"{within} of {2 * total} intervals within ±1%; {above} wholly above 1.00")
 print(f"{nulls_in} of {nulls} null intervals contain 1")
+for miss in misses:
+    print(f"  null without 1: {miss}")
