@@ -201,16 +201,21 @@ fn ci() -> Result<()> {
         cargo(&["test", "--workspace", "--release", "--doc"], &suite::CLIPPY)
     })?;
     shaders.wait()?;
-    // The library's public API is documented and its doc links resolve. rustdoc checks the
-    // dependencies in the debug profile, whose lock the release tests do not take; it fills
-    // the cores the tests leave while lavapipe compiles a pipeline on one. It starts once the
+    // The library's public API is documented and its doc links resolve. In the release profile,
+    // so that rustdoc reuses the build scripts (FLIP's C++ among them) and most proc macros of the
+    // test build: 56 s alone on 2 cores where the debug profile took 112 s from nothing. No test
+    // runs cargo on this target while it works (the tutorial's copy has a target of its own).
+    // It fills the cores the tests leave while lavapipe compiles a pipeline on one. It starts once the
     // binaries that assert on GPU timings have run alone: beside rustdoc, the planted
     // twice-the-work stage of tests/timing.rs measured 0.28 of the time (bound 0.35).
     let mut docs = None;
     let tests = process::step("tests", || {
         suite::run(binaries, default_jobs(), &[], || {
             let rustdoc = [("RUSTDOCFLAGS", "-D warnings")];
-            let doc = process::cargo_command(&["doc", "--no-deps", "-p", "twinray", "-p", "twinray-shared"], &rustdoc);
+            let doc = process::cargo_command(
+                &["doc", "--release", "--no-deps", "-p", "twinray", "-p", "twinray-shared"],
+                &rustdoc,
+            );
             docs = Some(process::Background::start("docs", doc));
         })
     });

@@ -9,7 +9,8 @@
 //!
 //! A block of any other kind fails the test, so nothing the reader is told to do is skipped.
 //! The copy builds in ~/.cache/twinray/scaffold-target/tutorial, kept between runs; the first
-//! run starts from a copy of the workspace's release build (`twinray_tests::scratch`).
+//! run starts from a copy of the workspace's release build and of xtask's debug build
+//! (`twinray_tests::scratch`).
 //!
 //! The tutorial's first step is `cargo xtask new-shape`, so the same copy also checks what
 //! new-shape promises (`twinray_tests::scaffold`): right after that step, the files it touched, its
