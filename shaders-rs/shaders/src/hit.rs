@@ -49,15 +49,18 @@ pub fn $name(
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
-    // References, not copies: 3.7% to 4.9% faster on sphere and cone at 16 spp on the H100; the
-    // triangle closest hit keeps its copies (references were 3% slower on meshes).
+    // Copies, as GLSL's twin makes: the driver issues their loads at once, where through
+    // references each load waited for the branch that used it. On the H200 at 16 spp, Rust/GLSL
+    // went from 1.011 to 0.994 on cylinder, 1.005 to 0.995 on box and 1.004 to 0.999 on cutout,
+    // and from 0.993 to 0.998 on sphere (bench/reports/issue53-closest-hit). References had been
+    // faster before the features were specialisation constants, when every field was live.
     // Not bounds-checked, as GLSL's twin is not (nor the intersection stages' primitive read,
     // docs/rust-stages.md): the instance id, the object's material and the custom index are
     // the host's, made from the lists it uploads. The three checks cost Rust 1.7% to 3.6% at
     // 1 spp on the H100 (bench/reports/issue40-hit).
     // SAFETY: see above; robust access reads zeros where a stage from disk strays.
-    let material = unsafe { materials.get_unchecked(objects.get_unchecked(object as usize).material as usize) };
-    let primitive = unsafe { primitives.get_unchecked((primitive_base + primitive_id) as usize) };
+    let material = &unsafe { *materials.get_unchecked(objects.get_unchecked(object as usize).material as usize) };
+    let primitive = &unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
     let cone = (frame.cone.x, Features::new(features));
     let (tint, emission) = hit::procedural_tint(textures, (material, primitive), &surface, *normal, cone);
     let ($m, $p, $n) = (material, surface.object_point(), *normal);
