@@ -2,7 +2,8 @@
 run 2 (sets rust,glsl, places from 1000), each set alone on fresh devices, one per cell and
 round. Prints the table, the null controls, and whether run 2's ratio lies in run 1's interval.
     python3 table.py            # u1 and u2: the fourth session's runs, 6 rounds, every place spaced
-    python3 table.py t1 t2      # the third session's runs, 16 rounds"""
+    python3 table.py t1 t2      # the third session's runs, 16 rounds
+    python3 table.py p1+s1 p2+s2  # a run with some scenes retimed: s1's cells replace p1's"""
 import glob
 import json
 import math
@@ -38,8 +39,16 @@ def fmt(c):
     return f"{ratio:.3f} ({low:.3f} to {high:.3f}) ±{half:.1f}%"
 
 
+def layered(name):
+    """A run's cells, from folders joined by `+`: a later folder's scenes replace an earlier's."""
+    cells = {}
+    for prefix in name.split("+"):
+        cells.update(load(prefix))
+    return cells
+
+
 first, second = (sys.argv[1], sys.argv[2]) if len(sys.argv) > 2 else ("u1", "u2")
-one, two = load(first), load(second)
+one, two = layered(first), layered(second)
 # Two-sided 97.5% points of Student's t, by degrees of freedom.
 T975 = {5: 2.571, 10: 2.228, 15: 2.131, 30: 2.042}
 print("| scene | spp | run 1 Rust/GLSL (95% CI) | run 2 Rust/GLSL | run 2 in run 1's | null, run 1 | null, run 2 |")

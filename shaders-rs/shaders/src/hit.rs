@@ -204,7 +204,8 @@ pub fn triangle_vertices(data: &ObjectData, primitive_id: u32, vertices: &[Verte
 }
 
 /// The texture coordinates and colours of the corners of triangle `primitive_id` of a mesh
-/// object: all the alpha test reads of them, each field read from the buffer on its own.
+/// object: all the alpha test reads of them, each field read from the buffer on its own and
+/// without bounds checks, as `triangle_vertices` reads.
 pub fn corner_attributes(
     data: &ObjectData,
     primitive_id: u32,
@@ -212,10 +213,13 @@ pub fn corner_attributes(
     indices: &[u32],
 ) -> ([Vec4; 3], [Vec4; 3]) {
     let first = (data.index_base + 3 * primitive_id) as usize;
-    let a = (data.vertex_base + indices[first]) as usize;
-    let b = (data.vertex_base + indices[first + 1]) as usize;
-    let c = (data.vertex_base + indices[first + 2]) as usize;
-    ([vertices[a].uv, vertices[b].uv, vertices[c].uv], [vertices[a].color, vertices[b].color, vertices[c].color])
+    // SAFETY: as in `triangle_vertices`.
+    unsafe {
+        let a = vertices.get_unchecked((data.vertex_base + *indices.get_unchecked(first)) as usize);
+        let b = vertices.get_unchecked((data.vertex_base + *indices.get_unchecked(first + 1)) as usize);
+        let c = vertices.get_unchecked((data.vertex_base + *indices.get_unchecked(first + 2)) as usize);
+        ([a.uv, b.uv, c.uv], [a.color, b.color, c.color])
+    }
 }
 
 /// Object-space geometric and shading normals of a triangle at `barycentrics`.
