@@ -1,17 +1,21 @@
 # Issue 53: the ClearCoat model at 1 spp at three image sizes, to tell a cost per ray (the
 # ratio stays) from one per launch (the milliseconds stay). Run from the repository root with
 # the bundle and the model in target/models (see ../issue53-table/README.md):
-#   sh bench/reports/issue53-any-hit/resolutions.sh
+#   sh bench/reports/issue53-any-hit/resolutions.sh NAME SETS [BENCH FLAGS...]
+# raw/r1: NAME r1, SETS glsl,rust,rust,raygen=glsl; raw/r2: the other label order, with --null.
 set -u
+name=$1 sets=$2
+shift 2
+extra="$*"
 [ -x /tmp/twinray-bench/bin/twinray ] || tar xzf target/twinray-bench.tar.gz -C /tmp
 B=/tmp/twinray-bench; export LD_LIBRARY_PATH=$B/lib PATH=$B/bin:$PATH; T=$B/bin/twinray
-R=$OUT/r1; mkdir -p $R; $T info > $R/info.txt 2>&1
+R=$OUT/$name; mkdir -p $R; $T info > $R/info.txt 2>&1
 scene=target/models/ClearCoat-glTF/ClearCoatTest.gltf
 for wh in "1920 1080" "3840 2160" "960 540"; do
   set -- $wh; out=$R/res-$1x$2; s=$(date +%s)
-  $T bench $scene --sets "glsl,rust,rust,raygen=glsl" --width $1 --height $2 \
+  $T bench $scene --sets "$sets" $extra --width $1 --height $2 \
     --spp 1 --runs 10 --warmup 2 --placements 1 --processes 8 --alone-in devices \
     --reference-spp 16 --shadow-spp none --probes none --images none --cache /tmp/refs --out $out > $out.log 2>&1
   echo "== $1x$2: exit $?, $(( $(date +%s) - s )) s"; grep " / " $out.log | cut -c1-120
 done
-cd $OUT && tar czf r1.tgz $(find r1 -name results.json -o -name '*.txt' -o -name '*.log') && rm -rf r1
+cd $OUT && tar czf $name.tgz $(find $name -name results.json -o -name '*.txt' -o -name '*.log') && rm -rf $name
