@@ -11,11 +11,12 @@ extra="$*"
 B=/tmp/twinray-bench; export LD_LIBRARY_PATH=$B/lib PATH=$B/bin:$PATH; T=$B/bin/twinray
 R=$OUT/$name; mkdir -p $R; $T info > $R/info.txt 2>&1
 scene=target/models/ClearCoat-glTF/ClearCoatTest.gltf
-for wh in "1920 1080" "3840 2160" "960 540"; do
-  set -- $wh; out=$R/res-$1x$2; s=$(date +%s)
-  $T bench $scene --sets "$sets" $extra --width $1 --height $2 \
+# SIZES (WxH, space-separated) overrides the three sizes; raw/r3 is SIZES="256x256 64x64".
+for wh in ${SIZES:-1920x1080 3840x2160 960x540}; do
+  w=${wh%x*} h=${wh#*x}; out=$R/res-${w}x$h; s=$(date +%s)
+  $T bench $scene --sets "$sets" $extra --width $w --height $h \
     --spp 1 --runs 10 --warmup 2 --placements 1 --processes 8 --alone-in devices \
     --reference-spp 16 --shadow-spp none --probes none --images none --cache /tmp/refs --out $out > $out.log 2>&1
-  echo "== $1x$2: exit $?, $(( $(date +%s) - s )) s"; grep " / " $out.log | cut -c1-120
+  echo "== ${w}x$h: exit $?, $(( $(date +%s) - s )) s"; grep " / " $out.log | cut -c1-120
 done
 cd $OUT && tar czf $name.tgz $(find $name -name results.json -o -name '*.txt' -o -name '*.log') && rm -rf $name
