@@ -4,6 +4,7 @@
 //! both sets alike: specialising changes no pixel, and dropping a used feature changes the
 //! image the same way in Rust and GLSL (so each language reads each feature's bit).
 
+use twinray::render::layout::LayoutDraw;
 use twinray::render::pipeline::ScenePipeline;
 use twinray::scene::{MeshFiles, Renderer, Scene};
 use twinray_shared::features;
@@ -18,7 +19,8 @@ fn spheres_only_scene_builds_one_hit_group_and_no_shadow_miss() {
     assert!(!plan.shadows, "the sphere scene's light casts no shadows");
     let ctx = validated_context();
     let pipeline =
-        ScenePipeline::new(&ctx, &set("rust"), &plan, "raygen", Some(&Default::default())).expect("pipeline");
+        ScenePipeline::new(&ctx, &set("rust"), &plan, ("raygen", LayoutDraw::Sbt), Some(&Default::default()))
+            .expect("pipeline");
     assert_eq!(pipeline.modules, ["raygen", "miss", "sphere_intersection", "procedural_closest_hit"]);
     assert_eq!(pipeline.sbt_records, [vec![0], vec![1], vec![2], vec![]]);
     drop(pipeline);
@@ -37,7 +39,8 @@ fn a_shadow_casting_light_adds_the_shadow_miss_shader() {
     assert!(plan.shadows);
     let ctx = validated_context();
     let pipeline =
-        ScenePipeline::new(&ctx, &set("glsl"), &plan, "raygen", Some(&Default::default())).expect("pipeline");
+        ScenePipeline::new(&ctx, &set("glsl"), &plan, ("raygen", LayoutDraw::Sbt), Some(&Default::default()))
+            .expect("pipeline");
     assert!(pipeline.modules.contains(&"shadow_miss"));
     assert_eq!(pipeline.sbt_records, [vec![0], vec![1, 2], vec![3], vec![]]);
 }
@@ -52,7 +55,8 @@ fn callable_materials_get_a_record_per_material_kind() {
     assert_eq!(plan.callables(), ["flat_material", "checker_material"]);
     let ctx = validated_context();
     let pipeline =
-        ScenePipeline::new(&ctx, &set("rust"), &plan, "raygen", Some(&Default::default())).expect("pipeline");
+        ScenePipeline::new(&ctx, &set("rust"), &plan, ("raygen", LayoutDraw::Sbt), Some(&Default::default()))
+            .expect("pipeline");
     let hits = plan.hit_groups.len() as u32;
     let (flat, checker) = (3 + hits, 4 + hits);
     // Kinds: diffuse, emissive, checker, cutout.

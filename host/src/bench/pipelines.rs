@@ -6,6 +6,7 @@
 //! cold figures, `MESA_SHADER_CACHE_DISABLE=true`, `__GL_SHADER_DISK_CACHE=0`).
 
 use crate::error::Result;
+use crate::render::layout::LayoutDraw;
 use crate::render::libraries::Libraries;
 use crate::render::pipeline::{used_stages, ScenePipeline};
 use crate::scene::Scene;
@@ -128,7 +129,7 @@ pub fn measure(base: &ContextOptions, scene: &Scene, config: &Config, cache_root
     let start = Instant::now();
     let pipelines = sets
         .iter()
-        .map(|set| ScenePipeline::new(&ctx, set, &plan, plan.render_raygen(), linking))
+        .map(|set| ScenePipeline::new(&ctx, set, &plan, (plan.render_raygen(), LayoutDraw::Sbt), linking))
         .collect::<Result<Vec<_>>>()?;
     let ms = start.elapsed().as_secs_f64() * 1e3;
     let compiled = libraries.compiled();

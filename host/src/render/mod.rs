@@ -5,6 +5,7 @@
 mod barriers;
 pub mod frames;
 pub mod isolated;
+pub mod layout;
 pub mod libraries;
 mod moving;
 pub mod output;

@@ -4,6 +4,7 @@
 //! take turns frame by frame, so that a drift of the GPU's clocks reaches every mode alike.
 
 use super::frames::{check_frames, AsWork, Frame, TlasMode};
+use super::layout::LayoutDraw;
 use super::output::RenderOptions;
 use super::sets::{check_device_limits, made_as_context_says, SetRender, SharedOutputs};
 use super::tracing::{self, Trace};
@@ -59,7 +60,9 @@ impl<'a> FrameRenderer<'a> {
         let start = scene.at_frame(first);
         let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags())?;
         let outputs = SharedOutputs::new(ctx, opts)?;
-        let renders = SetRender::each(ctx, &uploaded, &outputs, &made_as_context_says(ctx, sets), opts)?;
+        // One place per set: the pipelines in SBT order (`super::layout`).
+        let made = made_as_context_says(ctx, sets);
+        let renders = SetRender::each(ctx, &uploaded, &outputs, &made, (opts, LayoutDraw::Sbt))?;
         Ok(FrameRenderer {
             ctx: ctx.clone(),
             scene,

@@ -5,6 +5,7 @@
 //! carry the plan's sample count, shadow switch and shadow sampler, and the features the scene
 //! uses, into every stage (each reads those it declares).
 
+use super::layout::{stages_in_group_order, Layout, LayoutDraw};
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
 use crate::scene::{HitGroup, PipelinePlan, EXPLAIN_QUERY, PROBE_QUERY, RENDER_COMPUTE};
@@ -31,7 +32,10 @@ pub struct ScenePipeline {
     pub modules: Vec<&'static str>,
     /// The workgroup size a compute pipeline is dispatched in; `None` for ray tracing.
     pub workgroup: Option<(u32, u32)>,
-    /// The libraries it was linked from (none when made whole), kept while it lives.
+    /// Where ray generation's group lies in the pipeline's layout (`super::layout`).
+    raygen_group: u32,
+    /// The libraries it was linked from (none when made whole), in layout order, kept while it
+    /// lives.
     _libraries: Vec<std::rc::Rc<RtPipeline>>,
 }
 
@@ -126,12 +130,13 @@ pub fn used_stages(plan: &PipelinePlan, raygen: &'static str) -> Vec<Stage> {
 
 impl ScenePipeline {
     /// The pipeline of `plan` with the modules of `set`, ray generation stage `raygen`: linked
-    /// from libraries kept in `libraries`, or whole when that is `None`.
+    /// from libraries kept in `libraries`, or whole when that is `None`; laid out as `layout`
+    /// draws (`super::layout`).
     pub fn new(
         ctx: &Arc<Context>,
         set: &ShaderSet,
         plan: &PipelinePlan,
-        raygen: &'static str,
+        (raygen, layout): (&'static str, LayoutDraw),
         libraries: Option<&Libraries>,
     ) -> Result<Self> {
         let mut names = plan_modules(plan, raygen);
@@ -143,7 +148,7 @@ impl ScenePipeline {
         let _doing = activity::doing(doing.clone());
         // What the validation layer said of the modules fails here, before a trace can crash
         // on them (a module declaring a capability the device lacks crashed lavapipe).
-        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), (witness, libraries))
+        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), (witness, libraries, layout))
             .and_then(|made| ctx.check_validation().map(|()| made));
         made.map_err(|e| if e.is_stalled() { e } else { e.during(doing) })
     }
@@ -152,13 +157,15 @@ impl ScenePipeline {
         ctx: &Arc<Context>,
         plan: &PipelinePlan,
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
-        (witness, libraries): (Vec<&'static str>, Option<&Libraries>),
+        (witness, libraries, draw): (Vec<&'static str>, Option<&Libraries>, LayoutDraw),
     ) -> Result<Self> {
         let specialised = Specialisation::of_plan(plan);
         let (spec, spec_bytes) = (specialised.info(), specialised.bytes());
         // A compute pipeline has no groups and no SBT.
         let compute = workgroup(raygen).is_some();
-        let groups = if compute { Vec::new() } else { groups(plan, &names, &witness) };
+        let in_sbt_order = if compute { Vec::new() } else { groups(plan, &names, &witness) };
+        let layout = Layout::new(draw, in_sbt_order.len());
+        let groups = layout.groups(&in_sbt_order);
         require_device_features(ctx, modules)?;
         let bindings = descriptor_bindings();
         let stages = stage_descs(modules, &spec);
@@ -170,18 +177,21 @@ impl ScenePipeline {
             libraries.link(ctx, &bindings, &descs)?
         } else {
             let depth = twinray_shared::interface::MAX_RECURSION_DEPTH;
+            let (stages, groups) = stages_in_group_order(&stages, &groups);
             let desc =
                 PipelineDesc { bindings: &bindings, stages: &stages, groups: &groups, max_recursion_depth: depth };
             (RtPipeline::new(ctx, &desc)?, Vec::new())
         };
         let records = if compute { Default::default() } else { sbt_records(plan) };
+        let witnessed = witness_records(&records, groups.len(), witness.len());
         Ok(ScenePipeline {
             rt,
-            witness_records: witness_records(&records, groups.len(), witness.len()),
-            sbt_records: records,
+            witness_records: witnessed.iter().map(|r| layout.records(r)).collect(),
+            sbt_records: layout.records(&records),
             group_count: groups.len() as u32,
             modules: names,
             workgroup: workgroup(raygen),
+            raygen_group: if compute { 0 } else { layout.position(0) },
             _libraries: held,
         })
     }
@@ -190,7 +200,10 @@ impl ScenePipeline {
     /// Of a linked pipeline, the ray generation library's figure: the same compiled stage,
     /// and the validation layer (1.3.239) counts a linked pipeline's groups as none.
     pub fn raygen_stack_bytes(&self) -> u64 {
-        self._libraries.first().map_or_else(|| self.rt.raygen_stack_bytes(), |raygen| raygen.raygen_stack_bytes())
+        match self._libraries.get(self.raygen_group as usize) {
+            Some(raygen) => raygen.raygen_stack_bytes(),
+            None => self.rt.raygen_stack_bytes_of(self.raygen_group),
+        }
     }
 }
 

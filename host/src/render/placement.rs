@@ -6,8 +6,9 @@
 //! over many places, and a
 //! ratio's uncertainty is taken over them. A place is one making of a set's pipeline, SBT and
 //! descriptors after a drawn number of spacer pipelines ([`spacer_sets`]) that it keeps while
-//! the set is timed, moving where the set's code lands; freed code is reused, so the set's
-//! pipeline is released before the next is made. Every set of every round has a place of its
+//! the set is timed, moving where the set's code lands, with the pipeline's groups in an order
+//! drawn for the place (`super::layout`), moving where each stage lies within it; freed code
+//! is reused, so the set's pipeline is released before the next is made. Every set of every round has a place of its
 //! own ([`place`]): a null control's copy timed where its original was timed would only
 //! repeat that place's time.
 //!
@@ -17,6 +18,7 @@
 //! alike. Each round gives one median per set, and a ratio's interval is taken over rounds
 //! (`util::interval`).
 
+use super::layout::LayoutDraw;
 use super::libraries::Libraries;
 use super::pipeline::ScenePipeline;
 use super::upload::UploadedScene;
@@ -121,7 +123,7 @@ impl Spacers {
             .map(|(k, (set, kind))| {
                 let linking = (*kind == PipelineKind::Libraries).then_some(&libraries);
                 let copy = if salted { set.copy(1000 + k as u32) } else { set.clone() };
-                ScenePipeline::new(ctx, &copy, plan, plan.render_raygen(), linking)
+                ScenePipeline::new(ctx, &copy, plan, (plan.render_raygen(), LayoutDraw::Sbt), linking)
             })
             .collect::<Result<Vec<_>>>()?;
         Ok(Spacers { _pipelines: pipelines, _libraries: libraries })

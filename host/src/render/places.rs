@@ -9,7 +9,10 @@
 //! pad of a drawn size in the SBT's memory before the SBT, which moves the SBT alone (its
 //! address is recorded). `buffers` uploads the scene and its outputs afresh after pads of drawn
 //! sizes in both memories they use, which moves every buffer, image and acceleration structure.
+//! `layout` hands the driver the pipeline's groups and stages in an order drawn for the place
+//! (`super::layout`), which moves where each stage's code lies within the pipeline.
 
+use super::layout::LayoutDraw;
 use super::placement;
 use super::prepare::{min_warm_ms, place_warm_ms};
 use super::sets::{Placed, SetRender, SharedOutputs};
@@ -44,6 +47,9 @@ pub enum Move {
     Sbt,
     /// The scene's buffers, acceleration structures and output image, by pads before them.
     Buffers,
+    /// The order in which the pipeline's groups and stages are handed to the driver, drawn for
+    /// the place.
+    Layout,
 }
 
 /// One set timed at one place.
@@ -114,7 +120,7 @@ fn warm_traces(
     opts: &RenderOptions,
 ) -> Result<u32> {
     let size = (opts.width, opts.height);
-    let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), opts)?.remove(0);
+    let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), (opts, LayoutDraw::Sbt))?.remove(0);
     render.trace_output(ctx, outputs, size)?;
     let trace = render.timed_trace_after(ctx, size, (1, opts.runs.max(1)), min_warm_ms()?)?;
     tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})?;
@@ -141,7 +147,7 @@ fn time_at(
     let id = placement::place(at.place, at.set, sets.len());
     let mut rng = SplitMix64(0x9ad5_eed0_0053 ^ id.wrapping_mul(0x9e37_79b9_7f4a_7c15));
     let pad_bytes = match at.moved {
-        Move::None | Move::Code | Move::Reused => 0,
+        Move::None | Move::Code | Move::Reused | Move::Layout => 0,
         Move::Sbt => 256 * (1 + rng.next_u64() % 4096),
         Move::Buffers => 256 * (1 + rng.next_u64() % 65536),
     };
@@ -165,7 +171,8 @@ fn time_at(
     // Spacers allocate no buffer: a pad made before them lands right before the SBT.
     let _sbt_pad = if at.moved == Move::Sbt { pad(MemoryLocation::CpuToGpu)? } else { None };
     let salted = at.moved != Move::Reused;
-    let placed = Placed::new(ctx, (uploaded, outputs), &sets[at.set], (&spacer_sets, salted), opts)?;
+    let layout = if at.moved == Move::Layout { LayoutDraw::Place(id) } else { LayoutDraw::Sbt };
+    let placed = Placed::new(ctx, (uploaded, outputs), &sets[at.set], (&spacer_sets, salted, layout), opts)?;
     let (render, make_ms) = (&placed.render, placed.made_ms);
     let size = (opts.width, opts.height);
     // After a long gap the clocks may have fallen: warm up as at the start (untimed).

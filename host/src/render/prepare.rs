@@ -2,6 +2,7 @@
 //! the pipeline, its descriptors and SBT, and the warm-up that brings GPU clocks up first.
 
 use super::barriers::{transition, STORAGE_IMAGE, UNUSED_IMAGE};
+use super::layout::LayoutDraw;
 use super::libraries::Libraries;
 use super::pipeline::{descriptor_bindings, ScenePipeline};
 use super::tracing::Trace;
@@ -129,17 +130,17 @@ pub(crate) fn prepare(
     let image = Rc::new(StorageImage::new(ctx, image_size.0, image_size.1)?);
     let libraries = Libraries::default();
     let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
-    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, (set, linking), raygen, image, extra)
+    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, (set, linking), (raygen, LayoutDraw::Sbt), image, extra)
 }
 
 /// The pipeline of `set` (ray generation stage `raygen`; linked from `libraries` when given,
-/// else whole) over an uploaded scene, with its descriptors (the scene's
+/// else whole; laid out as `layout` draws) over an uploaded scene, with its descriptors (the scene's
 /// buffers, the output `image` and `extra`) and SBT.
 pub(crate) fn prepare_on(
     ctx: &Arc<Context>,
     scene: &UploadedScene,
     (set, libraries): (&ShaderSet, Option<&Libraries>),
-    raygen: &'static str,
+    raygen: (&'static str, LayoutDraw),
     image: Rc<StorageImage>,
     extra: &[(u32, &Buffer)],
 ) -> Result<Prepared> {

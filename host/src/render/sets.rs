@@ -2,6 +2,7 @@
 //! image, once per placement (see `placement`), each set built and timed in turn.
 
 use super::barriers::{transition, COPY_SOURCE, STORAGE_IMAGE};
+use super::layout::LayoutDraw;
 use super::libraries::Libraries;
 use super::output::{read_back, to_rgba8, AccelStats, RayCounts, RenderOptions, RenderOutput};
 use super::placement;
@@ -97,7 +98,8 @@ pub fn render_made(
             let place = placement::place(round, i, sets.len());
             let _doing = (total > 1).then(|| activity::doing(format!("round {round}: {} at place {place}", sets[i].0)));
             let spacers: Vec<_> = placement::spacer_sets(place, sets.len()).iter().map(|&k| sets[k].clone()).collect();
-            let placed = Placed::new(ctx, (&uploaded, &outputs), &sets[i], (&spacers, false), opts)?;
+            let at = (spacers.as_slice(), false, LayoutDraw::Place(place));
+            let placed = Placed::new(ctx, (&uploaded, &outputs), &sets[i], at, opts)?;
             let render = &placed.render;
             let first = outputs_of[i].is_none();
             if first {
@@ -142,14 +144,14 @@ fn warm_up(
     opts: &RenderOptions,
 ) -> Result<()> {
     let _doing = activity::doing("warming up the GPU");
-    let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), opts)?.remove(0);
+    let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), (opts, LayoutDraw::Sbt))?.remove(0);
     let trace = render.timed_trace_after(ctx, (opts.width, opts.height), (opts.warmup.max(1), 1), min_warm_ms()?)?;
     tracing::submit(ctx, &render.prepared.one_shot, &[trace], |_, _| {}, |_, _| {})
 }
 
 /// A set built at a place: the place's spacers made and kept (salted copies when asked), then
-/// the set's pipeline, SBT and descriptors; with the wall milliseconds the making took, in
-/// which the GPU idled.
+/// the set's pipeline, laid out as the place draws (`super::layout`), its SBT and descriptors;
+/// with the wall milliseconds the making took, in which the GPU idled.
 pub(super) struct Placed {
     pub render: SetRender,
     pub made_ms: f64,
@@ -161,12 +163,12 @@ impl Placed {
         ctx: &Arc<Context>,
         (scene, outputs): (&UploadedScene, &SharedOutputs),
         set: &(ShaderSet, PipelineKind),
-        (spacers, salted): (&[(ShaderSet, PipelineKind)], bool),
+        (spacers, salted, layout): (&[(ShaderSet, PipelineKind)], bool, LayoutDraw),
         opts: &RenderOptions,
     ) -> Result<Placed> {
         let start = std::time::Instant::now();
         let spacers = placement::Spacers::new(ctx, scene, spacers, salted)?;
-        let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), opts)?.remove(0);
+        let render = SetRender::each(ctx, scene, outputs, std::slice::from_ref(set), (opts, layout))?.remove(0);
         Ok(Placed { render, made_ms: start.elapsed().as_secs_f64() * 1e3, _spacers: spacers })
     }
 }
@@ -214,19 +216,19 @@ pub(super) struct SetRender {
 
 impl SetRender {
     /// One per set, over the same scene and outputs, the linked ones linked from one set of
-    /// libraries, so that each module compiles once.
+    /// libraries, so that each module compiles once; each laid out as `layout` draws.
     pub fn each(
         ctx: &Arc<Context>,
         scene: &UploadedScene,
         outputs: &SharedOutputs,
         sets: &[(ShaderSet, PipelineKind)],
-        opts: &RenderOptions,
+        (opts, layout): (&RenderOptions, LayoutDraw),
     ) -> Result<Vec<Self>> {
         let libraries = Libraries::default();
         sets.iter()
             .map(|(set, kind)| {
                 let linking = (*kind == PipelineKind::Libraries).then_some(&libraries);
-                SetRender::new(ctx, scene, outputs, (set, linking), opts)
+                SetRender::new(ctx, scene, outputs, (set, linking, layout), opts)
             })
             .collect()
     }
@@ -235,16 +237,17 @@ impl SetRender {
         ctx: &Arc<Context>,
         scene: &UploadedScene,
         outputs: &SharedOutputs,
-        set: (&ShaderSet, Option<&Libraries>),
+        (set, linking, layout): (&ShaderSet, Option<&Libraries>, LayoutDraw),
         opts: &RenderOptions,
     ) -> Result<Self> {
         let image = outputs.image.clone();
         let pixels = u64::from(opts.width) * u64::from(opts.height);
         let readback =
             |name, bytes| Buffer::new(ctx, name, bytes, vk::BufferUsageFlags::TRANSFER_DST, MemoryLocation::GpuToCpu);
-        let prepared = prepare_on(ctx, scene, set, scene.data.plan.render_raygen(), image, &outputs.extra())?;
+        let raygen = (scene.data.plan.render_raygen(), layout);
+        let prepared = prepare_on(ctx, scene, (set, linking), raygen, image, &outputs.extra())?;
         Ok(SetRender {
-            label: format!("{} ({})", set.0, prepared.pipeline.modules.join(", ")),
+            label: format!("{} ({})", set, prepared.pipeline.modules.join(", ")),
             prepared,
             timestamps: Timestamps::new(ctx, opts.runs)?,
             image_readback: readback("image readback", pixels * PIXEL_BYTES)?,

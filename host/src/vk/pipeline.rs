@@ -160,10 +160,15 @@ impl RtPipeline {
     /// trace call (the driver's figure; lavapipe reports a constant); 0 for a compute pipeline,
     /// which keeps none.
     pub fn raygen_stack_bytes(&self) -> u64 {
+        self.raygen_stack_bytes_of(0)
+    }
+
+    /// As [`Self::raygen_stack_bytes`], of the ray generation stage in group `group`.
+    pub fn raygen_stack_bytes_of(&self, group: u32) -> u64 {
         if self.bind_point != vk::PipelineBindPoint::RAY_TRACING_KHR {
             return 0;
         }
-        self.group_stack_bytes(0, vk::ShaderGroupShaderKHR::GENERAL)
+        self.group_stack_bytes(group, vk::ShaderGroupShaderKHR::GENERAL)
     }
 
     /// Bytes of stack the `shader` stage of group `group` needs (the driver's figure). The
