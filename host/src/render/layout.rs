@@ -2,7 +2,7 @@
 //! handed to the driver. The driver lays the pipeline's code out in an order of its own making
 //! from these, and that layout moves a set's trace time: on the H200 (driver 580) the same
 //! modules with their stages in reverse order moved a masked model's time by up to 3.6% at
-//! 16 spp, and Rust/GLSL from 0.991 to 1.006 at 1 spp (docs/measuring.md, *Places*). A place
+//! 16 spp, and GLSL/Rust from 0.991 to 1.006 at 1 spp (docs/measuring.md, *Places*). A place
 //! therefore draws a layout of its own, as it draws its spacers, and the SBT's records follow
 //! each group to where the layout put it: what a trace runs is the same in every layout.
 
