@@ -140,12 +140,12 @@ pub(crate) fn prepare_on(
     ctx: &Arc<Context>,
     scene: &UploadedScene,
     (set, libraries): (&ShaderSet, Option<&Libraries>),
-    raygen: (&'static str, LayoutDraw),
+    (raygen, layout): (&'static str, LayoutDraw),
     image: Rc<StorageImage>,
     extra: &[(u32, &Buffer)],
 ) -> Result<Prepared> {
     let resources = scene.resources.clone();
-    let pipeline = ScenePipeline::new(ctx, set, &scene.data.plan, raygen, libraries)?;
+    let pipeline = ScenePipeline::new(ctx, set, &scene.data.plan, (raygen, layout), libraries)?;
     let storage = vk::DescriptorType::STORAGE_BUFFER;
     let mut buffers: Vec<_> =
         resources.buffers.borrow().iter().map(|(binding, ty, buffer)| (*binding, buffer.raw, *ty)).collect();
