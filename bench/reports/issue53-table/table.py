@@ -3,7 +3,9 @@ run 2 (sets rust,glsl, places from 1000), each set alone on fresh devices, one p
 round. Prints the table, the null controls, and whether run 2's ratio lies in run 1's interval.
     python3 table.py            # u1 and u2: the fourth session's runs, 6 rounds, every place spaced
     python3 table.py t1 t2      # the third session's runs, 16 rounds
-    python3 table.py p1+s1 p2+s2  # a run with some scenes retimed: s1's cells replace p1's"""
+    python3 table.py p1+s1 p2+s2  # a run with some scenes retimed: s1's cells replace p1's
+    python3 table.py l1 l2      # the thirteenth session's, a layout drawn per place
+    python3 table.py m2 m1      # ClearCoat alone, 24 rounds (m2 has run 1's label order)"""
 import glob
 import json
 import math
