@@ -88,6 +88,8 @@ pub fn $name(
     let mut no_payload = 0;
     // Bottom-tested: not `for` over ranges (trace.rs), nor `while`, whose condition rust-gpu
     // tests again after the body, alive across its traces. samples_per_side is at least 1.
+    // Unlike the GLSL twin, one sample is looped over too: a branch around a copy of the body
+    // made 1-spp frames up to 1.8% slower (bench/reports/issue53-any-hit/, fourteenth session).
     let mut sy = 0;
     loop {
         let mut sx = 0;
