@@ -8,7 +8,7 @@ use clap::Args;
 use serde::Serialize;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use twinray::render::stacks::stage_stacks;
+use twinray::render::stacks::{inspected, stage_stacks};
 use twinray::shaders::inspect::{self, Entry, Site};
 use twinray::shaders::{ShaderSet, Stage, MODULES};
 
@@ -34,18 +34,19 @@ pub struct InspectArgs {
     /// List every value live across each call, not only their count and bytes.
     #[arg(long)]
     pub values: bool,
-    /// Analyse each module as it is, without first inlining its functions and turning its
-    /// local variables into SSA values (spirv-opt), as a driver would.
+    /// Analyse each module as it is, without first specialising it, inlining its functions and
+    /// turning its local variables into SSA values (spirv-opt), as a driver would.
     #[arg(long)]
     pub raw: bool,
     /// Leave out the driver's stack sizes (then no Vulkan device is needed).
     #[arg(long)]
     pub no_stacks: bool,
-    /// Samples per pixel ray generation is specialised for when the driver sizes its stack: a
-    /// square.
+    /// Samples per pixel ray generation is specialised for, in the analysis and when the driver
+    /// sizes its stack: a square.
     #[arg(long, default_value_t = 16)]
     pub spp: u32,
-    /// The scene features every stage is specialised for when the driver compiles it: `all`,
+    /// The scene features every stage is specialised for, in the analysis and when the driver
+    /// compiles it: `all`,
     /// `none`, or names such as `textures,emission` (`twinray_shared::features`); a scene
     /// without them runs the stages as specialised for `none`.
     #[arg(long, default_value = "all", value_parser = |t: &str| twinray_shared::features::bits_named(t))]
@@ -105,9 +106,10 @@ pub fn inspect(global: &GlobalArgs, args: InspectArgs) -> Result<ExitCode> {
 
 /// The report of one set (or one file).
 fn report(global: &GlobalArgs, text: &str, args: &InspectArgs, side: u32) -> Result<SetReport> {
+    let spec = inspected(side, args.features).pairs();
     let analyse = |bytes: &[u8]| -> Result<Vec<Entry>> {
         let module =
-            if args.raw { bytes.to_vec() } else { inspect::normalise(bytes).map_err(twinray::Error::Input)? };
+            if args.raw { bytes.to_vec() } else { inspect::normalise(bytes, &spec).map_err(twinray::Error::Input)? };
         Ok(inspect::inspect(&module).map_err(twinray::Error::Input)?)
     };
     let file = PathBuf::from(text);

@@ -245,6 +245,11 @@ impl Specialisation {
         Specialisation::new(plan.shadows, plan.samples_per_side, plan.shadow_sampler, plan.features)
     }
 
+    /// Each constant's id and value.
+    pub fn pairs(&self) -> Vec<(u32, u32)> {
+        self.entries.iter().zip(self.data).map(|(e, v)| (e.constant_id, v)).collect()
+    }
+
     pub fn bytes(&self) -> &[u8] {
         bytemuck::cast_slice(&self.data)
     }

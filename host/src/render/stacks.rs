@@ -19,6 +19,12 @@ use twinray_shared::bindings as b;
 /// A module's stack: bytes, or why there is no figure.
 pub type Stack = std::result::Result<u64, String>;
 
+/// The specialisation stacks are sized and modules analysed for (`twinray inspect`): shadows
+/// on, stratified shadow samples, M x M samples and the scene features given.
+pub fn inspected(samples_per_side: u32, features: u32) -> Specialisation {
+    Specialisation::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED, features)
+}
+
 /// The stack of each module called `names` in `set`, with ray generation specialised for
 /// `samples_per_side` x `samples_per_side` samples and shadows on, every stage for the
 /// `features` bits (`twinray_shared::features`).
@@ -42,7 +48,7 @@ pub fn stage_stacks(
             None => modules.push(module),
         }
     }
-    let specialised = Specialisation::new(true, samples_per_side, b::SHADOW_SAMPLER_STRATIFIED, features);
+    let specialised = inspected(samples_per_side, features);
     let spec = specialised.info();
     let stages = stage_descs(&modules, &spec);
     let groups: Vec<(GroupDesc, vk::ShaderGroupShaderKHR)> =

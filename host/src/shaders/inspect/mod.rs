@@ -106,12 +106,32 @@ pub const NORMALISE_PASSES: [&str; 10] = [
     "--eliminate-dead-code-aggressive",
 ];
 
-/// `bytes` through [`NORMALISE_PASSES`] (`spirv-opt`, which `cargo xtask setup` installs).
-pub fn normalise(bytes: &[u8]) -> Result<Vec<u8>, String> {
+/// What specialising a module adds before [`NORMALISE_PASSES`]: every specialisation constant
+/// made the plain constant the pipeline gives it (or its default), and the expressions of them
+/// that glslang leaves as `OpSpecConstantOp` folded, so that the branches on them go as a
+/// driver's would.
+const SPECIALISE_PASSES: [&str; 2] = ["--freeze-spec-const", "--fold-spec-const-op-composite"];
+
+/// What specialising adds after [`NORMALISE_PASSES`]: rust-gpu tests a specialisation constant
+/// with plain instructions inside the function, which only constant propagation folds.
+const SPECIALISED_CLEANUP: [&str; 3] = ["--ccp", "--eliminate-dead-branches", "--eliminate-dead-code-aggressive"];
+
+/// `bytes` through [`NORMALISE_PASSES`] (`spirv-opt`, which `cargo xtask setup` installs);
+/// first specialised, if `spec` holds (constant id, value) pairs, as a pipeline that passes
+/// those values would be.
+pub fn normalise(bytes: &[u8], spec: &[(u32, u32)]) -> Result<Vec<u8>, String> {
     let env = twinray_shared::catalog::target_env(bytes);
-    let mut child = Command::new("spirv-opt")
-        .arg(format!("--target-env={env}"))
-        .args(NORMALISE_PASSES)
+    let mut command = Command::new("spirv-opt");
+    command.arg(format!("--target-env={env}"));
+    if !spec.is_empty() {
+        let values: Vec<String> = spec.iter().map(|(id, value)| format!("{id}:{value}")).collect();
+        command.arg(format!("--set-spec-const-default-value={}", values.join(" "))).args(SPECIALISE_PASSES);
+    }
+    command.args(NORMALISE_PASSES);
+    if !spec.is_empty() {
+        command.args(SPECIALISED_CLEANUP);
+    }
+    let mut child = command
         .args(["-", "-o", "-"])
         .stdin(Stdio::piped())
         .stdout(Stdio::piped())

@@ -158,8 +158,8 @@ fn a_return_behind_a_constant_false_branch_is_dropped_before_it_can_become_a_car
     );
     let looped = nested.replace("BAIL", "");
     let body = nested.replace("BAIL", bail);
-    let plain = inspect(&normalise(&assemble(&looped)).unwrap()).unwrap();
-    let normal = inspect(&normalise(&assemble(&body)).unwrap()).unwrap();
+    let plain = inspect(&normalise(&assemble(&looped), &[]).unwrap()).unwrap();
+    let normal = inspect(&normalise(&assemble(&body), &[]).unwrap()).unwrap();
     let site = &normal[0].sites[0];
     assert!(site.live.iter().all(|l| l.ty != "bool"), "{:?}", live_ids(site));
     assert_eq!(site.bytes, plain[0].sites[0].bytes);
@@ -240,7 +240,7 @@ fn glslang_debug_lines_name_where_each_value_comes_from() {
     }
     assert_eq!(site.bytes, 12 + 4 + 4);
     // Normalised, the same three are SSA values: the same bytes.
-    let normal = inspect(&normalise(&bytes).unwrap()).unwrap();
+    let normal = inspect(&normalise(&bytes, &[]).unwrap()).unwrap();
     assert_eq!(normal[0].sites[0].bytes, 12 + 4 + 4);
     assert_eq!(normal[0].sites[0].loops.len(), 1);
 }
