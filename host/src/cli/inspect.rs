@@ -46,9 +46,9 @@ pub struct InspectArgs {
     #[arg(long, default_value_t = 16)]
     pub spp: u32,
     /// The scene features every stage is specialised for, in the analysis and when the driver
-    /// compiles it: `all`,
-    /// `none`, or names such as `textures,emission` (`twinray_shared::features`); a scene
-    /// without them runs the stages as specialised for `none`.
+    /// compiles it: `all`, `none`, or names such as `textures,emission`
+    /// (`twinray_shared::features`); a scene without them runs the stages as specialised for
+    /// `none`.
     #[arg(long, default_value = "all", value_parser = |t: &str| twinray_shared::features::bits_named(t))]
     pub features: u32,
 }
