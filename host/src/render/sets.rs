@@ -185,6 +185,9 @@ pub(super) struct SharedOutputs {
 }
 
 impl SharedOutputs {
+    /// Sized to the launch, `opts.width` x `opts.height`: the renderers write the image and
+    /// the hit ids at their pixel unchecked (a length read before the first trace costs every
+    /// frame), so no trace may launch more pixels than these cover.
     pub fn new(ctx: &Arc<Context>, opts: &RenderOptions) -> Result<Self> {
         let pixels = u64::from(opts.width) * u64::from(opts.height);
         Ok(SharedOutputs {
