@@ -5,7 +5,9 @@ round. Prints the table, the null controls, and whether run 2's ratio lies in ru
     python3 table.py t1 t2      # the third session's runs, 16 rounds
     python3 table.py p1+s1 p2+s2  # a run with some scenes retimed: s1's cells replace p1's
     python3 table.py l1 l2      # the thirteenth session's, a layout drawn per place
-    python3 table.py m2 m1      # ClearCoat alone, 24 rounds (m2 has run 1's label order)"""
+    python3 table.py m2 m1      # ClearCoat alone, 24 rounds (m2 has run 1's label order)
+    python3 table.py y1 y2      # the seventeenth session's; run 2 ran for 10 of the 18 scenes
+A cell that only run 1 has is listed after the table, with its own counts."""
 import glob
 import json
 import math
@@ -58,9 +60,11 @@ print("|---|---|---|---|---|---|---|")
 inside = within = total = above = nulls = nulls_in = agree = 0
 misses = []
 squares = []
+alone = []
 for key in sorted(one, key=lambda k: (k[0].lower(), k[1])):
     a, b = one[key], two.get(key)
     if not b:
+        alone.append(key)
         continue
     total += 1
     r2 = b["ratio"][0]
@@ -90,3 +94,17 @@ print(f"{within} of {2 * total} intervals within ±1%; {above} wholly above 1.00
 print(f"{nulls_in} of {nulls} null intervals contain 1")
 for miss in misses:
     print(f"  null without 1: {miss}")
+if alone:
+    print()
+    print("Run 1 only (no run 2):")
+    print("| scene | spp | run 1 Rust/GLSL (95% CI) | null, run 1 |")
+    print("|---|---|---|---|")
+    for key in alone:
+        print(f"| {key[0]} | {key[1]} | {fmt(one[key]['ratio'])} | {fmt(one[key]['null'])} |")
+    cells = [one[key] for key in alone]
+    print(f"{sum(c['ratio'][2] / c['ratio'][0] - 1 <= 0.01 and 1 - c['ratio'][1] / c['ratio'][0] <= 0.01 for c in cells)}"
+          f" of {len(cells)} intervals within ±1%; {sum(c['ratio'][1] > 1.0 for c in cells)} wholly above 1.00; "
+          f"{sum(c['null'][1] <= 1.0 <= c['null'][2] for c in cells)} of {len(cells)} null intervals contain 1")
+    for key in alone:
+        if not one[key]["null"][1] <= 1.0 <= one[key]["null"][2]:
+            print(f"  null without 1: {key[0]} {key[1]} spp run 1: " + "%.4f (%.4f to %.4f)" % one[key]["null"])

@@ -12,11 +12,13 @@ use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
 use crate::vk::texture::Texture;
 use ash::vk;
+use bytemuck::Zeroable;
 use gpu_allocator::MemoryLocation;
 use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
+use twinray_shared::layout::Light;
 
 const VERTEX_BYTES: u64 = size_of::<twinray_shared::layout::Vertex>() as u64;
 
@@ -40,6 +42,14 @@ impl SceneResources {
             None => Err(crate::error::Error::Unsupported(format!("the scene has no buffer at binding {binding}"))),
         }
     }
+}
+
+/// The lights buffer's contents: `lights`, then zeros up to its fixed length `MAX_LIGHTS`,
+/// which the stages declare (the scene check keeps a scene within it).
+pub(crate) fn lights_buffer(lights: &[Light]) -> Vec<u8> {
+    let mut all = vec![Light::zeroed(); b::MAX_LIGHTS as usize];
+    all[..lights.len()].copy_from_slice(lights);
+    bytemuck::cast_slice(&all).to_vec()
 }
 
 /// A scene's data and GPU resources, which any number of pipelines can trace.
@@ -139,7 +149,7 @@ fn upload_scene(
         (b::BINDING_OBJECTS, storage, upload(ctx, "objects", bytemuck::cast_slice(&data.objects))?),
         (b::BINDING_PRIMITIVES, storage, upload(ctx, "primitives", bytemuck::cast_slice(&data.primitives))?),
         (b::BINDING_MATERIALS, storage, upload(ctx, "materials", bytemuck::cast_slice(&data.materials))?),
-        (b::BINDING_LIGHTS, storage, upload(ctx, "lights", bytemuck::cast_slice(&data.lights))?),
+        (b::BINDING_LIGHTS, storage, upload(ctx, "lights", &lights_buffer(&data.lights))?),
         (b::BINDING_VERTICES, storage, vertices),
         (b::BINDING_INDICES, storage, indices),
     ];
@@ -233,4 +243,19 @@ fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUs
         return Buffer::with_data(ctx, name, &[0; 256], usage);
     }
     Buffer::with_data(ctx, name, bytes, usage)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn lights_buffer_holds_the_scene_lights_then_zeros_to_max_lights() {
+        let lights = [Light { kind: 2, samples: 4, shadows: 1, ..Light::zeroed() }; 3];
+        let bytes = lights_buffer(&lights);
+        let size = size_of::<Light>();
+        assert_eq!(bytes.len(), b::MAX_LIGHTS as usize * size);
+        assert_eq!(&bytes[..3 * size], bytemuck::cast_slice::<Light, u8>(&lights));
+        assert!(bytes[3 * size..].iter().all(|&byte| byte == 0));
+    }
 }

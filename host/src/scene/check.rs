@@ -13,8 +13,9 @@ use twinray_shared::shapes::spec::{MAX_LENGTH, MIN_LENGTH};
 pub use twinray_shared::shapes::spec::MAX_PRIMITIVES;
 /// Largest number of objects in a scene, counting grids.
 pub const MAX_OBJECTS: usize = 1 << 20;
-/// Most lights in a scene: every hit shades every light (and traces its shadow rays).
-pub const MAX_LIGHTS: usize = 1024;
+/// Most lights in a scene: every hit shades every light (and traces its shadow rays), and
+/// the lights buffer holds this many.
+pub const MAX_LIGHTS: usize = twinray_shared::bindings::MAX_LIGHTS as usize;
 /// Most shapes in a scene: each becomes one BLAS (instances share them).
 pub const MAX_SHAPES: usize = 4096;
 /// Largest M (M x M primary samples) and N (N x N shadow samples per rect light).

@@ -22,14 +22,15 @@ use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::{spirv, Image, RuntimeArray};
 use texture::Texture;
+use trace::Lights;
 use twinray_shared::bindings::{
     no_payload_word, CUTOUT_TEXTURE, EXPLAIN_SHADOW, HIT_IDS_PER_PIXEL, MISS_PRIMARY, NO_HIT, PROBE_NO_PAYLOAD,
     SHADOW_SAMPLER_STRATIFIED,
 };
 use twinray_shared::features::Features;
 use twinray_shared::layout::{
-    ExplainRay, ExplainResult, FrameUniform, HitPayload, Light, Material, MaterialCall, ObjectData, Primitive,
-    ProbeRay, ProbeResult, ShadowPayload, Vertex,
+    ExplainRay, ExplainResult, FrameUniform, HitPayload, Material, MaterialCall, ObjectData, Primitive, ProbeRay,
+    ProbeResult, ShadowPayload, Vertex,
 };
 use twinray_shared::{camera, random, shading};
 
@@ -65,7 +66,7 @@ pub fn $name(
     #[spirv(descriptor_set = 0, binding = 0)] tlas: &AccelerationStructure,
     #[spirv(descriptor_set = 0, binding = 1)] image: &Image!(2D, format = rgba32f, sampled = false),
     #[spirv(uniform, descriptor_set = 0, binding = 2)] $frame: &FrameUniform,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &[Light],
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &Lights,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 7)] hit_ids: &mut [u32],
     #[spirv(spec_constant(id = 0, default = 0))] shadows: u32,
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,

@@ -8,11 +8,18 @@ use crate::texture::Texture;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::RuntimeArray;
-use twinray_shared::bindings::{LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MISS_PRIMARY, MISS_SHADOW, NO_HIT};
+use twinray_shared::bindings::{
+    LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MAX_LIGHTS, MISS_PRIMARY, MISS_SHADOW, NO_HIT,
+};
 use twinray_shared::camera::Ray;
 use twinray_shared::features::{Features, AREA_LIGHTS, EMISSION};
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
 use twinray_shared::{lighting, offset, random};
+
+/// The lights buffer, which the host fills to `MAX_LIGHTS`: a runtime array, not a slice,
+/// whose length rust-gpu would read at the entry point, where every thread waits for it
+/// before its first trace.
+pub type Lights = RuntimeArray<Light>;
 
 /// Traces a primary ray over `(t_min, t_max)` (the frame's near and far reach) into `payload`. No ray is traced `OPAQUE`: instances
 /// say whether they are (cutouts are not, and their any-hit stage runs), so scenes without
@@ -60,7 +67,7 @@ $(#[$doc])*
 pub fn $name(
     tlas: &AccelerationStructure,
     frame: &FrameUniform,
-    lights: &[Light],
+    lights: &Lights,
     shadows: bool,
     stratified: bool,
     features: Features,
@@ -89,12 +96,13 @@ pub fn $name(
         // loop to an outer loop's merge, which NVIDIA's driver also miscompiled. `get` is no way
         // out: rust-gpu cannot build Option<&T>.
         let index = l as usize;
-        if index >= lights.len() {
+        if index >= MAX_LIGHTS as usize {
             break;
         }
-        // SAFETY: index < lights.len(), checked just above. A reference, not a copy: the
-        // copy's fields were all live across every shadow ray (`twinray inspect`).
-        let light = unsafe { lights.get_unchecked(index) };
+        // SAFETY: index < MAX_LIGHTS, the buffer's length (the host fills it), checked just
+        // above. A reference, not a copy: the copy's fields were all live across every shadow
+        // ray (`twinray inspect`).
+        let light = unsafe { lights.index(index) };
         let n = if area { lighting::samples_per_side(light) } else { 1 };
         let casts = shadows && light.shadows != 0;
         // One loop over the n x n cells, stepping i and then j, where the GLSL twin nests a j

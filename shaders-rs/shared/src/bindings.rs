@@ -19,8 +19,12 @@ pub const BINDING_OBJECTS: u32 = 3;
 pub const BINDING_PRIMITIVES: u32 = 4;
 /// `[Material]`.
 pub const BINDING_MATERIALS: u32 = 5;
-/// `[Light]`, `FrameUniform::light_count` of them.
+/// `[Light; MAX_LIGHTS]`, of which the first `FrameUniform::light_count` are the scene's.
 pub const BINDING_LIGHTS: u32 = 6;
+/// Most lights in a scene, and the lights buffer's fixed length. A fixed length leaves the
+/// stages no buffer length to read: rust-gpu reads a slice's at the entry point, and every
+/// thread waits for it before its first trace (bench/reports/issue53-any-hit/).
+pub const MAX_LIGHTS: u32 = 1024;
 /// `[u32]`, [`HIT_IDS_PER_PIXEL`] per pixel: object and primitive hit by the first primary ray
 /// (or [`NO_HIT`]), how many shadow rays the pixel traced (so that rays/s count the rays
 /// actually traced), and its primary rays whose payload no hit or miss stage wrote (see
