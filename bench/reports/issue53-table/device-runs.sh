@@ -4,6 +4,7 @@
 # Stops before a scene that would start past SECONDS; the same command again (on the same
 # warm machine) goes on where it stopped: finished cells are marked in /tmp/t53-done, and the
 # references are cached in /tmp/refs.
+# RUNS (default "1 2") picks the runs, so that a run left unfinished can be completed alone.
 #   sh bench/reports/issue53-table/device-runs.sh NAME SECONDS ROUNDS SCENE...
 set -u
 [ -x /tmp/twinray-bench/bin/twinray ] || tar xzf target/twinray-bench.tar.gz -C /tmp
@@ -16,7 +17,7 @@ start=$(date +%s)
 R=$OUT/$name
 mkdir -p $R /tmp/t53-done
 $T info > $R/info.txt 2>&1
-for run in 1 2; do
+for run in ${RUNS:-1 2}; do
   if [ $run = 1 ]; then sets=glsl,rust first=0; else sets=rust,glsl first=1000; fi
   for scene in "$@"; do
     base=$(basename $scene)
