@@ -8,7 +8,7 @@ use super::layout::LayoutDraw;
 use super::output::RenderOptions;
 use super::sets::{check_device_limits, made_as_context_says, SetRender, SharedOutputs};
 use super::tracing::{self, Trace};
-use super::upload::{lights_buffer, upload_moving, UploadedScene};
+use super::upload::{upload_moving, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::animation::Moves;
 use crate::scene::file::SceneFile;
@@ -157,7 +157,8 @@ impl<'a> FrameRenderer<'a> {
             resources.write(b::BINDING_FRAME, bytemuck::bytes_of(&data.uniform))?;
         }
         if self.moves.lights {
-            resources.write(b::BINDING_LIGHTS, &lights_buffer(&data.lights))?;
+            // Only the scene's lights: the zeros after them, up to MAX_LIGHTS, never change.
+            resources.write(b::BINDING_LIGHTS, bytemuck::cast_slice(&data.lights))?;
         }
         Ok(())
     }

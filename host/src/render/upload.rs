@@ -12,7 +12,6 @@ use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
 use crate::vk::texture::Texture;
 use ash::vk;
-use bytemuck::Zeroable;
 use gpu_allocator::MemoryLocation;
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -46,10 +45,11 @@ impl SceneResources {
 
 /// The lights buffer's contents: `lights`, then zeros up to its fixed length `MAX_LIGHTS`,
 /// which the stages declare (the scene check keeps a scene within it).
-pub(crate) fn lights_buffer(lights: &[Light]) -> Vec<u8> {
-    let mut all = vec![Light::zeroed(); b::MAX_LIGHTS as usize];
-    all[..lights.len()].copy_from_slice(lights);
-    bytemuck::cast_slice(&all).to_vec()
+fn lights_buffer(lights: &[Light]) -> Vec<u8> {
+    let scene: &[u8] = bytemuck::cast_slice(lights);
+    let mut bytes = vec![0; b::MAX_LIGHTS as usize * size_of::<Light>()];
+    bytes[..scene.len()].copy_from_slice(scene);
+    bytes
 }
 
 /// A scene's data and GPU resources, which any number of pipelines can trace.
@@ -248,6 +248,7 @@ fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUs
 #[cfg(test)]
 mod tests {
     use super::*;
+    use bytemuck::Zeroable;
 
     #[test]
     fn lights_buffer_holds_the_scene_lights_then_zeros_to_max_lights() {
