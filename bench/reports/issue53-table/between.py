@@ -21,7 +21,7 @@ with contextlib.redirect_stdout(io.StringIO()):
 
 print("| runs | cells | rms difference | predicted | between runs | mean difference | rms z |")
 print("|---|---|---|---|---|---|---|")
-for a, b in [("u1", "u2"), ("p1+s1", "p2+s2"), ("l1", "l2"), ("n1", "n2"), ("y1", "y2")]:
+for a, b in [("u1", "u2"), ("p1+s1", "p2+s2"), ("l1", "l2"), ("n1", "n2"), ("y1", "y2"), ("y1", "y3"), ("y2", "y3")]:
     one, two = table.layered(a), table.layered(b)
     ds, variances, zs = [], [], []
     for key in one:

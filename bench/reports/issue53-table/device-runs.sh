@@ -1,10 +1,13 @@
 #!/bin/sh
 # Issue 53 item 5, the table twice in one go: run 1 (`glsl,rust`, places from 0), then run 2
 # (`rust,glsl`, places from 1000), each scene as device-table.sh times it with ROUNDS rounds.
+# Run N names the sets in run 1's order if N is odd, run 2's if even, and takes places from
+# (N - 1) x 1000, so that no two runs share a place.
 # Stops before a scene that would start past SECONDS; the same command again (on the same
 # warm machine) goes on where it stopped: finished cells are marked in /tmp/t53-done, and the
 # references are cached in /tmp/refs.
-# RUNS (default "1 2") picks the runs, so that a run left unfinished can be completed alone.
+# RUNS (default "1 2") picks the runs, so that a run left unfinished can be completed alone, or
+# a third run made (RUNS=3).
 #   sh bench/reports/issue53-table/device-runs.sh NAME SECONDS ROUNDS SCENE...
 set -u
 [ -x /tmp/twinray-bench/bin/twinray ] || tar xzf target/twinray-bench.tar.gz -C /tmp
@@ -18,7 +21,8 @@ R=$OUT/$name
 mkdir -p $R /tmp/t53-done
 $T info > $R/info.txt 2>&1
 for run in ${RUNS:-1 2}; do
-  if [ $run = 1 ]; then sets=glsl,rust first=0; else sets=rust,glsl first=1000; fi
+  if [ $((run % 2)) = 1 ]; then sets=glsl,rust; else sets=rust,glsl; fi
+  first=$(( (run - 1) * 1000 ))
   for scene in "$@"; do
     base=$(basename $scene)
     [ -e /tmp/t53-done/$run-$base ] && continue

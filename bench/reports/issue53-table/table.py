@@ -6,7 +6,9 @@ round. Prints the table, the null controls, and whether run 2's ratio lies in ru
     python3 table.py p1+s1 p2+s2  # a run with some scenes retimed: s1's cells replace p1's
     python3 table.py l1 l2      # the thirteenth session's, a layout drawn per place
     python3 table.py m2 m1      # ClearCoat alone, 24 rounds (m2 has run 1's label order)
-    python3 table.py y1 y2      # the seventeenth session's; run 2 ran for 10 of the 18 scenes
+    python3 table.py y1 y2      # the seventeenth session's (run 2's last 8 scenes: the eighteenth's)
+    python3 table.py y1 y3      # run 3 (the eighteenth session's, places from 2000) against run 1
+    python3 table.py y2 y3      # and against run 2 (the columns still say run 1 and run 2)
 A cell that only run 1 has is listed after the table, with its own counts."""
 import glob
 import json
