@@ -13,6 +13,7 @@ mod explain;
 mod layout;
 mod libraries;
 mod modules;
+mod origin;
 mod parity;
 mod pipeline;
 mod probe;

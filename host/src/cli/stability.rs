@@ -6,11 +6,15 @@ use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
+use twinray::probe::case::ProbeCase;
 use twinray::scene::shape::Formula;
 
 pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
-    let files = twinray::probe::stability::case_files(&args.dir)?;
     let sets = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::ShaderSet>, _>>()?;
+    if args.against_world {
+        return against_world(global, &args, &sets);
+    }
+    let files = twinray::probe::stability::case_files(&args.dir)?;
     let ctx = context(global)?;
     let formulas = [Formula::Robust, Formula::Naive];
     let timing =
@@ -43,6 +47,61 @@ pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
     Ok(if missed == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
 }
 
+/// `--against-world`: every case (of the folder, or random) with every set, at its chosen
+/// origins and at world coordinates.
+fn against_world(global: &GlobalArgs, args: &StabilityArgs, sets: &[twinray::ShaderSet]) -> Result<ExitCode> {
+    let sources: Vec<Source> = match args.random {
+        Some(n) => (args.seed..args.seed.saturating_add(n)).map(Source::Random).collect(),
+        None => twinray::probe::stability::case_files(&args.dir)?.into_iter().map(Source::File).collect(),
+    };
+    let ctx = context(global)?;
+    let mut checks = Vec::new();
+    for (done, source) in sources.iter().enumerate() {
+        let case = source.load(args.write_cases.as_deref())?;
+        for set in sets {
+            match twinray::probe::origins::check(&ctx, &case, set) {
+                Ok(check) => checks.push(check),
+                Err(e) if e.device_lacks() => eprintln!("skipped {}: {e}", case.file.name),
+                Err(e) => return Err(e.into()),
+            }
+        }
+        twinray::util::progress::report("cases", done as u64 + 1, sources.len() as u64);
+    }
+    if args.json {
+        println!("{}", serde_json::to_string(&checks)?);
+    } else {
+        print!("{}", twinray::probe::origins::table(&checks));
+    }
+    let worse = checks.iter().filter(|c| !c.failures.is_empty()).count();
+    if !args.json {
+        println!("{worse} of {} rows worse at the chosen origins than at world coordinates", checks.len());
+    }
+    Ok(if worse == 0 { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
+
+/// Where a case of `--against-world` comes from.
+enum Source {
+    File(PathBuf),
+    /// A random case's seed (`twinray::probe::random`).
+    Random(u64),
+}
+
+impl Source {
+    /// The case, its file first written to `write_to` where a random one is asked to be.
+    fn load(&self, write_to: Option<&std::path::Path>) -> Result<ProbeCase> {
+        Ok(match self {
+            Source::File(path) => ProbeCase::load(path)?,
+            Source::Random(seed) => {
+                let text = twinray::probe::random::origin_case(*seed);
+                if let Some(dir) = write_to {
+                    twinray::util::output::write_atomically(&dir.join(format!("random-{seed}.toml")), text.as_bytes())?;
+                }
+                ProbeCase::parse(&text, &format!("random case {seed}"), std::env::temp_dir())?
+            }
+        })
+    }
+}
+
 #[derive(Args)]
 pub struct StabilityArgs {
     /// Folder of probe cases.
@@ -63,4 +122,19 @@ pub struct StabilityArgs {
     /// Print one JSON array of rows.
     #[arg(long)]
     pub json: bool,
+    /// Instead of the suite: probe every case (robust formulas) at the origins twinray chooses
+    /// and at world coordinates, and fail where the chosen origins make a ray wrong that world
+    /// coordinates get right, or make the relative t error's p99 grow (docs/numerics.md).
+    #[arg(long)]
+    pub against_world: bool,
+    /// With --against-world: N random cases of far-apart ray groups in place of the folder's
+    /// (the property test's generator, `twinray::probe::random`).
+    #[arg(long, value_name = "N", requires = "against_world", value_parser = clap::value_parser!(u64).range(1..=100_000))]
+    pub random: Option<u64>,
+    /// With --random: the first case's seed; case k is seed + k.
+    #[arg(long, default_value_t = 0, requires = "random")]
+    pub seed: u64,
+    /// With --random: write each case's file to DIR (random-SEED.toml), to probe it again.
+    #[arg(long, value_name = "DIR", requires = "random")]
+    pub write_cases: Option<PathBuf>,
 }

@@ -6,6 +6,8 @@ mod edges;
 pub mod generate;
 #[cfg(test)]
 mod generate_tests;
+pub mod origins;
+pub mod random;
 pub mod report;
 pub mod run;
 pub mod split;

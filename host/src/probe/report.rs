@@ -3,7 +3,7 @@
 
 use super::case::Generated;
 use super::case::ProbeCase;
-use super::run::{count_written, judgeable, no_payload, Records};
+use super::run::{count_written, judgeable, no_payload, Launched, Records};
 use super::split::{relative, split, AgreedHit, TErrorSplit};
 use crate::reference::scene::SceneVerdict;
 use crate::reference::stage::{lines, stage_of};
@@ -47,6 +47,9 @@ pub struct ProbeReport {
     pub gpu_ms_per_million_rays: Option<f64>,
     /// Per generator of the case: the rays it made, and how many of them the set hit.
     pub generators: Vec<Generated>,
+    /// Where the GPU's coordinates were centred, launch by launch (`probe::run::Launched`);
+    /// empty for one launch at world coordinates.
+    pub launches: Vec<Launched>,
     /// Rays whose record the set never wrote (still the sentinel; judged as nothing else), and
     /// hits it wrote with a NaN or infinite t or normal.
     pub written: Written,
@@ -156,6 +159,7 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
         gpu_ms,
         gpu_ms_per_million_rays: gpu_ms.map(|ms| ms * 1e6 / case.rays.len().max(1) as f64),
         generators: case.generated.clone(),
+        launches: records.launches.to_vec(),
         written: count_written(results),
         pass: true,
         failures: Vec::new(),
@@ -243,7 +247,7 @@ fn no_payload_lines<'a>(
 
 /// Whether a hit at `got` on the object the reference hits at `t` lies beyond it by more than
 /// `THROUGH`.
-fn went_through(got: f64, t: f64) -> bool {
+pub(crate) fn went_through(got: f64, t: f64) -> bool {
     got > t && relative(got, t) > THROUGH
 }
 
@@ -319,6 +323,20 @@ impl ProbeReport {
             Some(split) => format!("  {}\n", split.summary()),
             None => "  relative t error by source: n/a (no witness pass: the compute renderer's probe, or a folder set without probe_witness)\n".into(),
         } + &if self.generators.is_empty() { String::new() } else { format!("  generators: {}\n", self.generators_made()) }
+            + &self.launches_line()
+    }
+
+    /// Where the GPU's coordinates were centred, when not at the world origin in one launch.
+    pub fn launches_line(&self) -> String {
+        if self.launches.is_empty() {
+            return String::new();
+        }
+        let each: Vec<String> = self
+            .launches
+            .iter()
+            .map(|l| format!("({}, {}, {}) for {}", l.origin[0], l.origin[1], l.origin[2], l.rays))
+            .collect();
+        format!("  local origins, by where the rays start: {}\n", each.join("; "))
     }
 
     /// Per generator, the rays it made and how many of them the set hit.

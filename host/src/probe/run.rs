@@ -5,9 +5,10 @@
 
 use crate::error::{Error, Result};
 use crate::render::{
-    prepare, sentinel, storage_buffer, submit, transition, Prepared, Trace, Written, STORAGE_IMAGE, UNUSED_IMAGE,
+    min_warm_ms, place_warm_ms, prepare, sentinel, storage_buffer, submit, transition, Prepared, Trace, Written,
+    STORAGE_IMAGE, UNUSED_IMAGE,
 };
-use crate::scene::{origin, Renderer, Scene, PROBE_QUERY};
+use crate::scene::{origin, GpuOrigin, Renderer, Scene, PROBE_QUERY};
 use crate::shaders::ShaderSet;
 use crate::util::activity;
 use crate::vk::buffer::Buffer;
@@ -34,12 +35,28 @@ pub struct ProbeOutput {
     pub gpu_ms: Vec<f64>,
     /// Stack bytes the probe ray generation stage needs, as the driver reports it.
     pub raygen_stack_bytes: u64,
+    /// Where the GPU's coordinates were centred for each launch, and its rays; empty where the
+    /// scene was probed at world coordinates, in one launch.
+    pub launches: Vec<Launched>,
+}
+
+/// One launch of a probe at a local origin (`origin::launches`).
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Launched {
+    /// In the scene's coordinates.
+    pub origin: [f32; 3],
+    pub rays: usize,
 }
 
 impl ProbeOutput {
     /// The probe's records and the witness passes', as `report::evaluate` takes them.
     pub fn records(&self) -> Records<'_> {
-        Records { results: &self.results, witness: self.witness.as_deref(), driver: self.driver_witness.as_deref() }
+        Records {
+            results: &self.results,
+            witness: self.witness.as_deref(),
+            driver: self.driver_witness.as_deref(),
+            launches: &self.launches,
+        }
     }
 }
 
@@ -49,6 +66,7 @@ pub struct Records<'a> {
     pub results: &'a [ProbeResult],
     pub witness: Option<&'a [ProbeResult]>,
     pub driver: Option<&'a [ProbeResult]>,
+    pub launches: &'a [Launched],
 }
 
 /// Whether the stage wrote this record: no word of it still holds the sentinel.
@@ -90,8 +108,11 @@ pub fn probe_module(scene: &Scene) -> &'static str {
 }
 
 /// Traces `rays` through `scene` with `set`: `warmup` untimed passes, then `runs` timed ones.
-/// A scene with a local origin is centred on the rays' mean origin, and the rays moved with it
-/// (`scene::origin`); the results (t, normals, object-space rays) do not depend on it.
+/// A scene with a local origin is probed in launches grouped by where the rays start
+/// (`origin::launches`), each with the scene centred on its own origin and its rays moved with
+/// it; one that asks for the eye (`gpu_origin = "eye"`) in one launch centred there. The
+/// results (t, normals, object-space rays) do not depend on it. Each timed pass is the sum of
+/// the launches' passes: the GPU time of every ray once.
 pub fn probe(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -100,21 +121,75 @@ pub fn probe(
     warmup: u32,
     runs: u32,
 ) -> Result<ProbeOutput> {
-    let scene = scene.centred_on(origin::mean(rays.iter().map(|r| r.origin.truncate())));
-    let local: Vec<ProbeRay>;
-    let rays = match scene.origin {
-        Some(o) => {
-            let moved =
-                |r: &ProbeRay| ProbeRay { origin: origin::to_local(r.origin.truncate(), o).extend(r.origin.w), ..*r };
-            local = rays.iter().map(moved).collect();
-            &local
+    let launches = match scene.origin {
+        None => return probe_launch(ctx, scene, set, rays, (warmup, runs), min_warm_ms()?),
+        Some(eye) if scene.file.gpu_origin == GpuOrigin::Eye => {
+            vec![origin::Launch { origin: eye, rays: (0..rays.len()).collect() }]
         }
-        None => rays,
+        Some(_) => {
+            let starts: Vec<_> = rays.iter().map(|r| r.origin.truncate()).collect();
+            origin::launches(&starts, &scene.build().world_boxes())
+        }
     };
-    let out = probe_and_release(ctx, &scene, set, rays, warmup, runs)?;
+    let mut outputs = Vec::with_capacity(launches.len());
+    for (k, launch) in launches.iter().enumerate() {
+        let centred = scene.centred_on(Some(launch.origin));
+        let moved = |&i: &usize| {
+            let r = rays[i];
+            ProbeRay { origin: origin::to_local(r.origin.truncate(), launch.origin).extend(r.origin.w), ..r }
+        };
+        let local: Vec<ProbeRay> = launch.rays.iter().map(moved).collect();
+        // The first launch brings the GPU's clocks up; the later ones find them up.
+        let warm_ms = if k == 0 { min_warm_ms()? } else { place_warm_ms()? };
+        outputs.push(probe_launch(ctx, &centred, set, &local, (warmup, runs), warm_ms)?);
+    }
+    Ok(gather(rays.len(), &launches, outputs))
+}
+
+/// One launch of `rays` through `scene` as the GPU gets it, every object released after.
+fn probe_launch(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    rays: &[ProbeRay],
+    passes: (u32, u32),
+    warm_ms: f64,
+) -> Result<ProbeOutput> {
+    let out = probe_and_release(ctx, scene, set, rays, passes, warm_ms)?;
     // Every object of the probe is destroyed by now: catch what the layer said about that too.
     ctx.check_validation()?;
     Ok(out)
+}
+
+/// The launches' outputs as one: every record back at its ray's place, each timed pass the sum
+/// of the launches' (the same count in each), a witness only where every launch had it.
+fn gather(count: usize, launches: &[origin::Launch], outputs: Vec<ProbeOutput>) -> ProbeOutput {
+    let place = |parts: Vec<Option<Vec<ProbeResult>>>| -> Option<Vec<ProbeResult>> {
+        let mut all = vec![bytemuck::Zeroable::zeroed(); count];
+        for (launch, part) in launches.iter().zip(parts) {
+            for (&i, r) in launch.rays.iter().zip(part?) {
+                all[i] = r;
+            }
+        }
+        Some(all)
+    };
+    let runs = outputs.iter().map(|o| o.gpu_ms.len()).min().unwrap_or(0);
+    let gpu_ms = (0..runs).map(|k| outputs.iter().map(|o| o.gpu_ms[k]).sum()).collect();
+    let raygen_stack_bytes = outputs.iter().map(|o| o.raygen_stack_bytes).max().unwrap_or(0);
+    let (mut results, mut witness, mut driver) = (Vec::new(), Vec::new(), Vec::new());
+    for o in outputs {
+        results.push(Some(o.results));
+        witness.push(o.witness);
+        driver.push(o.driver_witness);
+    }
+    ProbeOutput {
+        results: place(results).unwrap_or_default(),
+        witness: place(witness),
+        driver_witness: place(driver),
+        gpu_ms,
+        raygen_stack_bytes,
+        launches: launches.iter().map(|l| Launched { origin: l.origin.into(), rays: l.rays.len() }).collect(),
+    }
 }
 
 fn probe_and_release(
@@ -122,8 +197,8 @@ fn probe_and_release(
     scene: &Scene,
     set: &ShaderSet,
     rays: &[ProbeRay],
-    warmup: u32,
-    runs: u32,
+    (warmup, runs): (u32, u32),
+    warm_ms: f64,
 ) -> Result<ProbeOutput> {
     let count = u32::try_from(rays.len()).unwrap_or(u32::MAX);
     let module = probe_module(scene);
@@ -151,10 +226,11 @@ fn probe_and_release(
     }
     let mut witnesses = witnesses.into_iter();
     let (witness, driver_witness) = (witnesses.next(), witnesses.next());
-    let trace = p.trace(ctx, timestamps.as_ref(), (count, 1), (warmup, runs))?;
+    let trace = p.trace_warmed(ctx, timestamps.as_ref(), (count, 1), (warmup, runs), warm_ms)?;
     let results = read_pass(ctx, &p, trace, &results, bytes)?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
-    Ok(ProbeOutput { results, witness, driver_witness, gpu_ms, raygen_stack_bytes: p.pipeline.raygen_stack_bytes() })
+    let raygen_stack_bytes = p.pipeline.raygen_stack_bytes();
+    Ok(ProbeOutput { results, witness, driver_witness, gpu_ms, raygen_stack_bytes, launches: Vec::new() })
 }
 
 /// The buffers a pass of chosen rays binds besides the scene's: the rays, the results (of

@@ -222,11 +222,17 @@ impl Scene {
     }
 
     /// Where the GPU's coordinates should be centred: at the camera's eye where an object lies
-    /// far from the world origin for its size, unless the file asks for the world origin.
+    /// far from the world origin for its size (or always, where the file asks for the eye),
+    /// unless the file asks for the world origin.
     fn local_origin(&self, data: &SceneData) -> Option<Vec3> {
         let transforms: Vec<glam::Mat4> = data.instances.iter().map(|i| i.object_to_world).collect();
         let far = reach::far_instances(&data.object_bounds(), &transforms);
-        (self.file.gpu_origin == file::GpuOrigin::Local && far).then(|| Vec3::from(self.file.camera.eye))
+        let eye = Vec3::from(self.file.camera.eye);
+        match self.file.gpu_origin {
+            file::GpuOrigin::Local => far.then_some(eye),
+            file::GpuOrigin::Eye => Some(eye),
+            file::GpuOrigin::World => None,
+        }
     }
 
     /// The scene as the GPU gets it: moved to its local origin, which the copy no longer has
@@ -247,11 +253,21 @@ impl Scene {
         std::borrow::Cow::Owned(local)
     }
 
-    /// The scene centred on `at` where it is centred at all: a probe centres it on its rays.
+    /// The scene centred on `at` where it is centred at all: a probe centres it beside each
+    /// group of its rays (`origin::launches`).
     pub fn centred_on(&self, at: Option<Vec3>) -> std::borrow::Cow<'_, Scene> {
         match (self.origin, at) {
             (Some(o), Some(at)) if o != at => std::borrow::Cow::Owned(Scene { origin: Some(at), ..self.clone() }),
             _ => std::borrow::Cow::Borrowed(self),
+        }
+    }
+
+    /// The scene with the GPU's coordinates at the world origin: borrowed where they are
+    /// there already.
+    pub fn at_world_origin(&self) -> std::borrow::Cow<'_, Scene> {
+        match self.origin {
+            Some(_) => std::borrow::Cow::Owned(Scene { origin: None, ..self.clone() }),
+            None => std::borrow::Cow::Borrowed(self),
         }
     }
 
