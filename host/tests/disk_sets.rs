@@ -117,6 +117,14 @@ fn bad_modules_are_refused_with_the_file_and_the_reason() {
         }
         true
     });
+    // A module twinray built, recording another contract version than this build speaks.
+    let other_contract = {
+        let bytes = std::fs::read(repo().join("spirv/rust/raygen.spv")).unwrap();
+        let path = d.join("other-contract.spv");
+        std::fs::write(&path, twinray_shared::spirv_info::with_record(&bytes, "twinray-shared 9.0.0").unwrap())
+            .unwrap();
+        path.to_string_lossy().into_owned()
+    };
     let miss = repo().join("spirv/glsl/miss.spv").to_string_lossy().into_owned();
     let text = text.to_string_lossy().into_owned();
     let cases = [
@@ -125,6 +133,14 @@ fn bad_modules_are_refused_with_the_file_and_the_reason() {
         (format!("rust,raygen={miss}"), vec![miss.as_str(), "no raygen entry point", "a miss entry point \"main\""]),
         (format!("glsl,raygen={no_entry}"), vec![no_entry.as_str(), "no raygen entry point", "it has none"]),
         (format!("rust,raygen={unknown_binding}"), vec![unknown_binding.as_str(), "binding 99"]),
+        (
+            format!("rust,raygen={other_contract}"),
+            vec![
+                other_contract.as_str(),
+                "built against twinray-shared 9.0.0",
+                twinray_shared::contract::CONTRACT_VERSION,
+            ],
+        ),
         (
             format!("rust,intersection={miss}"),
             vec!["the intersection stage has several modules", "sphere_intersection"],

@@ -24,4 +24,15 @@ mod tests {
         }
         assert_eq!(EMBEDDED.len(), 2 * MODULES.len(), "only the catalog's modules are embedded");
     }
+
+    /// A contract version changed without `cargo xtask shaders` leaves the built-in sets
+    /// recording the old one.
+    #[test]
+    fn every_built_in_module_records_this_contract() {
+        for (language, name, bytes) in EMBEDDED {
+            let info = twinray_shared::spirv_info::parse(bytes).expect("a module");
+            let want = twinray_shared::contract::CONTRACT_VERSION;
+            assert_eq!(info.contract(), Some(want), "{} {name} records another contract", language.name());
+        }
+    }
 }

@@ -1,7 +1,9 @@
 //! One module of a set, resolved for the pipeline, and modules read from disk: each checked as
 //! `cargo xtask shaders` checks the ones it builds (valid SPIR-V 1.4 for Vulkan by SPIRV-Tools'
 //! validator, an entry point with the stage's execution model, only bindings of the shared
-//! layout that the stage can see, and the payloads and attributes of `twinray_shared::interface`).
+//! layout that the stage can see, and the payloads and attributes of `twinray_shared::interface`),
+//! and refused first where it records another contract than this build's
+//! (`twinray_shared::contract`).
 
 use std::ffi::CString;
 use std::path::{Path, PathBuf};
@@ -45,6 +47,11 @@ pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String>
     // twinray's own checks first, whose words say what a module for this stage must be; the
     // validator's after, for everything else a driver would trip on.
     let info = spirv_info::parse(&bytes).map_err(|e| format!("{file}: not a SPIR-V module ({e})"))?;
+    // A module twinray built records the contract it was built against: one of another
+    // contract is refused before anything reads its layout as this one's.
+    if let Some(refusal) = info.contract().and_then(twinray_shared::contract::refusal) {
+        return Err(format!("{file}: {refusal}"));
+    }
     let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
     twinray_shared::module_check::check_module(spec, &info, &entry)
         .map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;

@@ -84,6 +84,7 @@ pub fn build_set_without(root: &Path, language: Language, dir: &Path, output: Ou
     for spec in MODULES {
         let path = dir.join(format!("{}.spv", spec.name));
         let label = format!("{} {}", language.name(), spec.name);
+        record_contract(&path, &twinray_shared::contract::record())?;
         process::output(Command::new("spirv-val").args(twinray_shared::catalog::SPIRV_VAL_ARGS).arg(&path))
             .with_context(|| format!("spirv-val rejected {label}"))?;
         let (info, _) = read_module(dir, spec)?;
@@ -91,6 +92,14 @@ pub fn build_set_without(root: &Path, language: Language, dir: &Path, output: Ou
             .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     }
     Ok(())
+}
+
+/// Records in the module at `path` the contract it was built against (`record`, an
+/// `OpModuleProcessed`), which the host checks before it uses the module.
+pub fn record_contract(path: &Path, record: &str) -> Result<()> {
+    let bytes = std::fs::read(path).with_context(|| format!("reading {}", path.display()))?;
+    let stamped = spirv_info::with_record(&bytes, record).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+    std::fs::write(path, stamped).with_context(|| format!("writing {}", path.display()))
 }
 
 /// What a built module declares, and its size in bytes.

@@ -4,6 +4,7 @@
 
 pub mod bindings;
 pub mod camera;
+pub mod contract;
 pub mod features;
 pub mod layout;
 pub mod lighting;

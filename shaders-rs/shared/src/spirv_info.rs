@@ -29,6 +29,11 @@ const OP_VARIABLE: u32 = 59;
 const OP_BITCAST: u32 = 124;
 const OP_TRACE_RAY: u32 = 4445;
 const OP_EXECUTE_CALLABLE: u32 = 4446;
+const OP_MODULE_PROCESSED: u32 = 330;
+/// What may come before `OpModuleProcessed` in a module (SPIR-V's logical layout, sections 1
+/// to 7): capabilities, extensions, imports, the memory model, entry points, execution modes
+/// and the debug instructions.
+const BEFORE_ANNOTATIONS: [u32; 14] = [17, 10, 11, 14, 15, 16, 331, 7, 4, 3, 2, 5, 6, OP_MODULE_PROCESSED];
 
 /// Storage classes of what stages pass each other (SPV_KHR_ray_tracing).
 pub const STORAGE_CALLABLE_DATA: u32 = 5328;
@@ -180,6 +185,15 @@ pub struct ModuleInfo {
     pub instruction_count: usize,
     /// What it passes between stages.
     pub interface: Interface,
+    /// The texts of its `OpModuleProcessed` instructions, in order.
+    pub processed: Vec<String>,
+}
+
+impl ModuleInfo {
+    /// The contract version the module records (`contract::RECORD_PREFIX`), if it records one.
+    pub fn contract(&self) -> Option<&str> {
+        self.processed.iter().find_map(|p| p.strip_prefix(crate::contract::RECORD_PREFIX))
+    }
 }
 
 /// Reads `bytes` as a little-endian SPIR-V module.
@@ -206,6 +220,7 @@ pub fn parse(bytes: &[u8]) -> Result<ModuleInfo, String> {
         match (opcode, operands) {
             (OP_CAPABILITY, [cap, ..]) => info.capabilities.push(*cap),
             (OP_EXTENSION, name) => info.extensions.push(literal_string(name)),
+            (OP_MODULE_PROCESSED, text) => info.processed.push(literal_string(text)),
             (OP_ENTRY_POINT, [model, _function, name @ ..]) => info.entry_points.push((*model, literal_string(name))),
             (OP_DECORATE, [target, DECORATION_DESCRIPTOR_SET, value, ..]) => {
                 sets.insert(*target, *value);
@@ -247,6 +262,40 @@ pub fn without_unused_ray_query(bytes: &[u8]) -> Result<Vec<u8>, String> {
     };
     let kept = words[..5].iter().chain(instructions.iter().filter(|i| !unused(i)).flat_map(|i| i.iter()));
     Ok(kept.flat_map(|w| w.to_le_bytes()).collect())
+}
+
+/// `bytes` recording `record` (`contract::record()`) in an `OpModuleProcessed` where the
+/// logical layout puts it, any contract record it had before dropped.
+pub fn with_record(bytes: &[u8], record: &str) -> Result<Vec<u8>, String> {
+    parse(bytes)?;
+    let words: Vec<u32> = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+    let mut instructions = Vec::new();
+    let mut at = 5;
+    while at < words.len() {
+        let count = ((words[at] >> 16) as usize).max(1);
+        instructions.push(&words[at..(at + count).min(words.len())]);
+        at += count;
+    }
+    let opcode = |i: &[u32]| i[0] & 0xffff;
+    let old_record = |i: &&[u32]| {
+        opcode(i) == OP_MODULE_PROCESSED && literal_string(&i[1..]).starts_with(crate::contract::RECORD_PREFIX)
+    };
+    instructions.retain(|i| !old_record(i));
+    let place =
+        instructions.iter().position(|i| !BEFORE_ANNOTATIONS.contains(&opcode(i))).unwrap_or(instructions.len());
+    let text = string_words(record);
+    let new = [vec![((text.len() as u32 + 1) << 16) | OP_MODULE_PROCESSED], text].concat();
+    instructions.insert(place, &new);
+    let all = words[..5].iter().chain(instructions.iter().flat_map(|i| i.iter()));
+    Ok(all.flat_map(|w| w.to_le_bytes()).collect())
+}
+
+/// `text` as a SPIR-V literal string: UTF-8, nul-terminated, packed four bytes to a word.
+fn string_words(text: &str) -> Vec<u32> {
+    let mut bytes = text.as_bytes().to_vec();
+    bytes.push(0);
+    bytes.resize(bytes.len().div_ceil(4) * 4, 0);
+    bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect()
 }
 
 /// A nul-terminated UTF-8 string packed four bytes to a word.
@@ -314,6 +363,23 @@ mod tests {
         module.extend([(2 << 16) | OP_TYPE_RAY_QUERY, 9]);
         let kept = without_unused_ray_query(&words_to_bytes(&module)).unwrap();
         assert_eq!(kept, words_to_bytes(&module));
+    }
+
+    /// The record goes after the debug section and before the first decoration, once, however
+    /// often a module is stamped.
+    #[test]
+    fn records_the_contract_once_before_the_annotations() {
+        let module =
+            [MAGIC, 0x0001_0400, 0, 100, 0, (2 << 16) | OP_CAPABILITY, 4479, (4 << 16) | OP_DECORATE, 7, 33, 3];
+        let stamped = with_record(&words_to_bytes(&module), "twinray-shared 0.1.0").unwrap();
+        let again = with_record(&stamped, "twinray-shared 0.2.0").unwrap();
+        let info = parse(&again).unwrap();
+        assert_eq!(info.processed, ["twinray-shared 0.2.0"]);
+        assert_eq!(info.contract(), Some("0.2.0"));
+        assert_eq!(info.bindings, vec![(0, 3)]);
+        let words: Vec<u32> = again.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
+        assert_eq!(words[7] & 0xffff, OP_MODULE_PROCESSED, "after the capability, before the decoration");
+        assert_eq!(parse(&words_to_bytes(&module)).unwrap().contract(), None);
     }
 
     #[test]
