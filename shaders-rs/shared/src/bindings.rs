@@ -30,6 +30,8 @@ pub const MAX_LIGHTS: u32 = 1024;
 /// actually traced), and its primary rays whose payload no hit or miss stage wrote (see
 /// [`no_payload_word`]).
 pub const BINDING_HIT_IDS: u32 = 7;
+/// u32 words per pixel in the hit-id buffer: the object and primitive the first primary ray
+/// hit, the shadow rays traced, and the primary rays no stage wrote a payload for.
 pub const HIT_IDS_PER_PIXEL: u32 = 4;
 /// The fourth hit-id word of a pixel holds `count | first << NO_PAYLOAD_FIRST_SHIFT`: how many
 /// of its primary rays came back with the payload ray generation poisoned, and the sample
@@ -64,6 +66,7 @@ pub const BINDING_PROBE_RESULTS: u32 = 11;
 
 /// `ExplainRay::kind` of a primary ray and of a shadow ray.
 pub const EXPLAIN_PRIMARY: u32 = 0;
+/// `ExplainRay::kind` of a shadow ray.
 pub const EXPLAIN_SHADOW: u32 = 1;
 
 /// The compute renderer (`renderer = "compute"`) runs workgroups of N x N pixels.
@@ -73,19 +76,23 @@ pub const PROBE_GROUP_SIZE: u32 = 64;
 /// Hit kinds of triangles, as the pipeline reports them (`HitKindFrontFacingTriangleKHR` and
 /// `HitKindBackFacingTriangleKHR`); the compute renderer derives them from its ray query.
 pub const HIT_KIND_TRIANGLE_FRONT: u32 = 0xfe;
+/// The hit kind of a triangle's back face (`HitKindBackFacingTriangleKHR`).
 pub const HIT_KIND_TRIANGLE_BACK: u32 = 0xff;
 
 /// Miss shader indices in the shader binding table.
 pub const MISS_PRIMARY: u32 = 0;
+/// The shadow rays' miss shader: it marks the light as seen.
 pub const MISS_SHADOW: u32 = 1;
 
 /// Instance masks: shadow rays see only occluders; emissive objects show but cast no shadow.
 pub const MASK_OCCLUDER: u32 = 0x01;
+/// The instance mask of emissive objects: primary rays see them, shadow rays pass them.
 pub const MASK_EMITTER: u32 = 0x02;
 
 /// Specialisation constants: whether any light casts shadows (0/1), and M for M x M primary
 /// samples per pixel.
 pub const SPEC_SHADOWS: u32 = 0;
+/// Specialisation constant id: the square root of the primary samples per pixel.
 pub const SPEC_SAMPLES_PER_SIDE: u32 = 1;
 /// Specialisation constant: how rect lights' N x N shadow samples are placed.
 pub const SPEC_SHADOW_SAMPLER: u32 = 2;
@@ -99,7 +106,9 @@ pub const SHADOW_SAMPLER_RANDOM: u32 = 1;
 
 /// Material kinds (`Material::kind`).
 pub const MATERIAL_DIFFUSE: u32 = 0;
+/// `Material::kind` of an emissive material.
 pub const MATERIAL_EMISSIVE: u32 = 1;
+/// `Material::kind` of a checker material.
 pub const MATERIAL_CHECKER: u32 = 2;
 /// Diffuse with holes: hits where its alpha pattern is transparent are ignored by the any-hit
 /// stage, for primary and shadow rays alike.
@@ -121,7 +130,9 @@ pub const CUTOUT_TEXTURE: u32 = 3;
 
 /// Light kinds (`Light::kind`).
 pub const LIGHT_DIRECTIONAL: u32 = 0;
+/// `Light::kind` of a point light.
 pub const LIGHT_POINT: u32 = 1;
+/// `Light::kind` of a rectangular area light.
 pub const LIGHT_RECT: u32 = 2;
 
 /// Written to the hit-id buffer (and `HitPayload::ids.w`) when a ray hits nothing.

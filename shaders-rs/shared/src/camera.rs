@@ -6,7 +6,9 @@ use glam::{UVec2, Vec2, Vec3, Vec4, Vec4Swizzles};
 /// A ray with origin and (unit) direction.
 #[derive(Clone, Copy)]
 pub struct Ray {
+    /// Where the ray starts, in world space.
     pub origin: Vec3,
+    /// Where it goes: unit length for camera rays.
     pub direction: Vec3,
 }
 

@@ -6,8 +6,11 @@ use crate::bindings as b;
 use crate::spirv_info::ModuleInfo;
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+/// The language a module of a built-in set is written in.
 pub enum Language {
+    /// Rust, compiled by rust-gpu (`shaders-rs/shaders`).
     Rust,
+    /// GLSL, compiled by glslang (`shaders-glsl`).
     Glsl,
 }
 
@@ -15,16 +18,24 @@ pub enum Language {
 /// the compute stage of the renderer that traces with ray queries alone (`renderer = "compute"`).
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Stage {
+    /// Ray generation: launches the rays, one invocation per pixel or probe ray.
     Raygen,
+    /// Miss: what a ray that hits nothing returns.
     Miss,
+    /// Intersection: a procedural shape's test of a ray against its box.
     Intersection,
+    /// Closest hit: the shading of the nearest hit.
     ClosestHit,
+    /// Any hit: whether a candidate hit counts (alpha-tested geometry).
     AnyHit,
+    /// Callable: a material's shading, called from a closest hit.
     Callable,
+    /// Compute: the renderer that traces with ray queries.
     Compute,
 }
 
 impl Stage {
+    /// Every stage, in pipeline stage order.
     pub const ALL: [Stage; 7] = [
         Stage::Raygen,
         Stage::Miss,
@@ -35,6 +46,7 @@ impl Stage {
         Stage::Compute,
     ];
 
+    /// The stage's name as shader sets and reports write it (`raygen`, `closest_hit`, ...).
     pub fn name(self) -> &'static str {
         match self {
             Stage::Raygen => "raygen",
@@ -62,6 +74,7 @@ impl Stage {
 }
 
 impl Language {
+    /// The language's name as shader sets write it: `rust` or `glsl`.
     pub fn name(self) -> &'static str {
         match self {
             Language::Rust => "rust",
@@ -76,19 +89,34 @@ pub enum GlslSource {
     /// A stage file of `shaders-glsl/`.
     File(&'static str),
     /// A stage file of `shaders-glsl/` compiled with a preprocessor macro defined (`-D`).
-    Variant { file: &'static str, define: &'static str },
+    Variant {
+        /// The stage file.
+        file: &'static str,
+        /// The macro defined.
+        define: &'static str,
+    },
     /// The intersection stage of a registered shape: `shaders-glsl/shapes/SHAPE.glsl` with
     /// `intersection_main.glsl` around its `SHAPE_intersect` (or `SHAPE_naive_intersect`);
     /// `cargo xtask shaders` writes the few lines that join them ([`ModuleSpec::glsl_wrapper`]).
-    Shape { shape: &'static str, hit_kind: u32, naive: bool },
+    Shape {
+        /// The shape's name in the registry (`sphere`, `torus`, ...).
+        shape: &'static str,
+        /// The hit kind its intersection stage reports.
+        hit_kind: u32,
+        /// Whether this is the textbook (`naive`) form kept for comparison.
+        naive: bool,
+    },
 }
 
 /// One compiled module: `spirv/<language>/<name>.spv`, built from the Rust entry point `name`
 /// or from its GLSL source.
 #[derive(Clone, Copy, Debug)]
 pub struct ModuleSpec {
+    /// The module's name: its file `NAME.spv`, and its Rust entry point.
     pub name: &'static str,
+    /// The stage it implements.
     pub stage: Stage,
+    /// Where its GLSL twin comes from.
     pub glsl: GlslSource,
 }
 
@@ -171,8 +199,11 @@ crate::procedural_shapes!(module_table);
 /// environment SPIRV-Tools (`spirv-val`, `spirv-opt`) checks it for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct SpirvVersion {
+    /// (major, minor) of the SPIR-V version.
     pub spirv: (u32, u32),
+    /// (major, minor) of the Vulkan version a device needs to run it.
     pub vulkan: (u32, u32),
+    /// SPIRV-Tools' `--target-env` for it (`vulkan1.1spv1.4`, ...).
     pub target_env: &'static str,
 }
 
@@ -255,15 +286,20 @@ impl ModuleSpec {
 }
 
 impl Language {
+    /// Both languages, Rust first.
     pub const ALL: [Language; 2] = [Language::Rust, Language::Glsl];
 }
 
 /// What a descriptor of the set is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum DescriptorKind {
+    /// The top-level acceleration structure.
     AccelerationStructure,
+    /// A storage image (the rendered image).
     StorageImage,
+    /// A uniform buffer.
     UniformBuffer,
+    /// A storage buffer.
     StorageBuffer,
     /// An array of [`crate::bindings::TEXTURE_SLOTS`] combined image samplers.
     SampledImageArray,
@@ -272,8 +308,11 @@ pub enum DescriptorKind {
 /// One binding of the descriptor set: its number, what it holds and the stages that see it.
 #[derive(Clone, Copy, Debug)]
 pub struct BindingSpec {
+    /// Its binding number (`bindings::BINDING_*`).
     pub binding: u32,
+    /// What it holds.
     pub kind: DescriptorKind,
+    /// The stages that may use it.
     pub stages: &'static [Stage],
 }
 

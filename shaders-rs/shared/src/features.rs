@@ -14,8 +14,11 @@
 /// a scene turns it on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Feature {
+    /// Its bit in `SPEC_FEATURES`.
     pub bit: u32,
+    /// Its name, as `--without`, scene files and reports write it.
     pub name: &'static str,
+    /// What in a scene turns it on, in words.
     pub used_by: &'static str,
 }
 

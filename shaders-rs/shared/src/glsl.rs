@@ -18,15 +18,21 @@ use std::mem::{offset_of, size_of};
 
 /// One field of a mirrored struct.
 pub struct GlslField {
+    /// The field's GLSL type (`vec4`, `uint`, ...).
     pub glsl_type: &'static str,
+    /// The field's name, the same in both languages.
     pub name: &'static str,
+    /// Its byte offset, from the Rust struct (`offset_of!`).
     pub offset: usize,
 }
 
 /// A Rust struct and the GLSL declaration that mirrors it.
 pub struct GlslStruct {
+    /// The struct's name, the same in both languages.
     pub name: &'static str,
+    /// Its size in bytes, from the Rust struct.
     pub size: usize,
+    /// Its fields, in order.
     pub fields: Vec<GlslField>,
 }
 

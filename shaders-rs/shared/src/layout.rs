@@ -29,6 +29,7 @@ pub struct FrameUniform {
     /// Image width and height in pixels: the compute renderer's launch size, which compute
     /// stages have no built-in for (ray generation reads `launch_size`).
     pub width: u32,
+    /// Image height in pixels (see `width`).
     pub height: u32,
     /// Texture level of detail by ray cones ([`crate::texture`]): x, the spread angle of a
     /// primary ray's cone in radians (a pixel's angle at the image centre, over the samples per
@@ -62,7 +63,10 @@ const _: () = assert!(core::mem::size_of::<ObjectData>() == 16);
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
 #[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
 pub struct Primitive {
+    /// The shape's first parameters: a sphere's centre and radius; other shapes', as their
+    /// module says.
     pub a: Vec4,
+    /// The shape's further parameters, as its module says.
     pub b: Vec4,
     /// rgb: multiplies the material's colour (a sphere field's per-sphere colour); w: unused.
     pub tint: Vec4,
@@ -105,6 +109,7 @@ impl Vertex {
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
 #[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
 pub struct Material {
+    /// `bindings::MATERIAL_*`: which of the materials above this is.
     pub kind: u32,
     /// `CUTOUT_NONE`, `CUTOUT_CHECKER` or `CUTOUT_DISCS`.
     pub cutout_pattern: u32,
@@ -112,7 +117,9 @@ pub struct Material {
     pub cutout_scale: f32,
     /// The surface is a hole where the pattern's alpha is below this.
     pub cutout_threshold: f32,
+    /// rgb: the albedo (checker: the first colour); w: unused.
     pub color_a: Vec4,
+    /// rgb: the checker's second colour; w: the checker's cells per object-space unit.
     pub color_b: Vec4,
     /// The base colour texture, which multiplies `color_a` on meshes: x, its slot in the
     /// texture array ([`crate::bindings::BINDING_TEXTURES`]), 0 for none; y, the vertex
@@ -123,6 +130,7 @@ pub struct Material {
     /// matrix: u' = dot(uv_u.xy, uv) + uv_u.z, v' = dot(uv_v.xy, uv) + uv_v.z; w: 0.
     /// Both textures read coordinates through it.
     pub uv_u: Vec4,
+    /// The second row of the texture coordinates' transform (see `uv_u`).
     pub uv_v: Vec4,
     /// rgb: the radiance the surface emits (glTF's emissive factor), added to the light it
     /// reflects; w: 0. Emissive materials (`MATERIAL_EMISSIVE`) show `color_a` instead.
@@ -173,16 +181,22 @@ impl Default for Material {
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
 #[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
 pub struct Light {
+    /// `bindings::LIGHT_*`: which of the lights above this is.
     pub kind: u32,
     /// Shadow samples per side (rect lights).
     pub samples: u32,
     /// 1 when the light casts shadows.
     pub shadows: u32,
+    /// Padding to the 16-byte alignment of `position`.
     pub _pad0: u32,
+    /// xyz: the position (point light, rect light's centre), or the unit direction towards a
+    /// directional light; w: unused.
     pub position: Vec4,
     /// rgb: colour times intensity.
     pub radiance: Vec4,
+    /// xyz: a rect light's first edge vector; w: unused.
     pub u: Vec4,
+    /// xyz: a rect light's second edge vector; w: unused.
     pub v: Vec4,
 }
 const _: () = assert!(core::mem::size_of::<Light>() == 80);
@@ -269,6 +283,7 @@ impl HitPayload {
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct MaterialCall {
+    /// The hit surface's material.
     pub material: Material,
     /// xyz: object-space point; w: 1.
     pub point: Vec4,
@@ -283,6 +298,7 @@ const _: () = assert!(core::mem::size_of::<MaterialCall>() == 160);
 #[repr(C)]
 #[derive(Clone, Copy)]
 pub struct ShadowPayload {
+    /// 1 when something lies between the point and the light.
     pub occluded: u32,
 }
 
@@ -342,7 +358,9 @@ const _: () = assert!(core::mem::size_of::<ExplainRay>() == 48);
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
 #[cfg_attr(feature = "bytemuck", derive(bytemuck::Pod, bytemuck::Zeroable))]
 pub struct ExplainResult {
+    /// A primary ray's payload, as its hit or miss stage left it.
     pub hit: HitPayload,
+    /// x: of a shadow ray, 1 when something cast a shadow; y, z, w: 0.
     pub occluded: UVec4,
 }
 const _: () = assert!(core::mem::size_of::<ExplainResult>() == 96);

@@ -1,6 +1,7 @@
 //! twinray's shared GPU contract: buffer layouts, binding numbers and the math both the Rust
 //! shaders and the host (tests, CPU reference) use. `no_std` on SPIR-V, `std` on the CPU.
 #![cfg_attr(target_arch = "spirv", no_std)]
+#![warn(missing_docs)]
 
 pub mod bindings;
 pub mod camera;

@@ -22,6 +22,7 @@ pub struct SplitMix64(pub u64);
 
 #[cfg(not(target_arch = "spirv"))]
 impl SplitMix64 {
+    /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
         self.0 = self.0.wrapping_add(0x9e37_79b9_7f4a_7c15);
         let mut z = self.0;

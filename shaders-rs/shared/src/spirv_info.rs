@@ -35,11 +35,16 @@ const OP_MODULE_PROCESSED: u32 = 330;
 /// and the debug instructions.
 const BEFORE_ANNOTATIONS: [u32; 14] = [17, 10, 11, 14, 15, 16, 331, 7, 4, 3, 2, 5, 6, OP_MODULE_PROCESSED];
 
-/// Storage classes of what stages pass each other (SPV_KHR_ray_tracing).
+/// Storage classes of what stages pass each other (SPV_KHR_ray_tracing): `CallableDataKHR`,
+/// what a stage that calls a callable passes.
 pub const STORAGE_CALLABLE_DATA: u32 = 5328;
+/// `IncomingCallableDataKHR`: what a callable stage receives.
 pub const STORAGE_INCOMING_CALLABLE_DATA: u32 = 5329;
+/// `RayPayloadKHR`: what a stage that traces passes.
 pub const STORAGE_RAY_PAYLOAD: u32 = 5338;
+/// `HitAttributeKHR`: what an intersection stage reports to the hit stages.
 pub const STORAGE_HIT_ATTRIBUTE: u32 = 5339;
+/// `IncomingRayPayloadKHR`: what hit and miss stages receive.
 pub const STORAGE_INCOMING_RAY_PAYLOAD: u32 = 5342;
 const INTERFACE_STORAGE: [u32; 5] = [
     STORAGE_CALLABLE_DATA,
@@ -169,6 +174,7 @@ impl Ids {
     }
 }
 
+/// What a module declares, as far as the host's checks go.
 #[derive(Debug, Default, PartialEq, Eq)]
 pub struct ModuleInfo {
     /// (major, minor) from the header.

@@ -5,7 +5,9 @@ use glam::Vec3;
 /// A hit: the ray parameter and the object-space normal there (any length, pointing out).
 #[derive(Clone, Copy)]
 pub struct SurfaceHit {
+    /// The ray parameter of the hit.
     pub t: f32,
+    /// The object-space normal there.
     pub normal: Vec3,
 }
 

@@ -153,10 +153,15 @@ pub const MAX_TAPS: u32 = 8;
 /// explicit gradients `dx` and `dy`, averaged.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Taps {
+    /// How many samples.
     pub count: u32,
+    /// The first sample's texture coordinates.
     pub first: Vec2,
+    /// From one sample to the next.
     pub step: Vec2,
+    /// The gradient of the coordinates along the image's x.
     pub dx: Vec2,
+    /// The gradient along y.
     pub dy: Vec2,
 }
 

@@ -9,6 +9,8 @@ use crate::layout::Primitive;
 use crate::surface::{is_self_root, self_reach2, stable_roots, Nearest, SurfaceHit};
 use glam::Vec3;
 
+/// The nearest hit of the ray (`origin`, `direction`, object space) on the capped cylinder
+/// `primitive` (a.x radius, a.y half height) with t in [`t_min`, `t_max`], or `None`.
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
     solve(origin, direction, primitive, t_min, t_max, true)
 }

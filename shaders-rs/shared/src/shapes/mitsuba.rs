@@ -7,6 +7,7 @@ use glam::{Mat4, Vec3};
 /// One part of a shape as Mitsuba draws it.
 #[derive(Clone, Debug, PartialEq)]
 pub struct MitsubaPart {
+    /// Which Mitsuba shape it is.
     pub kind: MitsubaKind,
     /// Maps the Mitsuba shape's own space into the twinray shape's object space.
     pub to_object: Mat4,
@@ -36,8 +37,11 @@ pub enum MitsubaKind {
 /// shades a mesh with vertex normals).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct TriangleMesh {
+    /// Vertex positions.
     pub positions: Vec<Vec3>,
+    /// Unit normals, one per vertex.
     pub normals: Vec<Vec3>,
+    /// Vertex indices of each triangle, counter-clockwise seen from outside.
     pub triangles: Vec<[u32; 3]>,
 }
 
@@ -58,9 +62,13 @@ pub const ALONG: u32 = 512;
 /// the surface's unit normal there in the same plane.
 #[derive(Clone, Copy, Debug)]
 pub struct ProfilePoint {
+    /// Distance from the y axis.
     pub rho: f32,
+    /// Height.
     pub y: f32,
+    /// The normal's component away from the y axis.
     pub normal_rho: f32,
+    /// The normal's component along y.
     pub normal_y: f32,
 }
 

@@ -31,10 +31,15 @@ pub enum ParamType {
 /// A value of a scene key, as the host parsed it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Value {
+    /// A number (`ParamType::Number`).
     Number(f32),
+    /// Two numbers.
     Pair([f32; 2]),
+    /// Three numbers.
     Triple([f32; 3]),
+    /// A count.
     Count(u32),
+    /// A random seed.
     Seed(u64),
 }
 
@@ -54,8 +59,11 @@ pub enum Rule {
 /// One scene key of a shape kind.
 #[derive(Clone, Copy, Debug)]
 pub struct Param {
+    /// The key as the scene file writes it.
     pub name: &'static str,
+    /// The type of its value.
     pub ty: ParamType,
+    /// What its value must satisfy.
     pub rule: Rule,
     /// Used when the key is left out; the key is required when `None`.
     pub default: Option<Value>,
@@ -161,6 +169,7 @@ impl Values {
         }
     }
 
+    /// The number `name` holds; a kind reads only its own keys, so any other is a bug (a panic).
     pub fn number(&self, name: &str) -> f32 {
         match self.get(name) {
             Value::Number(v) => v,
@@ -168,6 +177,7 @@ impl Values {
         }
     }
 
+    /// The pair `name` holds (see [`Self::number`]).
     pub fn pair(&self, name: &str) -> [f32; 2] {
         match self.get(name) {
             Value::Pair(v) => v,
@@ -175,6 +185,7 @@ impl Values {
         }
     }
 
+    /// The triple `name` holds (see [`Self::number`]).
     pub fn triple(&self, name: &str) -> [f32; 3] {
         match self.get(name) {
             Value::Triple(v) => v,
@@ -182,6 +193,7 @@ impl Values {
         }
     }
 
+    /// The count `name` holds (see [`Self::number`]).
     pub fn count(&self, name: &str) -> u32 {
         match self.get(name) {
             Value::Count(v) => v,
@@ -189,6 +201,7 @@ impl Values {
         }
     }
 
+    /// The seed `name` holds (see [`Self::number`]).
     pub fn seed(&self, name: &str) -> u64 {
         match self.get(name) {
             Value::Seed(v) => v,
@@ -200,7 +213,9 @@ impl Values {
 /// Axis-aligned box of one procedural primitive, in object space.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Aabb {
+    /// The corner of smallest coordinates.
     pub min: Vec3,
+    /// The corner of largest coordinates.
     pub max: Vec3,
 }
 
@@ -219,6 +234,7 @@ pub struct ShapeKind {
     pub name: &'static str,
     /// One sentence for the docs table and `twinray scenes`.
     pub about: &'static str,
+    /// Its scene keys.
     pub params: &'static [Param],
     /// Relations between keys that single keys cannot check (say, minor < major radius).
     pub check: fn(&Values) -> Result<(), String>,

@@ -20,8 +20,11 @@ pub const ON_SURFACE: f32 = 1.0e-3;
 /// The two ray parameters where a ray meets a sphere, `near <= far`; meaningless if `!hit`.
 #[derive(Clone, Copy)]
 pub struct SphereRoots {
+    /// Whether the ray's line meets the sphere.
     pub hit: bool,
+    /// The nearer ray parameter.
     pub near: f32,
+    /// The farther ray parameter.
     pub far: f32,
     /// The ray starts on the surface: the root nearer to t = 0 is the origin itself.
     pub on_surface: bool,

@@ -249,6 +249,8 @@ impl Candidate {
     }
 }
 
+/// The nearest hit of the ray (`origin`, `direction`, object space) on the torus `primitive`
+/// (a.x ring radius, a.y tube radius) with t in [`t_min`, `t_max`], or `None`.
 pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f32, t_max: f32) -> Option<SurfaceHit> {
     let (big_r, small_r) = (primitive.a.x, primitive.a.y);
     let r = small_r / big_r;

@@ -14,8 +14,11 @@ use spirv_std::num_traits::Float;
 /// moving by `e` along the surface moves them by (`du . e`, `dv . e`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ShapeUv {
+    /// The coordinates at the point.
     pub uv: Vec2,
+    /// The object-space gradient of u.
     pub du: Vec3,
+    /// The object-space gradient of v.
     pub dv: Vec3,
 }
 
