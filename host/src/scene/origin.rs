@@ -94,11 +94,11 @@ pub fn fits(o: Vec3, origin: Vec3) -> bool {
 ///
 /// Rays are put in cells first: a cell is a binade of the ray's largest coordinate and, along
 /// each axis, a slot 2^-CELL_BITS of that binade wide, so a cell's rays are at most an eighth
-/// of their magnitude apart. A cell's origin is [`group_origin`] of its rays. A cell with no
-/// object near its origin that is far from the world origin for its size ([`worth_moving`])
+/// of their magnitude apart. A cell's origin is `group_origin` of its rays. A cell with no
+/// object near its origin that is far from the world origin for its size (`worth_moving`)
 /// stays at the world origin: its rays see only what lies about as far from them as from the
 /// world origin, or what is large enough to set its own rounding, where moving gains little
-/// and costs a launch. The cells are then merged ([`merge`]).
+/// and costs a launch. The cells are then merged (`merge`).
 pub fn launches(origins: &[Vec3], boxes: &[Aabb]) -> Vec<Launch> {
     let mut cells: BTreeMap<(i32, [i64; 3]), Vec<usize>> = BTreeMap::new();
     let mut world = Launch { origin: Vec3::ZERO, rays: Vec::new() };
