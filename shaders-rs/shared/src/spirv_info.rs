@@ -245,55 +245,59 @@ pub fn parse(bytes: &[u8]) -> Result<ModuleInfo, String> {
     Ok(info)
 }
 
-/// `bytes` without the `RayQueryKHR` capability and the `SPV_KHR_ray_query` extension when the
-/// module has no ray query type (so uses no ray query instruction); unchanged otherwise.
-pub fn without_unused_ray_query(bytes: &[u8]) -> Result<Vec<u8>, String> {
+/// A checked module as its header and its instructions (each its words, opcode first), for the
+/// rewrites below.
+fn instructions(bytes: &[u8]) -> Result<(Vec<u32>, Vec<Vec<u32>>), String> {
     parse(bytes)?;
     let words: Vec<u32> = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
     let mut instructions = Vec::new();
     let mut at = 5;
     while at < words.len() {
         let count = ((words[at] >> 16) as usize).max(1);
-        instructions.push(&words[at..(at + count).min(words.len())]);
+        instructions.push(words[at..(at + count).min(words.len())].to_vec());
         at += count;
     }
-    let opcode = |i: &[u32]| i[0] & 0xffff;
+    Ok((words[..5].to_vec(), instructions))
+}
+
+/// A module's bytes from its header and instructions.
+fn assemble(header: &[u32], instructions: &[Vec<u32>]) -> Vec<u8> {
+    header.iter().chain(instructions.iter().flatten()).flat_map(|w| w.to_le_bytes()).collect()
+}
+
+fn opcode(instruction: &[u32]) -> u32 {
+    instruction[0] & 0xffff
+}
+
+/// `bytes` without the `RayQueryKHR` capability and the `SPV_KHR_ray_query` extension when the
+/// module has no ray query type (so uses no ray query instruction); unchanged otherwise.
+pub fn without_unused_ray_query(bytes: &[u8]) -> Result<Vec<u8>, String> {
+    let (header, mut instructions) = instructions(bytes)?;
     if instructions.iter().any(|i| opcode(i) == OP_TYPE_RAY_QUERY) {
         return Ok(bytes.to_vec());
     }
-    let unused = |i: &&[u32]| match (opcode(i), &i[1..]) {
+    let unused = |i: &Vec<u32>| match (opcode(i), &i[1..]) {
         (OP_CAPABILITY, [cap]) => *cap == CAPABILITY_RAY_QUERY,
         (OP_EXTENSION, name) => literal_string(name) == "SPV_KHR_ray_query",
         _ => false,
     };
-    let kept = words[..5].iter().chain(instructions.iter().filter(|i| !unused(i)).flat_map(|i| i.iter()));
-    Ok(kept.flat_map(|w| w.to_le_bytes()).collect())
+    instructions.retain(|i| !unused(i));
+    Ok(assemble(&header, &instructions))
 }
 
 /// `bytes` recording `record` (`contract::record()`) in an `OpModuleProcessed` where the
 /// logical layout puts it, any contract record it had before dropped.
 pub fn with_record(bytes: &[u8], record: &str) -> Result<Vec<u8>, String> {
-    parse(bytes)?;
-    let words: Vec<u32> = bytes.chunks_exact(4).map(|c| u32::from_le_bytes([c[0], c[1], c[2], c[3]])).collect();
-    let mut instructions = Vec::new();
-    let mut at = 5;
-    while at < words.len() {
-        let count = ((words[at] >> 16) as usize).max(1);
-        instructions.push(&words[at..(at + count).min(words.len())]);
-        at += count;
-    }
-    let opcode = |i: &[u32]| i[0] & 0xffff;
-    let old_record = |i: &&[u32]| {
+    let (header, mut instructions) = instructions(bytes)?;
+    let old_record = |i: &Vec<u32>| {
         opcode(i) == OP_MODULE_PROCESSED && literal_string(&i[1..]).starts_with(crate::contract::RECORD_PREFIX)
     };
     instructions.retain(|i| !old_record(i));
     let place =
         instructions.iter().position(|i| !BEFORE_ANNOTATIONS.contains(&opcode(i))).unwrap_or(instructions.len());
     let text = string_words(record);
-    let new = [vec![((text.len() as u32 + 1) << 16) | OP_MODULE_PROCESSED], text].concat();
-    instructions.insert(place, &new);
-    let all = words[..5].iter().chain(instructions.iter().flat_map(|i| i.iter()));
-    Ok(all.flat_map(|w| w.to_le_bytes()).collect())
+    instructions.insert(place, [vec![((text.len() as u32 + 1) << 16) | OP_MODULE_PROCESSED], text].concat());
+    Ok(assemble(&header, &instructions))
 }
 
 /// `text` as a SPIR-V literal string: UTF-8, nul-terminated, packed four bytes to a word.
