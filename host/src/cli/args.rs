@@ -49,6 +49,10 @@ pub struct GlobalArgs {
     /// what did not finish [default: 120].
     #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_timeout)]
     pub gpu_timeout: Option<std::time::Duration>,
+    /// Seconds the compilation of a shader crate named as a set may take; past it the build is
+    /// stopped and the command ends with exit code 2 [default: 1200].
+    #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_timeout)]
+    pub build_timeout: Option<std::time::Duration>,
     /// Leave robust buffer and image access (VK_EXT_robustness2) off: a stage that reads
     /// outside a buffer then reads what the driver gives, not zeros [default: on where the
     /// device has it].

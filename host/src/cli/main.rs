@@ -2,7 +2,7 @@
 //! `bench`, `pipeline-bench` in `pipeline_bench`, ...), its arguments beside its handler but
 //! where a helper module takes them too (`render`'s, `compare`'s and `bench`'s are in `args`,
 //! as `frames` and `alone` read them):
-//! `info`, `scenes`, `render`, `compare`, `bisect`, `explain`, `view`, `inspect`, `probe`,
+//! `info`, `scenes`, `new`, `build`, `render`, `compare`, `bisect`, `explain`, `view`, `inspect`, `probe`,
 //! `stability`, `reference`, `bench`, `animate-bench`, `pipeline-bench`, `stage-bench`,
 //! `places`, `crosscheck`. What several share: `args` (global flags, frame, animation and
 //! `--alone-in` arguments), `image_args` (the viewpoint), `session` (the context and render
@@ -18,6 +18,7 @@ mod animate_bench;
 mod args;
 mod bench;
 mod bisect;
+mod build;
 mod compare;
 mod crosscheck;
 mod explain;
@@ -25,6 +26,7 @@ mod frames;
 mod image_args;
 mod info;
 mod inspect;
+mod new;
 mod pipeline_bench;
 mod places;
 mod probe;
@@ -83,6 +85,12 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Write a shader crate of your own in a new folder: the built-in Rust stages, the contract
+    /// (twinray-shared) and the toolchain file; with --glsl, the GLSL twins too.
+    New(new::NewArgs),
+    /// Build a folder of stage sources (a shader crate, GLSL twins) into a set; every command
+    /// that takes a set builds the folder it names the same way.
+    Build(build::BuildArgs),
     /// Render a scene with one shader set to a PNG; with --frames, a moving scene's frames.
     Render(RenderArgs),
     /// Render a scene with two shader sets and report how they differ in image and GPU time;
@@ -163,6 +171,9 @@ fn main() -> ExitCode {
     crash::quiet_caught_panics();
     let _command = activity::doing(format!("twinray {}", matches.subcommand_name().unwrap_or_default()));
     twinray::util::srgb::set_tone_map(cli.global.tone_map);
+    if let Some(timeout) = cli.global.build_timeout {
+        twinray::shaders::sources::set_build_timeout(timeout);
+    }
     if let Some(Err(e)) = cli.global.asset_root.as_deref().map(twinray::util::input::set_asset_root) {
         eprintln!("error: {e}");
         return ExitCode::from(2);
@@ -170,6 +181,8 @@ fn main() -> ExitCode {
     let result = match cli.command {
         Command::Info { json } => info::info(&cli.global, json),
         Command::Scenes { json } => scenes::scenes(json),
+        Command::New(args) => new::new(args),
+        Command::Build(args) => build::build(args, cli.global.build_timeout),
         Command::Render(args) => render::render(&cli.global, args),
         Command::Compare(args) => compare::compare(&cli.global, args),
         Command::Bisect(args) => bisect::bisect(&cli.global, args),

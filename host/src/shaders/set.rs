@@ -1,7 +1,8 @@
 //! A shader set, written as a base followed by overrides, each `KEY=VALUE`:
 //!
-//! - the base: `rust`, `glsl` (the built-in sets), or a folder of compiled modules
-//!   (`NAME.spv` for each module of the catalog, as `cargo xtask shaders` writes them);
+//! - the base: `rust`, `glsl` (the built-in sets), a folder of compiled modules (`NAME.spv`
+//!   for each module of the catalog, as `cargo xtask shaders` writes them), or a folder of
+//!   stage sources, built first (`sources`: a Rust shader crate, GLSL twins);
 //! - `STAGE=LANGUAGE` or `STAGE=FOLDER`: every module of a stage (`raygen`, `miss`,
 //!   `intersection`, `closest_hit`) from that set;
 //! - `MODULE=LANGUAGE`, `MODULE=FOLDER` or `MODULE=FILE.spv`: one module of the catalog
@@ -180,14 +181,22 @@ fn target(word: &str) -> Result<Target, String> {
         _ => {}
     }
     let path = PathBuf::from(word);
-    if path.is_dir() {
+    if path.is_dir() && super::sources::holds_sources(&path) {
+        Ok(Target::Folder(super::sources::built(&path)?))
+    } else if path.is_dir() && MODULES.iter().any(|m| path.join(format!("{}.spv", m.name)).exists()) {
         Ok(Target::Folder(path))
+    } else if path.is_dir() {
+        Err(format!(
+            "{word}: neither a set nor a shader crate (no NAME.spv of the catalog, no Cargo.toml, no raygen.rgen)"
+        ))
     } else if path.is_file() {
         Ok(Target::File(path))
     } else if word.ends_with(".spv") || word.contains('/') {
         Err(format!("{word}: no such file or folder"))
     } else {
-        Err(format!("unknown language {word:?} (expected rust, glsl, a folder of modules or a .spv file)"))
+        Err(format!(
+            "unknown language {word:?} (expected rust, glsl, a shader crate, a folder of modules or a .spv file)"
+        ))
     }
 }
 

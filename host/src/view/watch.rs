@@ -23,7 +23,7 @@ pub fn watch(
         let paths: Vec<PathBuf> = event
             .paths
             .into_iter()
-            .filter(|p| !is_editor_scratch(p))
+            .filter(|p| !is_editor_scratch(p) && !is_build_output(p, &wanted_dirs))
             .filter(|p| wanted_files.contains(p) || wanted_dirs.iter().any(|d| p.starts_with(d)))
             .collect();
         if !paths.is_empty() {
@@ -52,6 +52,14 @@ fn is_save(kind: &EventKind) -> bool {
     }
 }
 
+/// Whether `path` is under a `target/` folder inside a watched folder: a source folder's build
+/// writes its set there, and must not start a build of its own.
+fn is_build_output(path: &Path, dirs: &[PathBuf]) -> bool {
+    dirs.iter()
+        .filter_map(|d| path.strip_prefix(d).ok())
+        .any(|rest| rest.components().any(|c| c.as_os_str() == "target"))
+}
+
 /// Swap, backup and lock files editors write beside a file being edited.
 fn is_editor_scratch(path: &Path) -> bool {
     let name = path.file_name().map(|n| n.to_string_lossy()).unwrap_or_default();
@@ -72,5 +80,8 @@ mod tests {
         assert!(!is_save(&EventKind::Access(AccessKind::Close(AccessMode::Read))));
         assert!(!is_save(&EventKind::Modify(ModifyKind::Metadata(MetadataKind::AccessTime))));
         assert!(is_editor_scratch(Path::new("/s/.miss.rmiss.swp")) && !is_editor_scratch(Path::new("/s/miss.rmiss")));
+        let dirs = [PathBuf::from("/crate")];
+        assert!(is_build_output(Path::new("/crate/target/twinray/set/raygen.spv"), &dirs));
+        assert!(!is_build_output(Path::new("/crate/src/hit.rs"), &dirs));
     }
 }

@@ -3,8 +3,11 @@
 //! every module validated with spirv-val and checked for what the host expects. `cargo xtask
 //! shaders` and `watch` use it on this checkout; `twinray view` on any checkout it is given.
 
+pub mod builder;
 mod exit;
+pub mod folder;
 mod process;
+pub mod starter;
 pub mod uniformity;
 
 use anyhow::{bail, Context, Result};
@@ -79,17 +82,27 @@ pub fn build_set_without(root: &Path, language: Language, dir: &Path, output: Ou
     std::fs::create_dir_all(dir)?;
     match language {
         Language::Rust => build_rust(root, dir, output, without)?,
-        Language::Glsl => build_glsl(root, dir, output, without)?,
+        Language::Glsl => build_glsl(&root.join("shaders-glsl"), dir, output, without)?,
     }
-    for spec in MODULES {
+    let names: Vec<String> = MODULES.iter().map(|m| m.name.to_string()).collect();
+    postprocess(dir, &names, language, &twinray_shared::contract::record())
+}
+
+/// Stamps each module `names` of `dir` with the contract `record` (rust-gpu's first stripped of
+/// their debug info), validates it with spirv-val and checks what it declares for its stage.
+pub(crate) fn postprocess(dir: &Path, names: &[String], language: Language, record: &str) -> Result<()> {
+    if language == Language::Rust {
+        strip_debug_info(dir, names)?;
+    }
+    for spec in MODULES.iter().filter(|m| names.iter().any(|n| n == m.name)) {
         let path = dir.join(format!("{}.spv", spec.name));
         let label = format!("{} {}", language.name(), spec.name);
-        record_contract(&path, &twinray_shared::contract::record())?;
+        record_contract(&path, record)?;
         process::output(Command::new("spirv-val").args(twinray_shared::catalog::SPIRV_VAL_ARGS).arg(&path))
             .with_context(|| format!("spirv-val rejected {label}"))?;
         let (info, _) = read_module(dir, spec)?;
-        twinray_shared::module_check::check_declarations(spec, &info, language)
-            .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        let entry = spec.find_entry(&info).unwrap_or_else(|| spec.entry_point(language).to_string());
+        twinray_shared::module_check::check_module(spec, &info, &entry).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     }
     Ok(())
 }
@@ -126,7 +139,7 @@ pub fn builder_target() -> PathBuf {
 }
 
 /// A command on the pinned nightly, without the outer (stable) cargo's toolchain variables.
-fn nightly(program: &str) -> Command {
+pub(crate) fn nightly(program: &str) -> Command {
     let mut command = Command::new("rustup");
     command.args(["run", NIGHTLY, program]);
     for var in ["RUSTUP_TOOLCHAIN", "RUSTC", "RUSTDOC", "CARGO", "RUSTC_WRAPPER", "CARGO_TARGET_DIR"] {
@@ -147,42 +160,30 @@ fn without_names(without: u32, f: impl Fn(&twinray_shared::features::Feature) ->
 }
 
 fn build_rust(root: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
-    let cache = cache_dir();
-    let target = builder_target();
-    if !target.join("release/twinray-shader-builder").exists() {
-        println!("shaders: building the rust-gpu builder (about 9 minutes, once; cached in {})", target.display());
-    }
-    run_tool(
-        output,
-        nightly("cargo")
-            .args(["build", "--release", "--manifest-path"])
-            .arg(root.join("shaders-rs/builder/Cargo.toml"))
-            .env("CARGO_TARGET_DIR", &target),
-    )?;
-    // spirv-builder looks for librustc_codegen_spirv.so on the library path.
-    let deps = target.join("release");
+    let builder = builder::compiled(&root.join("shaders-rs/builder/Cargo.toml"), output == Output::Shown)?;
     let features = without_names(without, |feature| format!("without-{}", feature.name));
     // A target folder of its own for other features, so that switching does not rebuild both.
-    let shader_target = if without == 0 { cache.join("shader-target") } else { cache.join("shader-target-without") };
-    run_tool(
-        output,
-        nightly(&target.join("release/twinray-shader-builder").to_string_lossy())
-            .arg(root.join("shaders-rs/shaders"))
-            .arg(out)
-            .arg(shader_target)
-            .arg(features.join(","))
-            .env("LD_LIBRARY_PATH", deps),
-    )
-    .context("building the Rust shaders")?;
-    strip_debug_info(out)
+    let shader_target = cache_dir().join(if without == 0 { "shader-target" } else { "shader-target-without" });
+    run_tool(output, &mut run_builder(&builder, &root.join("shaders-rs/shaders"), out, &shader_target, &features))
+        .context("building the Rust shaders")
+}
+
+/// The builder's command that compiles the shader crate `crate_dir` (with its cargo
+/// `features`) into `out`, one `ENTRY.spv` per entry point, in the cargo target folder `target`.
+pub(crate) fn run_builder(builder: &Path, crate_dir: &Path, out: &Path, target: &Path, features: &[String]) -> Command {
+    let mut command = nightly(&builder.to_string_lossy());
+    command.arg(crate_dir).arg(out).arg(target).arg(features.join(","));
+    // spirv-builder looks for librustc_codegen_spirv.so on the library path.
+    command.env("LD_LIBRARY_PATH", builder.parent().unwrap_or(Path::new(".")));
+    command
 }
 
 /// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
 /// is off, so that the committed modules depend only on the code, and the ray query capability
 /// from modules that trace no ray query; decorates non-uniform descriptor accesses
 /// `NonUniform`, which rust-gpu's inliner drops (`uniformity`).
-fn strip_debug_info(dir: &Path) -> Result<()> {
-    for spec in MODULES {
+fn strip_debug_info(dir: &Path, names: &[String]) -> Result<()> {
+    for spec in MODULES.iter().filter(|m| names.iter().any(|n| n == m.name)) {
         let path = dir.join(format!("{}.spv", spec.name));
         let stripped = dir.join(format!("{}.stripped", spec.name));
         run(Command::new("spirv-opt").arg("--strip-debug").arg(&path).arg("-o").arg(&stripped))
@@ -199,12 +200,12 @@ fn strip_debug_info(dir: &Path) -> Result<()> {
     Ok(())
 }
 
-/// Compiles every GLSL module; a shape's intersection stage is the few lines of
-/// `ModuleSpec::glsl_wrapper`, written beside the output, with `shaders-glsl/` on the include
-/// path.
-fn build_glsl(root: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
+/// Compiles every GLSL module of the twins in `include` (a checkout's `shaders-glsl/`); a
+/// shape's intersection stage is the few lines of `ModuleSpec::glsl_wrapper`, written beside
+/// the output, with `include` on the include path.
+pub(crate) fn build_glsl(include: &Path, out: &Path, output: Output, without: u32) -> Result<()> {
     let defines = without_names(without, glsl_define);
-    let include = root.join("shaders-glsl");
+    let include = include.to_path_buf();
     let wrappers = out.join("wrappers");
     std::fs::create_dir_all(&wrappers)?;
     for spec in MODULES {

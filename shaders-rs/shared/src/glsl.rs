@@ -146,7 +146,12 @@ impl GlslStruct {
 /// The text of `twinray_layout.glsl`.
 pub fn layout_include() -> Result<String, String> {
     let mut s = String::new();
-    s.push_str("// Generated from twinray-shared by `cargo xtask shaders`; do not edit.\n");
+    // The contract's version first: a folder of GLSL twins is built against the one it names.
+    let _ = writeln!(
+        s,
+        "// Generated from twinray-shared {} by `cargo xtask shaders`; do not edit.",
+        crate::contract::CONTRACT_VERSION
+    );
     s.push_str("#ifndef TWINRAY_LAYOUT_GLSL\n#define TWINRAY_LAYOUT_GLSL\n\n");
     let uints = [
         ("DESCRIPTOR_SET", DESCRIPTOR_SET),

@@ -1,0 +1,63 @@
+//! The rust-gpu builder (`shaders-rs/builder`) and the toolchain it needs: the pinned nightly
+//! installed with rustup when missing, and the builder compiled once per machine into the cache
+//! (`builder_target`), where rustc_codegen_spirv, the backend, is built once for every crate
+//! and checkout on the machine.
+
+use crate::process::{output, run};
+use crate::{builder_target, cache_dir, nightly, NIGHTLY};
+use anyhow::{Context, Result};
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+/// The pinned nightly, installed (with the components rust-gpu needs) when rustup lacks it.
+pub fn ensure_toolchain() -> Result<()> {
+    let installed = output(Command::new("rustup").args(["toolchain", "list"]))
+        .context("rustup is needed to build Rust stages (https://rustup.rs)")?;
+    if installed.lines().any(|l| l.starts_with(NIGHTLY)) {
+        return Ok(());
+    }
+    eprintln!("build: installing the Rust toolchain {NIGHTLY} that rust-gpu 0.11 needs (once per machine)");
+    run(Command::new("rustup")
+        .args(["toolchain", "install", NIGHTLY, "--profile", "minimal", "--component"])
+        .arg("rust-src,rustc-dev,llvm-tools"))
+}
+
+/// The builder compiled from the manifest `manifest` (a checkout's `shaders-rs/builder`, or the
+/// embedded copy), with its output shown when `shown`.
+pub fn compiled(manifest: &Path, shown: bool) -> Result<PathBuf> {
+    ensure_toolchain()?;
+    let target = builder_target();
+    let binary = target.join("release/twinray-shader-builder");
+    if !binary.exists() {
+        eprintln!(
+            "build: compiling rust-gpu's backend (about 9 minutes on 2 cores, once; cached in {})",
+            target.display()
+        );
+    }
+    let mut command = nightly("cargo");
+    command.args(["build", "--release", "--manifest-path"]).arg(manifest).env("CARGO_TARGET_DIR", &target);
+    if shown {
+        run(&mut command)?;
+    } else {
+        output(command.arg("--quiet")).context("compiling the rust-gpu builder")?;
+    }
+    Ok(binary)
+}
+
+/// The builder this binary carries, written to the cache (only files that changed, so cargo
+/// sees nothing new) and compiled.
+pub fn embedded() -> Result<PathBuf> {
+    let dir = cache_dir().join("builder-src");
+    for (path, bytes) in crate::starter::builder_sources() {
+        let full = dir.join(path);
+        if std::fs::read(&full).is_ok_and(|old| old == *bytes) {
+            continue;
+        }
+        std::fs::create_dir_all(full.parent().unwrap_or(&dir))?;
+        // Written aside and renamed: two builds at once never read half a file.
+        let temporary = full.with_extension(format!("tmp{}", std::process::id()));
+        std::fs::write(&temporary, bytes)?;
+        std::fs::rename(&temporary, &full)?;
+    }
+    compiled(&dir.join("Cargo.toml"), false)
+}

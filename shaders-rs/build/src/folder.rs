@@ -1,0 +1,252 @@
+//! A folder of stage sources as a set: a Rust shader crate (a `Cargo.toml` depending on
+//! `twinray-shared`), built by rust-gpu through the builder this binary carries, or a folder
+//! of GLSL twins (`raygen.rgen` and its includes), built by glslang. The modules land in the
+//! folder's `target/twinray/set/`, and nothing else of the folder is written; a folder whose
+//! files have not changed since its last build is not built again.
+
+use crate::process::{output_within, Finished};
+use crate::{nightly, postprocess, require_tools, run_builder, Output};
+use anyhow::{anyhow, bail, Context, Result};
+use std::hash::{Hash, Hasher};
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+use twinray_shared::catalog::{Language, MODULES};
+use twinray_shared::contract;
+
+/// What kind of sources a folder holds.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Sources {
+    /// A Rust shader crate: a `Cargo.toml`.
+    Crate,
+    /// GLSL twins: a `raygen.rgen`.
+    Glsl,
+}
+
+/// The kind of sources `dir` holds, if it holds any.
+pub fn sources_in(dir: &Path) -> Option<Sources> {
+    if dir.join("Cargo.toml").is_file() {
+        Some(Sources::Crate)
+    } else if dir.join("raygen.rgen").is_file() {
+        Some(Sources::Glsl)
+    } else {
+        None
+    }
+}
+
+/// How long a build may take, and whether an up-to-date one is built again.
+#[derive(Clone, Copy, Debug)]
+pub struct Options {
+    /// The deadline of the crate's compilation (the backend's first build has its own).
+    pub timeout: Duration,
+    pub force: bool,
+}
+
+impl Default for Options {
+    fn default() -> Self {
+        Options { timeout: Duration::from_secs(20 * 60), force: false }
+    }
+}
+
+/// A folder's built set.
+#[derive(Debug)]
+pub struct Built {
+    /// The folder of modules, `NAME.spv` for each module the sources define.
+    pub set: PathBuf,
+    /// Whether it was built now (false: its sources had not changed).
+    pub rebuilt: bool,
+    /// The contract version the modules record.
+    pub contract: String,
+    pub modules: usize,
+    pub seconds: f64,
+}
+
+/// Where a folder's build goes, under its `target/`.
+pub fn set_dir(dir: &Path) -> PathBuf {
+    dir.join("target/twinray/set")
+}
+
+/// Builds the set of the sources in `dir`, or finds it up to date. A crate that does not
+/// compile has its compiler's errors printed to standard error as they were written.
+pub fn build(dir: &Path, options: Options) -> Result<Built> {
+    let start = Instant::now();
+    let kind = sources_in(dir).ok_or_else(|| {
+        anyhow!("{}: no shader sources (a folder of them holds a Cargo.toml or a raygen.rgen)", dir.display())
+    })?;
+    require_tools()?;
+    let version = match kind {
+        Sources::Crate => crate_contract(dir)?,
+        Sources::Glsl => glsl_contract(dir)?,
+    };
+    if let Some(refusal) = contract::refusal(&version) {
+        bail!("{}: built against twinray-shared {version}, refused: {refusal}", dir.display());
+    }
+    let set = set_dir(dir);
+    let stamp = dir.join("target/twinray/set.stamp");
+    let hash = format!("{:016x}", content_hash(dir, &version)?);
+    let unchanged = std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == hash) && set.is_dir();
+    if unchanged && !options.force {
+        let modules = count_modules(&set);
+        return Ok(Built { set, rebuilt: false, contract: version, modules, seconds: start.elapsed().as_secs_f64() });
+    }
+    let _ = std::fs::remove_file(&stamp);
+    let building = dir.join("target/twinray/building");
+    if building.exists() {
+        std::fs::remove_dir_all(&building)?;
+    }
+    std::fs::create_dir_all(&building)?;
+    let names = match kind {
+        Sources::Crate => compile_crate(dir, &building, options.timeout)?,
+        Sources::Glsl => {
+            crate::build_glsl(dir, &building, Output::OnFailure, 0)?;
+            MODULES.iter().map(|m| m.name.to_string()).collect()
+        }
+    };
+    let language = if kind == Sources::Crate { Language::Rust } else { Language::Glsl };
+    postprocess(&building, &names, language, &format!("{}{version}", contract::RECORD_PREFIX))?;
+    if set.exists() {
+        std::fs::remove_dir_all(&set)?;
+    }
+    std::fs::rename(&building, &set)?;
+    std::fs::write(&stamp, &hash)?;
+    let modules = names.len();
+    Ok(Built { set, rebuilt: true, contract: version, modules, seconds: start.elapsed().as_secs_f64() })
+}
+
+fn count_modules(set: &Path) -> usize {
+    MODULES.iter().filter(|m| set.join(format!("{}.spv", m.name)).is_file()).count()
+}
+
+/// Compiles the crate in `dir` into `out` under `timeout`, and returns its entry points, each
+/// a module of the catalog.
+fn compile_crate(dir: &Path, out: &Path, timeout: Duration) -> Result<Vec<String>> {
+    let builder = crate::builder::embedded()?;
+    let target = dir.join("target/twinray/cargo");
+    let mut command = run_builder(&builder, dir, out, &target, &[]);
+    let finished = output_within(&mut command, timeout)?;
+    let Finished { status, stderr, .. } = finished;
+    match status {
+        None => bail!(
+            "{}: the build did not finish within {} s and was stopped (--build-timeout sets the deadline)",
+            dir.display(),
+            timeout.as_secs()
+        ),
+        Some(s) if !s.success() => {
+            // The compiler's words, as cargo printed them, then the one line of the error.
+            eprint!("{stderr}");
+            bail!("{}: the crate does not build (the compiler's errors are above)", dir.display())
+        }
+        Some(_) => {}
+    }
+    entry_points(dir, out)
+}
+
+/// The modules rust-gpu wrote to `out`, each checked to be a module of the catalog.
+fn entry_points(dir: &Path, out: &Path) -> Result<Vec<String>> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(out)? {
+        let path = entry?.path();
+        let Some(name) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else { continue };
+        if path.extension().is_some_and(|e| e == "spv") {
+            if !MODULES.iter().any(|m| m.name == name) {
+                bail!(
+                    "{}: entry point `{name}` is no module of twinray's catalog (twinray_shared::catalog names them all)",
+                    dir.display()
+                );
+            }
+            names.push(name);
+        }
+    }
+    if names.is_empty() {
+        bail!("{}: the crate has no stage entry points (no `#[spirv(...)]` stage function)", dir.display());
+    }
+    names.sort();
+    Ok(names)
+}
+
+/// The version of `twinray-shared` the crate in `dir` resolves to, by `cargo metadata`.
+fn crate_contract(dir: &Path) -> Result<String> {
+    crate::builder::ensure_toolchain()?;
+    let manifest = dir.join("Cargo.toml");
+    let mut command = nightly("cargo");
+    command.args(["metadata", "--format-version", "1", "--manifest-path"]).arg(&manifest);
+    let Finished { status, stdout, stderr } = output_within(&mut command, Duration::from_secs(300))?;
+    if !status.is_some_and(|s| s.success()) {
+        eprint!("{stderr}");
+        bail!("{}: cargo cannot read the crate (cargo's errors are above)", dir.display());
+    }
+    let metadata: serde_json::Value = serde_json::from_str(&stdout).context("reading cargo metadata")?;
+    let packages = metadata["packages"].as_array().cloned().unwrap_or_default();
+    let root_id = metadata["resolve"]["root"].as_str().unwrap_or_default();
+    let root = packages
+        .iter()
+        .find(|p| p["id"] == root_id)
+        .ok_or_else(|| anyhow!("{}: a workspace, not one crate: give the shader crate's own folder", dir.display()))?;
+    let dylib = root["targets"].as_array().is_some_and(|ts| {
+        ts.iter().any(|t| t["crate_types"].as_array().is_some_and(|c| c.iter().any(|c| c == "dylib")))
+    });
+    if !dylib {
+        bail!("{}: not a shader crate (rust-gpu builds a `crate-type = [\"dylib\"]` library)", dir.display());
+    }
+    let depends = root["dependencies"].as_array().is_some_and(|ds| ds.iter().any(|d| d["name"] == "twinray-shared"));
+    let shared = packages.iter().find(|p| p["name"] == "twinray-shared");
+    match (depends, shared.and_then(|p| p["version"].as_str())) {
+        (true, Some(version)) => Ok(version.to_string()),
+        _ => bail!(
+            "{}: the crate does not depend on twinray-shared, the contract its stages are read by (`twinray new` writes one that does)",
+            dir.display()
+        ),
+    }
+}
+
+/// The contract a GLSL folder was written for: the version its generated layout include names.
+fn glsl_contract(dir: &Path) -> Result<String> {
+    let include = dir.join("twinray_layout.glsl");
+    let text = std::fs::read_to_string(&include)
+        .with_context(|| format!("{}: the GLSL twins need twinray_layout.glsl", dir.display()))?;
+    let first = text.lines().next().unwrap_or_default();
+    first
+        .split_whitespace()
+        .skip_while(|w| *w != "twinray-shared")
+        .nth(1)
+        .map(str::to_string)
+        .ok_or_else(|| anyhow!("{}: names no twinray-shared version in its first line", include.display()))
+}
+
+/// A hash of every file under `dir` but those in `target/` folders and hidden ones, with the builder's and the
+/// contract's versions: equal hashes, the same modules.
+fn content_hash(dir: &Path, version: &str) -> Result<u64> {
+    let mut hasher = std::hash::DefaultHasher::new();
+    (crate::NIGHTLY, version, crate::starter::builder_sources()).hash(&mut hasher);
+    let mut files = Vec::new();
+    collect(dir, dir, &mut files)?;
+    // A crate's GLSL twins are a set of their own: an edit to them does not rebuild the crate.
+    if sources_in(dir) == Some(Sources::Crate) {
+        files.retain(|f| {
+            !f.ancestors().skip(1).any(|a| !a.as_os_str().is_empty() && dir.join(a).join("raygen.rgen").is_file())
+        });
+    }
+    files.sort();
+    for path in files {
+        path.hash(&mut hasher);
+        std::fs::read(dir.join(&path)).with_context(|| format!("reading {}", path.display()))?.hash(&mut hasher);
+    }
+    Ok(hasher.finish())
+}
+
+fn collect(root: &Path, dir: &Path, files: &mut Vec<PathBuf>) -> Result<()> {
+    for entry in std::fs::read_dir(dir).with_context(|| format!("listing {}", dir.display()))? {
+        let entry = entry?;
+        let name = entry.file_name();
+        let name = name.to_string_lossy();
+        if name.starts_with('.') || name == "target" {
+            continue;
+        }
+        let path = entry.path();
+        if entry.file_type()?.is_dir() {
+            collect(root, &path, files)?;
+        } else {
+            files.push(path.strip_prefix(root).unwrap_or(&path).to_path_buf());
+        }
+    }
+    Ok(())
+}
