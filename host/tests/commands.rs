@@ -17,6 +17,7 @@ mod gltf_cli;
 mod hostile;
 mod inspect_cli;
 mod install;
+mod own_stages;
 mod pipeline_cache;
 mod probe_cli;
 mod reference_ambiguity;

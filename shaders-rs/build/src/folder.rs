@@ -163,39 +163,57 @@ fn entry_points(dir: &Path, out: &Path) -> Result<Vec<String>> {
     Ok(names)
 }
 
-/// The version of `twinray-shared` the crate in `dir` resolves to, by `cargo metadata`.
+/// The version of `twinray-shared` the crate in `dir` depends on, by `cargo metadata`: read
+/// from the dependency's own manifest where it is a path (nothing resolved, so nothing of the
+/// crate is written, its lock file included), else from the crate's resolved graph.
 fn crate_contract(dir: &Path) -> Result<String> {
     crate::builder::ensure_toolchain()?;
-    let manifest = dir.join("Cargo.toml");
-    let mut command = nightly("cargo");
-    command.args(["metadata", "--format-version", "1", "--manifest-path"]).arg(&manifest);
-    let Finished { status, stdout, stderr } = output_within(&mut command, Duration::from_secs(300))?;
-    if !status.is_some_and(|s| s.success()) {
-        eprint!("{stderr}");
-        bail!("{}: cargo cannot read the crate (cargo's errors are above)", dir.display());
-    }
-    let metadata: serde_json::Value = serde_json::from_str(&stdout).context("reading cargo metadata")?;
-    let packages = metadata["packages"].as_array().cloned().unwrap_or_default();
-    let root_id = metadata["resolve"]["root"].as_str().unwrap_or_default();
-    let root = packages
-        .iter()
-        .find(|p| p["id"] == root_id)
-        .ok_or_else(|| anyhow!("{}: a workspace, not one crate: give the shader crate's own folder", dir.display()))?;
+    let own = metadata(dir, true)?;
+    let root = own["packages"].get(0).cloned().unwrap_or_default();
     let dylib = root["targets"].as_array().is_some_and(|ts| {
         ts.iter().any(|t| t["crate_types"].as_array().is_some_and(|c| c.iter().any(|c| c == "dylib")))
     });
     if !dylib {
         bail!("{}: not a shader crate (rust-gpu builds a `crate-type = [\"dylib\"]` library)", dir.display());
     }
-    let depends = root["dependencies"].as_array().is_some_and(|ds| ds.iter().any(|d| d["name"] == "twinray-shared"));
-    let shared = packages.iter().find(|p| p["name"] == "twinray-shared");
-    match (depends, shared.and_then(|p| p["version"].as_str())) {
-        (true, Some(version)) => Ok(version.to_string()),
-        _ => bail!(
+    let dependencies = root["dependencies"].as_array().cloned().unwrap_or_default();
+    let Some(shared) = dependencies.iter().find(|d| d["name"] == "twinray-shared") else {
+        bail!(
             "{}: the crate does not depend on twinray-shared, the contract its stages are read by (`twinray new` writes one that does)",
             dir.display()
-        ),
+        );
+    };
+    let version = match shared["path"].as_str() {
+        Some(path) => metadata(Path::new(path), true)?["packages"][0]["version"].as_str().map(str::to_string),
+        None => {
+            let resolved = metadata(dir, false)?;
+            let packages = resolved["packages"].as_array().cloned().unwrap_or_default();
+            packages
+                .iter()
+                .find(|p| p["name"] == "twinray-shared")
+                .and_then(|p| p["version"].as_str().map(str::to_string))
+        }
+    };
+    version.ok_or_else(|| anyhow!("{}: cargo names no version of twinray-shared", dir.display()))
+}
+
+/// `cargo metadata` of the package in `dir`, alone (`no_deps`) or with its resolved graph.
+fn metadata(dir: &Path, no_deps: bool) -> Result<serde_json::Value> {
+    let mut command = nightly("cargo");
+    command.args(["metadata", "--format-version", "1", "--manifest-path"]).arg(dir.join("Cargo.toml"));
+    if no_deps {
+        command.arg("--no-deps");
     }
+    let Finished { status, stdout, stderr } = output_within(&mut command, Duration::from_secs(300))?;
+    if !status.is_some_and(|s| s.success()) {
+        eprint!("{stderr}");
+        bail!("{}: cargo cannot read the crate (cargo's errors are above)", dir.display());
+    }
+    let metadata: serde_json::Value = serde_json::from_str(&stdout).context("reading cargo metadata")?;
+    if metadata["packages"].as_array().is_none_or(|p| p.len() != 1) && no_deps {
+        bail!("{}: a workspace of several packages: give the shader crate's own folder", dir.display());
+    }
+    Ok(metadata)
 }
 
 /// The contract a GLSL folder was written for: the version its generated layout include names.

@@ -89,6 +89,9 @@ fn manifest(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
     let text = String::from_utf8_lossy(bytes);
     let text = swap(&text, "name = \"twinray-shaders\"", &format!("name = \"{name}\""))?;
     let text = swap(&text, "path = \"../shared\"", &format!("path = \"{SHARED_DIR}\""))?;
+    // A path dependency inside the crate's folder would be a member of its workspace, its
+    // optional dependencies locked too: the lock would need the network, and differ.
+    let text = swap(&text, "[workspace]\n", &format!("[workspace]\nexclude = [\"{SHARED_DIR}\"]\n"))?;
     let start = text.find("description = ").context("the embedded manifest has no description")?;
     let end = start + text[start..].find('\n').unwrap_or(text.len() - start);
     let description = "description = \"Ray tracing stages for twinray, built by rust-gpu (`twinray build`).\"";
@@ -96,9 +99,26 @@ fn manifest(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
 }
 
 /// The built-in crate's lock file with the package renamed: the same versions of every
-/// dependency, resolved without the network.
+/// dependency, resolved without the network. Its packages are put back in cargo's order (by
+/// name, then version), so that a build does not rewrite the file.
 fn lock(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
-    Ok(swap(&String::from_utf8_lossy(bytes), "name = \"twinray-shaders\"", &format!("name = \"{name}\""))?.into_bytes())
+    let text = swap(&String::from_utf8_lossy(bytes), "name = \"twinray-shaders\"", &format!("name = \"{name}\""))?;
+    let mut parts: Vec<&str> = text.split("[[package]]\n").collect();
+    let header = parts.remove(0);
+    let key = |block: &&str| -> (String, String) {
+        let field = |f: &str| block.lines().find_map(|l| l.strip_prefix(f)).unwrap_or_default().to_string();
+        (field("name = "), field("version = "))
+    };
+    parts.sort_by_key(key);
+    let mut out = header.to_string();
+    for part in parts {
+        out.push_str("[[package]]\n");
+        out.push_str(part);
+        if !out.ends_with("\n\n") {
+            out.push('\n');
+        }
+    }
+    Ok(out.trim_end().to_string().into_bytes().into_iter().chain(*b"\n").collect())
 }
 
 /// The embedded builder's sources (`shaders-rs/builder`), for a machine without a checkout.

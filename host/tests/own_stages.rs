@@ -1,0 +1,164 @@
+//! A shader crate of one's own (`twinray new`, `twinray build`, a folder of sources named as a
+//! set): unchanged it builds to the built-in sets byte for byte and renders as they do, an
+//! edit shows in a verdict, an unchanged crate is not rebuilt, and every bad crate is one line
+//! (or the compiler's own errors) with exit 2, nothing of the crate written but its `target/`.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+use std::process::Output;
+use twinray_tests::cli::twinray;
+use twinray_tests::repo_root as repo;
+
+fn text(out: &Output) -> String {
+    format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr))
+}
+
+fn ok(args: &[&str], dir: &Path) -> String {
+    let out = twinray(args, dir);
+    assert!(out.status.success(), "{args:?}: {}", text(&out));
+    text(&out)
+}
+
+/// Every file of a crate but those under `target/`, with its bytes.
+fn files(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    fn walk(root: &Path, dir: &Path, out: &mut BTreeMap<PathBuf, Vec<u8>>) {
+        for entry in std::fs::read_dir(dir).unwrap() {
+            let path = entry.unwrap().path();
+            if path.file_name().is_some_and(|n| n == "target") {
+                continue;
+            }
+            if path.is_dir() {
+                walk(root, &path, out);
+            } else {
+                out.insert(path.strip_prefix(root).unwrap().to_path_buf(), std::fs::read(&path).unwrap());
+            }
+        }
+    }
+    let mut out = BTreeMap::new();
+    walk(dir, dir, &mut out);
+    out
+}
+
+/// Asserts that `args` exits with 2, its last line of stderr holds every one of `needles`
+/// (the lines above it, if any, being the compiler's), and the crate's files outside
+/// `target/` are as they were.
+fn refused(args: &[&str], dir: &Path, krate: &Path, needles: &[&str]) -> String {
+    let before = files(krate);
+    let out = twinray(args, dir);
+    let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{args:?}: {stderr}");
+    let last = stderr.trim().lines().last().unwrap_or_default();
+    for needle in needles {
+        assert!(last.contains(needle), "{args:?}: {last:?} does not say {needle:?}\n{stderr}");
+    }
+    assert!(files(krate) == before, "{args:?} wrote in the crate outside target/");
+    stderr
+}
+
+fn same_modules(set: &Path, language: &str) {
+    for entry in std::fs::read_dir(repo().join("spirv").join(language)).unwrap() {
+        let path = entry.unwrap().path();
+        let built = std::fs::read(set.join(path.file_name().unwrap())).unwrap();
+        assert!(built == std::fs::read(&path).unwrap(), "{} differs from the built-in {language} set", path.display());
+    }
+}
+
+const SMALL: [&str; 8] = ["--width", "64", "--height", "48", "--runs", "1", "--warmup", "0"];
+
+#[test]
+fn a_new_crate_is_the_rust_set_until_edited() {
+    let scratch = tempfile::tempdir().unwrap();
+    let dir = scratch.path();
+    let said = ok(&["new", "mine", "--glsl"], dir);
+    assert!(said.contains("twinray build mine"), "{said}");
+    let krate = dir.join("mine");
+    let written = files(&krate);
+    let built = ok(&["build", "mine"], dir);
+    assert!(built.contains("mine: built, 30 modules (twinray-shared 0.1.0)"), "{built}");
+    same_modules(&krate.join("target/twinray/set"), "rust");
+    assert!(ok(&["build", "mine"], dir).contains("mine: up to date"));
+    ok(&["build", "mine/glsl"], dir);
+    same_modules(&krate.join("glsl/target/twinray/set"), "glsl");
+    assert!(files(&krate) == written, "a build wrote in the crate outside target/");
+
+    let compare = |a: &str, b: &str| {
+        twinray(&[&["--validate", "compare", "--a", a, "--b", b, "--json"], &SMALL[..]].concat(), dir)
+    };
+    let out = compare("./mine", "rust");
+    assert!(out.status.success(), "{}", text(&out));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let exact = (json["max_abs_diff"].as_u64(), json["hit_mismatches"].as_u64(), json["rmse"].as_f64());
+    assert_eq!(exact, (Some(0), Some(0), Some(0.0)), "unchanged, the crate renders bit for bit as rust: {json}");
+
+    // A new material response in the closest hit: the crate is rebuilt and differs.
+    let lib = krate.join("src/lib.rs");
+    let source = std::fs::read_to_string(&lib).unwrap();
+    let old = "procedural_closest_hit, [], |m, p, n| shading::material_color(m, p, n)";
+    assert!(source.contains(old), "the starter's closest hit moved: this test must follow");
+    std::fs::write(&lib, source.replacen(old, &format!("{old} * 0.5"), 1)).unwrap();
+    let out = compare("./mine", "rust");
+    assert_eq!(out.status.code(), Some(1), "{}", text(&out));
+    assert!(text(&out).contains("build: ./mine: built"), "{}", text(&out));
+    // Per-stage mixes take the folder too: its closest hits fail, its (unchanged) raygen passes.
+    assert_eq!(compare("rust,closest_hit=./mine", "rust").status.code(), Some(1));
+    assert!(compare("rust,raygen=./mine", "rust").status.success());
+}
+
+/// The starter crate with `lib` as its whole `src/lib.rs`.
+fn with_lib(krate: &Path, lib: &str) {
+    std::fs::write(krate.join("src/lib.rs"), format!("#![cfg_attr(target_arch = \"spirv\", no_std)]\n{lib}")).unwrap();
+}
+
+#[test]
+fn bad_crates_are_refused_in_one_line_and_leave_the_crate_as_it_was() {
+    let scratch = tempfile::tempdir().unwrap();
+    let dir = scratch.path();
+    std::fs::create_dir(dir.join("empty")).unwrap();
+    let empty = dir.join("empty");
+    refused(&["build", "empty"], dir, &empty, &["no shader sources"]);
+    refused(&["compare", "--a", "./empty", "--b", "rust"], dir, &empty, &["neither a set nor a shader crate"]);
+    ok(&["new", "c"], dir);
+    refused(&["new", "c"], dir, &dir.join("c"), &["already holds files"]);
+    refused(&["new", "9lives"], dir, &dir.join("c"), &["cannot be a crate's name"]);
+
+    let krate = dir.join("c");
+    let manifest = krate.join("twinray-shared/Cargo.toml");
+    let original = std::fs::read_to_string(&manifest).unwrap();
+    std::fs::write(&manifest, original.replacen("version = \"0.1.0\"", "version = \"0.2.0\"", 1)).unwrap();
+    refused(&["build", "c"], dir, &krate, &["twinray-shared 0.2.0", "speaks twinray-shared 0.1.0"]);
+    std::fs::write(&manifest, &original).unwrap();
+
+    let cargo = krate.join("Cargo.toml");
+    let starter = std::fs::read_to_string(&cargo).unwrap();
+    std::fs::write(&cargo, starter.replace("crate-type = [\"dylib\"]", "crate-type = [\"rlib\"]")).unwrap();
+    refused(&["build", "c"], dir, &krate, &["not a shader crate"]);
+    let alone = "[package]\nname = \"c\"\nversion = \"0.1.0\"\nedition = \"2021\"\n[workspace]\n[lib]\ncrate-type = [\"dylib\"]\n";
+    std::fs::write(&cargo, format!("{alone}[dependencies]\nspirv-std = \"0.11.0\"\n")).unwrap();
+    refused(&["build", "c"], dir, &krate, &["does not depend on twinray-shared"]);
+    std::fs::write(&cargo, &starter).unwrap();
+
+    let spirv = "use spirv_std::spirv;\nuse twinray_shared as _;\n";
+    with_lib(&krate, &format!("{spirv}pub fn broken() -> u32 {{ \"not a number\" }}\n"));
+    let said = refused(&["build", "c"], dir, &krate, &["the crate does not build"]);
+    assert!(said.contains("error[E0308]: mismatched types"), "the compiler's errors, as cargo prints them:\n{said}");
+    with_lib(&krate, "use twinray_shared as _;\npub fn helper() {}\n");
+    refused(&["build", "c"], dir, &krate, &["no stage entry points"]);
+    with_lib(&krate, &format!("{spirv}#[spirv(miss)]\npub fn my_miss() {{}}\n"));
+    refused(&["compare", "--a", "c", "--b", "rust"], dir, &krate, &["entry point `my_miss` is no module"]);
+    with_lib(&krate, &format!("{spirv}#[spirv(miss)]\npub fn raygen() {{}}\n"));
+    refused(&["build", "c"], dir, &krate, &["raygen"]);
+    let payload = "#[spirv(miss)]\npub fn miss(#[spirv(incoming_ray_payload)] p: &mut u32) { *p = 1; }\n";
+    with_lib(&krate, &format!("{spirv}{payload}"));
+    refused(&["build", "c"], dir, &krate, &["miss"]);
+
+    // A build that never ends is stopped at the deadline, its build script with it.
+    std::fs::write(
+        krate.join("build.rs"),
+        "fn main() { loop { std::thread::sleep(std::time::Duration::from_secs(1)); } }\n",
+    )
+    .unwrap();
+    let started = std::time::Instant::now();
+    refused(&["--build-timeout", "5", "build", "c"], dir, &krate, &["did not finish within 5 s"]);
+    assert!(started.elapsed().as_secs() < 60, "the deadline was not kept: {:?}", started.elapsed());
+}
