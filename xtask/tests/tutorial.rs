@@ -17,7 +17,8 @@
 //! registry line, its CPU tests and its refusal of a taken name; after the last step, `cargo
 //! xtask watch` on the new scene.
 
-use std::path::Path;
+use std::ffi::OsString;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 use twinray_tests::docs::{fenced, Block};
@@ -86,12 +87,13 @@ fn apply(dir: &Path, block: &Block, path: &str, how: Option<(&str, &str)>) {
     std::fs::write(&file, text).unwrap();
 }
 
-fn run(dir: &Path, block: &Block) -> String {
+/// Runs a `sh` block with bash in `dir`, with `envs` set.
+fn run(dir: &Path, block: &Block, envs: &[(&str, OsString)]) -> String {
     let started = Instant::now();
     let out = Command::new("bash")
         .args(["-c", &format!("set -euo pipefail\n{}", block.text)])
         .current_dir(dir)
-        .env("CARGO_TARGET_DIR", scaffold_target())
+        .envs(envs.iter().map(|(k, v)| (k, v)))
         .output()
         .expect("running bash");
     let output = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
@@ -118,18 +120,32 @@ fn the_tutorial_runs_as_written() {
     copy_repo(dir);
     let before = files(dir);
     let started = Instant::now();
-    let mut last_output: Option<String> = None;
+    let envs = [("CARGO_TARGET_DIR", scaffold_target().into_os_string())];
     let mut scaffolded = None;
-    for block in fenced(&markdown).0 {
+    follow(&markdown, dir, &envs, |block, output| {
+        if let Some(name) = block.text.trim().strip_prefix("cargo xtask new-shape ") {
+            check_new_shape(dir, name, &before, output);
+            scaffolded = Some(name.to_string());
+        }
+    });
+    said_past_capture(&format!("tutorial: every step ran in {:.0} s", started.elapsed().as_secs_f64()));
+    let name = scaffolded.expect("the tutorial starts with `cargo xtask new-shape NAME`, alone in its block");
+    let watched = Instant::now();
+    watch_sees_an_edit_of_the_twin(dir, &name);
+    said_past_capture(&format!("tutorial: watch saw the edit in {:.0} s", watched.elapsed().as_secs_f64()));
+}
+
+/// Takes every block of `markdown` in order in `dir` (commands run with `envs`), calling
+/// `after_command` with each command block and its output.
+fn follow(markdown: &str, dir: &Path, envs: &[(&str, OsString)], mut after_command: impl FnMut(&Block, &str)) {
+    let mut last_output: Option<String> = None;
+    for block in fenced(markdown).0 {
         let words = words(&block.info);
         let get = |key: &str| words.iter().find(|(k, _)| k == key).map(|(_, v)| v.as_str());
         let language = words.first().map_or("", |(k, _)| k.as_str());
         if language == "sh" {
-            let output = run(dir, &block);
-            if let Some(name) = block.text.trim().strip_prefix("cargo xtask new-shape ") {
-                check_new_shape(dir, name, &before, &output);
-                scaffolded = Some(name.to_string());
-            }
+            let output = run(dir, &block, envs);
+            after_command(&block, &output);
             last_output = Some(output);
         } else if language == "text" {
             let output =
@@ -149,11 +165,50 @@ fn the_tutorial_runs_as_written() {
             panic!("line {}: a ```{} block is neither a command, its output, nor a file", block.line, block.info);
         }
     }
-    said_past_capture(&format!("tutorial: every step ran in {:.0} s", started.elapsed().as_secs_f64()));
-    let name = scaffolded.expect("the tutorial starts with `cargo xtask new-shape NAME`, alone in its block");
-    let watched = Instant::now();
-    watch_sees_an_edit_of_the_twin(dir, &name);
-    said_past_capture(&format!("tutorial: watch saw the edit in {:.0} s", watched.elapsed().as_secs_f64()));
+}
+
+/// `cargo install --path host` into `root`, building in the scaffold target (seeded from the
+/// tests' own release build, kept between runs), as a user installs twinray.
+fn install_twinray(root: &Path) -> PathBuf {
+    let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
+    let started = Instant::now();
+    let out = Command::new(cargo)
+        .args(["install", "--locked", "--offline", "--path"])
+        .arg(repo().join("host"))
+        .arg("--root")
+        .arg(root)
+        .arg("--target-dir")
+        .arg(scaffold_target().join("install"))
+        .env_remove("RUSTC_WORKSPACE_WRAPPER")
+        .output()
+        .expect("running cargo install");
+    let said = format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr));
+    assert!(out.status.success(), "cargo install --path host failed:\n{said}");
+    said_past_capture(&format!("tutorial: cargo install --path host took {:.0} s", started.elapsed().as_secs_f64()));
+    root.join("bin")
+}
+
+/// docs/tutorial-own-stages.md, in an empty folder outside the checkout, with only the
+/// installed `twinray` (and rustup's toolchains) to run: what a user without a checkout has.
+#[test]
+fn the_own_stages_tutorial_runs_outside_the_checkout() {
+    let markdown = std::fs::read_to_string(repo().join("docs/tutorial-own-stages.md")).expect("the tutorial");
+    let _only_user = lock_scaffold_target();
+    let install = tempfile::tempdir().unwrap();
+    let bin = install_twinray(install.path());
+    let scratch = tempfile::tempdir().unwrap();
+    let dir = scratch.path();
+    assert!(!dir.starts_with(repo()) && std::fs::read_dir(dir).unwrap().next().is_none());
+    // The installed binary first; nothing of the checkout or of cargo's test run.
+    let path = std::env::var_os("PATH").unwrap_or_default();
+    let kept = std::env::split_paths(&path).filter(|p| !p.starts_with(repo()));
+    let path = std::env::join_paths(std::iter::once(bin.clone()).chain(kept)).unwrap();
+    let envs = [("PATH", path)];
+    let which = run(dir, &Block { info: "sh".into(), text: "command -v twinray".into(), line: 0 }, &envs);
+    assert_eq!(which.trim(), bin.join("twinray").to_string_lossy(), "the installed twinray runs the tutorial");
+    let started = Instant::now();
+    follow(&markdown, dir, &envs, |_, _| {});
+    said_past_capture(&format!("tutorial (own stages): every step ran in {:.0} s", started.elapsed().as_secs_f64()));
 }
 
 #[test]

@@ -267,9 +267,10 @@ pub struct BenchArgs {
     /// scenes, comma-separated squares up to 256 ("none": no study).
     #[arg(long, default_value = "1,4,16,64")]
     pub shadow_spp: String,
-    /// Probe cases for the robust-against-naive intersection study ("none": no study).
-    #[arg(long, default_value = "probes/stability")]
-    pub probes: PathBuf,
+    /// Probe cases for the robust-against-naive intersection study ("none": no study)
+    /// [default: probes/stability, a checkout's hard cases, where there is one].
+    #[arg(long)]
+    pub probes: Option<PathBuf>,
     /// Time each probe case over its rays repeated up to at least this many.
     #[arg(long, default_value_t = 1_048_576, value_parser = clap::value_parser!(u64).range(0..=MAX_TIMING_RAYS))]
     pub timing_rays: u64,

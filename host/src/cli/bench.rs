@@ -3,6 +3,7 @@
 use crate::args::{BenchArgs, GlobalArgs};
 use crate::session::context;
 use anyhow::Result;
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use twinray::scene::check_size;
 use twinray::{Error, Scene};
@@ -27,10 +28,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         check_size(w, h).map_err(Error::Input)?;
     }
     let sets = twinray::shaders::parse_sets(&args.sets)?;
-    if args.probes.as_os_str() != "none" && !args.probes.is_dir() {
-        let message = format!("--probes {}: no such folder (give --probes DIR, or none)", args.probes.display());
-        return Err(Error::Input(message).into());
-    }
+    let probes = probes(args.probes.as_deref())?;
     let cache = args.cache.clone().unwrap_or_else(twinray::reference::image::default_cache);
     let isolation = (args.processes > 0).then(|| bench::Isolation {
         processes: args.processes,
@@ -59,7 +57,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         cache,
         out: args.out.clone(),
         shadow_spp,
-        probes: Some(args.probes.clone()).filter(|p| p.as_os_str() != "none"),
+        probes,
         timing_rays: args.timing_rays as usize,
         images: args.images,
         isolation,
@@ -109,3 +107,25 @@ fn sample_counts(flag: &str, text: &str) -> Result<Vec<u32>, Error> {
     }
     Ok(counts)
 }
+
+/// The probe cases of the robust-against-naive study: the folder given, none for `none`, and
+/// by default the checkout's `probes/stability` where the bench runs in one (an installed
+/// binary elsewhere skips the study, and says so).
+fn probes(given: Option<&Path>) -> Result<Option<PathBuf>> {
+    match given {
+        Some(dir) if dir.as_os_str() == "none" => Ok(None),
+        Some(dir) if dir.is_dir() => Ok(Some(dir.to_path_buf())),
+        Some(dir) => {
+            let message = format!("--probes {}: no such folder (give --probes DIR, or none)", dir.display());
+            Err(Error::Input(message).into())
+        }
+        None if Path::new(DEFAULT_PROBES).is_dir() => Ok(Some(PathBuf::from(DEFAULT_PROBES))),
+        None => {
+            eprintln!("bench: no {DEFAULT_PROBES} here, so no probe study (give --probes DIR to run one)");
+            Ok(None)
+        }
+    }
+}
+
+/// The hard cases of a checkout, relative to its root.
+const DEFAULT_PROBES: &str = "probes/stability";

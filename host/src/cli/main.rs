@@ -2,9 +2,9 @@
 //! `bench`, `pipeline-bench` in `pipeline_bench`, ...), its arguments beside its handler but
 //! where a helper module takes them too (`render`'s, `compare`'s and `bench`'s are in `args`,
 //! as `frames` and `alone` read them):
-//! `info`, `scenes`, `new`, `build`, `render`, `compare`, `bisect`, `explain`, `view`, `inspect`, `probe`,
-//! `stability`, `reference`, `bench`, `animate-bench`, `pipeline-bench`, `stage-bench`,
-//! `places`, `crosscheck`. What several share: `args` (global flags, frame, animation and
+//! `info`, `scenes`, `new`, `build`, `watch`, `render`, `compare`, `bisect`, `explain`, `view`,
+//! `inspect`, `probe`, `stability`, `reference`, `bench`, `animate-bench`, `pipeline-bench`,
+//! `stage-bench`, `places`, `crosscheck`. What several share: `args` (global flags, frame, animation and
 //! `--alone-in` arguments), `image_args` (the viewpoint), `session` (the context and render
 //! options), `frames` (moving scenes' frames for `render` and `compare`), `alone` (sets timed
 //! in processes or devices of their own).
@@ -37,6 +37,7 @@ mod session;
 mod stability;
 mod stage_bench;
 mod view;
+mod watch;
 
 use animate_bench::AnimateBenchArgs;
 use args::BenchArgs;
@@ -91,6 +92,9 @@ enum Command {
     /// Build a folder of stage sources (a shader crate, GLSL twins) into a set; every command
     /// that takes a set builds the folder it names the same way.
     Build(build::BuildArgs),
+    /// Compare a folder of stage sources with a set on every save: rebuilt, compared, and the
+    /// verdict printed with the time from the save to it.
+    Watch(watch::WatchArgs),
     /// Render a scene with one shader set to a PNG; with --frames, a moving scene's frames.
     Render(RenderArgs),
     /// Render a scene with two shader sets and report how they differ in image and GPU time;
@@ -183,6 +187,7 @@ fn main() -> ExitCode {
         Command::Scenes { json } => scenes::scenes(json),
         Command::New(args) => new::new(args),
         Command::Build(args) => build::build(args, cli.global.build_timeout),
+        Command::Watch(args) => watch::watch(args),
         Command::Render(args) => render::render(&cli.global, args),
         Command::Compare(args) => compare::compare(&cli.global, args),
         Command::Bisect(args) => bisect::bisect(&cli.global, args),

@@ -4,10 +4,37 @@
 //! and checkout on the machine.
 
 use crate::process::{output, run};
-use crate::{builder_target, cache_dir, nightly, NIGHTLY};
 use anyhow::{Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
+
+/// rustc_codegen_spirv 0.11.0 builds only with this nightly.
+pub const NIGHTLY: &str = "nightly-2026-08-15";
+
+/// Where the builder's build outlives a fresh clone, so CI pays for rustc_codegen_spirv once.
+pub fn cache_dir() -> PathBuf {
+    let base = std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+        .unwrap_or_else(std::env::temp_dir);
+    base.join("twinray")
+}
+
+/// The rust-gpu builder's own target folder (under [`cache_dir`]), and whether it holds the
+/// builder: a cold machine builds it first (197 s on 2 cores, bench/reports/crate-builders).
+pub fn builder_target() -> PathBuf {
+    cache_dir().join("builder-target")
+}
+
+/// A command on the pinned nightly, without the outer (stable) cargo's toolchain variables.
+pub(crate) fn nightly(program: &str) -> Command {
+    let mut command = Command::new("rustup");
+    command.args(["run", NIGHTLY, program]);
+    for var in ["RUSTUP_TOOLCHAIN", "RUSTC", "RUSTDOC", "CARGO", "RUSTC_WRAPPER", "CARGO_TARGET_DIR"] {
+        command.env_remove(var);
+    }
+    command
+}
 
 /// The pinned nightly, installed (with the components rust-gpu needs) when rustup lacks it.
 pub fn ensure_toolchain() -> Result<()> {
@@ -30,7 +57,7 @@ pub fn compiled(manifest: &Path, shown: bool) -> Result<PathBuf> {
     let binary = target.join("release/twinray-shader-builder");
     if !binary.exists() {
         eprintln!(
-            "build: compiling rust-gpu's backend (about 9 minutes on 2 cores, once; cached in {})",
+            "build: compiling rust-gpu's backend (about 3 minutes on 2 cores, once; cached in {})",
             target.display()
         );
     }

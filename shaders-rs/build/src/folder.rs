@@ -4,8 +4,9 @@
 //! folder's `target/twinray/set/`, and nothing else of the folder is written; a folder whose
 //! files have not changed since its last build is not built again.
 
+use crate::builder::{self, nightly, NIGHTLY};
 use crate::process::{output_within, Finished};
-use crate::{nightly, postprocess, require_tools, run_builder, Output};
+use crate::{postprocess, require_tools, run_builder, Output};
 use anyhow::{anyhow, bail, Context, Result};
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
@@ -119,7 +120,7 @@ fn count_modules(set: &Path) -> usize {
 /// Compiles the crate in `dir` into `out` under `timeout`, and returns its entry points, each
 /// a module of the catalog.
 fn compile_crate(dir: &Path, out: &Path, timeout: Duration) -> Result<Vec<String>> {
-    let builder = crate::builder::embedded()?;
+    let builder = builder::embedded()?;
     let target = dir.join("target/twinray/cargo");
     let mut command = run_builder(&builder, dir, out, &target, &[]);
     let finished = output_within(&mut command, timeout)?;
@@ -167,9 +168,8 @@ fn entry_points(dir: &Path, out: &Path) -> Result<Vec<String>> {
 /// from the dependency's own manifest where it is a path (nothing resolved, so nothing of the
 /// crate is written, its lock file included), else from the crate's resolved graph.
 fn crate_contract(dir: &Path) -> Result<String> {
-    crate::builder::ensure_toolchain()?;
-    let own = metadata(dir, true)?;
-    let root = own["packages"].get(0).cloned().unwrap_or_default();
+    builder::ensure_toolchain()?;
+    let root = package(dir)?;
     let dylib = root["targets"].as_array().is_some_and(|ts| {
         ts.iter().any(|t| t["crate_types"].as_array().is_some_and(|c| c.iter().any(|c| c == "dylib")))
     });
@@ -184,7 +184,7 @@ fn crate_contract(dir: &Path) -> Result<String> {
         );
     };
     let version = match shared["path"].as_str() {
-        Some(path) => metadata(Path::new(path), true)?["packages"][0]["version"].as_str().map(str::to_string),
+        Some(path) => package(Path::new(path))?["version"].as_str().map(str::to_string),
         None => {
             let resolved = metadata(dir, false)?;
             let packages = resolved["packages"].as_array().cloned().unwrap_or_default();
@@ -209,11 +209,17 @@ fn metadata(dir: &Path, no_deps: bool) -> Result<serde_json::Value> {
         eprint!("{stderr}");
         bail!("{}: cargo cannot read the crate (cargo's errors are above)", dir.display());
     }
-    let metadata: serde_json::Value = serde_json::from_str(&stdout).context("reading cargo metadata")?;
-    if metadata["packages"].as_array().is_none_or(|p| p.len() != 1) && no_deps {
-        bail!("{}: a workspace of several packages: give the shader crate's own folder", dir.display());
-    }
-    Ok(metadata)
+    serde_json::from_str(&stdout).context("reading cargo metadata")
+}
+
+/// The package whose manifest is `dir/Cargo.toml`, as `cargo metadata --no-deps` lists it.
+fn package(dir: &Path) -> Result<serde_json::Value> {
+    let manifest = dir.join("Cargo.toml").canonicalize().with_context(|| format!("{}", dir.display()))?;
+    let listed = metadata(dir, true)?;
+    let packages = listed["packages"].as_array().cloned().unwrap_or_default();
+    packages.into_iter().find(|p| p["manifest_path"].as_str().is_some_and(|m| Path::new(m) == manifest)).ok_or_else(
+        || anyhow!("{}: a workspace without a package of its own: give the shader crate's folder", dir.display()),
+    )
 }
 
 /// The contract a GLSL folder was written for: the version its generated layout include names.
@@ -234,21 +240,26 @@ fn glsl_contract(dir: &Path) -> Result<String> {
 /// contract's versions: equal hashes, the same modules.
 fn content_hash(dir: &Path, version: &str) -> Result<u64> {
     let mut hasher = std::hash::DefaultHasher::new();
-    (crate::NIGHTLY, version, crate::starter::builder_sources()).hash(&mut hasher);
-    let mut files = Vec::new();
-    collect(dir, dir, &mut files)?;
-    // A crate's GLSL twins are a set of their own: an edit to them does not rebuild the crate.
-    if sources_in(dir) == Some(Sources::Crate) {
-        files.retain(|f| {
-            !f.ancestors().skip(1).any(|a| !a.as_os_str().is_empty() && dir.join(a).join("raygen.rgen").is_file())
-        });
-    }
-    files.sort();
-    for path in files {
+    (NIGHTLY, version, crate::starter::builder_sources()).hash(&mut hasher);
+    for path in source_files(dir)? {
         path.hash(&mut hasher);
         std::fs::read(dir.join(&path)).with_context(|| format!("reading {}", path.display()))?.hash(&mut hasher);
     }
     Ok(hasher.finish())
+}
+
+/// The files of the sources in `dir` a build reads, relative to it, sorted: every file but
+/// those in `target/` folders and hidden ones, and for a crate none of its GLSL twins (a set
+/// of their own, whose edits do not rebuild the crate).
+pub fn source_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    let mut files = Vec::new();
+    collect(dir, dir, &mut files)?;
+    if sources_in(dir) == Some(Sources::Crate) {
+        let twin = |a: &Path| !a.as_os_str().is_empty() && dir.join(a).join("raygen.rgen").is_file();
+        files.retain(|f| !f.ancestors().skip(1).any(twin));
+    }
+    files.sort();
+    Ok(files)
 }
 
 fn collect(root: &Path, dir: &Path, files: &mut Vec<PathBuf>) -> Result<()> {

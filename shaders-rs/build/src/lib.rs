@@ -11,15 +11,14 @@ pub mod starter;
 pub mod uniformity;
 
 use anyhow::{bail, Context, Result};
+use builder::nightly;
+pub use builder::{builder_target, cache_dir, NIGHTLY};
 pub use exit::exit_words;
 pub use process::{have, output, run};
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Command;
 use twinray_shared::catalog::{GlslSource, Language, ModuleSpec, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
-
-/// rustc_codegen_spirv 0.11.0 builds only with this nightly.
-pub const NIGHTLY: &str = "nightly-2026-08-15";
 
 /// The sources of each set, relative to a checkout's root: a change under them rebuilds it.
 pub fn sources(language: Language) -> &'static [&'static str] {
@@ -121,31 +120,6 @@ pub fn read_module(dir: &Path, spec: &ModuleSpec) -> Result<(ModuleInfo, usize)>
     let bytes = std::fs::read(&path).with_context(|| format!("reading {}", path.display()))?;
     let info = spirv_info::parse(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
     Ok((info, bytes.len()))
-}
-
-/// Where the builder's build outlives a fresh clone, so CI pays for rustc_codegen_spirv once.
-pub fn cache_dir() -> PathBuf {
-    let base = std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(std::env::temp_dir);
-    base.join("twinray")
-}
-
-/// The rust-gpu builder's own target folder (under [`cache_dir`]), and whether it holds the
-/// builder: a cold machine builds it first (about 9 minutes on 2 cores).
-pub fn builder_target() -> PathBuf {
-    cache_dir().join("builder-target")
-}
-
-/// A command on the pinned nightly, without the outer (stable) cargo's toolchain variables.
-pub(crate) fn nightly(program: &str) -> Command {
-    let mut command = Command::new("rustup");
-    command.args(["run", NIGHTLY, program]);
-    for var in ["RUSTUP_TOOLCHAIN", "RUSTC", "RUSTDOC", "CARGO", "RUSTC_WRAPPER", "CARGO_TARGET_DIR"] {
-        command.env_remove(var);
-    }
-    command
 }
 
 /// The GLSL define that builds a set without feature `name` (`-DTWINRAY_WITHOUT_TEXTURES`), which
