@@ -157,14 +157,23 @@ fn every_twinray_command_and_flag_the_docs_name_exists() {
                 stale.push(format!("{name}: `twinray {}`: no such command", words.join(" ")));
                 continue;
             }
-            let args: Vec<&str> = command.map(|c| vec![c.as_str()]).unwrap_or_default();
-            let text = helps.entry(args.join(" ")).or_insert_with(|| help(&args));
-            for flag in flags(&words) {
-                if !text.contains(&format!("{flag} "))
-                    && !text.contains(&format!("{flag}["))
-                    && !text.contains(&format!("{flag}\n"))
-                {
-                    stale.push(format!("{name}: `twinray {}`: {flag} is not in its --help", words.join(" ")));
+            // After a bare `--`, the arguments of the command `watch` runs: `compare`'s.
+            let split = words.iter().position(|w| w == "--").unwrap_or(words.len());
+            let (own, passed) = words.split_at(split);
+            let mut parts = vec![(command.map(|c| c.as_str()), own)];
+            if command.is_some_and(|c| c == "watch") {
+                parts.push((Some("compare"), passed));
+            }
+            for (which, part) in parts {
+                let args: Vec<&str> = which.into_iter().collect();
+                let text = helps.entry(args.join(" ")).or_insert_with(|| help(&args));
+                for flag in flags(part) {
+                    if !text.contains(&format!("{flag} "))
+                        && !text.contains(&format!("{flag}["))
+                        && !text.contains(&format!("{flag}\n"))
+                    {
+                        stale.push(format!("{name}: `twinray {}`: {flag} is not in its --help", words.join(" ")));
+                    }
                 }
             }
         }

@@ -181,3 +181,67 @@ fn bad_crates_are_refused_in_one_line_and_leave_the_crate_as_it_was() {
     refused(&["--build-timeout", "5", "build", "c"], dir, &krate, &["did not finish within 5 s"]);
     assert!(started.elapsed().as_secs() < 60, "the deadline was not kept: {:?}", started.elapsed());
 }
+
+/// A crate as a stranger writes one, from scratch: no toolchain file, no lint settings, one
+/// stage, the contract by a path of its own.
+const SKY_MANIFEST: &str = r#"[package]
+name = "sky"
+version = "0.1.0"
+edition = "2021"
+
+[lib]
+crate-type = ["dylib"]
+
+[dependencies]
+spirv-std = "0.11.0"
+twinray-shared = { path = "../starter/twinray-shared" }
+"#;
+
+/// A miss stage that shows half the background.
+const SKY_LIB: &str = r#"#![cfg_attr(target_arch = "spirv", no_std)]
+use spirv_std::glam::UVec4;
+use spirv_std::spirv;
+use twinray_shared::bindings::NO_HIT;
+use twinray_shared::layout::{FrameUniform, HitPayload};
+
+#[spirv(miss)]
+pub fn miss(
+    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
+    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
+) {
+    let dim = 0.5;
+    let unused = 1;
+    payload.color = frame.background * dim;
+    payload.ids = UVec4::splat(NO_HIT);
+}
+"#;
+
+#[test]
+fn a_crate_written_from_scratch_builds_shows_its_warnings_and_lends_its_one_stage() {
+    let scratch = tempfile::tempdir().unwrap();
+    let dir = scratch.path();
+    ok(&["new", "starter"], dir);
+    let sky = dir.join("sky");
+    std::fs::create_dir_all(sky.join("src")).unwrap();
+    std::fs::write(sky.join("Cargo.toml"), SKY_MANIFEST).unwrap();
+    // The starter's lock: the same versions, so the test needs no network.
+    let lock = std::fs::read_to_string(dir.join("starter/Cargo.lock")).unwrap();
+    std::fs::write(sky.join("Cargo.lock"), lock.replace("name = \"starter\"", "name = \"sky\"")).unwrap();
+    std::fs::write(sky.join("src/lib.rs"), SKY_LIB).unwrap();
+    let built = ok(&["build", "sky"], dir);
+    assert!(built.contains("sky: built, 1 modules (twinray-shared 0.1.0)"), "{built}");
+    // A warning of the crate's own is shown, and does not fail its build.
+    assert!(built.contains("warning: unused variable: `unused`"), "{built}");
+    assert!(!built.contains("--no-spirv-opt"), "twinray's own choice is not the crate's warning: {built}");
+
+    let compare =
+        |scene: &str, a: &str| twinray(&[&["compare", scene, "--a", a, "--b", "rust"][..], &SMALL[..]].concat(), dir);
+    let spheres = compare("spheres", "rust,miss=./sky");
+    assert_eq!(spheres.status.code(), Some(1), "the background differs: {}", text(&spheres));
+    let file = "rust,miss=sky/target/twinray/set/miss.spv";
+    assert_eq!(compare("spheres", file).status.code(), Some(1));
+    // `miss=FOLDER` takes the miss stage's every module; this crate has no shadow miss.
+    let boxes = compare("box", "rust,miss=./sky");
+    assert_eq!(boxes.status.code(), Some(2), "{}", text(&boxes));
+    assert!(text(&boxes).contains("shadow_miss"), "{}", text(&boxes));
+}

@@ -123,6 +123,8 @@ fn compile_crate(dir: &Path, out: &Path, timeout: Duration) -> Result<Vec<String
     let builder = builder::embedded()?;
     let target = dir.join("target/twinray/cargo");
     let mut command = run_builder(&builder, dir, out, &target, &[]);
+    // A user's crate is not held to twinray's own rule: its warnings are shown, not fatal.
+    command.env("TWINRAY_BUILDER_WARNINGS", "allow");
     let finished = output_within(&mut command, timeout)?;
     let Finished { status, stderr, .. } = finished;
     match status {
@@ -136,9 +138,20 @@ fn compile_crate(dir: &Path, out: &Path, timeout: Duration) -> Result<Vec<String
             eprint!("{stderr}");
             bail!("{}: the crate does not build (the compiler's errors are above)", dir.display())
         }
+        Some(_) if stderr.contains("warning") => eprint!("{}", warnings(&stderr)),
         Some(_) => {}
     }
     entry_points(dir, out)
+}
+
+/// The compiler's warnings in cargo's output, without its progress lines and without rust-gpu's
+/// note that spirv-opt is off, which twinray's builder asks for and is no fault of the crate.
+fn warnings(stderr: &str) -> String {
+    let progress = ["Compiling ", "Finished ", "Blocking ", "Updating ", "Locking ", "Downloaded ", "Downloading "];
+    let ours = "but was disabled by `--no-spirv-opt`";
+    let lines = stderr.lines().filter(|l| !progress.iter().any(|p| l.trim_start().starts_with(p)) && !l.contains(ours));
+    let text: String = lines.map(|l| format!("{l}\n")).collect();
+    text.replace("\n\n\n", "\n\n")
 }
 
 /// The modules rust-gpu wrote to `out`, each checked to be a module of the catalog.

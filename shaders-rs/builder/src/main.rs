@@ -2,8 +2,9 @@
 //!
 //! Usage: `twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir> [features]`
 //! (features: the shader crate's cargo features, comma-separated, e.g. `without-textures`).
-//! Run by `cargo xtask shaders`; it lives outside the stable workspace because
-//! rustc_codegen_spirv must be compiled by the pinned nightly.
+//! Run by `cargo xtask shaders` and `twinray build`; it lives outside the stable workspace
+//! because rustc_codegen_spirv must be compiled by the pinned nightly. Warnings fail the build
+//! unless `TWINRAY_BUILDER_WARNINGS=allow` (a user's crate: `twinray build` shows them).
 
 use spirv_builder::{Capability, ModuleResult, SpirvBuilder, SpirvMetadata};
 use std::path::PathBuf;
@@ -32,7 +33,12 @@ fn main() -> ExitCode {
 }
 
 fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf, features: Vec<String>) -> Result<(), String> {
-    let result = SpirvBuilder::new(crate_dir, TARGET)
+    let mut builder = SpirvBuilder::new(crate_dir, TARGET);
+    // The crate is compiled by the toolchain this builder runs on (`rustup run` sets it), the
+    // one its backend was built by: spirv-builder clears RUSTUP_TOOLCHAIN for its cargo, so a
+    // crate without a toolchain file of its own would otherwise get the default toolchain.
+    builder.toolchain_overwrite = std::env::var("RUSTUP_TOOLCHAIN").ok();
+    let result = builder
         .shader_crate_features(features)
         .capability(Capability::RayTracingKHR)
         .extension("SPV_KHR_ray_tracing")
@@ -55,7 +61,7 @@ fn build(crate_dir: &PathBuf, out_dir: &PathBuf, target_dir: &PathBuf, features:
         .extra_arg("--no-spirv-opt")
         // No OpName/OpLine: the committed modules then depend only on the code, not on paths.
         .spirv_metadata(SpirvMetadata::None)
-        .deny_warnings(true)
+        .deny_warnings(std::env::var_os("TWINRAY_BUILDER_WARNINGS").is_none_or(|v| v != "allow"))
         .target_dir_path(target_dir.clone())
         .build()
         .map_err(|e| format!("spirv-builder failed: {e}"))?;
