@@ -76,8 +76,25 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     let written = files(&krate);
     let built = ok(&["build", "mine"], dir);
     assert!(built.contains("mine: built, 30 modules (twinray-shared 0.1.0)"), "{built}");
+    assert!(!built.contains("warning"), "the starter's own code warns of nothing: {built}");
     same_modules(&krate.join("target/twinray/set"), "rust");
     assert!(ok(&["build", "mine"], dir).contains("mine: up to date"));
+    assert!(files(&krate) == written, "a build wrote in the crate outside target/");
+    // Two builds of one changed crate at once take turns: one builds, the other finds it built.
+    let readme = krate.join("README.md");
+    std::fs::write(&readme, std::fs::read_to_string(&readme).unwrap() + "\nEdited.\n").unwrap();
+    let written = files(&krate);
+    let build =
+        || std::process::Command::new(twinray_tests::cli::exe()).args(["build", "mine"]).current_dir(dir).output();
+    let (first, second) = std::thread::scope(|s| {
+        let first = s.spawn(build);
+        let second = s.spawn(build);
+        (first.join().unwrap().unwrap(), second.join().unwrap().unwrap())
+    });
+    let said = [text(&first), text(&second)];
+    assert!(first.status.success() && second.status.success(), "{said:?}");
+    assert_eq!(said.iter().filter(|t| t.contains("mine: built")).count(), 1, "{said:?}");
+    same_modules(&krate.join("target/twinray/set"), "rust");
     ok(&["build", "mine/glsl"], dir);
     same_modules(&krate.join("glsl/target/twinray/set"), "glsl");
     assert!(files(&krate) == written, "a build wrote in the crate outside target/");

@@ -6,7 +6,7 @@
 
 use crate::builder::{self, nightly, NIGHTLY};
 use crate::process::{output_within, Finished};
-use crate::{postprocess, require_tools, run_builder, Output};
+use crate::{postprocess, process::have, run_builder, Output};
 use anyhow::{anyhow, bail, Context, Result};
 use std::hash::{Hash, Hasher};
 use std::path::{Path, PathBuf};
@@ -73,14 +73,21 @@ pub fn build(dir: &Path, options: Options) -> Result<Built> {
     let kind = sources_in(dir).ok_or_else(|| {
         anyhow!("{}: no shader sources (a folder of them holds a Cargo.toml or a raygen.rgen)", dir.display())
     })?;
-    require_tools()?;
+    // glslang only for GLSL twins: a user of Rust stages needs SPIRV-Tools alone.
+    let tools: &[&str] =
+        if kind == Sources::Crate { &["spirv-val", "spirv-opt"] } else { &["glslangValidator", "spirv-val"] };
+    require(tools)?;
     let version = match kind {
         Sources::Crate => crate_contract(dir)?,
         Sources::Glsl => glsl_contract(dir)?,
     };
     if let Some(refusal) = contract::refusal(&version) {
-        bail!("{}: built against twinray-shared {version}, refused: {refusal}", dir.display());
+        bail!("{}: {refusal}", dir.display());
     }
+    // One build of a folder at a time: two commands naming it at once take turns.
+    std::fs::create_dir_all(dir.join("target/twinray"))?;
+    let lock = std::fs::File::create(dir.join("target/twinray/build.lock"))?;
+    lock.lock()?;
     let set = set_dir(dir);
     let stamp = dir.join("target/twinray/set.stamp");
     let hash = format!("{:016x}", content_hash(dir, &version)?);
@@ -111,6 +118,14 @@ pub fn build(dir: &Path, options: Options) -> Result<Built> {
     std::fs::write(&stamp, &hash)?;
     let modules = names.len();
     Ok(Built { set, rebuilt: true, contract: version, modules, seconds: start.elapsed().as_secs_f64() })
+}
+
+/// Fails naming the first of `tools` that cannot be started, and the Debian packages.
+fn require(tools: &[&str]) -> Result<()> {
+    match tools.iter().find(|t| !have(t)) {
+        Some(tool) => bail!("{tool} not found: install Debian's spirv-tools (and glslang-tools for GLSL twins)"),
+        None => Ok(()),
+    }
 }
 
 fn count_modules(set: &Path) -> usize {
@@ -144,14 +159,22 @@ fn compile_crate(dir: &Path, out: &Path, timeout: Duration) -> Result<Vec<String
     entry_points(dir, out)
 }
 
-/// The compiler's warnings in cargo's output, without its progress lines and without rust-gpu's
-/// note that spirv-opt is off, which twinray's builder asks for and is no fault of the crate.
+/// The compiler's warnings in cargo's output, each block as cargo printed it, without cargo's
+/// progress and summary lines and without two notes of rust-gpu that are no fault of the
+/// crate: that spirv-opt is off (twinray's builder turns it off), and that a slice should
+/// replace `&RuntimeArray<T>`, which rust-gpu says of any unsized parameter, also of a struct
+/// with a header that no slice can hold (the built-in stages' lights).
 fn warnings(stderr: &str) -> String {
+    const NOT_THE_CRATES: [&str; 2] = ["but was disabled by `--no-spirv-opt`", "use &[T] instead of &RuntimeArray<T>"];
     let progress = ["Compiling ", "Finished ", "Blocking ", "Updating ", "Locking ", "Downloaded ", "Downloading "];
-    let ours = "but was disabled by `--no-spirv-opt`";
-    let lines = stderr.lines().filter(|l| !progress.iter().any(|p| l.trim_start().starts_with(p)) && !l.contains(ours));
-    let text: String = lines.map(|l| format!("{l}\n")).collect();
-    text.replace("\n\n\n", "\n\n")
+    let kept: Vec<&str> = stderr.lines().filter(|l| !progress.iter().any(|p| l.trim_start().starts_with(p))).collect();
+    let text = kept.join("\n");
+    let blocks = text.split("\n\n").filter(|block| {
+        let first = block.trim_start().lines().next().unwrap_or_default();
+        let summary = first.starts_with("warning: `") && first.contains(" generated ");
+        !block.trim().is_empty() && !summary && !NOT_THE_CRATES.iter().any(|n| first.contains(n))
+    });
+    blocks.map(|b| format!("{}\n\n", b.trim_end())).collect()
 }
 
 /// The modules rust-gpu wrote to `out`, each checked to be a module of the catalog.
