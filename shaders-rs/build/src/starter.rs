@@ -16,9 +16,8 @@ pub const GLSL_DIR: &str = "glsl";
 
 const README: &str = include_str!("../starter/README.md");
 
-/// What `write` made: the crate's package name and every file, relative to the crate.
+/// What `write` made: every file, relative to the crate.
 pub struct Written {
-    pub name: String,
     pub files: Vec<PathBuf>,
 }
 
@@ -72,7 +71,7 @@ pub fn write(dir: &Path, name: &str, glsl: bool) -> Result<Written> {
         }
         std::fs::write(&full, bytes).with_context(|| format!("writing {}", full.display()))?;
     }
-    Ok(Written { name: name.to_string(), files: files.into_iter().map(|(p, _)| p).collect() })
+    Ok(Written { files: files.into_iter().map(|(p, _)| p).collect() })
 }
 
 /// Replaces `from` by `to` in `text`, failing when `from` is not there: the embedded file
@@ -124,11 +123,6 @@ fn lock(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
 /// The embedded builder's sources (`shaders-rs/builder`), for a machine without a checkout.
 pub fn builder_sources() -> &'static [(&'static str, &'static [u8])] {
     BUILDER
-}
-
-/// The embedded GLSL twins (`shaders-glsl`).
-pub fn glsl_sources() -> &'static [(&'static str, &'static [u8])] {
-    GLSL
 }
 
 #[cfg(test)]
