@@ -49,8 +49,9 @@ pub fn watch(args: WatchArgs) -> Result<ExitCode> {
         return Err(Error::Input(message).into());
     }
     println!("watch: {} against {} (Ctrl-C to stop)", args.dir.display(), args.against);
-    compare(&args)?;
+    // Seen before the first compare: a save while it runs is the next turn's, not lost.
     let mut seen = snapshot(&args.dir);
+    compare(&args)?;
     let mut saves = 0;
     while args.changes == 0 || saves < args.changes {
         std::thread::sleep(Duration::from_millis(args.poll_ms));
