@@ -32,14 +32,15 @@ float candidate_hit(rayQueryEXT query, float t_min, float t_max, out vec3 normal
                          rayQueryGetIntersectionPrimitiveIndexEXT(query, false);
         // The shape sees the object-space ray its intersection stage would (transform.glsl);
         // the cutout's pattern below, the driver's.
-        vec3 so, sd;
-        stage_ray(o, d, rayQueryGetWorldRayOriginEXT(query), rayQueryGetWorldRayDirectionEXT(query),
-                  rayQueryGetIntersectionObjectToWorldEXT(query, false)[3],
-                  mat3(rayQueryGetIntersectionWorldToObjectEXT(query, false)), so, sd);
+        Primitive p = primitives[primitive];
+        StageRay ray = stage_ray(o, d, rayQueryGetWorldRayOriginEXT(query), rayQueryGetWorldRayDirectionEXT(query),
+                                 rayQueryGetIntersectionObjectToWorldEXT(query, false)[3],
+                                 mat3(rayQueryGetIntersectionWorldToObjectEXT(query, false)), shape_bound(data.shape, p));
+        vec2 range = stage_range(ray, t_min, t_max);
         float hit_t;
         vec3 n;
-        if (shape_intersect(data.shape, so, sd, primitives[primitive], t_min, t_max, hit_t, n)) {
-            t = hit_t;
+        if (shape_intersect(data.shape, ray.origin, ray.direction, p, range.x, range.y, hit_t, n)) {
+            t = stage_world_t(ray, hit_t, t_max);
             normal = n;
         }
     }

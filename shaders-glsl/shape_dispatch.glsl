@@ -44,6 +44,30 @@ bool shape_intersect(uint shape, vec3 o, vec3 d, Primitive p, float t_min, float
     return false;
 }
 
+// Twin of twinray_shared::shapes::shape_bound: the sphere the primitive of a robust routine lies in,
+// zero for the naive ones and unknown shapes.
+vec4 shape_bound(uint shape, Primitive p) {
+    if (shape == HIT_KIND_SPHERE) {
+        return sphere_bound(p);
+    }
+    if (shape == HIT_KIND_PLANE) {
+        return plane_bound(p);
+    }
+    if (shape == HIT_KIND_BOX) {
+        return box_bound(p);
+    }
+    if (shape == HIT_KIND_CYLINDER) {
+        return cylinder_bound(p);
+    }
+    if (shape == HIT_KIND_CONE) {
+        return cone_bound(p);
+    }
+    if (shape == HIT_KIND_TORUS) {
+        return torus_bound(p);
+    }
+    return vec4(0.0);
+}
+
 // Twin of twinray_shared::shapes::shape_uv: the texture coordinates of shape `kind` (its hit kind)
 // at the object-space point q, where its intersection reported the normal n.
 void shape_uv(uint kind, Primitive p, vec3 q, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {

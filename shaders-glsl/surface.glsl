@@ -34,21 +34,4 @@ float self_reach2(bool on_surface, float size2, float dd) {
 bool is_self_root(float reach2, float t, bool other_ok, float other) {
     return t * t <= reach2 && (other_ok ? abs(t) < abs(other) : true);
 }
-// Twin of twinray_shared::surface::split: the top 12 significant bits of x, and the rest.
-vec2 surface_split(float x) {
-    float high = uintBitsToFloat(floatBitsToUint(x) & 0xFFFFF000u);
-    return vec2(high, x - high);
-}
-
-// Twin of twinray_shared::surface::point_at: o + d t rounded relative to the result, with no
-// need for the driver to fuse the multiply and add.
-vec3 point_at(vec3 o, vec3 d, float t) {
-    vec2 ts = surface_split(t);
-    vec3 p;
-    for (int i = 0; i < 3; i++) {
-        vec2 ds = surface_split(d[i]);
-        p[i] = (o[i] + ds.x * ts.x) + (ds.x * ts.y + ds.y * ts.x) + ds.y * ts.y;
-    }
-    return p;
-}
 #endif

@@ -6,6 +6,7 @@ mod animation;
 mod assimp;
 mod callables;
 mod compute;
+mod condition;
 mod crosscheck;
 mod cutout;
 mod docs;

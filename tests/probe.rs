@@ -165,12 +165,14 @@ fn naive_sphere_fails_where_the_robust_one_holds() {
         assert!(robust.relative_t_error.p99 < 1e-6, "{set_text} robust p99 {}", robust.relative_t_error.p99);
         assert!(naive.false_hits + naive.false_misses > 50, "{set_text} naive: {}", naive.summary());
         assert!(naive.relative_t_error.p99 > 1e-5, "{set_text} naive p99 {}", naive.relative_t_error.p99);
-        // The witness pass puts the naive formula's error on the stage, where it is: the same
-        // object-space rays, so the same transform error, whichever formula the stage uses.
+        // The witness pass puts the naive formula's error on the stage, where it is. The naive
+        // routine keeps the textbook transform (the ray transformed where it starts, 10 units
+        // away); the robust one's ray is brought near the sphere first, so its transform is
+        // no worse.
         let (robust, naive) = (robust.t_error_by_source.expect("split"), naive.t_error_by_source.expect("split"));
         assert!(naive.stage.p99 > 1e-5 && robust.stage.p99 < 1e-6, "{set_text}: {robust:?} {naive:?}");
         assert_eq!(robust.rays, naive.rays, "{set_text}");
-        assert_eq!(robust.transform.p99, naive.transform.p99, "{set_text}");
+        assert!(robust.transform.p99 <= naive.transform.p99, "{set_text}: {robust:?} {naive:?}");
     }
 }
 
@@ -207,9 +209,12 @@ fn the_stages_own_transform_keeps_a_far_instance_precise_and_the_drivers_is_repo
     // The host chose the stages' transform for this scene: its instances are far for their size.
     let features = case.scene.build().plan.features;
     assert_ne!(features & twinray_shared::features::FAR_INSTANCES, 0, "far-instances not set: {features:#b}");
-    // The twins' witnesses hand back the same object-space rays, bit for bit: one formula in
-    // both languages (twinray_shared::transform and transform.glsl).
-    let ray = |r: &twinray::probe::ProbeResult| twinray::probe::split::witness(r).map(|w| (w.origin, w.direction));
+    // The twins' witnesses hand back the same object-space rays, from the same place along the
+    // world ray, bit for bit: one formula in both languages (twinray_shared::transform and
+    // transform.glsl).
+    let ray = |r: &twinray::probe::ProbeResult| {
+        twinray::probe::split::witness(r).map(|w| (w.origin, w.direction, w.shift.to_bits()))
+    };
     let (rust, glsl) = (&witnesses[0], &witnesses[1]);
     let same = rust.iter().zip(glsl).filter(|(r, g)| ray(r) == ray(g)).count();
     assert_eq!(same, rust.len(), "rays whose witnessed object-space ray (or miss) differs between the twins");

@@ -84,4 +84,9 @@ void box_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out v
     dv = -up / height;
 }
 
+// Twin of twinray_shared::shapes::boxes::bound: the sphere the primitive lies in (xyz: centre,
+// w: radius, object space).
+vec4 box_bound(Primitive p) {
+    return vec4(0.0, 0.0, 0.0, length(p.a.xyz));
+}
 #endif

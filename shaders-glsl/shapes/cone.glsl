@@ -7,6 +7,7 @@
 #include "twinray_layout.glsl"
 #include "shape_uv.glsl"
 #include "surface.glsl"
+#include "exact.glsl"
 
 // One Newton step on the implicit function at the hit point, at most CONE_POLISH_LIMIT * t
 // (see twinray_shared::shapes::cone::polish).
@@ -71,4 +72,9 @@ void cone_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out 
     revolved_uv(p, n, primitive.a.x, primitive.a.y, uv, du, dv);
 }
 
+// Twin of twinray_shared::shapes::cone::bound: the sphere the primitive lies in (xyz: centre,
+// w: radius, object space).
+vec4 cone_bound(Primitive p) {
+    return vec4(0.0, 0.0, 0.0, length(p.a.xy));
+}
 #endif

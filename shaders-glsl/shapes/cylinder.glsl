@@ -74,4 +74,9 @@ void cylinder_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, 
     revolved_uv(p, n, primitive.a.x, primitive.a.y, uv, du, dv);
 }
 
+// Twin of twinray_shared::shapes::cylinder::bound: the sphere the primitive lies in (xyz: centre,
+// w: radius, object space).
+vec4 cylinder_bound(Primitive p) {
+    return vec4(0.0, 0.0, 0.0, length(p.a.xy));
+}
 #endif

@@ -28,4 +28,9 @@ void plane_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out
     flat_uv(p, primitive.b.x == PLANE_DISK ? vec2(a.x) : a.xy, 1.0, uv, du, dv);
 }
 
+// Twin of twinray_shared::shapes::plane::bound: the sphere the primitive lies in (xyz: centre,
+// w: radius, object space).
+vec4 plane_bound(Primitive p) {
+    return vec4(0.0, 0.0, 0.0, length(p.a.xy));
+}
 #endif

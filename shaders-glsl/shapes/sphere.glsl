@@ -93,4 +93,9 @@ void sphere_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, ou
     spherical_uv(p - primitive.a.xyz, uv, du, dv);
 }
 
+// Twin of twinray_shared::shapes::sphere::bound: the sphere the primitive lies in (xyz: centre,
+// w: radius, object space).
+vec4 sphere_bound(Primitive p) {
+    return p.a;
+}
 #endif

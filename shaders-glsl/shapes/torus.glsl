@@ -261,4 +261,9 @@ void torus_uv(Primitive primitive, vec3 p, vec3 n, out vec2 uv, out vec3 du, out
     dv = -d_psi * turn;
 }
 
+// Twin of twinray_shared::shapes::torus::bound: the sphere the primitive lies in (xyz: centre,
+// w: radius, object space).
+vec4 torus_bound(Primitive p) {
+    return vec4(0.0, 0.0, 0.0, p.a.x + p.a.y);
+}
 #endif

@@ -35,6 +35,8 @@ pub fn run(scope: Scope) -> Result<()> {
         packages.push("assimp-testmodels");
         // The confinement test watches which files twinray opens (host/tests/gltf_cli.rs).
         packages.push("strace");
+        // The condition numbers of probe reports are checked against mpmath's (tests/condition.rs).
+        packages.push("python3-mpmath");
     }
     ensure_packages(&packages)?;
     if scope == Scope::Full {

@@ -158,7 +158,7 @@ fn variants_section(report: &BenchReport) -> String {
          formulas in the same run: GPU time per million rays against p99 relative t error and wrong answers on decided \
          rays. Cases with no t error (surface rays, judged by what they see) sit at 1e-9.</p>\n<div class=\"plots\"><img src=\"plots/variants.svg\" alt=\"time against error\"></div>\n\
          <table><tr><th>case</th><th>variant</th><th>robust ms/Mray</th><th>naive ms/Mray</th><th>robust/naive</th>\
-         <th>robust t p99</th><th>naive t p99</th><th>naive wrong</th></tr>\n",
+         <th>robust t p99</th><th>naive t p99</th><th>robust, naive condition multiple p99</th><th>naive wrong</th></tr>\n",
     );
     for robust in report.variants.iter().filter(|r| r.formula == "robust") {
         let Some(naive) = report.variants.iter().find(|n| n.formula == "naive" && n.report.case == robust.report.case)
@@ -170,13 +170,15 @@ fn variants_section(report: &BenchReport) -> String {
         let ratio = a.zip(b).map_or("n/a".into(), |(a, b)| format!("{:.3}", a / b));
         let _ = writeln!(
             s,
-            "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{ratio}</td><td>{:.2e}</td><td>{:.2e}</td><td>{}</td></tr>",
+            "<tr><td class=\"l\">{}</td><td class=\"l\">{}</td><td>{}</td><td>{}</td><td>{ratio}</td><td>{:.2e}</td><td>{:.2e}</td><td>{:.2}, {:.2}</td><td>{}</td></tr>",
             escape(&robust.report.case),
             escape(&robust.variant),
             ms(a),
             ms(b),
             robust.report.relative_t_error.p99,
             naive.report.relative_t_error.p99,
+            robust.report.condition_multiple.p99,
+            naive.report.condition_multiple.p99,
             naive.report.false_hits + naive.report.false_misses + naive.report.wrong_object,
         );
     }

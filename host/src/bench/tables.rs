@@ -99,7 +99,7 @@ pub fn sampler_csv(report: &BenchReport) -> String {
 
 /// The columns of `variants.csv`.
 pub const VARIANT_CSV_HEADER: &str =
-    "case,variant,formula,rays,decided,false_hits,false_misses,relative_t_p99,gpu_ms_per_million_rays";
+    "case,variant,formula,rays,decided,false_hits,false_misses,relative_t_p99,condition_multiple_p99,gpu_ms_per_million_rays";
 
 /// `variants.csv`: robust against naive intersection per probe case.
 pub fn variant_csv(report: &BenchReport) -> String {
@@ -108,8 +108,16 @@ pub fn variant_csv(report: &BenchReport) -> String {
         let r = &row.report;
         let ms = r.gpu_ms_per_million_rays.map_or(String::new(), |v| format!("{v}"));
         s += &format!(
-            "\"{}\",\"{}\",{},{},{},{},{},{},{ms}\n",
-            r.case, row.variant, row.formula, r.rays, r.decided, r.false_hits, r.false_misses, r.relative_t_error.p99
+            "\"{}\",\"{}\",{},{},{},{},{},{},{},{ms}\n",
+            r.case,
+            row.variant,
+            row.formula,
+            r.rays,
+            r.decided,
+            r.false_hits,
+            r.false_misses,
+            r.relative_t_error.p99,
+            r.condition_multiple.p99
         );
     }
     s

@@ -28,11 +28,26 @@ pub struct ProbeFile {
 }
 
 /// Targets of a case for the robust formulas: no false hit, false miss or wrong object among
-/// decided rays, and a bound on the p99 relative t error.
+/// decided rays, and a bound on the p99 relative t error, written as the error itself, in
+/// units of its condition (error / (κ u), `reference::condition`), or both.
 #[derive(Clone, Copy, Debug, Deserialize, serde::Serialize)]
 #[serde(deny_unknown_fields)]
 pub struct Targets {
-    pub max_relative_t_p99: f64,
+    pub max_relative_t_p99: Option<f64>,
+    pub max_condition_multiple_p99: Option<f64>,
+}
+
+/// A `[targets]` table names at least one bound, each positive and finite.
+fn check_targets(t: &Targets) -> std::result::Result<(), String> {
+    let bounds =
+        [("max_relative_t_p99", t.max_relative_t_p99), ("max_condition_multiple_p99", t.max_condition_multiple_p99)];
+    if bounds.iter().all(|(_, b)| b.is_none()) {
+        return Err("name max_relative_t_p99, max_condition_multiple_p99 or both".into());
+    }
+    match bounds.iter().find(|(_, b)| b.is_some_and(|b| !(b > 0.0 && b.is_finite()))) {
+        Some((name, b)) => Err(format!("{name} must be positive and finite (got {})", b.unwrap_or(0.0))),
+        None => Ok(()),
+    }
 }
 
 /// A scene by built-in name or path (relative to the case file), or written inline.
@@ -166,6 +181,9 @@ impl ProbeCase {
             }
         };
         let reference = SceneReference::new(&scene).map_err(case_error)?;
+        if let Some(t) = file.targets {
+            check_targets(&t).map_err(|e| case_error(format!("targets: {e}")))?;
+        }
         for (i, r) in file.rays.iter().enumerate() {
             check_ray(r).map_err(|e| case_error(format!("rays[{i}].{e}")))?;
         }

@@ -5,10 +5,12 @@ use super::case::Generated;
 use super::case::ProbeCase;
 use super::run::{count_written, judgeable, no_payload, Launched, Records};
 use super::split::{relative, split, AgreedHit, TErrorSplit};
+use crate::reference::condition::{condition_multiple, t_condition};
 use crate::reference::scene::SceneVerdict;
 use crate::reference::stage::{lines, stage_of};
 use crate::render::Written;
 use crate::util::stats::Quantiles;
+use glam::DVec3;
 use serde::Serialize;
 use twinray_shared::bindings::{NO_HIT, PROBE_NO_PAYLOAD};
 use twinray_shared::layout::{ProbeRay, ProbeResult};
@@ -34,6 +36,11 @@ pub struct ProbeReport {
     pub through: usize,
     /// |t - t_ref| / t_ref over rays both hit.
     pub relative_t_error: Quantiles,
+    /// The relative t error in units of its condition, error / (κ u), over the same hits
+    /// (`reference::condition`): near 1 or below, as good as rounding the inputs allows.
+    pub condition_multiple: Quantiles,
+    /// The hit with the largest condition multiple, if any hit.
+    pub worst_conditioned: Option<WorstHit>,
     /// |t - t_ref| in f32 ULPs of t_ref, 99th percentile.
     pub ulp_error_p99: f64,
     /// Angle between the normals, radians, 99th percentile.
@@ -57,6 +64,16 @@ pub struct ProbeReport {
     pub pass: bool,
     /// Why `pass` is false.
     pub failures: Vec<String>,
+}
+
+/// One hit named by a report: the ray's index in the case, its relative t error, the
+/// condition κ of its t and the error in units of κ u.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct WorstHit {
+    pub ray: usize,
+    pub relative_error: f64,
+    pub condition: f64,
+    pub multiple: f64,
 }
 
 /// Relative t beyond the reference's past which a hit on the same object counts as gone
@@ -153,6 +170,8 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
         wrong_object: 0,
         through: 0,
         relative_t_error: Quantiles::default(),
+        condition_multiple: Quantiles::default(),
+        worst_conditioned: None,
         ulp_error_p99: 0.0,
         normal_angle_error_p99: 0.0,
         t_error_by_source: None,
@@ -166,9 +185,9 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
     };
     report.failures = report.written.problems(set, "rays");
     report.pass = report.failures.is_empty();
-    let (mut rel, mut ulps, mut angles) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut rel, mut ulps, mut angles, mut multiples) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
     let judged = judge(case, results);
-    for (judged, result) in judged.iter().zip(results) {
+    for (i, (judged, result)) in judged.iter().zip(results).enumerate() {
         match judged.outcome {
             Outcome::Ambiguous => report.ambiguous += 1,
             Outcome::FalseHit => report.false_hits += 1,
@@ -176,10 +195,15 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
             Outcome::WrongObject => report.wrong_object += 1,
             Outcome::Unwritten | Outcome::NoPayload => {}
             Outcome::Agrees => {
-                if let SceneVerdict::Hit { t, normal, .. } = judged.verdict {
+                if let SceneVerdict::Hit { t, normal, object } = judged.verdict {
                     let got_t = f64::from(result.normal_t.w);
                     report.through += usize::from(went_through(got_t, t));
                     rel.push(relative(got_t, t));
+                    let hit = conditioned(case, &judged.ray, (object, t, normal), relative(got_t, t), i);
+                    if report.worst_conditioned.is_none_or(|w| hit.multiple > w.multiple) {
+                        report.worst_conditioned = Some(hit);
+                    }
+                    multiples.push(hit.multiple);
                     ulps.push((got_t - t).abs() / ulp(t as f32));
                     let n = result.normal_t.truncate().normalize().as_dvec3();
                     angles.push(n.dot(normal).clamp(-1.0, 1.0).acos());
@@ -221,9 +245,24 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
         split(&case.reference, hits)
     });
     report.relative_t_error = Quantiles::of(rel);
+    report.condition_multiple = Quantiles::of(multiples);
     report.ulp_error_p99 = Quantiles::of(ulps).p99;
     report.normal_angle_error_p99 = Quantiles::of(angles).p99;
     report
+}
+
+/// Ray `index`'s hit (`object`, t and normal of the reference) with its condition and the
+/// multiple `relative_error` is of it.
+fn conditioned(
+    case: &ProbeCase,
+    ray: &ProbeRay,
+    (object, t, normal): (usize, f64, DVec3),
+    relative_error: f64,
+    index: usize,
+) -> WorstHit {
+    let (o, d) = (ray.origin.truncate().as_dvec3(), ray.direction.truncate().as_dvec3());
+    let condition = t_condition(&case.reference.objects[object], o, d, t, normal);
+    WorstHit { ray: index, relative_error, condition, multiple: condition_multiple(relative_error, condition) }
 }
 
 /// The lines naming the stage each ray with no payload went to, by the reference's `verdicts`.
@@ -319,11 +358,21 @@ impl ProbeReport {
             "case {} with {} on {}: {} rays, {} decided, {} ambiguous\n  false hits {}, false misses {}, wrong object {}, through the first surface {}\n  relative t error: median {:.2e}, p99 {:.2e}, max {:.2e}; ULP error p99 {:.1}\n  normal angle error p99 {:.2e} rad\n  {ms}\n",
             self.case, self.set, self.device, self.rays, self.decided, self.ambiguous, self.false_hits,
             self.false_misses, self.wrong_object, self.through, t.median, t.p99, t.max, self.ulp_error_p99, self.normal_angle_error_p99
-        ) + &match &self.t_error_by_source {
+        ) + &self.condition_line() + &match &self.t_error_by_source {
             Some(split) => format!("  {}\n", split.summary()),
             None => "  relative t error by source: n/a (no witness pass: the compute renderer's probe, or a folder set without probe_witness)\n".into(),
         } + &if self.generators.is_empty() { String::new() } else { format!("  generators: {}\n", self.generators_made()) }
             + &self.launches_line()
+    }
+
+    /// The t error in units of its condition, and the hit where it is largest.
+    pub fn condition_line(&self) -> String {
+        let Some(w) = &self.worst_conditioned else { return String::new() };
+        let c = &self.condition_multiple;
+        format!(
+            "  t error in units of its condition, error / (κ u): median {:.2}, p99 {:.2}, max {:.2} (ray {}: error {:.2e}, κ {:.3e})\n",
+            c.median, c.p99, c.max, w.ray, w.relative_error, w.condition
+        )
     }
 
     /// Where the GPU's coordinates were centred, when not at the world origin in one launch.

@@ -4,7 +4,9 @@
 //! reported, so the f64 reference can judge the stages against the very ray they used (their
 //! own error) and, apart from it, how far the transform moved the true answer. A second
 //! witness pass reads the object-space ray the driver hands a hit group, which the stages no
-//! longer use: how far the driver's transform would have moved it. On lavapipe an instance
+//! longer use: how far the driver's transform would have moved it. The stages' ray may start
+//! along the world ray, brought near the primitive first; the witness says how far, and the
+//! reference answers in the world ray's parameter. On lavapipe an instance
 //! translated 1e4 away and seen from 10 units gets 2.5e-4 from the driver's transform, and
 //! a few f32 ulps from the stages' (docs/numerics.md).
 
@@ -23,7 +25,10 @@ pub struct Witness {
     /// The object-space ray the GPU handed the hit group's stages.
     pub origin: Vec3,
     pub direction: Vec3,
-    /// The t they reported.
+    /// How far along the world ray that origin lies: the stages brought the ray near the
+    /// primitive before the transform (`twinray_shared::transform::near_ray`).
+    pub shift: f32,
+    /// The t they reported, on the world ray.
     pub t: f32,
 }
 
@@ -34,7 +39,7 @@ pub fn witness(r: &ProbeResult) -> Option<Witness> {
         return None;
     }
     let direction = Vec3::new(f32::from_bits(r.ids.x), f32::from_bits(r.ids.y), f32::from_bits(r.ids.z));
-    Some(Witness { origin: r.normal_t.truncate(), direction, t: r.normal_t.w })
+    Some(Witness { origin: r.normal_t.truncate(), direction, shift: f32::from_bits(r.ids.w), t: r.normal_t.w })
 }
 
 /// The relative t error over hits, split by source.
@@ -104,16 +109,19 @@ pub fn split<'a>(reference: &SceneReference, hits: impl Iterator<Item = AgreedHi
 fn object_t(reference: &SceneReference, hit: &AgreedHit, record: &ProbeResult) -> Option<f64> {
     let w = witness(record).filter(|w| w.t.to_bits() == hit.result.normal_t.w.to_bits())?;
     let object = reference.objects.get(hit.result.ids.x as usize)?;
+    // The witnessed ray starts `shift` along the world ray: its parameter is the world's less
+    // the shift, exactly in f64.
+    let shift = f64::from(w.shift);
     let ray = RefRay {
         origin: w.origin.as_dvec3(),
         direction: w.direction.as_dvec3(),
-        t_min: f64::from(hit.ray.origin.w),
-        t_max: f64::from(hit.ray.direction.w),
+        t_min: f64::from(hit.ray.origin.w) - shift,
+        t_max: f64::from(hit.ray.direction.w) - shift,
         // Given in the object's own space: rounded at its own magnitude.
         noise_floor: 0.0,
     };
     match object.first_hit(&ray) {
-        Verdict::Hit { t, .. } => Some(t),
+        Verdict::Hit { t, .. } => Some(shift + t),
         Verdict::Miss | Verdict::Ambiguous => None,
     }
 }
@@ -164,8 +172,27 @@ mod tests {
 
     /// The record the witness pass writes for an object-space ray and t.
     fn witnessed(origin: Vec3, direction: Vec3, t: f32) -> ProbeResult {
+        shifted(origin, direction, 0.0, t)
+    }
+
+    /// The record for an object-space ray that starts `shift` along the world ray.
+    fn shifted(origin: Vec3, direction: Vec3, shift: f32, t: f32) -> ProbeResult {
         let d = direction.to_array().map(f32::to_bits);
-        ProbeResult { normal_t: origin.extend(t), ids: UVec4::new(d[0], d[1], d[2], 1) }
+        ProbeResult { normal_t: origin.extend(t), ids: UVec4::new(d[0], d[1], d[2], shift.to_bits()) }
+    }
+
+    /// A ray brought 7 units along before the transform: the reference answers the object-space
+    /// ray from there (t' = 2) and puts the shift back, so the exact answer is exact.
+    #[test]
+    fn a_ray_brought_near_is_judged_in_the_world_rays_parameter() {
+        let reference = reference();
+        let ray = ProbeRay { origin: Vec4::new(10000.0, 0.0, -10.0, 0.0), direction: Vec4::new(0.0, 0.0, 1.0, 100.0) };
+        let result = ProbeResult { normal_t: Vec4::new(0.0, 0.0, -1.0, 9.0), ids: UVec4::new(0, 0, 0, 1) };
+        let near = shifted(Vec3::new(0.0, 0.0, -3.0), Vec3::Z, 7.0, 9.0);
+        let hits = [AgreedHit { ray: &ray, t_ref: 9.0, result: &result, witness: &near, driver: None }];
+        let s = split(&reference, hits.into_iter());
+        assert_eq!((s.rays, s.undecided, s.unrepeated), (1, 0, 0));
+        assert_eq!((s.transform.max, s.stage.max), (0.0, 0.0), "{s:?}");
     }
 
     #[test]

@@ -161,6 +161,11 @@ fn measure(
     Ok((out, ms))
 }
 
+/// The condition multiple (`reference::condition`) a robust row may reach at p99 where its case
+/// names none: an error up to 8 times what rounding the problem's inputs to f32 allows. Above
+/// it, the formula or the transform lost precision the inputs held.
+pub const MAX_CONDITION_MULTIPLE_P99: f64 = 8.0;
+
 /// What a robust report breaks of its case's targets.
 pub fn failures(case: &ProbeCase, r: &ProbeReport) -> Vec<String> {
     let mut failures = Vec::new();
@@ -170,10 +175,13 @@ pub fn failures(case: &ProbeCase, r: &ProbeReport) -> Vec<String> {
             r.false_hits, r.false_misses, r.wrong_object
         ));
     }
-    if let Some(t) = case.file.targets {
-        if r.relative_t_error.p99 > t.max_relative_t_p99 {
-            failures.push(format!("relative t p99 {:.2e} > {:.0e}", r.relative_t_error.p99, t.max_relative_t_p99));
-        }
+    let targets = case.file.targets;
+    if let Some(most) = targets.and_then(|t| t.max_relative_t_p99).filter(|&most| r.relative_t_error.p99 > most) {
+        failures.push(format!("relative t p99 {:.2e} > {most:.0e}", r.relative_t_error.p99));
+    }
+    let most = targets.and_then(|t| t.max_condition_multiple_p99).unwrap_or(MAX_CONDITION_MULTIPLE_P99);
+    if r.condition_multiple.p99 > most {
+        failures.push(format!("condition multiple p99 {:.2} > {most}", r.condition_multiple.p99));
     }
     if r.decided == 0 {
         failures.push("no ray decided".into());
@@ -231,7 +239,7 @@ fn generators(rows: &[StabilityRow]) -> String {
 
 fn results(rows: &[StabilityRow]) -> String {
     let mut s = format!(
-        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>10} {:>10} {:>11} {:>8} {:>9} {:>9}  targets\n",
+        "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9} {:>8} {:>10} {:>10} {:>11} {:>8} {:>9} {:>9}  targets\n",
         "case",
         "set",
         "formula",
@@ -240,6 +248,7 @@ fn results(rows: &[StabilityRow]) -> String {
         "f.hit",
         "f.miss",
         "t p99",
+        "cond p99",
         "stage p99",
         "xform p99",
         "driver p99",
@@ -268,7 +277,7 @@ fn results(rows: &[StabilityRow]) -> String {
         };
         let (stage, transform, driver) = by_source(r);
         s += &format!(
-            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>10} {:>10} {:>11} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
+            "{:<26} {:<5} {:<7} {:>5} {:>7} {:>6} {:>6} {:>9.2e} {:>8.2} {:>10} {:>10} {:>11} {:>8.1} {:>9.2e} {:>9}  {verdict}\n",
             r.case,
             r.set,
             row.formula,
@@ -277,6 +286,7 @@ fn results(rows: &[StabilityRow]) -> String {
             r.false_hits,
             r.false_misses + r.wrong_object,
             r.relative_t_error.p99,
+            r.condition_multiple.p99,
             stage,
             transform,
             driver,

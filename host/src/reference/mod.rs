@@ -1,6 +1,7 @@
 //! The references twinray's numbers are measured against: the f64 answer for a ray and a
 //! shape or a whole scene, and converged reference images.
 
+pub mod condition;
 pub mod cutout;
 pub mod image;
 mod ray;

@@ -4,6 +4,7 @@
 //! shaders` and `watch` use it on this checkout; `twinray view` on any checkout it is given.
 
 pub mod builder;
+mod exact;
 mod exit;
 pub mod folder;
 mod process;
@@ -155,10 +156,15 @@ pub(crate) fn run_builder(builder: &Path, crate_dir: &Path, out: &Path, target: 
 /// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
 /// is off, so that the committed modules depend only on the code, and the ray query capability
 /// from modules that trace no ray query; decorates non-uniform descriptor accesses
-/// `NonUniform`, which rust-gpu's inliner drops (`uniformity`).
+/// `NonUniform`, which rust-gpu's inliner drops (`uniformity`), and the error-free arithmetic
+/// of `twinray_shared::exact` `NoContraction`, which rust-gpu cannot write (`exact`).
 fn strip_debug_info(dir: &Path, names: &[String]) -> Result<()> {
     for spec in MODULES.iter().filter(|m| names.iter().any(|n| n == m.name)) {
         let path = dir.join(format!("{}.spv", spec.name));
+        // Before the names go: they say which functions are exact.
+        let (exact, _) =
+            exact::decorate(&std::fs::read(&path)?).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+        std::fs::write(&path, exact)?;
         let stripped = dir.join(format!("{}.stripped", spec.name));
         run(Command::new("spirv-opt").arg("--strip-debug").arg(&path).arg("-o").arg(&stripped))
             .with_context(|| format!("stripping {}", path.display()))?;

@@ -101,7 +101,7 @@ pub fn decorate(bytes: &[u8]) -> Result<Vec<u8>, String> {
     Ok(module.assemble().iter().flat_map(|w| w.to_le_bytes()).collect())
 }
 
-fn load(bytes: &[u8]) -> Result<dr::Module, String> {
+pub(crate) fn load(bytes: &[u8]) -> Result<dr::Module, String> {
     if !bytes.len().is_multiple_of(4) {
         return Err(format!("{} bytes is not a SPIR-V module", bytes.len()));
     }

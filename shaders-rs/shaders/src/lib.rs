@@ -243,9 +243,9 @@ pub fn shadow_miss(#[spirv(incoming_ray_payload)] shadow: &mut ShadowPayload) {
 /// often reads one buffer, as the spine's did.
 ///
 /// Expands to one `#[spirv(intersection)] pub fn $name(..)` that reports `$intersect`'s hit
-/// with hit kind `$hit_kind`; docs/rust-stages.md shows the sphere's expanded.
+/// with hit kind `$hit_kind`, on the ray brought near the primitive's sphere `$bound`; docs/rust-stages.md shows the sphere's expanded.
 macro_rules! procedural_intersection {
-    ($name:ident, $intersect:path, $hit_kind:expr) => {
+    ($name:ident, $intersect:path, $bound:expr, $hit_kind:expr) => {
         #[spirv(intersection)]
         #[allow(clippy::too_many_arguments)]
         pub fn $name(
@@ -270,16 +270,18 @@ macro_rules! procedural_intersection {
             // `showcase` was where the driver put the code: bench/reports/rust-raygen, 0).
             // SAFETY: see above; every AABB of a BLAS has its primitive at that index.
             let p = unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
-            // Where the scene has far instances, the object-space ray from the world ray, not
-            // the driver's, which loses precision there (twinray_shared::transform).
-            let (origin, direction) = twinray_shared::transform::stage_ray(
+            // Where the scene has far instances, the object-space ray from the world ray,
+            // brought near the primitive first, not the driver's, which loses precision there
+            // (twinray_shared::transform).
+            let ray = twinray_shared::transform::stage_ray(
                 Features::new(features),
                 (object_origin, object_direction),
                 (world_origin, world_direction),
-                object_to_world.w_axis,
-                world_to_object.to_mat3(),
+                (object_to_world.w_axis, world_to_object.to_mat3()),
+                ($bound)(&p),
             );
-            if let Some(hit) = $intersect(origin, direction, &p, t_min, t_max) {
+            let (near, far) = ray.range(t_min, t_max);
+            if let Some(hit) = $intersect(ray.origin, ray.direction, &p, near, far) {
                 // Put back what was there if the hit is not taken (a cutout's any-hit stage
                 // ignored it): lavapipe 25.0.7 hands closest-hit the attribute last written,
                 // not the one reported with the committed hit (Vulkan-Docs #2681), so a hole
@@ -287,7 +289,7 @@ macro_rules! procedural_intersection {
                 let before = *normal;
                 *normal = hit.normal;
                 // SAFETY: called from an intersection stage, as OpReportIntersectionKHR requires.
-                if !unsafe { spirv_std::arch::report_intersection(hit.t, $hit_kind) } {
+                if !unsafe { spirv_std::arch::report_intersection(ray.world_t(hit.t, t_max), $hit_kind) } {
                     *normal = before;
                 }
             }
@@ -303,8 +305,19 @@ macro_rules! procedural_intersection {
 macro_rules! intersection_stages {
     ($($shape:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
         $(
-            procedural_intersection!($entry, twinray_shared::shapes::$module::intersect, $kind);
-            $(procedural_intersection!($naive, twinray_shared::shapes::$module::naive_intersect, $kind);)?
+            procedural_intersection!(
+                $entry,
+                twinray_shared::shapes::$module::intersect,
+                twinray_shared::shapes::$module::bound,
+                $kind
+            );
+            // The textbook routine keeps the textbook transform: no bound, the ray not moved.
+            $(procedural_intersection!(
+                $naive,
+                twinray_shared::shapes::$module::naive_intersect,
+                |_: &Primitive| Vec4::ZERO,
+                $kind
+            );)?
         )*
     };
 }

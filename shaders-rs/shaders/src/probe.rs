@@ -57,12 +57,16 @@ macro_rules! probe_stages {
         /// The probe's witness: a closest-hit stage twinray puts in place of a hit group's own (same
         /// intersection and any-hit stages) for one extra pass of the probe. It packs the
         /// object-space ray the intersection stages use (`twinray_shared::transform::stage_ray`,
-        /// chosen as they choose it), and the t they reported, into the payload fields the
-        /// probe ray generation stage copies out (as `ProbeResult` documents), so a probe can judge
-        /// the stages against the ray they used, apart from the transform's error.
+        /// chosen and brought near the primitive as they do it), how far along the world ray it
+        /// starts, and the t they reported, into the payload fields the probe ray generation stage
+        /// copies out (as `ProbeResult` documents), so a probe can judge the stages against the
+        /// ray they used, apart from the transform's error.
         #[spirv(closest_hit)]
+        #[allow(clippy::too_many_arguments)]
         pub fn probe_witness(
-            #[spirv(hit_kind)] hit_kind: u32,
+            #[spirv(instance_id)] object: u32,
+            #[spirv(instance_custom_index)] primitive_base: u32,
+            #[spirv(primitive_id)] primitive_id: u32,
             #[spirv(world_ray_origin)] world_origin: Vec3,
             #[spirv(world_ray_direction)] world_direction: Vec3,
             #[spirv(object_ray_origin)] object_origin: Vec3,
@@ -70,17 +74,28 @@ macro_rules! probe_stages {
             #[spirv(object_to_world)] object_to_world: Matrix4x3,
             #[spirv(world_to_object)] world_to_object: Matrix4x3,
             #[spirv(ray_tmax)] t: f32,
+            #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
+            #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
             #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
             #[spirv(spec_constant(id = 3, default = 31))] features: u32,
         ) {
-            let (origin, direction) = twinray_shared::transform::stage_ray(
+            // The bound the intersection stage used: its object's routine (zero for the naive ones
+            // and for triangles, whose custom index names no primitive of theirs).
+            let mut bound = Vec4::ZERO;
+            let primitive = (primitive_base + primitive_id) as usize;
+            if (object as usize) < objects.len() && primitive < primitives.len() {
+                // SAFETY: both indices checked above.
+                let shape = unsafe { objects.get_unchecked(object as usize) }.shape;
+                bound = twinray_shared::shapes::shape_bound(shape, unsafe { primitives.get_unchecked(primitive) });
+            }
+            let ray = twinray_shared::transform::stage_ray(
                 Features::new(features),
                 (object_origin, object_direction),
                 (world_origin, world_direction),
-                object_to_world.w_axis,
-                world_to_object.to_mat3(),
+                (object_to_world.w_axis, world_to_object.to_mat3()),
+                bound,
             );
-            witness(payload, (origin, direction), t, hit_kind);
+            witness(payload, (ray.origin, ray.direction), t, ray.shift);
         }
 
         /// The second witness, of what the driver's transform would have cost: as
@@ -88,20 +103,20 @@ macro_rules! probe_stages {
         /// (`ObjectRayOriginKHR`, `ObjectRayDirectionKHR`), which the intersection stages do not use.
         #[spirv(closest_hit)]
         pub fn probe_witness_driver(
-            #[spirv(hit_kind)] hit_kind: u32,
             #[spirv(object_ray_origin)] object_origin: Vec3,
             #[spirv(object_ray_direction)] object_direction: Vec3,
             #[spirv(ray_tmax)] t: f32,
             #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
         ) {
-            witness(payload, (object_origin, object_direction), t, hit_kind);
+            witness(payload, (object_origin, object_direction), t, 0.0);
         }
 
-        /// A witness's record: the object-space ray and t in the fields `probe` copies out.
-        fn witness(payload: &mut HitPayload, (origin, d): (Vec3, Vec3), t: f32, hit_kind: u32) {
+        /// A witness's record: the object-space ray, where it starts along the world ray and t,
+        /// in the fields `probe` copies out.
+        fn witness(payload: &mut HitPayload, (origin, d): (Vec3, Vec3), t: f32, shift: f32) {
             payload.position.w = t;
             payload.shading_normal = origin.extend(payload.shading_normal.w);
-            payload.ids = UVec4::new(d.x.to_bits(), d.y.to_bits(), d.z.to_bits(), hit_kind);
+            payload.ids = UVec4::new(d.x.to_bits(), d.y.to_bits(), d.z.to_bits(), shift.to_bits());
         }
 
         /// `twinray explain`'s stage: one ray per launch index, traced as the renderer traces rays of

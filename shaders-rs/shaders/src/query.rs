@@ -57,15 +57,16 @@ unsafe fn candidate_hit(
             let p = *primitives.get_unchecked(primitive);
             // The shape sees the object-space ray its intersection stage would
             // (twinray_shared::transform); the cutout's pattern below, the driver's.
-            let (so, sd) = transform::stage_ray(
+            let ray = transform::stage_ray(
                 features,
                 (o, d),
                 (query.get_world_ray_origin(), query.get_world_ray_direction()),
-                query.get_candidate_intersection_object_to_world().w_axis,
-                candidate_world_to_object(query).to_mat3(),
+                (query.get_candidate_intersection_object_to_world().w_axis, candidate_world_to_object(query).to_mat3()),
+                shapes::shape_bound(data.shape, &p),
             );
-            if let Some(hit) = shapes::intersect_shape(data.shape, so, sd, &p, t_min, t_max) {
-                (t, normal) = (hit.t, hit.normal);
+            let (near, far) = ray.range(t_min, t_max);
+            if let Some(hit) = shapes::intersect_shape(data.shape, ray.origin, ray.direction, &p, near, far) {
+                (t, normal) = (ray.world_t(hit.t, t_max), hit.normal);
             }
         }
         let material = data.material as usize;

@@ -283,6 +283,14 @@ pub fn shape_dispatch_include() -> String {
         }
     }
     s += "    t = 0.0;\n    n = vec3(0.0);\n    return false;\n}\n";
+    s += "\n// Twin of twinray_shared::shapes::shape_bound: the sphere the primitive of a robust routine lies in,\n\
+          // zero for the naive ones and unknown shapes.\n\
+          vec4 shape_bound(uint shape, Primitive p) {\n";
+    for shape in SHAPES {
+        let kind = format!("HIT_KIND_{}", shape.name.to_uppercase());
+        s += &format!("    if (shape == {kind}) {{\n        return {}_bound(p);\n    }}\n", shape.name);
+    }
+    s += "    return vec4(0.0);\n}\n";
     s += "\n// Twin of twinray_shared::shapes::shape_uv: the texture coordinates of shape `kind` (its hit kind)\n\
           // at the object-space point q, where its intersection reported the normal n.\n\
           void shape_uv(uint kind, Primitive p, vec3 q, vec3 n, out vec2 uv, out vec3 du, out vec3 dv) {\n";

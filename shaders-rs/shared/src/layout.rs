@@ -319,8 +319,10 @@ const _: () = assert!(core::mem::size_of::<ProbeRay>() == 32);
 ///
 /// The probe's witness pass (the `probe_witness` closest-hit stage in place of each hit
 /// group's own) fills the same fields with what the GPU handed the hit group's stages:
-/// `normal_t` xyz: the object-space ray origin, w: the t they reported; `ids` xyz: the bits of
-/// the object-space ray direction, w: the hit kind (or `NO_HIT` on a miss).
+/// `normal_t` xyz: the object-space ray origin, w: the t they reported (on the world ray);
+/// `ids` xyz: the bits of the object-space ray direction, w: the bits of how far along the
+/// world ray that origin lies (`transform::StageRay::shift`, a finite f32 never equal to
+/// `NO_HIT`, which a miss writes there).
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]

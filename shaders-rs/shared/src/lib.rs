@@ -6,6 +6,7 @@
 pub mod bindings;
 pub mod camera;
 pub mod contract;
+pub mod exact;
 pub mod features;
 pub mod layout;
 pub mod lighting;

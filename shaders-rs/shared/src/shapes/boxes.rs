@@ -6,7 +6,7 @@
 use super::uv::ShapeUv;
 use crate::layout::Primitive;
 use crate::surface::SurfaceHit;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// gamma_3 = 3 eps / (1 - 3 eps), eps = 2^-24 (pbrt's bound on three rounded operations).
 pub const GAMMA_3: f32 = 3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8);
@@ -81,6 +81,12 @@ pub fn uv(primitive: &Primitive, p: Vec3, n: Vec3) -> ShapeUv {
     };
     let (width, height) = (2.0 * right.abs().dot(h), 2.0 * up.abs().dot(h));
     ShapeUv { uv: Vec2::new(0.5 + p.dot(right) / width, 0.5 - p.dot(up) / height), du: right / width, dv: -up / height }
+}
+
+/// The sphere the primitive lies in (xyz: centre, w: radius, object space): where
+/// `transform::stage_ray` brings a ray that starts far from it, before the transform.
+pub fn bound(primitive: &Primitive) -> Vec4 {
+    Vec4::new(0.0, 0.0, 0.0, primitive.a.truncate().length())
 }
 
 /// The box's scene kind: an axis-aligned box centred at the origin.

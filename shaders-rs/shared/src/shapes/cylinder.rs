@@ -7,7 +7,7 @@ use super::sphere::ON_SURFACE;
 use super::uv::{revolved, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::{is_self_root, self_reach2, stable_roots, Nearest, SurfaceHit};
-use glam::Vec3;
+use glam::{Vec3, Vec4};
 
 /// The nearest hit of the ray (`origin`, `direction`, object space) on the capped cylinder
 /// `primitive` (a.x radius, a.y half height) with t in [`t_min`, `t_max`], or `None`.
@@ -100,6 +100,12 @@ fn cap(best: &mut Nearest, (o, d): (Vec3, Vec3), r: f32, y: f32) {
 /// from the top, each cap as a disk seen from outside.
 pub fn uv(primitive: &Primitive, p: Vec3, n: Vec3) -> ShapeUv {
     revolved(p, n, primitive.a.x, primitive.a.y)
+}
+
+/// The sphere the primitive lies in (xyz: centre, w: radius, object space): where
+/// `transform::stage_ray` brings a ray that starts far from it, before the transform.
+pub fn bound(primitive: &Primitive) -> Vec4 {
+    Vec4::new(0.0, 0.0, 0.0, primitive.a.truncate().truncate().length())
 }
 
 /// The cylinder's scene kind: capped, about the object's y axis, centred at its origin.

@@ -80,6 +80,19 @@ macro_rules! dispatch {
             None
         }
 
+        /// The sphere shape `shape`'s `primitive` lies in (its module's `bound`), where
+        /// `transform::stage_ray` brings far rays before the transform; zero, which brings no
+        /// ray anywhere, for an unknown shape and for the naive variants, which keep the
+        /// textbook transform as they keep the textbook formula.
+        pub fn shape_bound(shape: u32, primitive: &crate::layout::Primitive) -> glam::Vec4 {
+            $(
+                if shape == $kind {
+                    return $module::bound(primitive);
+                }
+            )*
+            glam::Vec4::ZERO
+        }
+
         /// The texture coordinates of shape `kind` (its hit kind: the naive variant's too) at
         /// the object-space point `p` of `primitive`, where its intersection reported the
         /// normal `n` (`uv` of its module). Zero for an unknown shape.

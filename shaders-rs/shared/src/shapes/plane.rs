@@ -4,7 +4,7 @@
 use super::uv::{flat, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::SurfaceHit;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 
 /// `Primitive::b.x` of a disk.
 pub const DISK: f32 = 1.0;
@@ -36,6 +36,12 @@ pub fn uv(primitive: &Primitive, p: Vec3, _n: Vec3) -> ShapeUv {
     let a = primitive.a;
     let half = if primitive.b.x == DISK { Vec2::splat(a.x) } else { Vec2::new(a.x, a.y) };
     flat(p, half, 1.0)
+}
+
+/// The sphere the primitive lies in (xyz: centre, w: radius, object space): where
+/// `transform::stage_ray` brings a ray that starts far from it, before the transform.
+pub fn bound(primitive: &Primitive) -> Vec4 {
+    Vec4::new(0.0, 0.0, 0.0, primitive.a.truncate().truncate().length())
 }
 
 /// The plane's scene kinds: a rectangle and a disk in the object's xz plane, facing +y.

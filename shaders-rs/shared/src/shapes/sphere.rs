@@ -5,7 +5,7 @@
 use super::uv::{around_y, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::SurfaceHit;
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -129,6 +129,12 @@ pub fn spherical_uv(q: Vec3) -> ShapeUv {
     let v = (q.y / r).clamp(-1.0, 1.0).acos() / core::f32::consts::PI;
     let dv = (q * q.y - Vec3::Y * r2) / (r2 * rho * core::f32::consts::PI);
     ShapeUv { uv: Vec2::new(u, v), du, dv }
+}
+
+/// The sphere the primitive lies in (xyz: centre, w: radius, object space): where
+/// `transform::stage_ray` brings a ray that starts far from it, before the transform.
+pub fn bound(primitive: &Primitive) -> Vec4 {
+    primitive.a
 }
 
 /// The sphere's scene kinds: one sphere, and a seeded field of many.

@@ -24,7 +24,7 @@ use super::sphere;
 use super::uv::{around_y, ShapeUv};
 use crate::layout::Primitive;
 use crate::surface::{Nearest, SurfaceHit};
-use glam::{Vec2, Vec3};
+use glam::{Vec2, Vec3, Vec4};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
@@ -320,6 +320,12 @@ pub fn uv(primitive: &Primitive, p: Vec3, _n: Vec3) -> ShapeUv {
     let d_psi = (Vec3::Y * out - Vec3::new(p.x, 0.0, p.z) * (p.y / rho)) / (out * out + p.y * p.y).max(1.0e-30);
     let turn = 0.5 / core::f32::consts::PI;
     ShapeUv { uv: Vec2::new(u, 0.5 - psi * turn), du, dv: -d_psi * turn }
+}
+
+/// The sphere the primitive lies in (xyz: centre, w: radius, object space): where
+/// `transform::stage_ray` brings a ray that starts far from it, before the transform.
+pub fn bound(primitive: &Primitive) -> Vec4 {
+    Vec4::new(0.0, 0.0, 0.0, primitive.a.x + primitive.a.y)
 }
 
 /// The torus's scene kind: about the object's y axis, centred at its origin.
