@@ -62,19 +62,24 @@ mod tests {
         }
     }
 
-    /// A head-on ray at the origin's object from 10 units: every term is of the size of t, so κ
-    /// is a few; the same ray at 1 degree to the surface is about 57 times worse.
+    /// A head-on ray at a tilted plane through the origin from 10 units: κ is 2 (the origin's
+    /// and the direction's rounding, each of the size of t). The same plane met at 1 degree is
+    /// worse by the cotangent of the angle; along an axis-aligned normal it would not be, as
+    /// rounding moves each coordinate by its own size and the large ones then lie in the plane.
     #[test]
-    fn a_grazing_ray_is_worse_conditioned_by_one_over_the_sine() {
+    fn a_grazing_ray_is_worse_conditioned_by_the_cotangent() {
         let plane = object(DMat4::IDENTITY);
-        let n = DVec3::Y;
-        let head_on = t_condition(&plane, DVec3::new(0.0, 10.0, 0.0), -DVec3::Y, 10.0, n);
+        let n = DVec3::new(1.0, 1.0, 0.0).normalize();
+        let head_on = t_condition(&plane, n * 10.0, -n, 10.0, n);
         assert!((head_on - 2.0).abs() < 1e-12, "{head_on}");
         let angle = 1f64.to_radians();
-        let d = DVec3::new(angle.cos(), -angle.sin(), 0.0);
-        let o = DVec3::new(-10.0 * angle.cos(), 10.0 * angle.sin(), 0.0);
-        let grazing = t_condition(&plane, o, d, 10.0, n);
-        assert!((grazing / head_on - 1.0 / angle.sin()).abs() < 1e-9, "{grazing}");
+        let along = DVec3::new(1.0, -1.0, 0.0).normalize();
+        let d = along * angle.cos() - n * angle.sin();
+        let grazing = t_condition(&plane, -d * 10.0, d, 10.0, n);
+        assert!((grazing / head_on - 1.0 / angle.tan()).abs() < 1e-9, "{grazing}");
+        let flat = DVec3::new(angle.cos(), -angle.sin(), 0.0);
+        let axis_aligned = t_condition(&plane, -flat * 10.0, flat, 10.0, DVec3::Y);
+        assert!((axis_aligned - 2.0).abs() < 1e-9, "{axis_aligned}");
         assert_eq!(condition_multiple(0.0, grazing), 0.0);
         assert!((condition_multiple(head_on * F32_UNIT_ROUNDOFF, head_on) - 1.0).abs() < 1e-12);
     }
