@@ -22,8 +22,9 @@
 use super::scene::RefObject;
 use glam::{DMat3, DVec3};
 
-/// f32's unit roundoff, 2^-24: the largest relative change rounding to f32 makes.
-pub const F32_UNIT_ROUNDOFF: f64 = 1.0 / 16_777_216.0;
+/// f32's unit roundoff, 2^-24: the largest relative change rounding to f32 makes (the
+/// reference's own `F32_EPS`, by the name the condition multiple uses).
+pub const F32_UNIT_ROUNDOFF: f64 = super::ray::F32_EPS;
 
 /// κ of the hit at `t` of the world ray (`origin`, `direction`) on `object`, where the surface's
 /// world-space normal is `normal` (any length, either side). Infinite for a ray along the
