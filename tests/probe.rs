@@ -221,6 +221,29 @@ fn the_stages_own_transform_keeps_a_far_instance_precise_and_the_drivers_is_repo
     assert!(rust.iter().filter_map(ray).count() > 1000, "the witness saw the hits");
 }
 
+/// A shape at the world origin grazed from 1,000 units: nothing stands far from the GPU's
+/// origin, but the rays start 100 of the shape's sizes away, so the probe judges the scene to
+/// have far instances from where its rays start (`reach::far_from`), while a render of the same
+/// scene, from its camera, does not. Fails if the probe judges by the objects' places alone
+/// (the driver's transform, about 2e-6 here on lavapipe, would be the stages').
+#[test]
+fn a_probe_judges_far_instances_from_where_its_rays_start() {
+    let path = twinray_tests::repo_root().join("probes/stability/cylinder-at-origin-grazing-1e3.toml");
+    let case = twinray::probe::case::ProbeCase::load(&path).expect("case");
+    assert_eq!(case.scene.build().plan.features & twinray_shared::features::FAR_INSTANCES, 0, "a render's rule");
+    let ctx = validated_context();
+    for set_text in ["rust", "glsl"] {
+        let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+        let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
+        assert!(r.features.contains("far-instances"), "{set_text}: {}", r.summary());
+        let split = r.t_error_by_source.clone().expect("a witness pass");
+        let driver = split.driver.expect("the driver's witness").p99;
+        assert!(driver > 1e-6, "{set_text}: the driver's transform gave only {driver:e}: the case is not hard");
+        assert!(r.relative_t_error.p99 < 1e-6, "{set_text}: {}", r.summary());
+        assert_eq!(r.false_hits + r.false_misses + r.wrong_object + r.through, 0, "{set_text}");
+    }
+}
+
 /// The switch works in both sets: the same far case with its `features` forced to none takes
 /// the driver's object-space ray, and its totals show the driver's error again (lavapipe: about
 /// 4e-4), with no ray wrong.

@@ -59,7 +59,8 @@ fn scaled(scene: &Scene, s: f32) -> Scene {
     use twinray::scene::file::{LightDesc, Scale};
     let (file, source, meshes) = (scene.file.clone(), scene.source.clone(), scene.meshes.clone());
     // The GPU centred as the scene is (on the camera, which moves `s` times as far), or not.
-    let mut out = Scene { file, source, meshes, animation: None, origin: scene.origin.map(|o| o * s) };
+    let mut out =
+        Scene { file, source, meshes, animation: None, origin: scene.origin.map(|o| o * s), ray_starts: None };
     let f = &mut out.file;
     let times = |v: &mut [f32; 3]| v.iter_mut().for_each(|x| *x *= s);
     let grow = |scale: &mut Scale| match scale {

@@ -57,6 +57,9 @@ pub struct ProbeReport {
     /// Where the GPU's coordinates were centred, launch by launch (`probe::run::Launched`);
     /// empty for one launch at world coordinates.
     pub launches: Vec<Launched>,
+    /// The scene features the stages were specialised for (`features::names`): `far-instances`
+    /// where an object lies far for its size from the GPU's origin or from where the rays start.
+    pub features: String,
     /// Rays whose record the set never wrote (still the sentinel; judged as nothing else), and
     /// hits it wrote with a NaN or infinite t or normal.
     pub written: Written,
@@ -179,6 +182,7 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
         gpu_ms_per_million_rays: gpu_ms.map(|ms| ms * 1e6 / case.rays.len().max(1) as f64),
         generators: case.generated.clone(),
         launches: records.launches.to_vec(),
+        features: twinray_shared::features::names(records.features),
         written: count_written(results),
         pass: true,
         failures: Vec::new(),
@@ -363,6 +367,7 @@ impl ProbeReport {
             None => "  relative t error by source: n/a (no witness pass: the compute renderer's probe, or a folder set without probe_witness)\n".into(),
         } + &if self.generators.is_empty() { String::new() } else { format!("  generators: {}\n", self.generators_made()) }
             + &self.launches_line()
+            + &format!("  scene features: {}\n", self.features)
     }
 
     /// The t error in units of its condition, and the hit where it is largest.

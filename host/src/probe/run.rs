@@ -8,7 +8,7 @@ use crate::render::{
     min_warm_ms, place_warm_ms, prepare, sentinel, storage_buffer, submit, transition, Prepared, Trace, Written,
     STORAGE_IMAGE, UNUSED_IMAGE,
 };
-use crate::scene::{origin, GpuOrigin, Renderer, Scene, PROBE_QUERY};
+use crate::scene::{origin, reach, GpuOrigin, Renderer, Scene, PROBE_QUERY};
 use crate::shaders::ShaderSet;
 use crate::util::activity;
 use crate::vk::buffer::Buffer;
@@ -38,6 +38,8 @@ pub struct ProbeOutput {
     /// Where the GPU's coordinates were centred for each launch, and its rays; empty where the
     /// scene was probed at world coordinates, in one launch.
     pub launches: Vec<Launched>,
+    /// The scene features the stages were specialised for, in any launch (`features` bits).
+    pub features: u32,
 }
 
 /// One launch of a probe at a local origin (`origin::launches`).
@@ -56,6 +58,7 @@ impl ProbeOutput {
             witness: self.witness.as_deref(),
             driver: self.driver_witness.as_deref(),
             launches: &self.launches,
+            features: self.features,
         }
     }
 }
@@ -67,6 +70,8 @@ pub struct Records<'a> {
     pub witness: Option<&'a [ProbeResult]>,
     pub driver: Option<&'a [ProbeResult]>,
     pub launches: &'a [Launched],
+    /// The scene features the stages ran with (`ProbeOutput::features`).
+    pub features: u32,
 }
 
 /// Whether the stage wrote this record: no word of it still holds the sentinel.
@@ -121,8 +126,17 @@ pub fn probe(
     warmup: u32,
     runs: u32,
 ) -> Result<ProbeOutput> {
+    // The scene as these rays see it: the far-instances feature judges objects from where they
+    // start, not from the camera's eye.
+    let starting = |rays: &mut dyn Iterator<Item = &ProbeRay>| {
+        let starts = reach::enclose(rays.map(|r| r.origin.truncate()));
+        starts.map_or_else(|| scene.clone(), |s| scene.starting_in(s))
+    };
     let launches = match scene.origin {
-        None => return probe_launch(ctx, scene, set, rays, (warmup, runs), min_warm_ms()?),
+        None => {
+            let scene = starting(&mut rays.iter());
+            return probe_launch(ctx, &scene, set, rays, (warmup, runs), min_warm_ms()?);
+        }
         Some(eye) if scene.file.gpu_origin == GpuOrigin::Eye => {
             vec![origin::Launch { origin: eye, rays: (0..rays.len()).collect() }]
         }
@@ -133,7 +147,7 @@ pub fn probe(
     };
     let mut outputs = Vec::with_capacity(launches.len());
     for (k, launch) in launches.iter().enumerate() {
-        let centred = scene.centred_on(Some(launch.origin));
+        let centred = starting(&mut launch.rays.iter().map(|&i| &rays[i])).centred_on(Some(launch.origin)).into_owned();
         let moved = |&i: &usize| {
             let r = rays[i];
             ProbeRay { origin: origin::to_local(r.origin.truncate(), launch.origin).extend(r.origin.w), ..r }
@@ -176,6 +190,7 @@ fn gather(count: usize, launches: &[origin::Launch], outputs: Vec<ProbeOutput>) 
     let runs = outputs.iter().map(|o| o.gpu_ms.len()).min().unwrap_or(0);
     let gpu_ms = (0..runs).map(|k| outputs.iter().map(|o| o.gpu_ms[k]).sum()).collect();
     let raygen_stack_bytes = outputs.iter().map(|o| o.raygen_stack_bytes).max().unwrap_or(0);
+    let features = outputs.iter().fold(0, |bits, o| bits | o.features);
     let (mut results, mut witness, mut driver) = (Vec::new(), Vec::new(), Vec::new());
     for o in outputs {
         results.push(Some(o.results));
@@ -189,6 +204,7 @@ fn gather(count: usize, launches: &[origin::Launch], outputs: Vec<ProbeOutput>) 
         gpu_ms,
         raygen_stack_bytes,
         launches: launches.iter().map(|l| Launched { origin: l.origin.into(), rays: l.rays.len() }).collect(),
+        features,
     }
 }
 
@@ -230,7 +246,8 @@ fn probe_and_release(
     let results = read_pass(ctx, &p, trace, &results, bytes)?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
     let raygen_stack_bytes = p.pipeline.raygen_stack_bytes();
-    Ok(ProbeOutput { results, witness, driver_witness, gpu_ms, raygen_stack_bytes, launches: Vec::new() })
+    let features = scene.build().plan.features;
+    Ok(ProbeOutput { results, witness, driver_witness, gpu_ms, raygen_stack_bytes, launches: Vec::new(), features })
 }
 
 /// The buffers a pass of chosen rays binds besides the scene's: the rays, the results (of

@@ -118,7 +118,12 @@ impl Geometry {
     }
 }
 
-pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>, origin: Vec3) -> SceneData {
+pub fn build(
+    scene: &SceneFile,
+    meshes: &BTreeMap<String, Arc<MeshData>>,
+    origin: Vec3,
+    starts: Option<&Aabb>,
+) -> SceneData {
     let material_index: BTreeMap<&str, u32> =
         scene.materials.keys().enumerate().map(|(i, n)| (n.as_str(), i as u32)).collect();
     let mut slots: BTreeMap<&str, ShapeSlot> = BTreeMap::new();
@@ -174,10 +179,17 @@ pub fn build(scene: &SceneFile, meshes: &BTreeMap<String, Arc<MeshData>>, origin
     let Geometry { blases, primitives, vertices, indices } = geometry;
     let mut data =
         SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures };
-    // Far instances are a matter of where objects stand on the GPU, around `origin`: a moving
-    // scene is taken to have them, as its objects may move anywhere.
+    // Far instances are a matter of where objects stand on the GPU, around `origin`, and, for a
+    // probe, of where its rays start (`starts`, moved there too): a moving scene is taken to
+    // have them, as its objects may move anywhere.
     let transforms: Vec<Mat4> = data.instances.iter().map(|i| local(i.object_to_world, origin)).collect();
-    let far = scene.animation.is_some() || reach::far_instances(&data.object_bounds(), &transforms);
+    let bounds = data.object_bounds();
+    let far_from_starts = |s: &Aabb| {
+        let local = Aabb { min: super::origin::to_local(s.min, origin), max: super::origin::to_local(s.max, origin) };
+        reach::far_from(&bounds, &transforms, &local)
+    };
+    let far =
+        scene.animation.is_some() || reach::far_instances(&bounds, &transforms) || starts.is_some_and(far_from_starts);
     if scene.features.is_none() && far {
         data.plan.features |= features::FAR_INSTANCES;
     }

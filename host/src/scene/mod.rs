@@ -49,6 +49,12 @@ pub struct Scene {
     pub animation: Option<Animation>,
     /// Where the GPU's world coordinates are centred (see `origin`); `None`, at the world origin.
     pub origin: Option<Vec3>,
+    /// A box around where a probe's rays start, in the scene's coordinates
+    /// ([`Scene::starting_in`]); the far-instances feature then judges objects from it too
+    /// (`reach::far_from`). `None` for a render, which judges by the objects' places alone: its
+    /// rays from the eye lose to a far start no more than f32's rounding of the eye allows, and
+    /// the feature costs every ray (docs/numerics.md, "A ray brought near its primitive").
+    pub ray_starts: Option<Aabb>,
 }
 
 impl Scene {
@@ -181,7 +187,7 @@ impl Scene {
                 meshes.insert(name.clone(), Arc::new(mesh));
             }
         }
-        let mut scene = Scene { file, source: source.into(), meshes, animation, origin: None };
+        let mut scene = Scene { file, source: source.into(), meshes, animation, origin: None, ray_starts: None };
         let data = scene.build();
         scene.check_resolution(&data).map_err(scene_error)?;
         scene.origin = scene.local_origin(&data);
@@ -326,7 +332,12 @@ impl Scene {
 
     /// Buffers, acceleration structure contents and pipeline plan of this scene.
     pub fn build(&self) -> SceneData {
-        build::build(&self.file, &self.meshes, self.origin.unwrap_or(Vec3::ZERO))
+        build::build(&self.file, &self.meshes, self.origin.unwrap_or(Vec3::ZERO), self.ray_starts.as_ref())
+    }
+
+    /// The scene traced by a probe's rays, which start in `starts` (scene coordinates).
+    pub fn starting_in(&self, starts: Aabb) -> Scene {
+        Scene { ray_starts: Some(starts), ..self.clone() }
     }
 
     /// Camera and frame constants for an image of `width` x `height`.

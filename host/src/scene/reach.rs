@@ -49,6 +49,19 @@ pub fn far_instances(object_bounds: &[Aabb], transforms: &[Mat4]) -> bool {
     })
 }
 
+/// Whether any object lies far for its size (see [`FAR_FACTOR`]) from where rays start, a box
+/// around every ray origin (`starts`, in the coordinates of `transforms`): a ray from there is
+/// transformed at the magnitude of its distance, however near the world origin the object
+/// stands, and the stages bring it near first only where the scene has far instances. The
+/// distance is to the box's farthest corner, so that no start in it is farther.
+pub fn far_from(object_bounds: &[Aabb], transforms: &[Mat4], starts: &Aabb) -> bool {
+    world_boxes(object_bounds, transforms).iter().any(|b| {
+        let (centre, size) = (0.5 * (b.min + b.max), 0.5 * (b.max - b.min).length());
+        let farthest = (starts.min - centre).abs().max((starts.max - centre).abs()).length();
+        farthest > FAR_FACTOR * size
+    })
+}
+
 /// Each object's world-space bounds under `transforms` (object order).
 pub fn world_boxes(object_bounds: &[Aabb], transforms: &[Mat4]) -> Vec<Aabb> {
     object_bounds
@@ -179,6 +192,24 @@ mod tests {
         assert_eq!(i, 1);
         assert_eq!(steps, 2.0 / 0.0625, "f32 steps by 1/16 at 1e6");
         assert!(step(1.0) == f64::from(f32::EPSILON));
+    }
+
+    #[test]
+    fn an_object_is_far_from_rays_that_start_sixteen_times_its_size_away() {
+        let unit = [cube(Vec3::ZERO, 1.0)];
+        let still = [Mat4::IDENTITY];
+        let size = 3.0f32.sqrt();
+        let at = |x: f32| Aabb { min: Vec3::new(x, 0.0, 0.0), max: Vec3::new(x, 0.0, 0.0) };
+        assert!(!far_from(&unit, &still, &at(FAR_FACTOR * size * 0.99)));
+        assert!(far_from(&unit, &still, &at(-FAR_FACTOR * size * 1.01)), "whichever side");
+        // A box of starts is judged by its farthest corner: one near start does not hide a far one.
+        let spread = Aabb { min: Vec3::new(-1.0, 0.0, 0.0), max: Vec3::new(1.0e3, 0.0, 0.0) };
+        assert!(far_from(&unit, &still, &spread));
+        // Scaled up, the same start is near again; and the translation counts.
+        assert!(!far_from(&unit, &[Mat4::from_scale(Vec3::splat(2.0))], &at(FAR_FACTOR * size * 1.01)));
+        let moved = [Mat4::from_translation(Vec3::new(1.0e3, 0.0, 0.0))];
+        assert!(!far_from(&unit, &moved, &at(1.0e3)), "rays starting at the object");
+        assert!(!far_from(&[], &[], &at(1.0e6)));
     }
 
     #[test]
