@@ -280,41 +280,8 @@ fn a_small_file_of_a_huge_image_is_refused_before_it_is_decoded() {
     writer.finish().unwrap();
     assert!(png.len() < 128 << 10, "{} bytes encoded", png.len());
     std::fs::write(dir.path().join("huge.png"), &png).unwrap();
-    let mut bin = quad_bytes();
-    bin.extend([0.0f32, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0].iter().flat_map(|v| v.to_le_bytes()));
-    std::fs::write(dir.path().join("quad.bin"), &bin).unwrap();
-    let gltf = quad_gltf("quad.bin")
-        .replace(r#""byteLength": 56, "uri""#, r#""byteLength": 88, "uri""#)
-        .replace(
-            r#"{"buffer": 0, "byteOffset": 48, "byteLength": 8}]"#,
-            r#"{"buffer": 0, "byteOffset": 48, "byteLength": 8}, {"buffer": 0, "byteOffset": 56, "byteLength": 32}]"#,
-        )
-        .replace(
-            r#""type": "SCALAR"}],"#,
-            r#""type": "SCALAR"}, {"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}],
-            "images": [{"uri": "huge.png"}], "textures": [{"source": 0}],
-            "materials": [{"pbrMetallicRoughness": {"baseColorTexture": {"index": 0}}}],"#,
-        )
-        .replace(
-            r#"{"POSITION": 0}, "indices": 1}"#,
-            r#"{"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1, "material": 0}"#,
-        );
-    assert!(gltf.contains("TEXCOORD_0") && gltf.contains("\"byteOffset\": 56"), "{gltf}");
-    let model = dir.path().join("huge.gltf");
-    std::fs::write(&model, gltf).unwrap();
-    let model = model.to_str().unwrap();
-    // The render, under a 1 GiB address space.
-    let render = || {
-        std::process::Command::new("sh")
-            .arg("-c")
-            .arg("ulimit -v 1048576; exec \"$0\" \"$@\"")
-            .arg(env!("CARGO_BIN_EXE_twinray"))
-            .args(["render", model, "--width", "16", "--height", "16", "--out", "x.png"])
-            .current_dir(dir.path())
-            .output()
-            .unwrap()
-    };
-    let out = render();
+    let model = textured_quad(dir.path(), "huge.png");
+    let out = render_within_1_gib(dir.path(), &model);
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert_eq!(out.status.code(), Some(2), "{stderr}");
     assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
@@ -324,8 +291,123 @@ fn a_small_file_of_a_huge_image_is_refused_before_it_is_decoded() {
     let mut small = Vec::new();
     image::GrayImage::new(64, 64).write_to(&mut std::io::Cursor::new(&mut small), image::ImageFormat::Png).unwrap();
     std::fs::write(dir.path().join("huge.png"), &small).unwrap();
-    let out = render();
+    let out = render_within_1_gib(dir.path(), &model);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+}
+
+/// A 64 x 64 PNG with a colour profile (iCCP) and a compressed text chunk (zTXt) that each
+/// inflate to 1 GiB, as a model's texture: it renders under a 1 GiB address-space limit on
+/// the whole render, as its picture does without them. The build before issue 78 decoded the
+/// metadata too and peaked at 1,035 MB on such a file.
+#[test]
+fn metadata_that_inflates_is_not_inflated() {
+    let dir = tempfile::tempdir().unwrap();
+    let mut small = Vec::new();
+    image::GrayImage::new(64, 64).write_to(&mut std::io::Cursor::new(&mut small), image::ImageFormat::Png).unwrap();
+    let (head, tail) = small.split_at(8 + 25); // the signature and IHDR
+    let gib = zeros_zlib(1 << 30);
+    let mut png = head.to_vec();
+    png.extend(png_chunk(b"iCCP", &[b"profile\0\0".as_slice(), &gib].concat()));
+    png.extend(png_chunk(b"zTXt", &[b"Comment\0\0".as_slice(), &gib].concat()));
+    png.extend(tail);
+    std::fs::write(dir.path().join("inflating.png"), &png).unwrap();
+    let model = textured_quad(dir.path(), "inflating.png");
+    let out = render_within_1_gib(dir.path(), &model);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert!(dir.path().join("x.png").exists());
+}
+
+/// A PNG chunk of `kind` holding `body`, its checksum right.
+fn png_chunk(kind: &[u8; 4], body: &[u8]) -> Vec<u8> {
+    let mut out = (body.len() as u32).to_be_bytes().to_vec();
+    out.extend(kind);
+    out.extend(body);
+    let mut crc = !0u32;
+    for &b in &out[4..] {
+        crc ^= u32::from(b);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 { 0xedb8_8320 ^ (crc >> 1) } else { crc >> 1 };
+        }
+    }
+    out.extend((!crc).to_be_bytes());
+    out
+}
+
+/// A zlib stream of about `bytes` zero bytes, written out rather than compressed: one
+/// fixed-Huffman block of a literal 0 and then copies of 258 bytes at distance 1, 13 bits
+/// each (RFC 1951), so 1 GiB takes 6.5 MB and no time.
+fn zeros_zlib(bytes: usize) -> Vec<u8> {
+    let copies = bytes / 258;
+    let (mut out, mut acc, mut filled) = (vec![0x78, 0x01], 0u32, 0);
+    let mut put = |bits: u32, count: u32, msb_first: bool, out: &mut Vec<u8>| {
+        for k in 0..count {
+            let bit = if msb_first { bits >> (count - 1 - k) } else { bits >> k } & 1;
+            acc |= bit << filled;
+            filled += 1;
+            if filled == 8 {
+                out.push(acc as u8);
+                (acc, filled) = (0, 0);
+            }
+        }
+    };
+    put(0b011, 3, false, &mut out); // the last block, fixed Huffman codes
+    put(0x30, 8, true, &mut out); // literal 0
+    for _ in 0..copies {
+        put(0b1100_0101, 8, true, &mut out); // length 258 (code 285)
+        put(0, 5, true, &mut out); // distance 1 (code 0)
+    }
+    put(0, 7, true, &mut out); // end of block
+    if filled > 0 {
+        out.push(acc as u8); // the last bits, padded to a byte
+    }
+    let n = (1 + 258 * copies) as u64;
+    let adler = ((n % 65521) << 16) | 1; // all zeros: a = 1, b = n
+    out.extend((adler as u32).to_be_bytes());
+    out
+}
+
+/// A model (written to `dir`) of one quad whose base colour texture is `image`, a file in
+/// `dir`.
+fn textured_quad(dir: &Path, image: &str) -> PathBuf {
+    let mut bin = quad_bytes();
+    bin.extend([0.0f32, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0].iter().flat_map(|v| v.to_le_bytes()));
+    std::fs::write(dir.join("quad.bin"), &bin).unwrap();
+    let gltf = quad_gltf("quad.bin")
+        .replace(r#""byteLength": 56, "uri""#, r#""byteLength": 88, "uri""#)
+        .replace(
+            r#"{"buffer": 0, "byteOffset": 48, "byteLength": 8}]"#,
+            r#"{"buffer": 0, "byteOffset": 48, "byteLength": 8}, {"buffer": 0, "byteOffset": 56, "byteLength": 32}]"#,
+        )
+        .replace(
+            r#""type": "SCALAR"}],"#,
+            &format!(
+                r#""type": "SCALAR"}}, {{"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}}],
+            "images": [{{"uri": "{image}"}}], "textures": [{{"source": 0}}],
+            "materials": [{{"pbrMetallicRoughness": {{"baseColorTexture": {{"index": 0}}}}}}],"#
+            ),
+        )
+        .replace(
+            r#"{"POSITION": 0}, "indices": 1}"#,
+            r#"{"POSITION": 0, "TEXCOORD_0": 2}, "indices": 1, "material": 0}"#,
+        );
+    assert!(gltf.contains("TEXCOORD_0") && gltf.contains("\"byteOffset\": 56"), "{gltf}");
+    let model = dir.join("textured.gltf");
+    std::fs::write(&model, gltf).unwrap();
+    model
+}
+
+/// `twinray render MODEL` at 16 x 16 to `x.png` in `dir`, under a 1 GiB address space.
+fn render_within_1_gib(dir: &Path, model: &Path) -> std::process::Output {
+    std::process::Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_twinray"))
+        .arg("render")
+        .arg(model)
+        .args(["--width", "16", "--height", "16", "--out", "x.png"])
+        .current_dir(dir)
+        .output()
+        .unwrap()
 }
 
 /// A valid model whose `extras` are an array, a number, a string, null and a boolean (the

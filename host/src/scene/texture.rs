@@ -106,6 +106,7 @@ pub fn decoded_bytes(width: u32, height: u32) -> u64 {
 /// decoded than what is left of the budget (a small file can hold a huge image).
 pub fn decode(name: &str, bytes: &[u8], srgb: bool, budget: &mut u64) -> Result<TextureImage> {
     let refuse = |why: String| Error::Input(format!("texture {name}: {why}"));
+    let bytes = &*picture_only(bytes);
     let reader = || {
         let reader = image::ImageReader::new(std::io::Cursor::new(bytes)).with_guessed_format();
         let reader = reader.map_err(|e| refuse(e.to_string()))?;
@@ -135,6 +136,35 @@ pub fn decode(name: &str, bytes: &[u8], srgb: bool, budget: &mut u64) -> Result<
     }
     *budget = budget.saturating_sub(charged.max(decoded_bytes(width, height)));
     Ok(TextureImage { name: name.to_string(), width, height, rgba: decoded.into_raw(), srgb })
+}
+
+/// The PNG signature.
+const PNG_SIGNATURE: &[u8; 8] = b"\x89PNG\r\n\x1a\n";
+
+/// `bytes` with, where they are a PNG, only the chunks its picture needs: the critical ones
+/// (IHDR, PLTE, IDAT, IEND, and any other, which the decoder must see to refuse) and tRNS.
+/// Ancillary chunks may hold compressed metadata that inflates far past the file's size and
+/// outside the image budget (an iCCP profile, zTXt or iTXt text: a 1 KB chunk can inflate to
+/// 1 GiB), and twinray reads none of them. A chunk cut short ends the sequence there (the
+/// decoder then refuses a picture cut short): a damaged file passes no metadata either. A
+/// JPEG's metadata (EXIF, ICC profile markers) is not compressed: it takes no more than the
+/// file's own size.
+fn picture_only(bytes: &[u8]) -> std::borrow::Cow<'_, [u8]> {
+    use std::borrow::Cow;
+    let Some(mut rest) = bytes.strip_prefix(PNG_SIGNATURE) else { return Cow::Borrowed(bytes) };
+    let mut kept = PNG_SIGNATURE.to_vec();
+    while !rest.is_empty() {
+        // length (4, big-endian), type (4), data (length), CRC (4)
+        let length = rest.get(..4).map(|b| u32::from_be_bytes([b[0], b[1], b[2], b[3]]) as usize);
+        let Some(chunk) = length.and_then(|l| l.checked_add(12)).and_then(|n| rest.get(..n)) else { break };
+        let kind = &chunk[4..8];
+        // Bit 5 of the first letter (lower case) marks an ancillary chunk.
+        if kind[0] & 0x20 == 0 || kind == b"tRNS" {
+            kept.extend_from_slice(chunk);
+        }
+        rest = &rest[chunk.len()..];
+    }
+    Cow::Owned(kept)
 }
 
 /// The levels of `image`'s mip chain after level 0, each half the last (rounded down, at least
@@ -179,6 +209,50 @@ mod tests {
 
     fn image(width: u32, height: u32, rgba: Vec<u8>, srgb: bool) -> TextureImage {
         TextureImage { name: "t".into(), width, height, rgba, srgb }
+    }
+
+    fn chunk(kind: &[u8; 4], body: &[u8]) -> Vec<u8> {
+        let mut out = (body.len() as u32).to_be_bytes().to_vec();
+        out.extend(kind);
+        out.extend(body);
+        let crc = crc32(&out[4..]);
+        out.extend(crc.to_be_bytes());
+        out
+    }
+
+    /// zlib's CRC-32 (the PNG chunk checksum), bit by bit: a test needs no table.
+    fn crc32(bytes: &[u8]) -> u32 {
+        let mut c = !0u32;
+        for &b in bytes {
+            c ^= u32::from(b);
+            for _ in 0..8 {
+                c = if c & 1 != 0 { 0xedb8_8320 ^ (c >> 1) } else { c >> 1 };
+            }
+        }
+        !c
+    }
+
+    /// A PNG's ancillary chunks (here a text chunk and a damaged profile that no decoder
+    /// could inflate) are dropped before it is decoded, and its picture kept, also where the
+    /// file is cut short.
+    #[test]
+    fn a_png_reaches_the_decoder_with_its_picture_chunks_only() {
+        let mut png = Vec::new();
+        image::RgbaImage::from_pixel(3, 2, image::Rgba([10, 20, 30, 255]))
+            .write_to(&mut std::io::Cursor::new(&mut png), image::ImageFormat::Png)
+            .unwrap();
+        let (head, tail) = png.split_at(PNG_SIGNATURE.len() + 25); // the signature and IHDR
+        let mut noisy = head.to_vec();
+        noisy.extend(chunk(b"iCCP", b"profile\0\0not a zlib stream"));
+        noisy.extend(chunk(b"tEXt", b"Comment\0hello"));
+        noisy.extend(tail);
+        assert_eq!(&*picture_only(&noisy), &png[..], "only the picture's chunks are left");
+        let mut budget = u64::MAX;
+        let decoded = decode("noisy.png", &noisy, true, &mut budget).unwrap();
+        assert_eq!((decoded.width, decoded.height, &decoded.rgba[..4]), (3, 2, &[10u8, 20, 30, 255][..]));
+        // Cut inside its last chunk, the file keeps its whole chunks, metadata still dropped.
+        let cut = &noisy[..noisy.len() - 3];
+        assert_eq!(&*picture_only(cut), &png[..png.len() - 12], "all but IEND");
     }
 
     /// A small file of a large image is charged its decoded size from its header, before it

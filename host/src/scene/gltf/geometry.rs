@@ -54,6 +54,14 @@ pub fn primitive(
         }
         None => (0..positions.len() as u32).collect(),
     };
+    if let Some(i) = order.iter().find(|&&i| i as usize >= positions.len()) {
+        return Err(format!("{what}: its indices name vertex {i}, past its POSITION's {}", positions.len()));
+    }
+    // Every attribute, modelled or not, has one element per vertex (the glTF validator's rule):
+    // with fewer, which value would the others get?
+    for (semantic, accessor) in primitive.attributes() {
+        same_count(accessor.count(), positions.len(), what, &semantic.to_string())?;
+    }
     let p = Polyhedron { positions, triangles: triangles(mode, &order) };
     checked(&p, what)?;
     let normals = match primitive.get(&gltf::Semantic::Normals) {

@@ -14,6 +14,7 @@ pub use super::framing::{notice, Model};
 pub use buffers::SUPPORTED_EXTENSIONS;
 mod framing;
 mod geometry;
+mod graph;
 
 use super::file::{CutoutPattern, EmissionDesc, MaterialDesc, ObjectDesc};
 use super::framing::{ignore_found, listed};
@@ -79,16 +80,24 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
         Some(i) => doc.scenes().nth(i).ok_or_else(|| format!("it has no scene {i} ({} scenes)", doc.scenes().len()))?,
         None => doc.default_scene().or_else(|| doc.scenes().next()).ok_or("it has no scene")?,
     };
+    graph::check(doc.as_json())?;
     let mut placed = Vec::new();
     for node in scene.nodes() {
         walk(node, Mat4::IDENTITY, 0, &mut placed)?;
     }
+
     let meshes = meshes(doc, &buffers, &mut ignored)?;
     let mut objects = Vec::new();
     let mut materials = BTreeMap::new();
     let mut images = textures::Images::new();
     for (node, world) in &placed {
         let Some(mesh) = node.mesh() else { continue };
+        // A scale of zero on an axis is glTF's way to hide a node (and its children): its
+        // world matrix has no inverse, so no instance can stand for it, and it is not drawn.
+        if world.determinant() == 0.0 {
+            ignored.insert("nodes scaled to zero on an axis (not drawn)".into());
+            continue;
+        }
         for primitive in mesh.primitives() {
             let shape = shape_name(&mesh, primitive.index());
             if !meshes.contains_key(&shape) {

@@ -209,7 +209,7 @@ fn malformed_models_are_refused_with_their_fault_named() {
         &good.replacen("{\"asset\"", "{\"extensionsRequired\": [\"KHR_draco_mesh_compression\"], \"asset\"", 1),
         "requires the extension KHR_draco_mesh_compression",
     );
-    refused(&square(Some((&[0, 1, 9], 5123)), ONE_NODE, ""), "indexes vertex 9, past its 4 vertices");
+    refused(&square(Some((&[0, 1, 9], 5123)), ONE_NODE, ""), "its indices name vertex 9, past its POSITION's 4");
     refused(&good.replacen(r#""count": 4"#, r#""count": 5"#, 1), "reaches past the end of its buffer view");
     refused(&good.replacen(r#""type": "VEC3""#, r#""type": "VEC2""#, 1), "which glTF does not allow there");
     refused(&good.replacen(r#""byteLength": 60"#, r#""byteLength": 600"#, 1), "fewer than its byteLength");
@@ -312,4 +312,37 @@ fn sparse_accessors_are_read_and_checked() {
     refused(&sparse_square_at([4, 0], 1), "sparse index 0 is 4, past its 4 elements");
     refused(&sparse_square_at([2, 0], 2), "sparse index 1 is 0, not above the one before");
     assert!(load_text(&sparse_square_at([1, 2], 2)).is_ok(), "two rising indices load");
+}
+
+/// The glTF validator's rules on node graphs and attributes (`graph`, `geometry`): a file that
+/// breaks one is refused with the node or accessor named, where it used to render one reading.
+#[test]
+fn node_graphs_and_attributes_that_break_the_validators_rules_are_refused() {
+    let two_parents = r#"{"children": [2]}, {"children": [2]}, {"mesh": 0}"#;
+    let text =
+        square(None, two_parents, "").replace(r#""scenes": [{"nodes": [0]}]"#, r#""scenes": [{"nodes": [0, 1]}]"#);
+    refused(&text, "node 2 is a child of both node 0 and node 1");
+    let both = r#"{"mesh": 0, "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 0,0,0,1], "translation": [1, 0, 0]}"#;
+    refused(&square(None, both, ""), "node 0 has both a matrix and a translation");
+    let child_listed = r#"{"children": [1]}, {"mesh": 0}"#;
+    let text = square(None, child_listed, "").replace(r#""scenes": [{"nodes": [0]}]"#, r#""scenes": [{"nodes": [1]}]"#);
+    refused(&text, "scene 0 lists node 1, a child of node 0");
+    // NORMAL with 3 elements for 4 vertices: which normal would the fourth get?
+    let short = r#", {"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3"}]"#;
+    let text = square(None, ONE_NODE, "")
+        .replacen(r#""max": [1, 1, 0]}]"#, &format!(r#""max": [1, 1, 0]}}{short}"#), 1)
+        .replacen(r#""attributes": {"POSITION": 0}"#, r#""attributes": {"POSITION": 0, "NORMAL": 1}"#, 1);
+    refused(&text, "NORMAL has 3 elements, its POSITION 4");
+}
+
+/// A scale of zero on an axis hides a node and its children (glTF's way), and the rest of the
+/// model renders; a model all of whose nodes are hidden places nothing.
+#[test]
+fn a_node_scaled_to_zero_is_not_drawn() {
+    let nodes = r#"{"children": [1, 2]}, {"mesh": 0, "scale": [1, 0, 1], "children": [3]}, {"mesh": 0, "translation": [3, 0, 0]}, {"mesh": 0}"#;
+    let model = load_text(&square(None, nodes, "")).expect("a hidden node is valid glTF");
+    assert_eq!(model.file.objects.len(), 1, "only node 2 is drawn: {:?}", model.file.objects);
+    assert_eq!(model.file.objects[0].name.as_deref(), Some("node 2"));
+    assert!(model.ignored.iter().any(|i| i.contains("scaled to zero")), "{:?}", model.ignored);
+    refused(&square(None, r#"{"mesh": 0, "scale": [0, 0, 0]}"#, ""), "places no triangles");
 }
