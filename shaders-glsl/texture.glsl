@@ -4,8 +4,9 @@
 #ifndef TWINRAY_TEXTURE_GLSL
 #define TWINRAY_TEXTURE_GLSL
 
+// Twin of twinray_shared::texture::interpolate: exactly a0 where the three agree.
 vec4 interpolate(vec4 a0, vec4 a1, vec4 a2, float u, float v) {
-    return a0 * (1.0 - u - v) + a1 * u + a2 * v;
+    return a0 + (a1 - a0) * u + (a2 - a0) * v;
 }
 
 // Twin of twinray_shared::texture::transform_uv and transform_gradient: the material's texture

@@ -3,6 +3,7 @@
 //! --release -p twinray --test commands cli::` runs one). `bench.rs` (long), `hostile_stages.rs`
 //! (GPU deadlines, timed) and `view.rs` (a browser) are harnesses of their own.
 
+mod alpha_ties;
 mod architecture;
 mod bisect;
 mod bundle_script;

@@ -20,9 +20,14 @@ use glam::{Mat3, Vec2, Vec3, Vec4, Vec4Swizzles};
 #[cfg(target_arch = "spirv")]
 use spirv_std::num_traits::Float;
 
-/// `a[0]`, `a[1]`, `a[2]` weighted by the barycentrics `(u, v)` of vertices 1 and 2.
+/// `a[0]`, `a[1]`, `a[2]` weighted by the barycentrics `(u, v)` of vertices 1 and 2, as
+/// `a0 + (a1 - a0) u + (a2 - a0) v`: where the three agree (a vertex colour's alpha of 1 on every
+/// vertex) the differences are exactly 0 and the result is exactly `a0`, however a compiler
+/// fuses or orders the rest. The weighted sum `a0 (1 - u - v) + ...` rounds the weights, and gave
+/// 0.99999994 in one set and 1 in the other: an alpha of 0.5 times that fell on either side of a
+/// cutoff of 0.5 (docs/numerics.md, "Alpha at the cutoff").
 pub fn interpolate(a: [Vec4; 3], u: f32, v: f32) -> Vec4 {
-    a[0] * (1.0 - u - v) + a[1] * u + a[2] * v
+    a[0] + (a[1] - a[0]) * u + (a[2] - a[0]) * v
 }
 
 /// The texture coordinates a texture of `material` reads at vertex `v` from its `set` (0 or
