@@ -174,10 +174,7 @@ fn a_model_cannot_lead_twinray_outside_its_folder() {
 /// line, with no timestamp or module path; with `-v` the user asked for logs, and gets them.
 #[test]
 fn warnings_are_one_line_each_unless_logs_are_asked_for() {
-    let dir = tempfile::tempdir().unwrap();
-    std::fs::write(dir.path().join("quad.bin"), quad_bytes()).unwrap();
-    let model = quad_gltf("quad.bin").replacen('{', r#"{"extensionsUsed": ["KHR_materials_sheen"], "#, 1);
-    std::fs::write(dir.path().join("sheen.gltf"), model).unwrap();
+    let dir = sheen_model();
     let render = |verbose: &[&str]| {
         let args = [verbose, &["render", "sheen.gltf", "--width", "8", "--height", "8", "--out", "x.png"]].concat();
         let out = twinray(&args, dir.path());
@@ -193,6 +190,37 @@ fn warnings_are_one_line_each_unless_logs_are_asked_for() {
         logs.lines().any(|l| l.contains("WARN") && l.contains("twinray::") && l.contains("KHR_materials_sheen")),
         "{logs}"
     );
+}
+
+/// A folder holding `sheen.gltf`, a quad that uses an extension twinray does not model.
+fn sheen_model() -> tempfile::TempDir {
+    let dir = tempfile::tempdir().unwrap();
+    std::fs::write(dir.path().join("quad.bin"), quad_bytes()).unwrap();
+    let model = quad_gltf("quad.bin").replacen('{', r#"{"extensionsUsed": ["KHR_materials_sheen"], "#, 1);
+    std::fs::write(dir.path().join("sheen.gltf"), model).unwrap();
+    dir
+}
+
+/// `bench` times each set alone on a fresh device, loading the model again for each: its
+/// notice is said once per run all the same (it was said once per device: 6 lines for 2 sets
+/// and 3 rounds).
+#[test]
+fn a_models_notice_is_said_once_per_run() {
+    let dir = sheen_model();
+    let timing = ["--spp", "1", "--runs", "10", "--warmup", "0", "--placements", "1", "--reference-spp", "1"];
+    let alone = ["--processes", "2", "--alone-in", "devices"];
+    let skipped = ["--probes", "none", "--images", "none", "--shadow-spp", "none"];
+    let args = [
+        &["bench", "sheen.gltf", "--sets", "rust,glsl", "--width", "32", "--height", "24", "--out", "b"][..],
+        &timing,
+        &alone,
+        &skipped,
+    ]
+    .concat();
+    let out = twinray(&args, dir.path());
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(out.status.success(), "{stderr}");
+    assert_eq!(stderr.matches("not modelled").count(), 1, "{stderr}");
 }
 
 /// A grid of quads as a glTF model (16-bit indices, positions and normals interleaved), each

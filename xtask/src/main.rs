@@ -164,6 +164,10 @@ fn demo(animated: bool) -> Result<()> {
     setup::run(Scope::Vulkan)?;
     let out = repo_root().join("target/demo");
     let dir = out.to_string_lossy();
+    // Built first with cargo's progress shown (minutes on a fresh machine, silent under
+    // `--quiet`); the runs after it are quiet, as the build is done.
+    println!("demo: building twinray (release)");
+    cargo(&["build", "--release", "-p", "twinray"], &[])?;
     let twinray = ["run", "--release", "--quiet", "-p", "twinray", "--"];
     if !animated {
         // Four placements of 5 traces: an interval in about half a minute on lavapipe.

@@ -52,6 +52,8 @@ pub fn run(name: &str) -> Result<()> {
     cargo(&["xtask", "shaders"], &[]).context("building the shaders with the new shape")?;
     let out = root.join("target/new-shape").join(name);
     let out = out.to_string_lossy();
+    // Built with cargo's progress shown (the host has the new shape), then run quietly.
+    cargo(&["build", "--release", "-p", "twinray"], &[])?;
     cargo(&["run", "--release", "--quiet", "-p", "twinray", "--", "compare", name, "--out-dir", &out], &[])
         .with_context(|| format!("comparing the Rust and GLSL renders of scene {name}"))?;
     println!(

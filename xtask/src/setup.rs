@@ -5,10 +5,7 @@ use crate::process::{self, output};
 use anyhow::{bail, Result};
 use std::path::Path;
 use std::process::Command;
-use twinray_build::NIGHTLY;
-
-/// The components rustc_codegen_spirv needs of its nightly.
-const NIGHTLY_COMPONENTS: [&str; 3] = ["rust-src", "rustc-dev", "llvm-tools"];
+use twinray_build::ensure_toolchain;
 
 /// Lavapipe exposes VK_KHR_ray_tracing_pipeline from Mesa 25 on (bookworm's own 22.3 does not).
 const MIN_MESA_MAJOR: u32 = 25;
@@ -40,7 +37,7 @@ pub fn run(scope: Scope) -> Result<()> {
     }
     ensure_packages(&packages)?;
     if scope == Scope::Full {
-        ensure_nightly()?;
+        ensure_toolchain()?;
         ensure_stable_components()?;
     }
     Ok(())
@@ -123,21 +120,6 @@ fn apt_install(packages: &[&str], release: Option<&str>) -> Result<()> {
     println!("setup: installing {}", packages.join(" "));
     process::run(Command::new("apt-get").arg("update").arg("-q"))?;
     process::run(Command::new("apt-get").args(&args).env("DEBIAN_FRONTEND", "noninteractive"))
-}
-
-fn ensure_nightly() -> Result<()> {
-    let installed = output(Command::new("rustup").args(["component", "list", "--installed", "--toolchain", NIGHTLY]))
-        .unwrap_or_default();
-    let has = |c: &str| installed.lines().any(|l| l.starts_with(c));
-    if NIGHTLY_COMPONENTS.iter().all(|c| has(c)) {
-        return Ok(());
-    }
-    println!("setup: installing {NIGHTLY} for rust-gpu");
-    let mut args = vec!["toolchain", "install", NIGHTLY, "--profile", "minimal"];
-    for c in NIGHTLY_COMPONENTS {
-        args.extend(["-c", c]);
-    }
-    process::run(Command::new("rustup").args(&args))
 }
 
 /// rustfmt and clippy for the toolchain that builds the workspace.

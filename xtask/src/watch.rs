@@ -28,7 +28,8 @@ pub fn run(args: &WatchArgs) -> Result<()> {
     let root = repo_root();
     require_tools()?;
     println!("watch: building the host (release)");
-    cargo(&["build", "--release", "--quiet", "-p", "twinray"], &[])?;
+    // With cargo's progress: minutes on a fresh machine.
+    cargo(&["build", "--release", "-p", "twinray"], &[])?;
     let twinray = target_dir(&root).join("release/twinray");
     let out = root.join("target/watch");
     let mut seen = snapshot(&root);

@@ -29,8 +29,19 @@ const FRAMING_DIRECTION: Vec3 = Vec3::new(0.5, 0.4, 1.0);
 /// One notice line of what a model read from `source` has that twinray ignored, if anything.
 pub fn notice(source: &str, ignored: &BTreeSet<String>) {
     if !ignored.is_empty() {
-        log::warn!("{source}: not modelled, ignored: {}", listed(ignored));
+        let line = format!("{source}: not modelled, ignored: {}", listed(ignored));
+        if first_time(&line) {
+            log::warn!("{line}");
+        }
     }
+}
+
+/// Whether this process has not said `line` yet (and now has): a command that loads a model
+/// again (`bench` on every fresh device, a moving scene's frames) says its notice once per run.
+pub fn first_time(line: &str) -> bool {
+    static SAID: std::sync::Mutex<BTreeSet<String>> = std::sync::Mutex::new(BTreeSet::new());
+    // A poisoned lock (a panic elsewhere while it was held) still holds a set: use it.
+    SAID.lock().unwrap_or_else(|poisoned| poisoned.into_inner()).insert(line.to_string())
 }
 
 /// Adds to `ignored` the name of each feature of `found` that a model has: (has it, name).

@@ -36,17 +36,31 @@ pub(crate) fn nightly(program: &str) -> Command {
     command
 }
 
-/// The pinned nightly, installed (with the components rust-gpu needs) when rustup lacks it.
+/// The components rustc_codegen_spirv needs of its nightly.
+pub const NIGHTLY_COMPONENTS: [&str; 3] = ["rust-src", "rustc-dev", "llvm-tools"];
+
+/// The pinned nightly with the components rust-gpu needs, installed when rustup lacks the
+/// toolchain or any of them (a nightly installed by hand, minimal, has none): every command
+/// that builds Rust stages calls it first (`cargo xtask setup`, `shaders`, `watch`,
+/// `new-shape`; `twinray build`), so none stops at rustup's "toolchain is not installed".
 pub fn ensure_toolchain() -> Result<()> {
-    let installed = output(Command::new("rustup").args(["toolchain", "list"]))
-        .context("rustup is needed to build Rust stages (https://rustup.rs)")?;
-    if installed.lines().any(|l| l.starts_with(NIGHTLY)) {
+    ensure_toolchain_with(Path::new("rustup"))
+}
+
+/// [`ensure_toolchain`] with the rustup at `rustup`.
+fn ensure_toolchain_with(rustup: &Path) -> Result<()> {
+    let installed = output(Command::new(rustup).args(["component", "list", "--installed", "--toolchain", NIGHTLY]))
+        .unwrap_or_default();
+    let has = |c: &str| installed.lines().any(|l| l.starts_with(c));
+    if NIGHTLY_COMPONENTS.iter().all(|c| has(c)) {
         return Ok(());
     }
-    eprintln!("build: installing the Rust toolchain {NIGHTLY} that rust-gpu 0.11 needs (once per machine)");
-    run(Command::new("rustup")
+    output(Command::new(rustup).arg("--version"))
+        .context("rustup is needed to build Rust stages (https://rustup.rs)")?;
+    eprintln!("build: installing the Rust toolchain {NIGHTLY} that rust-gpu 0.11 needs, with its components (once per machine)");
+    run(Command::new(rustup)
         .args(["toolchain", "install", NIGHTLY, "--profile", "minimal", "--component"])
-        .arg("rust-src,rustc-dev,llvm-tools"))
+        .arg(NIGHTLY_COMPONENTS.join(",")))
 }
 
 /// The builder compiled from the manifest `manifest` (a checkout's `shaders-rs/builder`, or the
@@ -87,4 +101,43 @@ pub fn embedded() -> Result<PathBuf> {
         std::fs::rename(&temporary, &full)?;
     }
     compiled(&dir.join("Cargo.toml"), false)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A rustup that logs its arguments and lists `components` as installed.
+    fn fake_rustup(dir: &Path, components: &str) -> PathBuf {
+        let path = dir.join("rustup");
+        let log = dir.join("log");
+        let script = format!(
+            "#!/bin/sh\necho \"$@\" >> '{}'\n[ \"$1\" = component ] && printf '{components}'\nexit 0\n",
+            log.display()
+        );
+        std::fs::write(&path, script).unwrap();
+        std::process::Command::new("chmod").arg("+x").arg(&path).status().unwrap();
+        path
+    }
+
+    /// The nightly is installed where a component is missing (a toolchain installed by hand),
+    /// and rustup is not asked to install anything where all are there.
+    #[test]
+    fn the_nightly_is_installed_with_its_components_where_any_is_missing() {
+        let dir = tempfile::tempdir().unwrap();
+        let partial = fake_rustup(dir.path(), "rust-src\\nllvm-tools-x86_64-unknown-linux-gnu\\n");
+        ensure_toolchain_with(&partial).unwrap();
+        let log = std::fs::read_to_string(dir.path().join("log")).unwrap();
+        let install =
+            format!("toolchain install {NIGHTLY} --profile minimal --component rust-src,rustc-dev,llvm-tools");
+        assert!(log.contains(&install), "{log}");
+        std::fs::remove_file(dir.path().join("log")).unwrap();
+        let whole = fake_rustup(
+            dir.path(),
+            "rust-src\\nrustc-dev-x86_64-unknown-linux-gnu\\nllvm-tools-x86_64-unknown-linux-gnu\\n",
+        );
+        ensure_toolchain_with(&whole).unwrap();
+        let log = std::fs::read_to_string(dir.path().join("log")).unwrap();
+        assert!(!log.contains("toolchain install"), "{log}");
+    }
 }

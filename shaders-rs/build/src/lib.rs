@@ -13,7 +13,7 @@ pub mod uniformity;
 
 use anyhow::{bail, Context, Result};
 use builder::nightly;
-pub use builder::{builder_target, cache_dir, NIGHTLY};
+pub use builder::{builder_target, cache_dir, ensure_toolchain, NIGHTLY, NIGHTLY_COMPONENTS};
 pub use exit::exit_words;
 pub use process::{have, output, run};
 use std::path::Path;
