@@ -77,8 +77,9 @@ fn gltf_mutations_short_run() {
 
 /// The mutator reaches the classes of fault the loader checks for: from the assimp
 /// BoxTextured model, 4000 mutations include files refused for a view's stride below its
-/// element, an accessor offset not a multiple of its component, and an image larger than
-/// the budget by its header.
+/// element, an accessor offset not a multiple of its component, an image larger than the
+/// budget by its header, and the node graph rules (a second parent, a cycle, a matrix with
+/// TRS).
 #[test]
 fn the_mutator_reaches_the_loaders_checks() {
     use twinray::fuzz::mutate::{self, Rng};
@@ -91,7 +92,14 @@ fn the_mutator_reaches_the_loaders_checks() {
             errors.push(e);
         }
     }
-    let classes: [&[&str]; 3] = [&["byteStride"], &["not a multiple"], &["bytes decoded", "on a side"]];
+    let classes: [&[&str]; 6] = [
+        &["byteStride"],
+        &["not a multiple"],
+        &["bytes decoded", "on a side"],
+        &["is a child of both"],
+        &["its own ancestor"],
+        &["both a matrix and"],
+    ];
     for class in classes {
         let found = errors.iter().any(|e| class.iter().any(|c| e.contains(c)));
         assert!(found, "no mutation was refused for {class:?}: {:?}", &errors[..errors.len().min(20)]);

@@ -1,7 +1,8 @@
 //! Edits that break a rule glTF sets between two fields, which edits of one value at random
 //! seldom hit: a buffer view's stride below the element of an accessor that reads through it,
 //! an accessor's offset that is not a multiple of its component, and an embedded PNG whose
-//! header claims a huge image (a decompression bomb). Part of the `gltf` fuzz target's mutator
+//! header claims a huge image (a decompression bomb), an embedded PNG given metadata chunks,
+//! and the node graph's rules (`super::graph_faults`). Part of the `gltf` fuzz target's mutator
 //! (`super::mutate`).
 
 use super::rng::Rng;
@@ -33,10 +34,12 @@ fn components(kind: &str) -> u64 {
 /// Breaks one such rule in `doc` or in `bin` (a GLB's binary chunk); false where the file has
 /// nothing to break it on (no accessor with a view, no PNG).
 pub fn break_rule(doc: &mut Value, bin: Option<&mut Vec<u8>>, rng: &mut Rng) -> bool {
-    match rng.below(3) {
+    match rng.below(5) {
         0 => short_stride(doc, rng),
         1 => misaligned_offset(doc, rng),
-        _ => bin.is_some_and(|b| huge_png(b, rng)),
+        2 => bin.is_some_and(|b| huge_png(b, rng)),
+        3 => bin.is_some_and(|b| metadata_chunk(b, rng)),
+        _ => super::graph_faults::break_rule(doc, rng),
     }
 }
 
@@ -90,6 +93,45 @@ fn huge_png(bin: &mut [u8], rng: &mut Rng) -> bool {
     true
 }
 
+/// An ancillary chunk inserted after a PNG's header (IHDR) in `bin`: a colour profile, text
+/// (plain or compressed), or EXIF, its compressed parts a stored zlib stream of random bytes
+/// (or, one time in four, not a zlib stream at all). The decoder never sees them: the loader
+/// passes a PNG's picture chunks only (`scene::texture`). A GLB's chunk lengths are made right
+/// by the caller (`mutate::join`), but buffer views past the PNG now point a little off, as
+/// edits of the binary chunk do.
+fn metadata_chunk(bin: &mut Vec<u8>, rng: &mut Rng) -> bool {
+    let Some(at) = bin.windows(4).position(|w| w == b"IHDR") else { return false };
+    let end = at + 4 + 13 + 4;
+    if bin.len() < end || at < 4 {
+        return false;
+    }
+    let kind: &[u8; 4] = [b"iCCP", b"zTXt", b"iTXt", b"tEXt", b"eXIf"][rng.below(5)];
+    let payload: Vec<u8> = (0..1 + rng.below(64)).map(|_| rng.word() as u8).collect();
+    let mut body = b"profile\0\0".to_vec();
+    if rng.below(4) == 0 {
+        body.extend(&payload);
+    } else {
+        // A stored block (BFINAL, BTYPE 00), LEN and NLEN, the bytes, their Adler-32.
+        let len = payload.len() as u16;
+        body.extend([0x78, 0x01, 0x01]);
+        body.extend(len.to_le_bytes());
+        body.extend((!len).to_le_bytes());
+        body.extend(&payload);
+        let (a, b) = payload.iter().fold((1u32, 0u32), |(a, b), &x| {
+            let a = (a + u32::from(x)) % 65521;
+            (a, (b + a) % 65521)
+        });
+        body.extend(((b << 16) | a).to_be_bytes());
+    }
+    let mut chunk = (body.len() as u32).to_be_bytes().to_vec();
+    chunk.extend(kind);
+    chunk.extend(&body);
+    let crc = crc32(&chunk[4..]);
+    chunk.extend(crc.to_be_bytes());
+    bin.splice(end..end, chunk);
+    true
+}
+
 /// CRC-32 (ISO 3309, as PNG uses it), bit by bit: a header's 17 bytes need no table.
 fn crc32(bytes: &[u8]) -> u32 {
     let mut crc = u32::MAX;
@@ -127,6 +169,17 @@ mod tests {
         let width = u32::from_be_bytes(png[16..20].try_into().unwrap());
         assert!(width >= 16384, "{width}");
         assert!(!huge_png(&mut [0u8; 16], &mut Rng::new(1)));
+        // A metadata chunk after the header, which the decoder's path drops again.
+        let mut picture = Vec::new();
+        image::GrayImage::new(2, 2).write_to(&mut std::io::Cursor::new(&mut picture), image::ImageFormat::Png).unwrap();
+        for seed in 0..16 {
+            let mut with = picture.clone();
+            assert!(metadata_chunk(&mut with, &mut Rng::new(seed)));
+            assert!(with.len() > picture.len());
+            let mut budget = u64::MAX;
+            let decoded = crate::scene::texture::decode("m.png", &with, false, &mut budget).unwrap();
+            assert_eq!((decoded.width, decoded.height), (2, 2));
+        }
         // The standard check value of CRC-32.
         assert_eq!(crc32(b"123456789"), 0xCBF4_3926);
     }

@@ -5,6 +5,7 @@
 //! allocation that eats the machine is a finding.
 
 pub mod faults;
+pub mod graph_faults;
 pub mod mutate;
 pub mod rng;
 

@@ -12,6 +12,7 @@ mod buffers;
 mod textures;
 pub use super::framing::{notice, Model};
 pub use buffers::SUPPORTED_EXTENSIONS;
+pub use graph::check as check_graph;
 mod framing;
 mod geometry;
 mod graph;
