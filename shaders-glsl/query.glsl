@@ -90,7 +90,7 @@ bool visible(vec3 origin, vec3 direction, float distance) {
 // level 0).
 void trace_query(vec3 origin, float t_min, vec3 direction, float t_max, vec4 background, float cone) {
     rayQueryEXT query;
-    rayQueryInitializeEXT(query, tlas, gl_RayFlagsNoneEXT, 0xff, origin, t_min, direction, t_max);
+    rayQueryInitializeEXT(query, tlas, PRIMARY_RAY_FLAGS, 0xff, origin, t_min, direction, t_max);
     vec3 normal = vec3(0.0);
     while (rayQueryProceedEXT(query)) {
         bool none = rayQueryGetIntersectionTypeEXT(query, true) == gl_RayQueryCommittedIntersectionNoneEXT;

@@ -17,7 +17,7 @@ void trace_primary(vec3 origin, vec3 direction) {
 }
 #else
 void trace_primary(vec3 origin, vec3 direction) {
-    traceRayEXT(tlas, gl_RayFlagsNoneEXT, 0xff, 0, 0, MISS_PRIMARY, origin, frame.reach.z, direction, frame.reach.x, 0);
+    traceRayEXT(tlas, PRIMARY_RAY_FLAGS, 0xff, 0, 0, MISS_PRIMARY, origin, frame.reach.z, direction, frame.reach.x, 0);
 }
 #endif
 

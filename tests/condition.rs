@@ -9,22 +9,10 @@ use twinray::reference::condition::t_condition;
 use twinray::reference::scene::{RefObject, SceneReference, SceneVerdict};
 use twinray::reference::shapes::{RefRay, RefShape};
 use twinray::scene::{MeshFiles, Scene};
+use twinray_tests::SCENE_HEAD;
 
-const SCENE: &str = r#"
-[image]
-width = 4
-height = 4
-
-[camera]
-eye = [0.0, 0.0, 10.0]
-target = [0.0, 0.0, 0.0]
-up = [0.0, 1.0, 0.0]
-fov_y_degrees = 45.0
-
-[materials.m]
-kind = "diffuse"
-color = [1.0, 1.0, 1.0]
-
+/// After `SCENE_HEAD`: one shape of each kind the check covers.
+const SHAPES: &str = r#"
 [shapes.ball]
 kind = "sphere"
 radius = 1.0
@@ -115,7 +103,7 @@ fn line(
 
 #[test]
 fn condition_numbers_agree_with_mpmath() {
-    let scene = Scene::parse(SCENE, "condition.toml", MeshFiles::Builtin).expect("scene");
+    let scene = Scene::parse(&format!("{SCENE_HEAD}{SHAPES}"), "condition.toml", MeshFiles::Builtin).expect("scene");
     let reference = SceneReference::new(&scene).expect("reference");
     let mut lines = Vec::new();
     // From 20 to 200 units away, aimed at points about each object, some nearly grazing it.
@@ -147,7 +135,9 @@ fn condition_numbers_agree_with_mpmath() {
                 t_max: 1e30,
                 noise_floor: 0.0,
             };
-            let Some(Some((shape, _, _))) = object.first_shape(&local) else { continue };
+            let Some(Some((shape, _, _))) = object.first_shape(&local, twinray::reference::scene::Faces::Front) else {
+                continue;
+            };
             let kappa = t_condition(object, od, dd, t, normal);
             let name = format!("object {index} ray {k}");
             lines.push(line(&name, (o.to_array(), d.to_array()), object, &object.shapes[shape], (t, kappa)));

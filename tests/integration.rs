@@ -25,6 +25,7 @@ mod reach;
 mod references;
 mod render_sets;
 mod scenes;
+mod single_sided;
 mod stability;
 mod textures;
 mod thin_torus;

@@ -7,21 +7,10 @@ use twinray::probe::{probe, ProbeRay};
 use twinray::reference::shapes::{intersect, RefRay, RefShape, Verdict};
 use twinray::scene::{MeshFiles, Scene};
 use twinray_shared::bindings::NO_HIT;
-use twinray_tests::{set, validated_context};
+use twinray_tests::{set, validated_context, SCENE_HEAD};
 
-const SCENE: &str = r#"
-name = "probe-test"
-[image]
-width = 8
-height = 8
-[camera]
-eye = [0.0, 0.0, 10.0]
-target = [0.0, 0.0, 0.0]
-up = [0.0, 1.0, 0.0]
-fov_y_degrees = 45.0
-[materials.m]
-kind = "diffuse"
-color = [1.0, 1.0, 1.0]
+/// After `SCENE_HEAD`: a sphere and a torus instance scaled by 2.
+const SHAPES: &str = r#"
 [shapes.ball]
 kind = "sphere"
 radius = 1.0
@@ -60,7 +49,8 @@ fn grid(x0: f32, w: f32, n: u32) -> Vec<ProbeRay> {
 
 #[test]
 fn probe_agrees_with_the_f64_reference_in_both_sets() {
-    let scene = Scene::parse(SCENE, "probe-test", MeshFiles::Folder(".".into())).expect("scene");
+    let text = format!("name = \"probe-test\"\n{SCENE_HEAD}{SHAPES}");
+    let scene = Scene::parse(&text, "probe-test", MeshFiles::Folder(".".into())).expect("scene");
     let ctx = validated_context();
     let sphere_rays = grid(0.0, 1.2, 40);
     let torus_rays = grid(6.0, 3.0, 40);

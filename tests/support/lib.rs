@@ -102,6 +102,22 @@ pub fn default_scene() -> Scene {
     }
 }
 
+/// A scene file's first lines for tests that add their own shapes and objects: an 8 x 8
+/// image, a camera at z = 10 looking at the origin, and a white diffuse material `m`.
+pub const SCENE_HEAD: &str = r#"
+[image]
+width = 8
+height = 8
+[camera]
+eye = [0.0, 0.0, 10.0]
+target = [0.0, 0.0, 0.0]
+up = [0.0, 1.0, 0.0]
+fov_y_degrees = 45.0
+[materials.m]
+kind = "diffuse"
+color = [1.0, 1.0, 1.0]
+"#;
+
 pub fn set(text: &str) -> ShaderSet {
     match text.parse() {
         Ok(set) => set,

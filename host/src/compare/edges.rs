@@ -91,6 +91,7 @@ mod tests {
             object_to_world: DMat4::from_translation(DVec3::new(3.0, 0.0, 0.0)),
             cutout: None,
             mask: 0xff,
+            single_sided: false,
         }
     }
 

@@ -120,7 +120,7 @@ fn object_t(reference: &SceneReference, hit: &AgreedHit, record: &ProbeResult) -
         // Given in the object's own space: rounded at its own magnitude.
         noise_floor: 0.0,
     };
-    match object.first_hit(&ray) {
+    match object.first_hit(&ray, crate::reference::scene::Faces::Front) {
         Verdict::Hit { t, .. } => Some(shift + t),
         Verdict::Miss | Verdict::Ambiguous => None,
     }

@@ -60,6 +60,7 @@ mod tests {
             object_to_world: to_world,
             cutout: None,
             mask: 0,
+            single_sided: false,
         }
     }
 

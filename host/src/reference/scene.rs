@@ -18,6 +18,17 @@ pub struct RefObject {
     pub cutout: Option<RefCutout>,
     /// Its instance mask: shadow rays see only occluders (`MASK_OCCLUDER`).
     pub mask: u32,
+    /// Its triangles seen from behind are culled for primary rays (`ObjectDesc::single_sided`,
+    /// as `bindings::PRIMARY_RAY_FLAGS` and the instance's facing flags do on the GPU).
+    pub single_sided: bool,
+}
+
+/// Which faces a ray sees: a primary ray (and a probe's) skips the back faces of single-sided
+/// objects; a shadow ray sees every face, as a surface blocks light whichever way it faces.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Faces {
+    Front,
+    Both,
 }
 
 /// The first hit over all objects, in world space.
@@ -58,8 +69,8 @@ impl RefObject {
     /// The true answer for a ray in this object's own space: its first hit over the object's
     /// shapes (the holes of a cutout skipped), with the object-space normal; ambiguous when
     /// any shape's answer is, or the hit is on the edge of a hole.
-    pub fn first_hit(&self, ray: &RefRay) -> Verdict {
-        match self.first_shape(ray) {
+    pub fn first_hit(&self, ray: &RefRay, faces: Faces) -> Verdict {
+        match self.first_shape(ray, faces) {
             None => Verdict::Ambiguous,
             Some(None) => Verdict::Miss,
             Some(Some((_, t, normal))) => Verdict::Hit { t, normal },
@@ -70,10 +81,13 @@ impl RefObject {
     /// and object-space normal: `Some(None)` for none, `None` where the answer is ambiguous.
     /// Triangles ambiguous alone (the ray passes within noise of their edges) are decided
     /// together where the mesh is closed (`watertight::across`).
-    pub fn first_shape(&self, ray: &RefRay) -> Option<Option<(usize, f64, DVec3)>> {
+    pub fn first_shape(&self, ray: &RefRay, faces: Faces) -> Option<Option<(usize, f64, DVec3)>> {
         let mut first: Option<(usize, f64, DVec3)> = None;
         let mut unsure = Vec::new();
         for (k, shape) in self.shapes.iter().enumerate() {
+            if faces == Faces::Front && self.seen_from_behind(shape, ray) {
+                continue;
+            }
             match intersect(shape, ray) {
                 Verdict::Ambiguous if self.cutout.is_none() && matches!(shape, RefShape::Triangle { .. }) => {
                     unsure.push(k)
@@ -105,6 +119,16 @@ impl RefObject {
             (Some(hit), Some(Some(crossing))) => Some(Some(if hit.1 < crossing.1 { hit } else { crossing })),
             (None, Some(crossing)) => Some(crossing),
         }
+    }
+
+    /// Whether `ray` (in object space) meets triangle `shape` of this object from behind where
+    /// the object is single-sided. glTF's front is where the corners run counterclockwise in
+    /// world space; the world normal of the corners' winding is det(M) M^-T n, so the ray sees
+    /// the back where det(M) (n . d) > 0 in object space.
+    fn seen_from_behind(&self, shape: &RefShape, ray: &RefRay) -> bool {
+        let RefShape::Triangle { p } = shape else { return false };
+        let winding = (p[1] - p[0]).cross(p[2] - p[0]);
+        self.single_sided && self.object_to_world.determinant() * winding.dot(ray.direction) > 0.0
     }
 
     /// Whether every triangle of `unsure` lies beyond `t` along `ray` by more than noise.
@@ -141,23 +165,35 @@ impl SceneReference {
                     object_to_world,
                     cutout: RefCutout::of(material),
                     mask: instance.mask,
+                    single_sided: instance.single_sided,
                 })
             })
             .collect::<Result<_, String>>()?;
         Ok(SceneReference { objects })
     }
 
-    /// The true answer for a world-space ray.
+    /// The true answer for a world-space primary ray (or a probe's): every object, the back
+    /// faces of single-sided ones culled.
     pub fn trace(&self, origin: DVec3, direction: DVec3, t_min: f64, t_max: f64) -> SceneVerdict {
-        self.trace_masked(origin, direction, (t_min, t_max), u32::MAX)
+        self.trace_seeing(origin, direction, (t_min, t_max), (u32::MAX, Faces::Front))
     }
 
-    /// The true answer for a world-space ray that sees only objects whose mask shares a bit
-    /// with `mask` (as a ray traced with that cull mask).
-    pub fn trace_masked(&self, origin: DVec3, direction: DVec3, (t_min, t_max): (f64, f64), mask: u32) -> SceneVerdict {
+    /// The true answer for a world-space shadow ray, which sees only objects whose mask shares a
+    /// bit with `mask` (as a ray traced with that cull mask), and every face of them.
+    pub fn trace_masked(&self, origin: DVec3, direction: DVec3, reach: (f64, f64), mask: u32) -> SceneVerdict {
+        self.trace_seeing(origin, direction, reach, (mask, Faces::Both))
+    }
+
+    fn trace_seeing(
+        &self,
+        origin: DVec3,
+        direction: DVec3,
+        (t_min, t_max): (f64, f64),
+        (mask, faces): (u32, Faces),
+    ) -> SceneVerdict {
         let mut hits: Vec<(usize, f64, DVec3)> = Vec::new();
         for (i, object) in self.objects.iter().enumerate().filter(|(_, o)| o.mask & mask != 0) {
-            match object.first_hit(&object.ray(origin, direction, (t_min, t_max))) {
+            match object.first_hit(&object.ray(origin, direction, (t_min, t_max)), faces) {
                 Verdict::Ambiguous => return SceneVerdict::Ambiguous,
                 Verdict::Miss => {}
                 Verdict::Hit { t, normal } => {
@@ -183,7 +219,7 @@ impl SceneReference {
     ) -> Option<(usize, DVec3)> {
         let o = self.objects.get(object)?;
         let ray = o.ray(origin, direction, reach);
-        let (k, t, _) = o.first_shape(&ray)??;
+        let (k, t, _) = o.first_shape(&ray, Faces::Front)??;
         Some((k, ray.at(t)))
     }
 

@@ -11,13 +11,14 @@ fn object(triangles: &[[[f64; 3]; 3]]) -> RefObject {
         object_to_world: DMat4::IDENTITY,
         cutout: None,
         mask: 1,
+        single_sided: false,
     }
 }
 
 fn answer(o: &RefObject, origin: [f64; 3], target: [f64; 3]) -> Option<Option<usize>> {
     let (origin, target) = (DVec3::from(origin), DVec3::from(target));
     let ray = RefRay { origin, direction: target - origin, t_min: 0.0, t_max: 1e30, noise_floor: 0.0 };
-    o.first_shape(&ray).map(|h| h.map(|(k, ..)| k))
+    o.first_shape(&ray, super::scene::Faces::Both).map(|h| h.map(|(k, ..)| k))
 }
 
 /// A unit square of two triangles meeting along its diagonal: a ray through the diagonal

@@ -135,6 +135,7 @@ fn upload_scene(
             mask: i.mask,
             sbt_offset: i.hit_group,
             opaque: !data.plan.hit_groups.get(i.hit_group as usize).is_some_and(|g| g.cutout),
+            single_sided: i.single_sided,
             blas_address: blases[i.blas].address,
         })
         .collect();

@@ -34,6 +34,8 @@ pub struct InstanceDesc {
     pub mask: u32,
     /// Index of the hit group in `PipelinePlan::hit_groups` (the SBT record offset).
     pub hit_group: u32,
+    /// Its triangles' back faces culled for primary rays (`ObjectDesc::single_sided`).
+    pub single_sided: bool,
 }
 
 /// The geometry of one BLAS.
@@ -155,6 +157,7 @@ pub fn build(
             custom_index: slot.primitive_base,
             mask: if emissive { b::MASK_EMITTER } else { b::MASK_OCCLUDER },
             hit_group: groups.iter().position(|g| *g == group_of(object)).unwrap_or(0) as u32,
+            single_sided: object.single_sided,
         });
     }
     let lights = lights(scene);

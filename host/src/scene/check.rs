@@ -355,6 +355,7 @@ fn check_grid(scene: &SceneFile, grid: &GridDesc) -> Checked {
             rotate: [0.0; 3],
             scale: grid.scale,
             matrix: None,
+            single_sided: false,
         };
         check_object(scene, &object)?;
     }

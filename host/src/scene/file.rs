@@ -265,13 +265,19 @@ pub struct ObjectDesc {
     /// and `translate`: a glTF node's world transform (which may shear) lands here.
     #[serde(default)]
     pub matrix: Option<[f32; 16]>,
+    /// A mesh whose triangles are seen from the front only, as a glTF material that is not
+    /// `doubleSided`: primary rays pass through a face seen from behind, shadow rays do not.
+    /// The front is where the triangle's corners run counterclockwise in world space (a
+    /// mirroring transform flips it). Procedural shapes have no back faces to cull.
+    #[serde(default)]
+    pub single_sided: bool,
 }
 
 impl ObjectDesc {
     /// Shape `shape` of `material`, placed by `matrix` alone (a model's node) or not at all.
     pub fn placed(shape: String, material: String, matrix: Option<[f32; 16]>) -> ObjectDesc {
         let (translate, rotate, scale) = ([0.0; 3], [0.0; 3], Default::default());
-        ObjectDesc { name: None, shape, material, translate, rotate, scale, matrix }
+        ObjectDesc { name: None, shape, material, translate, rotate, scale, matrix, single_sided: false }
     }
 
     /// Object space to world space: `matrix`, then scale, rotation and translation.
@@ -324,6 +330,7 @@ impl GridDesc {
                         rotate: self.rotate_step.map(|r| (r * step) % 360.0),
                         scale: self.scale,
                         matrix: None,
+                        single_sided: false,
                     });
                 }
             }

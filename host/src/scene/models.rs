@@ -70,6 +70,9 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
                 shape: part(&p.shape),
                 material: if object.material.is_empty() { part(&p.material) } else { object.material.clone() },
                 matrix: Some((own * p.transform()).to_cols_array()),
+                // A face of the model is single-sided as its material says, or as the placing
+                // object asks.
+                single_sided: p.single_sided || object.single_sided,
                 ..object.clone()
             }));
         }

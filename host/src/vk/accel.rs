@@ -45,6 +45,10 @@ pub struct InstanceRecord {
     /// Forced opaque (no any-hit stage runs), or forced not opaque (its hit group's any-hit
     /// stage runs for every candidate hit), whatever its BLAS's geometry says.
     pub opaque: bool,
+    /// Triangles seen from behind are culled for rays that ask for it (primary rays): a glTF
+    /// material that is not `doubleSided`. The front is counterclockwise in world space, as
+    /// glTF has it (a mirroring transform flips it); see [`facing_flags`].
+    pub single_sided: bool,
     pub blas_address: vk::DeviceAddress,
 }
 
@@ -354,9 +358,26 @@ fn aabb_bytes(b: &vk::AabbPositionsKHR) -> Vec<u8> {
     [b.min_x, b.min_y, b.min_z, b.max_x, b.max_y, b.max_z].iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
+/// The facing flags of an instance: culling off where it is double-sided; else Vulkan's own
+/// front where its transform keeps orientation (a positive determinant), flipped where it
+/// mirrors. Vulkan decides facing in object space, whatever the instance transform, and its
+/// front is the side from which a triangle's corners run counterclockwise in a right-handed
+/// frame (the spec says clockwise, in DXR's left-handed one), glTF's front; glTF decides in
+/// world space, where a mirroring transform turns the winding over: the determinant's sign
+/// joins the two. `host/tests/single_sided.rs` checks both sides and a mirrored node.
+pub fn facing_flags(single_sided: bool, object_to_world: &Mat4) -> vk::GeometryInstanceFlagsKHR {
+    if !single_sided {
+        vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE
+    } else if object_to_world.determinant() > 0.0 {
+        vk::GeometryInstanceFlagsKHR::empty()
+    } else {
+        vk::GeometryInstanceFlagsKHR::TRIANGLE_FLIP_FACING
+    }
+}
+
 /// VkAccelerationStructureInstanceKHR as bytes: the 3x4 row-major transform, custom index and
-/// mask, SBT offset and flags (culling off: procedural geometry has no facing; forced opaque
-/// or not), BLAS address.
+/// mask, SBT offset and flags (facing, [`facing_flags`]: procedural geometry has none; forced
+/// opaque or not), BLAS address.
 fn instance_bytes(r: &InstanceRecord) -> Vec<u8> {
     let m = r.object_to_world;
     let rows = [m.row(0), m.row(1), m.row(2)];
@@ -367,7 +388,7 @@ fn instance_bytes(r: &InstanceRecord) -> Vec<u8> {
     } else {
         vk::GeometryInstanceFlagsKHR::FORCE_NO_OPAQUE
     };
-    let flags = (vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE | opacity).as_raw();
+    let flags = (facing_flags(r.single_sided, &r.object_to_world) | opacity).as_raw();
     let sbt_offset_and_flags = (r.sbt_offset & 0x00ff_ffff) | (flags << 24);
     bytes.extend_from_slice(&custom_index_and_mask.to_le_bytes());
     bytes.extend_from_slice(&sbt_offset_and_flags.to_le_bytes());
@@ -387,6 +408,7 @@ mod tests {
             mask: 2,
             sbt_offset: 7,
             opaque: false,
+            single_sided: false,
             blas_address: 0x1234,
         };
         let bytes = instance_bytes(&record);

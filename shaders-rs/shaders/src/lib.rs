@@ -19,7 +19,7 @@ mod trace;
 
 use spirv_std::glam::{UVec2, UVec3, UVec4, Vec2, Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
 use spirv_std::matrix::Matrix4x3;
-use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
+use spirv_std::ray_tracing::AccelerationStructure;
 use spirv_std::{spirv, Image, RuntimeArray};
 use texture::Texture;
 use trace::Lights;

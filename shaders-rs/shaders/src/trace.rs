@@ -25,6 +25,9 @@ pub type Lights = RuntimeArray<Light>;
 /// say whether they are (cutouts are not, and their any-hit stage runs), so scenes without
 /// cutouts run none.
 /// `_features` are the scene's: the hit stages read their own.
+/// `bindings::PRIMARY_RAY_FLAGS` as ray flags (GLSL reads the same constant from its layout).
+pub const PRIMARY_RAY_FLAGS: RayFlags = RayFlags::from_bits_truncate(twinray_shared::bindings::PRIMARY_RAY_FLAGS);
+
 pub fn primary(
     tlas: &AccelerationStructure,
     ray: Ray,
@@ -35,7 +38,7 @@ pub fn primary(
     // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
     unsafe {
         tlas.trace_ray(
-            RayFlags::NONE,
+            PRIMARY_RAY_FLAGS,
             0xff,
             0,
             0,

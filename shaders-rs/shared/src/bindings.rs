@@ -84,6 +84,12 @@ pub const MISS_PRIMARY: u32 = 0;
 /// The shadow rays' miss shader: it marks the light as seen.
 pub const MISS_SHADOW: u32 = 1;
 
+/// The ray flags of primary rays (and a probe's, which stand for them): back faces of
+/// single-sided meshes culled (`CullBackFacingTrianglesKHR`, 0x10); the instances of the rest
+/// disable culling (`TRIANGLE_FACING_CULL_DISABLE`). Shadow rays keep every face: a surface
+/// blocks light whichever way it faces.
+pub const PRIMARY_RAY_FLAGS: u32 = 0x10;
+
 /// Instance masks: shadow rays see only occluders; emissive objects show but cast no shadow.
 pub const MASK_OCCLUDER: u32 = 0x01;
 /// The instance mask of emissive objects: primary rays see them, shadow rays pass them.

@@ -177,6 +177,7 @@ pub fn layout_include() -> Result<String, String> {
         ("HIT_KIND_TRIANGLE_FRONT", crate::bindings::HIT_KIND_TRIANGLE_FRONT),
         ("HIT_KIND_TRIANGLE_BACK", crate::bindings::HIT_KIND_TRIANGLE_BACK),
         ("MISS_PRIMARY", MISS_PRIMARY),
+        ("PRIMARY_RAY_FLAGS", crate::bindings::PRIMARY_RAY_FLAGS),
         ("MISS_SHADOW", MISS_SHADOW),
         ("MASK_OCCLUDER", MASK_OCCLUDER),
         ("MASK_EMITTER", MASK_EMITTER),

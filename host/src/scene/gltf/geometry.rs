@@ -55,7 +55,7 @@ pub fn primitive(
         None => (0..positions.len() as u32).collect(),
     };
     if let Some(i) = order.iter().find(|&&i| i as usize >= positions.len()) {
-        return Err(format!("{what}: its indices name vertex {i}, past its POSITION's {}", positions.len()));
+        return Err(format!("{what} indexes vertex {i}, past its {} vertices", positions.len()));
     }
     // Every attribute, modelled or not, has one element per vertex (the glTF validator's rule):
     // with fewer, which value would the others get?

@@ -108,6 +108,7 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
             let mut read = Read { files, images: &mut images, source: name };
             let material = material(&primitive.material(), &mut materials, &mut read, &mut ignored)?;
             let mut object = ObjectDesc::placed(shape, material, Some(world.to_cols_array()));
+            object.single_sided = !primitive.material().double_sided();
             object.name = Some(match node.name() {
                 Some(name) => format!("node {} {name:?}", node.index()),
                 None => format!("node {}", node.index()),
@@ -259,7 +260,6 @@ fn material(
         (true, "metallic-roughness (shaded as diffuse)"),
         (m.normal_texture().is_some(), "normal maps"),
         (m.occlusion_texture().is_some(), "occlusion maps"),
-        (!m.double_sided(), "single-sided materials (their back faces are shown)"),
     ];
     ignore_found(ignored, &found);
     Ok(name)

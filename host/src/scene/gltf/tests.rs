@@ -145,16 +145,19 @@ fn what_is_not_modelled_is_named() {
 
 /// MASK is an alpha-tested cutout at the material's cutoff, of its base colour's alpha;
 /// OPAQUE, and a cutoff of 0, are plain diffuse.
+/// The square of one node, its primitive of `material` (a glTF material's JSON), loaded.
+fn square_of(material: &str) -> Model {
+    let text = square(None, ONE_NODE, r#", "material": 0"#).replacen(
+        r#""scenes""#,
+        &format!(r#""materials": [{material}], "scenes""#),
+        1,
+    );
+    load_text(&text).unwrap()
+}
+
 #[test]
 fn alpha_modes_become_alpha_tested_cutouts() {
-    let with = |material: &str| {
-        let text = square(None, ONE_NODE, r#", "material": 0"#).replacen(
-            r#""scenes""#,
-            &format!(r#""materials": [{material}], "scenes""#),
-            1,
-        );
-        load_text(&text).unwrap().file.materials.into_values().next().unwrap()
-    };
+    let with = |material: &str| square_of(material).file.materials.into_values().next().unwrap();
     let mask = with(
         r#"{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 0.7]}, "alphaMode": "MASK", "alphaCutoff": 0.3}"#,
     );
@@ -209,7 +212,7 @@ fn malformed_models_are_refused_with_their_fault_named() {
         &good.replacen("{\"asset\"", "{\"extensionsRequired\": [\"KHR_draco_mesh_compression\"], \"asset\"", 1),
         "requires the extension KHR_draco_mesh_compression",
     );
-    refused(&square(Some((&[0, 1, 9], 5123)), ONE_NODE, ""), "its indices name vertex 9, past its POSITION's 4");
+    refused(&square(Some((&[0, 1, 9], 5123)), ONE_NODE, ""), "indexes vertex 9, past its 4 vertices");
     refused(&good.replacen(r#""count": 4"#, r#""count": 5"#, 1), "reaches past the end of its buffer view");
     refused(&good.replacen(r#""type": "VEC3""#, r#""type": "VEC2""#, 1), "which glTF does not allow there");
     refused(&good.replacen(r#""byteLength": 60"#, r#""byteLength": 600"#, 1), "fewer than its byteLength");
@@ -345,4 +348,15 @@ fn a_node_scaled_to_zero_is_not_drawn() {
     assert_eq!(model.file.objects[0].name.as_deref(), Some("node 2"));
     assert!(model.ignored.iter().any(|i| i.contains("scaled to zero")), "{:?}", model.ignored);
     refused(&square(None, r#"{"mesh": 0, "scale": [0, 0, 0]}"#, ""), "places no triangles");
+}
+
+/// A material that is not `doubleSided` (glTF's default, and the default material's) makes its
+/// objects single-sided; a `doubleSided` one does not; neither is named as not modelled.
+#[test]
+fn single_sided_materials_make_single_sided_objects() {
+    let with = square_of;
+    assert!(with("{}").file.objects[0].single_sided);
+    assert!(!with(r#"{"doubleSided": true}"#).file.objects[0].single_sided);
+    assert!(load_text(&square(None, ONE_NODE, "")).unwrap().file.objects[0].single_sided, "the default material");
+    assert!(with("{}").ignored.iter().all(|i| !i.contains("sided")), "{:?}", with("{}").ignored);
 }
