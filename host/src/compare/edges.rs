@@ -92,6 +92,7 @@ mod tests {
             cutout: None,
             mask: 0xff,
             single_sided: false,
+            vertex_alphas: Vec::new(),
         }
     }
 

@@ -61,6 +61,7 @@ mod tests {
             cutout: None,
             mask: 0,
             single_sided: false,
+            vertex_alphas: Vec::new(),
         }
     }
 

@@ -18,6 +18,9 @@ pub struct RefObject {
     pub cutout: Option<RefCutout>,
     /// Its instance mask: shadow rays see only occluders (`MASK_OCCLUDER`).
     pub mask: u32,
+    /// Each triangle's vertex alphas, where its cutout reads them
+    /// (`RefCutout::reads_vertex_alpha`); empty elsewhere.
+    pub vertex_alphas: Vec<[f64; 3]>,
     /// Its triangles seen from behind are culled for primary rays (`ObjectDesc::single_sided`,
     /// as `bindings::PRIMARY_RAY_FLAGS` and the instance's facing flags do on the GPU).
     pub single_sided: bool,
@@ -96,7 +99,11 @@ impl RefObject {
                 Verdict::Miss => {}
                 Verdict::Hit { t, normal } => {
                     if let Some(cutout) = &self.cutout {
-                        match cutout.coverage(ray.at(t), ray.edge_band(t, normal)) {
+                        let triangle = match (shape, self.vertex_alphas.get(k)) {
+                            (RefShape::Triangle { p }, Some(alphas)) => Some((p, *alphas)),
+                            _ => None,
+                        };
+                        match cutout.coverage(ray.at(t), ray.edge_band(t, normal), triangle) {
                             Coverage::Hole => continue,
                             Coverage::Edge => return None,
                             Coverage::Solid => {}
@@ -159,11 +166,14 @@ impl SceneReference {
                 let object_to_world = instance.object_to_world.as_dmat4();
                 let group = data.plan.hit_groups[instance.hit_group as usize];
                 let material = &data.materials[data.objects[instance.object as usize].material as usize];
+                let cutout = RefCutout::of(material);
+                let reads = cutout.is_some_and(|c| c.reads_vertex_alpha());
                 Ok(RefObject {
                     shapes: shapes(&data, group, instance.blas, instance.custom_index)?,
+                    vertex_alphas: if reads { vertex_alphas(&data, instance.blas) } else { Vec::new() },
                     world_to_object: object_to_world.inverse(),
                     object_to_world,
-                    cutout: RefCutout::of(material),
+                    cutout,
                     mask: instance.mask,
                     single_sided: instance.single_sided,
                 })
@@ -257,6 +267,17 @@ fn first_of(hits: &[(usize, f64, DVec3)], origin: DVec3, direction: DVec3) -> Sc
             }
         }
     }
+}
+
+/// The vertex alphas (COLOR_0's) of each triangle of a mesh BLAS, in its triangles' order;
+/// none for procedural primitives.
+fn vertex_alphas(data: &SceneData, blas: usize) -> Vec<[f64; 3]> {
+    let BlasDesc::Triangles { vertex_base, index_base, index_count, .. } = &data.blases[blas] else {
+        return Vec::new();
+    };
+    let alpha = |i: u32| f64::from(data.vertices[(*vertex_base + i) as usize].color.w);
+    let indices = data.indices.range(*index_base as usize, *index_count as usize).unwrap_or_default();
+    indices.chunks_exact(3).map(|t| [alpha(t[0]), alpha(t[1]), alpha(t[2])]).collect()
 }
 
 /// The reference shapes of one instance: its BLAS's primitives, read as its hit group reads
