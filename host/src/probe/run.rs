@@ -246,7 +246,7 @@ fn probe_and_release(
     let results = read_pass(ctx, &p, trace, &results, bytes)?;
     let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
     let raygen_stack_bytes = p.pipeline.raygen_stack_bytes();
-    let features = scene.build().plan.features;
+    let features = p.pipeline.features;
     Ok(ProbeOutput { results, witness, driver_witness, gpu_ms, raygen_stack_bytes, launches: Vec::new(), features })
 }
 

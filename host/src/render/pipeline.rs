@@ -32,6 +32,8 @@ pub struct ScenePipeline {
     pub modules: Vec<&'static str>,
     /// The workgroup size a compute pipeline is dispatched in; `None` for ray tracing.
     pub workgroup: Option<(u32, u32)>,
+    /// The scene features its stages are specialised for (`PipelinePlan::features`).
+    pub features: u32,
     /// Where ray generation's group lies in the pipeline's layout (`super::layout`).
     raygen_group: u32,
     /// The libraries it was linked from (none when made whole), in layout order, kept while it
@@ -191,6 +193,7 @@ impl ScenePipeline {
             group_count: groups.len() as u32,
             modules: names,
             workgroup: workgroup(raygen),
+            features: plan.features,
             raygen_group: if compute { 0 } else { layout.position(0) },
             _libraries: held,
         })
