@@ -106,8 +106,8 @@ impl RefCutout {
     /// in x or z answers otherwise.
     /// A surface's own alpha (`CUTOUT_TEXTURE`) is its opacity times the vertex alpha
     /// interpolated over `triangle` (object-space corners, their alphas), decided the same way
-    /// and also an edge within [`TIE_ULPS`] of the cutoff; with a texture, or without the
-    /// triangle, it is not modelled: every hit on it is an edge, either answer right.
+    /// and also an edge within `TIE_ULPS` f32 epsilons of the cutoff; with a texture, or
+    /// without the triangle, it is not modelled: every hit on it is an edge, either answer right.
     pub fn coverage(&self, p: DVec3, band: f64, triangle: Option<(&[DVec3; 3], [f64; 3])>) -> Coverage {
         if self.pattern == CUTOUT_TEXTURE {
             return match triangle.filter(|_| !self.textured) {
