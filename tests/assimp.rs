@@ -53,7 +53,7 @@ const REFUSED: [(&str, &str); 10] = [
 fn renders_alike(ctx: &std::sync::Arc<twinray::Context>, scene: &Scene, name: &str) {
     let (rust, glsl) = (render_scene(ctx, scene, "rust"), render_scene(ctx, scene, "glsl"));
     let parity = scene.file.parity;
-    let d = twinray::compare::diff(&rust, &glsl, parity.pixel_threshold);
+    let d = twinray::compare::scene_diff(scene, &rust, &glsl);
     let failures = twinray::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
     eprintln!("{name}: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
     assert!(failures.is_empty(), "{name}: rust against glsl: {failures:?}");

@@ -2,6 +2,7 @@
 //! own comment saying what it checks (`cargo test --release -p twinray-tests --test
 //! integration parity::` runs one). `golden.rs` and `timing.rs` are harnesses of their own.
 
+mod alpha_texture;
 mod animation;
 mod assimp;
 mod callables;

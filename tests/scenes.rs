@@ -3,7 +3,7 @@
 //! (its `[parity]` table; see scenes/spheres.toml for why a tolerance and not equality).
 //! The context closes at the end, so an object leaked by any of the renders fails the test.
 
-use twinray::compare::{diff, verdict};
+use twinray::compare::{scene_diff, verdict};
 use twinray_tests::{builtin_scenes, render_scene, validated_context, SCENE_TEST_SIZE};
 
 /// One mix per scene, taken in turn, so every stage is mixed in across the suite.
@@ -25,7 +25,7 @@ fn every_builtin_scene_agrees_across_sets_and_a_mix() {
         for (label, a, b) in
             [("rust vs glsl", &rust, &glsl), ("mix vs rust", &mixed, &rust), ("mix vs glsl", &mixed, &glsl)]
         {
-            let d = diff(a, b, parity.pixel_threshold);
+            let d = scene_diff(scene, a, b);
             let f = verdict(&d, &parity, pixels);
             eprintln!(
                 "{} {label} ({mix}): rmse {:.6}, {} over, {} hit mismatches",

@@ -6,7 +6,8 @@
 //! had hit mismatches in `compare`.
 
 use std::path::Path;
-use twinray_tests::cli::twinray;
+use twinray_tests::cli::{planted_glsl, twinray};
+use twinray_tests::gltf::{Quad, UNIT_UV};
 
 /// One way to put the alpha at the cutoff.
 struct Tie {
@@ -49,38 +50,21 @@ const TIES: [Tie; 4] = [
 
 /// A model of one quad in `dir` with the alpha of `tie`; its path.
 fn model(dir: &Path, tie: &Tie) -> std::path::PathBuf {
-    let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
-    let uv = [0.0f32, 0.0, 1.0, 0.0, 1.0, 1.0, 0.0, 1.0];
-    let mut bytes: Vec<u8> = positions.iter().flat_map(|v| v.to_le_bytes()).collect();
-    bytes.extend([0, 1, 2, 0, 2, 3, 0, 0]);
-    bytes.extend(uv.iter().flat_map(|v| v.to_le_bytes()));
-    bytes.extend([tie.vertex; 4].iter().flatten().flat_map(|v| v.to_le_bytes()));
-    std::fs::write(dir.join("quad.bin"), &bytes).unwrap();
-    let texture = match tie.texel {
-        Some(texel) => {
-            image::RgbaImage::from_pixel(8, 8, image::Rgba(texel)).save(dir.join("alpha.png")).unwrap();
-            r#", "baseColorTexture": {"index": 0}"#
-        }
-        None => "",
-    };
-    let gltf = format!(
-        r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": {}, "uri": "quad.bin"}}],
-        "bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 8}},
-                        {{"buffer": 0, "byteOffset": 56, "byteLength": 32}}, {{"buffer": 0, "byteOffset": 88, "byteLength": 64}}],
-        "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
-                      {{"bufferView": 1, "componentType": 5121, "count": 6, "type": "SCALAR"}},
-                      {{"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}},
-                      {{"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC4"}}],
-        "images": [{{"uri": "alpha.png"}}], "textures": [{{"source": 0}}],
-        "materials": [{{"doubleSided": true, {}{texture}}}}}],
-        "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 2, "COLOR_0": 3}}, "indices": 1, "material": 0}}]}}],
-        "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}], "scene": 0}}"#,
-        bytes.len(),
-        tie.material
-    );
-    let path = dir.join("tie.gltf");
-    std::fs::write(&path, gltf).unwrap();
-    path
+    let texture = tie.texel.map(|texel| image::RgbaImage::from_pixel(8, 8, image::Rgba(texel)));
+    quad(dir, tie.material, [tie.vertex; 4], texture.as_ref())
+}
+
+/// A model of one unit quad in `dir` with material members `material`, the corners' COLOR_0
+/// `colors` and, if given, a base colour `texture`; its path.
+fn quad(dir: &Path, material: &str, colors: [[f32; 4]; 4], texture: Option<&image::RgbaImage>) -> std::path::PathBuf {
+    Quad { material, colors, uv: UNIT_UV, texture: texture.map(|t| (t, "")) }.write(dir)
+}
+
+/// `twinray compare` of the model at `path` at `size`, untimed: its exit status and stdout.
+fn compare(path: &Path, (width, height): (&str, &str), extra: &[&str], dir: &Path) -> std::process::Output {
+    let size = ["--width", width, "--height", height];
+    let untimed = ["--runs", "1", "--warmup", "0", "--placements", "1"];
+    twinray(&[&["compare", path.to_str().unwrap()][..], &size, &untimed, extra].concat(), dir)
 }
 
 #[test]
@@ -88,10 +72,7 @@ fn alpha_exactly_at_the_cutoff_is_decided_alike_in_both_sets() {
     for tie in &TIES {
         let dir = tempfile::tempdir().unwrap();
         let path = model(dir.path(), tie);
-        let size = ["--width", "160", "--height", "120"];
-        let untimed = ["--runs", "1", "--warmup", "0", "--placements", "1"];
-        let args = [&["compare", path.to_str().unwrap()][..], &size, &untimed].concat();
-        let out = twinray(&args, dir.path());
+        let out = compare(&path, ("160", "120"), &[], dir.path());
         let stdout = String::from_utf8_lossy(&out.stdout);
         assert!(out.status.success(), "{}: {}\n{stdout}", tie.what, String::from_utf8_lossy(&out.stderr));
         assert!(stdout.contains("hit mismatches: 0 (0.000%)"), "{}: {stdout}", tie.what);
@@ -100,4 +81,64 @@ fn alpha_exactly_at_the_cutoff_is_decided_alike_in_both_sets() {
         let background = *a.get_pixel(0, 0);
         assert_ne!(*a.get_pixel(80, 60), background, "{}: the quad is a hole", tie.what);
     }
+}
+
+/// The hit mismatches, and those set apart at a cutout's alpha cutoff, of `compare` of the
+/// model at `path` at 161x121 against set `b` (the Rust set is a): its exit code, the two
+/// counts, its stdout.
+fn against(path: &Path, b: &str, dir: &Path) -> (Option<i32>, u64, u64, String) {
+    let out = compare(path, ("161", "121"), &["--b", b], dir);
+    let stdout = String::from_utf8_lossy(&out.stdout).to_string();
+    let line = stdout.lines().find(|l| l.contains("hit mismatches:")).unwrap_or_default();
+    let after = |words: &str| -> u64 {
+        let at = line.find(words).unwrap_or_else(|| panic!("no {words:?} in {stdout}"));
+        line[at + words.len()..].split_whitespace().next().unwrap().parse().unwrap()
+    };
+    let counts = (after("hit mismatches: "), after("edges inside a mesh, "));
+    (out.status.code(), counts.0, counts.1, stdout)
+}
+
+/// The GLSL set with its triangle any-hit stage's alpha test `alpha < cutoff` replaced by
+/// `test`, compiled into a folder of its own under `dir`.
+fn planted_test(test: &str, dir: &Path) -> String {
+    let own = tempfile::tempdir_in(dir).unwrap().keep();
+    let spv = planted_glsl("triangle_cutout.rahit", ("alpha < material.cutout_threshold", test), &own);
+    format!("glsl,triangle_cutout_any_hit={}", spv.display())
+}
+
+/// A vertex alpha gradient across the quad that stays within rounding of the cutoff (0.5 less
+/// 3 f32 ULPs on its left edge, 0.5 and 2 ULPs on its right): a set whose alpha test rounds 4
+/// ULPs the other way keeps the left half that the Rust set cuts away. Either is right there,
+/// so `compare` sets those pixels apart (the f64 reference finds the alpha at the cutoff) and
+/// passes, naming them.
+#[test]
+fn a_gradient_within_rounding_of_the_cutoff_is_set_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let (below, above) = (0.5 - 3.0 * f32::EPSILON / 4.0, 0.5 + 2.0 * f32::EPSILON / 2.0);
+    let (left, right) = ([1.0, 0.6, 0.2, below], [1.0, 0.6, 0.2, above]);
+    let material = r#""alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]"#;
+    let path = quad(dir.path(), material, [left, right, right, left], None);
+    let rounds_up = planted_test("alpha * (1.0 + 4.0 * 1.1920929e-7) < material.cutout_threshold", dir.path());
+    let (code, mismatches, apart, stdout) = against(&path, &rounds_up, dir.path());
+    assert_eq!((code, mismatches), (Some(0), 0), "{stdout}");
+    assert!(apart > 1000, "the left half of the quad is set apart: {stdout}");
+}
+
+/// A steep gradient across the cutoff (0.1 on the quad's left edge, 0.9 on its right, cut at
+/// 0.5 down its middle): the GLSL set agrees with the Rust one, and a set that cuts at 0.55 has
+/// the pixels between the two contours as hit mismatches, not set apart, and fails. (At 161
+/// pixels across, one column of rays meets the quad exactly at alpha 0.5, a tie: those pixels
+/// are set apart, as either answer is right there.)
+#[test]
+fn a_cutout_cut_elsewhere_is_not_set_apart() {
+    let dir = tempfile::tempdir().unwrap();
+    let (left, right) = ([1.0, 0.6, 0.2, 0.1], [1.0, 0.6, 0.2, 0.9]);
+    let material = r#""alphaMode": "MASK", "pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]"#;
+    let path = quad(dir.path(), material, [left, right, right, left], None);
+    let (code, mismatches, _, stdout) = against(&path, "glsl", dir.path());
+    assert_eq!((code, mismatches), (Some(0), 0), "{stdout}");
+    let cut_higher = planted_test("alpha < material.cutout_threshold + 0.05", dir.path());
+    let (code, mismatches, apart, stdout) = against(&path, &cut_higher, dir.path());
+    assert_eq!(code, Some(1), "{stdout}");
+    assert!(mismatches > 3 * apart && mismatches > 150, "{stdout}");
 }

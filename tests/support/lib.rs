@@ -1,10 +1,12 @@
 //! The one support library of every integration test (`tests/`, `host/tests/`, `xtask/tests/`):
 //! a validated Vulkan context per test, small renders and the repository's root here; running
-//! the `twinray` binary and planting stages in `cli`; the docs' fenced blocks in `docs`; scratch
+//! the `twinray` binary and planting stages in `cli`; the docs' fenced blocks in `docs`; small
+//! glTF models in `gltf`; scratch
 //! copies of the repository in `scratch`, and what `new-shape` promises in `scaffold`.
 
 pub mod cli;
 pub mod docs;
+pub mod gltf;
 pub mod scaffold;
 pub mod scratch;
 
@@ -71,16 +73,23 @@ pub fn render_scene(ctx: &Arc<Context>, scene: &Scene, set_text: &str) -> Render
 }
 
 /// Asserts that two renders of `scene` at `SCENE_TEST_SIZE` (`label` says which) hit the same
-/// object and primitive in every pixel, trace the same shadow rays, and give images within the
-/// scene's parity.
+/// object and primitive in every pixel (but where either answer is right, as `compare` judges:
+/// `twinray::compare::edges`), trace the same shadow rays, and give images within the scene's
+/// parity.
 pub fn assert_same_render(label: &str, a: &RenderOutput, b: &RenderOutput, scene: &Scene) {
     let name = scene.name();
     let parity = scene.file.parity;
-    let d = twinray::compare::diff(a, b, parity.pixel_threshold);
+    let d = twinray::compare::scene_diff(scene, a, b);
     let f = twinray::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
     eprintln!(
-        "{name} {label}: rmse {:.6}, {} over, {} hit mismatches, shadow rays {} / {}",
-        d.color.rmse, d.color.pixels_over_threshold, d.hit_mismatches, a.rays.shadow, b.rays.shadow
+        "{name} {label}: rmse {:.6}, {} over, {} hit mismatches ({} + {} set apart), shadow rays {} / {}",
+        d.color.rmse,
+        d.color.pixels_over_threshold,
+        d.hit_mismatches,
+        d.internal_edges,
+        d.alpha_edges,
+        a.rays.shadow,
+        b.rays.shadow
     );
     assert_eq!(d.hit_mismatches, 0, "{name} {label}: different objects or primitives hit");
     assert!(f.is_empty(), "{name} {label}: {f:?}");

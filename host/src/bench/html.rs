@@ -221,7 +221,10 @@ fn rows_table(rows: &[BenchRow]) -> String {
             r.rmse,
             if r.psnr.is_finite() { format!("{:.2}", r.psnr) } else { "inf".into() },
             r.flip,
-            r.hit_mismatches.map_or("-".into(), |m| m.to_string()),
+            r.hit_mismatches.map_or("-".into(), |m| match r.hit_mismatches_set_apart {
+                Some(apart) if apart > 0 => format!("{m} (+{apart} either right)"),
+                _ => m.to_string(),
+            }),
             r.raygen_stack_bytes,
         );
     }

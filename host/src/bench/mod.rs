@@ -94,9 +94,12 @@ pub struct BenchRow {
     pub rmse: f64,
     pub psnr: f64,
     pub flip: f64,
-    /// Pixels whose first primary ray hit another primitive than the first set's did (null
-    /// for the first set).
+    /// Pixels whose first primary ray hit another primitive than the first set's did, less
+    /// those where either is right (null for the first set).
     pub hit_mismatches: Option<u64>,
+    /// Those where either is right, as `compare` sets them apart: on an edge inside a mesh, or
+    /// at a cutout's alpha cutoff (`compare::edges`).
+    pub hit_mismatches_set_apart: Option<u64>,
     /// Stack bytes the set's ray generation stage needs, as the driver reports it.
     pub raygen_stack_bytes: u64,
     /// The rendered image and its error map, relative to the output folder (none when
@@ -369,7 +372,9 @@ fn row(
         crate::util::output::write_png(&dir.join(&flip), out.width, out.height, &errors.flip_map_rgba)?;
         (image, error_map) = (Some(png), Some(flip));
     }
-    let hit_mismatches = first.map(|f| f.hit_ids.iter().zip(&out.hit_ids).filter(|(a, b)| a != b).count() as u64);
+    let diff = first.map(|f| crate::compare::scene_diff(scene, f, out));
+    let hit_mismatches = diff.as_ref().map(|d| d.hit_mismatches);
+    let hit_mismatches_set_apart = diff.as_ref().map(|d| d.internal_edges + d.alpha_edges);
     Ok(BenchRow {
         scene: scene.name().to_string(),
         set: set.to_string(),
@@ -384,6 +389,7 @@ fn row(
         psnr: errors.psnr,
         flip: errors.flip,
         hit_mismatches,
+        hit_mismatches_set_apart,
         raygen_stack_bytes: out.raygen_stack_bytes,
         image,
         error_map,

@@ -125,7 +125,7 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs, range: FrameRange) -> Res
     let mut worst: Option<(f64, [Vec<u8>; 3])> = None;
     let sets = (&args.a, &args.b);
     let report = compare_frames(&ctx, &scene, sets, &opts, frames, args.animation.mode(), |row, a, b| {
-        let diff = diff_image(a, b, &row.diff.internal_edge_pixels);
+        let diff = diff_image(a, b, &row.diff);
         if !row.pass {
             write_png(&args.out_dir.join(format!("diff-{:04}.png", row.frame)), a.width, a.height, &diff)?;
         }

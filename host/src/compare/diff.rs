@@ -21,6 +21,8 @@ pub struct ColorDiff {
 /// Image and hit-id differences between two renders of the same size.
 #[derive(Clone, Debug, Serialize)]
 pub struct ImageDiff {
+    /// Over every pixel but those at a cutout's alpha cutoff (`alpha_edge_pixels`), where the
+    /// two sets may rightly show two surfaces.
     #[serde(flatten)]
     pub color: ColorDiff,
     /// Pixels whose primary rays hit different primitives (or one hit and one missed).
@@ -33,9 +35,23 @@ pub struct ImageDiff {
     /// Those pixels (row-major indices, rising).
     #[serde(skip)]
     pub internal_edge_pixels: Vec<usize>,
+    /// Pixels where one set kept a hit on a cutout that the f64 reference finds within
+    /// rounding of its alpha's cutoff, and the other set's hit lies behind it or it missed
+    /// (`compare::edges`): either answer is right, so they are not hit mismatches.
+    pub alpha_edges: u64,
+    /// Those pixels (row-major indices, rising).
+    #[serde(skip)]
+    pub alpha_edge_pixels: Vec<usize>,
     /// What each set left unwritten or wrote non-finite; anything fails the comparison.
     pub written_a: Written,
     pub written_b: Written,
+}
+
+impl ImageDiff {
+    /// Whether pixel `i`'s hit mismatch is set apart: either set's answer is right there.
+    pub fn is_set_apart(&self, i: usize) -> bool {
+        self.internal_edge_pixels.binary_search(&i).is_ok() || self.alpha_edge_pixels.binary_search(&i).is_ok()
+    }
 }
 
 /// `ImageDiff` judged against a scene's tolerance.
@@ -77,6 +93,8 @@ pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDif
         hit_mismatches_off_silhouette,
         internal_edges: 0,
         internal_edge_pixels: Vec::new(),
+        alpha_edges: 0,
+        alpha_edge_pixels: Vec::new(),
         written_a: a.written,
         written_b: b.written,
     }
@@ -84,10 +102,16 @@ pub fn diff(a: &RenderOutput, b: &RenderOutput, pixel_threshold: u8) -> ImageDif
 
 /// Colour error of RGBA8 image `b` against `a`.
 pub fn color_diff(a: &[u8], b: &[u8], pixel_threshold: u8) -> ColorDiff {
+    color_diff_except(a, b, pixel_threshold, &[])
+}
+
+/// [`color_diff`] over every pixel but those of `apart` (rising pixel indices).
+pub fn color_diff_except(a: &[u8], b: &[u8], pixel_threshold: u8, apart: &[usize]) -> ColorDiff {
     let mut sum_sq = 0.0f64;
     let mut max_abs = 0u8;
     let mut over = 0u64;
-    for (pa, pb) in a.chunks_exact(4).zip(b.chunks_exact(4)) {
+    let pixels = a.chunks_exact(4).zip(b.chunks_exact(4)).enumerate();
+    for (_, (pa, pb)) in pixels.filter(|(i, _)| apart.binary_search(i).is_err()) {
         let d = channel_diff(pa, pb);
         for c in 0..3 {
             let x = f64::from(pa[c]) / 255.0 - f64::from(pb[c]) / 255.0;
@@ -96,7 +120,7 @@ pub fn color_diff(a: &[u8], b: &[u8], pixel_threshold: u8) -> ColorDiff {
         max_abs = max_abs.max(d);
         over += u64::from(d > pixel_threshold);
     }
-    let samples = (a.len() / 4 * 3).max(1) as f64;
+    let samples = ((a.len() / 4 - apart.len()) * 3).max(1) as f64;
     let rmse = (sum_sq / samples).sqrt();
     ColorDiff {
         rmse,
@@ -138,22 +162,26 @@ pub(super) fn on_silhouette(ids: &[u64], w: usize, h: usize, x: usize, y: usize)
 
 /// Legend of [`diff_image`], printed beside it.
 pub const DIFF_LEGEND: &str = "dim grey = equal, red = 1 step, yellow = 8, white = 16+, cyan = hit mismatch, \
-     blue = edge inside a mesh (either triangle is right), magenta = not written or not finite";
+     blue = edge inside a mesh (either triangle is right), violet = alpha at its cutoff (either is right), \
+     magenta = not written or not finite";
 
 /// RGBA8 difference image: image A in dim grey for context; differing pixels as a heat map
 /// (bright red for one 8-bit step, through yellow at 8, to white at 16 or more); hit/miss or
-/// primitive mismatches in cyan, those on an edge inside a mesh (`internal`, rising pixel
-/// indices: `ImageDiff::internal_edge_pixels`) in blue; pixels either set left unwritten or
-/// wrote as NaN or infinity in magenta. Even a one-step difference stands out against the grey.
-pub fn diff_image(a: &RenderOutput, b: &RenderOutput, internal: &[usize]) -> Vec<u8> {
+/// primitive mismatches in cyan, those on an edge inside a mesh (`ImageDiff::internal_edge_pixels`)
+/// in blue, those at a cutout's alpha cutoff (`ImageDiff::alpha_edge_pixels`) in violet; pixels
+/// either set left unwritten or wrote as NaN or infinity in magenta. Even a one-step difference
+/// stands out against the grey.
+pub fn diff_image(a: &RenderOutput, b: &RenderOutput, apart: &ImageDiff) -> Vec<u8> {
     let finite = |o: &RenderOutput, i: usize| o.linear.get(i).is_none_or(|p| p.iter().all(|v| v.is_finite()));
     let mut out = Vec::with_capacity(a.rgba.len());
     for (i, (pa, pb)) in a.rgba.chunks_exact(4).zip(b.rgba.chunks_exact(4)).enumerate() {
         let d = channel_diff(pa, pb);
         let rgb = if !finite(a, i) || !finite(b, i) {
             NOT_A_NUMBER_RGB
-        } else if a.hit_ids[i] != b.hit_ids[i] && internal.binary_search(&i).is_ok() {
+        } else if a.hit_ids[i] != b.hit_ids[i] && apart.internal_edge_pixels.binary_search(&i).is_ok() {
             [60, 90, 200]
+        } else if a.hit_ids[i] != b.hit_ids[i] && apart.alpha_edge_pixels.binary_search(&i).is_ok() {
+            [150, 80, 220]
         } else if a.hit_ids[i] != b.hit_ids[i] {
             [0, 255, 255]
         } else if d > 0 {
@@ -251,6 +279,8 @@ mod tests {
             hit_mismatches_off_silhouette: 1,
             internal_edges: 0,
             internal_edge_pixels: Vec::new(),
+            alpha_edges: 0,
+            alpha_edge_pixels: Vec::new(),
             written_a: clean,
             written_b: clean,
         };

@@ -1,7 +1,8 @@
 //! `compare --frames`: two sets over the frames of a moving scene, each frame judged against
 //! the scene's parity tolerance, and the worst frame named.
 
-use super::diff::{diff, verdict, ImageDiff};
+use super::diff::{verdict, ImageDiff};
+use super::edges::scene_diff;
 use super::pixels::{named_pixels, pixel_lines, NamedPixel};
 use crate::error::Result;
 use crate::explain::no_payload;
@@ -95,8 +96,7 @@ pub fn compare_frames(
     let mut worst: Option<(f64, u32)> = None;
     render_frames(ctx, scene, &[set_a.clone(), set_b.clone()], opts, frames, mode, |frame: Frame| {
         let [a, b] = &frame.outputs[..] else { return Ok(()) };
-        let mut d = diff(a, b, parity.pixel_threshold);
-        super::edges::set_apart(&mut d, &scene.at_frame(frame.index), a, b);
+        let d = scene_diff(&scene.at_frame(frame.index), a, b);
         let bad = badness(&d, &parity, pixels);
         if worst.is_none_or(|(w, _)| bad > w) {
             worst = Some((bad, frame.index));
@@ -107,7 +107,7 @@ pub fn compare_frames(
             failures.extend(no_payload::render_lines(&posed, a, "set a"));
             failures.extend(no_payload::render_lines(&posed, b, "set b"));
         }
-        let threshold = (parity.pixel_threshold, &d.internal_edge_pixels[..]);
+        let threshold = (parity.pixel_threshold, &d);
         let named = named_pixels(scene, (a, b), threshold, (&sets.0, &sets.1), Some(frame.index));
         let row = FrameFigures {
             frame: frame.index,
@@ -219,6 +219,8 @@ mod tests {
             hit_mismatches_off_silhouette: off,
             internal_edges: 0,
             internal_edge_pixels: Vec::new(),
+            alpha_edges: 0,
+            alpha_edge_pixels: Vec::new(),
             written_a: clean,
             written_b: clean,
         }

@@ -9,5 +9,6 @@ pub mod pixels;
 pub mod report;
 
 pub use diff::{color_diff, color_verdict, diff, diff_image, hit_count, verdict, ColorDiff, ImageDiff, DIFF_LEGEND};
+pub use edges::scene_diff;
 pub use frames::{compare_frames, FrameFigures, FramesReport};
 pub use report::{compare_sets, CompareReport, Comparison};

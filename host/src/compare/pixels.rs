@@ -1,6 +1,7 @@
 //! The pixels a compare names for `twinray explain`: those whose colours differ most, and the
 //! hit mismatches, a few of each, each with the command that explains it.
 
+use super::diff::ImageDiff;
 use crate::render::RenderOutput;
 use crate::scene::Scene;
 use serde::Serialize;
@@ -23,17 +24,17 @@ pub struct NamedPixel {
 /// Up to `NAMED_PIXELS` pixels over `threshold` steps with the largest differences, then up to
 /// `NAMED_PIXELS` hit mismatches not named yet (the largest differences first; ties in reading
 /// order), with their explain lines for `scene` at the renders' size with sets `a` and `b`
-/// (at `frame` of a moving scene). Pixels on an edge inside a mesh (`internal`, rising) are not
+/// (at `frame` of a moving scene). Pixels `diff` sets apart (`ImageDiff::is_set_apart`) are not
 /// hit mismatches.
 pub fn named_pixels(
     scene: &Scene,
     (a, b): (&RenderOutput, &RenderOutput),
-    (threshold, internal): (u8, &[usize]),
+    (threshold, diff): (u8, &ImageDiff),
     sets: (&str, &str),
     frame: Option<u32>,
 ) -> Vec<NamedPixel> {
     let steps = |i: usize| (0..3).map(|c| a.rgba[4 * i + c].abs_diff(b.rgba[4 * i + c])).max().unwrap_or(0);
-    let mismatch = |i: usize| a.hit_ids[i] != b.hit_ids[i] && internal.binary_search(&i).is_err();
+    let mismatch = |i: usize| a.hit_ids[i] != b.hit_ids[i] && !diff.is_set_apart(i);
     let mut by_steps: Vec<(u8, bool, usize)> = (0..a.hit_ids.len()).map(|i| (steps(i), mismatch(i), i)).collect();
     // Largest first; in reading order among equals.
     by_steps.sort_by(|p, q| q.0.cmp(&p.0).then(p.2.cmp(&q.2)));

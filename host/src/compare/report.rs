@@ -1,7 +1,8 @@
 //! `compare`: render one scene with two shader sets, measure how they differ in image and in
 //! GPU time, judge that against the scene's tolerance, and write the images.
 
-use super::diff::{diff, diff_image, verdict, ImageDiff};
+use super::diff::{diff_image, verdict, ImageDiff};
+use super::edges::scene_diff;
 use super::pixels::{named_pixels, pixel_lines, NamedPixel};
 use crate::error::{Error, Result};
 use crate::explain::no_payload;
@@ -112,9 +113,8 @@ pub fn compare_sets(
         .try_into()
         .map_err(|_| Error::Unsupported("a render of two sets returned another count".into()))?;
     let parity = scene.file.parity;
-    let mut diff = diff(&a, &b, parity.pixel_threshold);
-    super::edges::set_apart(&mut diff, scene, &a, &b);
-    let threshold = (parity.pixel_threshold, &diff.internal_edge_pixels[..]);
+    let diff = scene_diff(scene, &a, &b);
+    let threshold = (parity.pixel_threshold, &diff);
     let pixels = named_pixels(scene, (&a, &b), threshold, (&named_sets.0, &named_sets.1), None);
     let mut failures = verdict(&diff, &parity, u64::from(opts.width) * u64::from(opts.height));
     failures.extend(no_payload::render_lines(scene, &a, "set a"));
@@ -167,7 +167,7 @@ impl Comparison {
         let (w, h) = (self.a.width, self.a.height);
         write_png(&dir.join("a.png"), w, h, &self.a.picture())?;
         write_png(&dir.join("b.png"), w, h, &self.b.picture())?;
-        write_png(&dir.join("diff.png"), w, h, &diff_image(&self.a, &self.b, &self.report.diff.internal_edge_pixels))
+        write_png(&dir.join("diff.png"), w, h, &diff_image(&self.a, &self.b, &self.report.diff))
     }
 }
 
@@ -217,7 +217,7 @@ impl CompareReport {
         let pct = |n: u64| 100.0 * n as f64 / pixels;
         let d = &self.diff.color;
         s += &format!(
-            "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette; {} on edges inside a mesh\n",
+            "  rmse {:.6}  psnr {}  max diff {} steps\n  pixels over {} steps: {} ({:.3}%)\n  hit mismatches: {} ({:.3}%), {} off silhouette; set apart: {} on edges inside a mesh, {} at a cutout's alpha cutoff\n",
             d.rmse,
             if d.psnr.is_finite() { format!("{:.1} dB", d.psnr) } else { "inf".into() },
             d.max_abs_diff,
@@ -228,7 +228,11 @@ impl CompareReport {
             pct(self.diff.hit_mismatches),
             self.diff.hit_mismatches_off_silhouette,
             self.diff.internal_edges,
+            self.diff.alpha_edges,
         );
+        if self.diff.alpha_edges > 0 {
+            s += "  (the colour figures leave out the pixels at a cutout's alpha cutoff: violet in diff.png)\n";
+        }
         s += &pixel_lines(&self.pixels, "  ");
         if self.pass {
             s += "  PASS: within the scene's parity tolerance\n";

@@ -61,7 +61,7 @@ mod tests {
             cutout: None,
             mask: 0,
             single_sided: false,
-            vertex_alphas: Vec::new(),
+            corners: Vec::new(),
         }
     }
 

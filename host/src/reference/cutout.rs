@@ -1,26 +1,42 @@
 //! Cutouts in the f64 reference: the alpha pattern of a cutout material evaluated in f64, and
 //! whether a hit is in a hole, solid, or within float noise of a hole's edge.
 
+use super::texel::RefTexture;
 use glam::{DVec2, DVec3};
+use std::sync::Arc;
 use twinray_shared::bindings::{CUTOUT_CHECKER, CUTOUT_DISCS, CUTOUT_TEXTURE, MATERIAL_CUTOUT};
 use twinray_shared::layout::Material;
 
 /// A cutout's pattern, in f64.
-#[derive(Clone, Copy, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RefCutout {
     pattern: u32,
     scale: f64,
     threshold: f64,
-    /// A surface's own alpha (`CUTOUT_TEXTURE`): its opacity, and whether a texture's alpha
-    /// multiplies it (which the reference does not sample: every hit on it is an edge).
+    /// A surface's own alpha (`CUTOUT_TEXTURE`): its opacity, whether a texture's alpha
+    /// multiplies it, and that texture (without it: `Coverage::Unmodelled`).
     opacity: f64,
     textured: bool,
+    texture: Option<Arc<RefTexture>>,
+}
+
+/// What a triangle's corners give a surface's own alpha: their alphas (COLOR_0's) and the
+/// texture coordinates its texture reads, through the material's transform.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Corners {
+    pub alpha: [f64; 3],
+    pub uv: [DVec2; 3],
 }
 
 /// How near the cutoff, in units of f32's epsilon times the larger of the two, a surface's
 /// alpha is a tie that rounding may decide either way: the stages multiply the opacity, the
 /// interpolated vertex alpha and a texel's in f32, a few roundings.
 const TIE_ULPS: f64 = 8.0;
+
+/// How far, in units of f32's epsilon times the largest texture coordinate (at least 1), the
+/// stages' texture coordinates may be from the exact ones: three corners' coordinates
+/// transformed and interpolated in f32, with the texel scaling the sampler does.
+const UV_ULPS: f64 = 16.0;
 
 /// What a cutout makes of a hit.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,6 +45,9 @@ pub enum Coverage {
     Hole,
     /// Within float noise of a hole's edge: either is right.
     Edge,
+    /// Alpha the reference does not compute (a texture's): either is right for the reference,
+    /// but it is no evidence that a set which kept or dropped the hit is right.
+    Unmodelled,
 }
 
 impl RefCutout {
@@ -40,14 +59,20 @@ impl RefCutout {
             threshold: f64::from(material.cutout_threshold),
             opacity: f64::from(material.color_a.w),
             textured: material.texture.x != 0,
+            texture: None,
         })
     }
 
-    /// Whether the cutout's alpha is the surface's own (`CUTOUT_TEXTURE`), known from its
-    /// vertices where no texture multiplies it: the reference needs the triangles' vertex
-    /// alphas then.
-    pub fn reads_vertex_alpha(&self) -> bool {
-        self.pattern == CUTOUT_TEXTURE && !self.textured
+    /// The cutout with `texture`, the reference of the texture whose alpha multiplies its
+    /// surface's (the material's base colour texture).
+    pub fn with_texture(self, texture: Option<RefTexture>) -> RefCutout {
+        RefCutout { texture: texture.filter(|_| self.textured).map(Arc::new), ..self }
+    }
+
+    /// Whether the cutout's alpha is the surface's own (`CUTOUT_TEXTURE`): the reference needs
+    /// the triangles' corners' alphas and texture coordinates then.
+    pub fn reads_corners(&self) -> bool {
+        self.pattern == CUTOUT_TEXTURE
     }
 
     /// Alpha at an object-space point (the pattern over x and z; see
@@ -73,7 +98,7 @@ impl RefCutout {
     }
 
     /// [`RefCutout::coverage`] of a surface's own alpha over one triangle.
-    fn surface_coverage(&self, p: DVec3, band: f64, corners: &[DVec3; 3], alphas: [f64; 3]) -> Coverage {
+    fn surface_coverage(&self, p: DVec3, band: f64, corners: &[DVec3; 3], attributes: &Corners) -> Coverage {
         let [a, b, c] = *corners;
         let (e1, e2) = (b - a, c - a);
         let normal = e1.cross(e2);
@@ -81,18 +106,31 @@ impl RefCutout {
         if area2 == 0.0 {
             return Coverage::Edge;
         }
-        // The interpolated alpha at a point of the triangle's plane (barycentrics by areas).
-        let alpha = |q: DVec3| {
+        let (alphas, uvs) = (attributes.alpha, attributes.uv);
+        // Whether the surface is there at a point of the triangle's plane (barycentrics by
+        // areas) with its texture coordinates moved by `shift`; `None` within rounding of
+        // the cutoff (a tie, or the texture's sampling).
+        let decided = |q: DVec3, shift: DVec2| {
             let (u, v) = ((q - a).cross(e2).dot(normal) / area2, e1.cross(q - a).dot(normal) / area2);
-            self.opacity * (alphas[0] + (alphas[1] - alphas[0]) * u + (alphas[2] - alphas[0]) * v)
+            let vertex = self.opacity * (alphas[0] + (alphas[1] - alphas[0]) * u + (alphas[2] - alphas[0]) * v);
+            let (alpha, sampling) = match &self.texture {
+                Some(texture) => {
+                    let (texel, error) = texture.alpha(uvs[0] + (uvs[1] - uvs[0]) * u + (uvs[2] - uvs[0]) * v + shift);
+                    (vertex * texel, vertex.abs() * error)
+                }
+                None => (vertex, 0.0),
+            };
+            let tie = TIE_ULPS * f64::from(f32::EPSILON) * alpha.abs().max(self.threshold.abs()) + sampling;
+            ((alpha - self.threshold).abs() > tie).then_some(alpha >= self.threshold)
         };
-        let here = alpha(p);
-        if (here - self.threshold).abs() <= TIE_ULPS * f64::from(f32::EPSILON) * here.abs().max(self.threshold.abs()) {
-            return Coverage::Edge;
-        }
-        let solid = here >= self.threshold;
+        let Some(solid) = decided(p, DVec2::ZERO) else { return Coverage::Edge };
+        // The hit point's noise along the surface, and the f32 texture coordinates' own.
         let (d1, d2) = (e1.normalize() * band, normal.cross(e1).normalize() * band);
-        if [d1, -d1, d2, -d2].iter().any(|d| (alpha(p + *d) >= self.threshold) != solid) {
+        let largest = uvs.iter().map(|uv| uv.abs().max_element()).fold(1.0, f64::max);
+        let s = UV_ULPS * f64::from(f32::EPSILON) * largest;
+        let moved = [(d1, DVec2::ZERO), (-d1, DVec2::ZERO), (d2, DVec2::ZERO), (-d2, DVec2::ZERO)];
+        let shifted = [DVec2::X * s, -DVec2::X * s, DVec2::Y * s, -DVec2::Y * s].map(|shift| (DVec3::ZERO, shift));
+        if moved.iter().chain(&shifted).any(|(d, shift)| decided(p + *d, *shift) != Some(solid)) {
             Coverage::Edge
         } else if solid {
             Coverage::Solid
@@ -105,14 +143,16 @@ impl RefCutout {
     /// anywhere within `band` of it along the surface: an edge when any point that far away
     /// in x or z answers otherwise.
     /// A surface's own alpha (`CUTOUT_TEXTURE`) is its opacity times the vertex alpha
-    /// interpolated over `triangle` (object-space corners, their alphas), decided the same way
-    /// and also an edge within `TIE_ULPS` f32 epsilons of the cutoff; with a texture, or
-    /// without the triangle, it is not modelled: every hit on it is an edge, either answer right.
-    pub fn coverage(&self, p: DVec3, band: f64, triangle: Option<(&[DVec3; 3], [f64; 3])>) -> Coverage {
+    /// interpolated over `triangle` (object-space corners, their attributes), times its
+    /// texture's alpha there if it has one, decided the same way and also an edge within
+    /// `TIE_ULPS` f32 epsilons of the cutoff (and the texture's sampling error), or where the
+    /// texture coordinates' own rounding crosses it; without the triangle, or with a texture
+    /// the reference was not given, it is not modelled.
+    pub fn coverage(&self, p: DVec3, band: f64, triangle: Option<(&[DVec3; 3], &Corners)>) -> Coverage {
         if self.pattern == CUTOUT_TEXTURE {
-            return match triangle.filter(|_| !self.textured) {
-                Some((corners, alphas)) => self.surface_coverage(p, band, corners, alphas),
-                None => Coverage::Edge,
+            return match triangle.filter(|_| self.textured == self.texture.is_some()) {
+                Some((corners, attributes)) => self.surface_coverage(p, band, corners, attributes),
+                None => Coverage::Unmodelled,
             };
         }
         let here = self.solid(p);
@@ -130,6 +170,7 @@ impl RefCutout {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::scene::texture::{Filter, SamplerDesc, TextureImage, Wrap};
 
     fn material(pattern: u32, scale: f32, threshold: f32) -> Material {
         Material::cutout(pattern, scale, threshold)
@@ -149,6 +190,7 @@ mod tests {
                     Coverage::Solid => assert!(shaders, "{p}"),
                     Coverage::Hole => assert!(!shaders, "{p}"),
                     Coverage::Edge => {}
+                    Coverage::Unmodelled => panic!("a pattern is modelled: {p}"),
                 }
             }
         }
@@ -161,16 +203,18 @@ mod tests {
 
     /// A surface's own alpha without a texture: its opacity times the vertex alpha, decided
     /// away from the cutoff, an edge at a tie and within the hit point's noise of the contour
-    /// where a gradient crosses it; with a texture, every hit is an edge.
+    /// where a gradient crosses it; with a texture, no hit is modelled.
     #[test]
     fn a_surface_alpha_is_decided_from_its_vertices() {
         let mut m = material(CUTOUT_TEXTURE, 1.0, 0.5);
         m.color_a.w = 0.5;
         let cutout = RefCutout::of(&m).unwrap();
-        assert!(cutout.reads_vertex_alpha());
+        assert!(cutout.reads_corners());
         let corners = [DVec3::ZERO, DVec3::X, DVec3::Y];
-        let at =
-            |x: f64, y: f64, alphas: [f64; 3]| cutout.coverage(DVec3::new(x, y, 0.0), 1e-6, Some((&corners, alphas)));
+        let with = |alpha: [f64; 3]| Corners { alpha, uv: [DVec2::ZERO; 3] };
+        let at = |x: f64, y: f64, alphas: [f64; 3]| {
+            cutout.coverage(DVec3::new(x, y, 0.0), 1e-6, Some((&corners, &with(alphas))))
+        };
         // Opacity 0.5 times 1 everywhere: exactly the cutoff, a tie.
         assert_eq!(at(0.2, 0.2, [1.0; 3]), Coverage::Edge);
         // Vertex alphas 0, 2, 2 times 0.5: alpha u + v, the contour at u + v = 0.5.
@@ -182,15 +226,49 @@ mod tests {
         // 1e-6, an edge where it may be 1e-5 off.
         let past = |band: f64| {
             let p = DVec3::new(0.25 + 3e-6, 0.25 + 3e-6, 0.0);
-            cutout.coverage(p, band, Some((&corners, gradient)))
+            cutout.coverage(p, band, Some((&corners, &with(gradient))))
         };
         assert_eq!(past(1e-6), Coverage::Solid);
         assert_eq!(past(1e-5), Coverage::Edge);
-        let steep = [0.0, 4.0, 4.0];
+        // A texture the reference was not given is not modelled.
         let mut textured = m;
         textured.texture.x = 1;
         let t = RefCutout::of(&textured).unwrap();
-        assert!(!t.reads_vertex_alpha());
-        assert_eq!(t.coverage(DVec3::new(0.4, 0.4, 0.0), 1e-6, Some((&corners, steep))), Coverage::Edge);
+        assert_eq!(
+            t.coverage(DVec3::new(0.4, 0.4, 0.0), 1e-6, Some((&corners, &with([4.0; 3])))),
+            Coverage::Unmodelled
+        );
+    }
+
+    /// A texture's alpha times the vertex alpha: a 2 x 1 texture, its left texel clear and its
+    /// right one opaque, across a triangle whose texture coordinates are its x and y. Nearest:
+    /// decided on either side, an edge at the texels' border. Bilinear: the alpha rises from
+    /// 0 to 1 between the texel centres; an edge only within the sampling's rounding of the
+    /// cutoff.
+    #[test]
+    fn a_textured_alpha_is_decided_from_its_texels() {
+        let image =
+            TextureImage { name: "half".into(), width: 2, height: 1, rgba: vec![0, 0, 0, 0, 0, 0, 0, 255], srgb: true };
+        let mut m = material(CUTOUT_TEXTURE, 1.0, 0.5);
+        m.texture.x = 1;
+        let corners = [DVec3::ZERO, DVec3::X, DVec3::Y];
+        let attributes = Corners { alpha: [1.0; 3], uv: [DVec2::ZERO, DVec2::X, DVec2::Y] };
+        let cutout = |mag: Filter| {
+            let sampler = SamplerDesc { wrap: [Wrap::Clamp; 2], mag, ..SamplerDesc::DEFAULT };
+            RefCutout::of(&m).unwrap().with_texture(Some(RefTexture::of(&image, &sampler)))
+        };
+        let at = |c: &RefCutout, x: f64| c.coverage(DVec3::new(x, 0.1, 0.0), 1e-6, Some((&corners, &attributes)));
+        let nearest = cutout(Filter::Nearest);
+        assert_eq!(at(&nearest, 0.3), Coverage::Hole);
+        assert_eq!(at(&nearest, 0.7), Coverage::Solid);
+        assert_eq!(at(&nearest, 0.5), Coverage::Edge, "the texels' border");
+        assert_eq!(at(&nearest, 0.5 + 1e-3), Coverage::Solid);
+        let linear = cutout(Filter::Linear);
+        // Alpha 2x - 0.5 between the centres at 0.25 and 0.75: the cutoff at x = 0.5, and the
+        // device's rounding allows 1/256 + 1/255 of alpha, about 0.004 of x.
+        assert_eq!(at(&linear, 0.45), Coverage::Hole);
+        assert_eq!(at(&linear, 0.55), Coverage::Solid);
+        assert_eq!(at(&linear, 0.503), Coverage::Edge);
+        assert_eq!(at(&linear, 0.51), Coverage::Solid);
     }
 }

@@ -9,6 +9,7 @@ pub mod scene;
 pub mod shapes;
 pub mod stage;
 pub mod surface;
+pub mod texel;
 mod traced;
 pub mod uv;
 mod watertight;

@@ -3,10 +3,12 @@
 //! ambiguous when any object's answer is, or when two objects' hits are within float noise
 //! of each other (which one is first is then rounding).
 
-use super::cutout::{Coverage, RefCutout};
+use super::cutout::{Corners, Coverage, RefCutout};
 use super::shapes::{from_primitive, intersect, RefRay, RefShape, Verdict};
+use super::texel::RefTexture;
 use crate::scene::{BlasDesc, HitGroup, Scene, SceneData};
-use glam::{DMat4, DVec3, Vec4Swizzles};
+use glam::{DMat4, DVec2, DVec3, Vec4Swizzles};
+use twinray_shared::layout::Material;
 
 /// One object: its shapes in object space and the transforms to and from it.
 pub struct RefObject {
@@ -18,9 +20,9 @@ pub struct RefObject {
     pub cutout: Option<RefCutout>,
     /// Its instance mask: shadow rays see only occluders (`MASK_OCCLUDER`).
     pub mask: u32,
-    /// Each triangle's vertex alphas, where its cutout reads them
-    /// (`RefCutout::reads_vertex_alpha`); empty elsewhere.
-    pub vertex_alphas: Vec<[f64; 3]>,
+    /// What each triangle's corners give the surface's own alpha, where its cutout reads
+    /// them (`RefCutout::reads_corners`); empty elsewhere.
+    pub corners: Vec<Corners>,
     /// Its triangles seen from behind are culled for primary rays (`ObjectDesc::single_sided`,
     /// as `bindings::PRIMARY_RAY_FLAGS` and the instance's facing flags do on the GPU).
     pub single_sided: bool,
@@ -98,16 +100,10 @@ impl RefObject {
                 Verdict::Ambiguous => return None,
                 Verdict::Miss => {}
                 Verdict::Hit { t, normal } => {
-                    if let Some(cutout) = &self.cutout {
-                        let triangle = match (shape, self.vertex_alphas.get(k)) {
-                            (RefShape::Triangle { p }, Some(alphas)) => Some((p, *alphas)),
-                            _ => None,
-                        };
-                        match cutout.coverage(ray.at(t), ray.edge_band(t, normal), triangle) {
-                            Coverage::Hole => continue,
-                            Coverage::Edge => return None,
-                            Coverage::Solid => {}
-                        }
+                    match self.coverage(k, ray, t, normal) {
+                        Coverage::Hole => continue,
+                        Coverage::Edge | Coverage::Unmodelled => return None,
+                        Coverage::Solid => {}
                     }
                     if first.is_none_or(|(_, nearest, _)| t < nearest) {
                         first = Some((k, t, normal));
@@ -132,6 +128,27 @@ impl RefObject {
             (first, Some(None)) => Some(first),
             (Some(hit), Some(Some(crossing))) => Some(Some(if hit.1 < crossing.1 { hit } else { crossing })),
             (None, Some(crossing)) => Some(crossing),
+        }
+    }
+
+    /// What the cutout (if any) makes of `ray`'s hit on shape `k` at `t`.
+    fn coverage(&self, k: usize, ray: &RefRay, t: f64, normal: DVec3) -> Coverage {
+        let Some(cutout) = &self.cutout else { return Coverage::Solid };
+        let triangle = match (&self.shapes[k], self.corners.get(k)) {
+            (RefShape::Triangle { p }, Some(corners)) => Some((p, corners)),
+            _ => None,
+        };
+        cutout.coverage(ray.at(t), ray.edge_band(t, normal), triangle)
+    }
+
+    /// Where a world-space ray within `reach` first crosses shape `k` of this object, holes and
+    /// all, and what the cutout makes of that crossing; `None` where it does not cross it or
+    /// the crossing is ambiguous.
+    pub fn crossing(&self, k: usize, origin: DVec3, direction: DVec3, reach: (f64, f64)) -> Option<(f64, Coverage)> {
+        let ray = self.ray(origin, direction, reach);
+        match intersect(self.shapes.get(k)?, &ray) {
+            Verdict::Hit { t, normal } => Some((t, self.coverage(k, &ray, t, normal))),
+            _ => None,
         }
     }
 
@@ -173,11 +190,13 @@ impl SceneReference {
                 let object_to_world = instance.object_to_world.as_dmat4();
                 let group = data.plan.hit_groups[instance.hit_group as usize];
                 let material = &data.materials[data.objects[instance.object as usize].material as usize];
-                let cutout = RefCutout::of(material);
-                let reads = cutout.is_some_and(|c| c.reads_vertex_alpha());
+                let texture = data.textures.get((material.texture.x as usize).wrapping_sub(1));
+                let texture = texture.map(|(image, sampler)| RefTexture::of(image, sampler));
+                let cutout = RefCutout::of(material).map(|c| c.with_texture(texture));
+                let reads = cutout.as_ref().is_some_and(|c| c.reads_corners());
                 Ok(RefObject {
                     shapes: shapes(&data, group, instance.blas, instance.custom_index)?,
-                    vertex_alphas: if reads { vertex_alphas(&data, instance.blas) } else { Vec::new() },
+                    corners: if reads { corners(&data, material, instance.blas) } else { Vec::new() },
                     world_to_object: object_to_world.inverse(),
                     object_to_world,
                     cutout,
@@ -276,15 +295,30 @@ fn first_of(hits: &[(usize, f64, DVec3)], origin: DVec3, direction: DVec3) -> Sc
     }
 }
 
-/// The vertex alphas (COLOR_0's) of each triangle of a mesh BLAS, in its triangles' order;
-/// none for procedural primitives.
-fn vertex_alphas(data: &SceneData, blas: usize) -> Vec<[f64; 3]> {
+/// What the corners of each triangle of a mesh BLAS give `material`'s own alpha: their alphas
+/// (COLOR_0's) and the texture coordinates of the set its base colour texture reads, through
+/// its transform (`twinray_shared::texture::vertex_uv`); in its triangles' order, none for
+/// procedural primitives.
+fn corners(data: &SceneData, material: &Material, blas: usize) -> Vec<Corners> {
     let BlasDesc::Triangles { vertex_base, index_base, index_count, .. } = &data.blases[blas] else {
         return Vec::new();
     };
-    let alpha = |i: u32| f64::from(data.vertices[(*vertex_base + i) as usize].color.w);
+    let (row_u, row_v) = (material.uv_u.as_dvec4(), material.uv_v.as_dvec4());
+    let corner = |i: u32| {
+        let vertex = &data.vertices[(*vertex_base + i) as usize];
+        let uv = vertex.uv.as_dvec4();
+        let uv = if material.texture.y == 1 { uv.zw() } else { uv.xy() };
+        let uv = DVec2::new(row_u.xy().dot(uv) + row_u.z, row_v.xy().dot(uv) + row_v.z);
+        (f64::from(vertex.color.w), uv)
+    };
     let indices = data.indices.range(*index_base as usize, *index_count as usize).unwrap_or_default();
-    indices.chunks_exact(3).map(|t| [alpha(t[0]), alpha(t[1]), alpha(t[2])]).collect()
+    indices
+        .chunks_exact(3)
+        .map(|t| {
+            let [a, b, c] = [corner(t[0]), corner(t[1]), corner(t[2])];
+            Corners { alpha: [a.0, b.0, c.0], uv: [a.1, b.1, c.1] }
+        })
+        .collect()
 }
 
 /// The reference shapes of one instance: its BLAS's primitives, read as its hit group reads

@@ -12,7 +12,7 @@ fn object(triangles: &[[[f64; 3]; 3]]) -> RefObject {
         cutout: None,
         mask: 1,
         single_sided: false,
-        vertex_alphas: Vec::new(),
+        corners: Vec::new(),
     }
 }
 

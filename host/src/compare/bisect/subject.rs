@@ -1,6 +1,7 @@
 //! What `twinray bisect` runs sets on: a scene's image, or a probe case's rays.
 
-use crate::compare::diff::{diff, verdict};
+use crate::compare::diff::verdict;
+use crate::compare::edges::scene_diff;
 use crate::error::Result;
 use crate::probe::case::ProbeCase;
 use crate::probe::run::{count_written, probe, ProbeResult};
@@ -25,8 +26,8 @@ pub struct Gap {
     /// Pixels over the scene's pixel threshold, or probe rays whose t differs by more than
     /// [`PROBE_T_TOLERANCE`] relative.
     pub over: u64,
-    /// Pixels whose primary rays hit different primitives, or probe rays that hit another
-    /// object or only in one run.
+    /// Pixels whose primary rays hit different primitives (less those where either is right:
+    /// `compare::edges`), or probe rays that hit another object or only in one run.
     pub mismatches: u64,
     /// Within the scene's parity tolerance (as `compare` judges it); for probe rays, no
     /// mismatches and no t over the tolerance.
@@ -121,7 +122,7 @@ impl Subject for ImageSubject<'_> {
 
     fn gap(&self, a: &RenderOutput, b: &RenderOutput) -> Gap {
         let parity = &self.scene.file.parity;
-        let d = diff(a, b, parity.pixel_threshold);
+        let d = scene_diff(self.scene, a, b);
         let pixels = u64::from(a.width) * u64::from(a.height);
         Gap {
             rmse: d.color.rmse,

@@ -1,0 +1,56 @@
+//! Small glTF models written for a test: one quad with the material, vertex colours, texture
+//! coordinates and texture the test asks for.
+
+use std::path::{Path, PathBuf};
+
+/// A quad's corners (0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0) and what each carries.
+pub struct Quad<'a> {
+    /// The material's JSON members besides its base colour texture (`doubleSided` is added).
+    pub material: &'a str,
+    /// Each corner's COLOR_0.
+    pub colors: [[f32; 4]; 4],
+    /// Each corner's TEXCOORD_0.
+    pub uv: [[f32; 2]; 4],
+    /// The base colour texture, if any, and its sampler's JSON members.
+    pub texture: Option<(&'a image::RgbaImage, &'a str)>,
+}
+
+impl Quad<'_> {
+    /// Writes the model (`quad.gltf`, `quad.bin`, `texture.png`) into `dir`; its path.
+    pub fn write(&self, dir: &Path) -> PathBuf {
+        let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
+        let mut bytes: Vec<u8> = positions.iter().flat_map(|v| v.to_le_bytes()).collect();
+        bytes.extend([0, 1, 2, 0, 2, 3, 0, 0]);
+        bytes.extend(self.uv.iter().flatten().flat_map(|v| v.to_le_bytes()));
+        bytes.extend(self.colors.iter().flatten().flat_map(|v| v.to_le_bytes()));
+        std::fs::write(dir.join("quad.bin"), &bytes).unwrap();
+        let (texture, sampler) = match self.texture {
+            Some((image, sampler)) => {
+                image.save(dir.join("texture.png")).unwrap();
+                (r#", "baseColorTexture": {"index": 0}"#, sampler)
+            }
+            None => ("", ""),
+        };
+        let gltf = format!(
+            r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": {}, "uri": "quad.bin"}}],
+            "bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 8}},
+                            {{"buffer": 0, "byteOffset": 56, "byteLength": 32}}, {{"buffer": 0, "byteOffset": 88, "byteLength": 64}}],
+            "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+                          {{"bufferView": 1, "componentType": 5121, "count": 6, "type": "SCALAR"}},
+                          {{"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}},
+                          {{"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC4"}}],
+            "images": [{{"uri": "texture.png"}}], "samplers": [{{{sampler}}}], "textures": [{{"source": 0, "sampler": 0}}],
+            "materials": [{{"doubleSided": true, {}{texture}}}}}],
+            "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 2, "COLOR_0": 3}}, "indices": 1, "material": 0}}]}}],
+            "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}], "scene": 0}}"#,
+            bytes.len(),
+            self.material
+        );
+        let path = dir.join("quad.gltf");
+        std::fs::write(&path, gltf).unwrap();
+        path
+    }
+}
+
+/// The unit square's texture coordinates at the quad's corners.
+pub const UNIT_UV: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
