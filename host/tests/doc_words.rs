@@ -1,8 +1,8 @@
-//! No stale words in the docs (README.md and docs/*.md): every link and anchor resolves,
-//! every repository path they name exists, every `twinray` command and flag they name is in
-//! that command's `--help`, and every code block quoted from a stage's source (`from=FILE`,
-//! or `from=FILE macro=NAME with="$a=>x|.."` for a macro's expansion) is still what the
-//! source says. `cargo xtask` words are checked by xtask/tests/doc_words.rs.
+//! No stale words in the docs (README.md, CONTRIBUTING.md and docs/*.md): every link and
+//! anchor resolves, every repository path they name exists, every `twinray` command and flag
+//! they name is in that command's `--help`, and every code block quoted from a stage's source
+//! (`from=FILE`, or `from=FILE macro=NAME with="$a=>x|.."` for a macro's expansion) is still
+//! what the source says. `cargo xtask` words are checked by xtask/tests/doc_words.rs.
 
 use twinray_tests::docs as docs_text;
 use twinray_tests::repo_root as root;

@@ -2,8 +2,8 @@
 
 use std::path::Path;
 
-/// README.md and every chapter of docs/ (not docs/upstream/: issue texts written for others),
-/// as (path from the root, text).
+/// README.md, CONTRIBUTING.md and every chapter of docs/ (not docs/upstream/: issue texts
+/// written for others), as (path from the root, text).
 pub fn docs(root: &Path) -> Vec<(String, String)> {
     let mut chapters: Vec<String> = std::fs::read_dir(root.join("docs"))
         .unwrap()
@@ -12,7 +12,7 @@ pub fn docs(root: &Path) -> Vec<(String, String)> {
         .map(|n| format!("docs/{n}"))
         .collect();
     chapters.sort();
-    let names = std::iter::once("README.md".to_string()).chain(chapters);
+    let names = ["README.md", "CONTRIBUTING.md"].map(String::from).into_iter().chain(chapters);
     names.map(|n| (n.clone(), std::fs::read_to_string(root.join(&n)).unwrap())).collect()
 }
 

@@ -95,6 +95,10 @@ enum Task {
         /// Test binaries run at once [default: the number of cores].
         #[arg(long)]
         jobs: Option<usize>,
+        /// The edit loop's subset, in about a minute warm: the libraries' unit tests, Rust
+        /// against GLSL on the default scene (tests/parity.rs) and `shaders --check`.
+        #[arg(long, conflicts_with_all = ["jobs", "only"])]
+        quick: bool,
         /// Run only the binaries whose source path contains one of these (e.g. golden, host/tests).
         only: Vec<String>,
     },
@@ -138,7 +142,8 @@ fn main() -> Result<()> {
         }),
         Task::Demo { animated } => demo(animated),
         Task::Ci => ci(),
-        Task::Test { jobs, only } => suite::run(suite::build()?, jobs.unwrap_or_else(default_jobs), &only, || {}),
+        Task::Test { quick: true, .. } => suite::quick(),
+        Task::Test { jobs, only, .. } => suite::run(suite::build()?, jobs.unwrap_or_else(default_jobs), &only, || {}),
         Task::Crosscheck { scenes, refresh, twinray_args } => crosscheck::run(&scenes, refresh, &twinray_args),
         Task::Bundle { out } => bundle::run_bundle(&repo_root().join(out)),
     }

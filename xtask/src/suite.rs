@@ -122,6 +122,29 @@ pub fn run(binaries: Vec<Binary>, jobs: usize, only: &[String], after_alone: imp
     summarize(&outcomes.into_inner().unwrap(), started.elapsed(), &logs)
 }
 
+/// `cargo xtask test --quick`: what catches most slips in a minute or so warm, one step after
+/// another, each timed: the libraries' unit tests, the parity of both sets and three mixes on
+/// the default scene, and both sets rebuilt and compared with the committed SPIR-V. Not a
+/// substitute for `cargo xtask ci` before a commit lands.
+pub fn quick() -> Result<()> {
+    let started = Instant::now();
+    crate::process::step("unit tests", || {
+        crate::process::cargo(&["test", "--release", "-p", "twinray-shared", "-p", "twinray", "--lib"], &[])
+    })?;
+    crate::process::step("parity on the default scene", || {
+        crate::process::cargo(
+            &["test", "--release", "-p", "twinray-tests", "--test", "integration", "--", "parity::"],
+            &[],
+        )
+    })?;
+    crate::process::step("shaders --check", || crate::shaders::run(true))?;
+    println!(
+        "test --quick: every step passed in {:.0} s (the whole suite: cargo xtask ci)",
+        started.elapsed().as_secs_f64()
+    );
+    Ok(())
+}
+
 /// Runs `binaries`, `jobs` at a time, reporting each (of `total`) as it ends into `outcomes`.
 fn run_pool(binaries: Vec<Binary>, jobs: usize, total: usize, logs: &Path, outcomes: &Mutex<Vec<Outcome>>) {
     let queue = Mutex::new(VecDeque::from(binaries));
