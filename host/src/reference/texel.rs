@@ -34,7 +34,7 @@ impl RefTexture {
 
     /// The alpha at texture coordinates `uv`, and how far from it a device's sample may be:
     /// none for nearest (a texel's value), and for bilinear the weights' rounding
-    /// ([`WEIGHT_BITS`]) over the four texels' spread plus one 8-bit step of the result.
+    /// (`WEIGHT_BITS`) over the four texels' spread plus one 8-bit step of the result.
     pub fn alpha(&self, uv: DVec2) -> (f64, f64) {
         let texel = |i: i64, j: i64| {
             let x = wrap(i, self.width, self.wrap[0]);
