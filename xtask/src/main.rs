@@ -4,6 +4,7 @@ mod bundle;
 mod caches;
 mod crosscheck;
 mod new_shape;
+mod planted;
 mod process;
 mod setup;
 mod shaders;
@@ -102,6 +103,13 @@ enum Task {
         /// Run only the binaries whose source path contains one of these (e.g. golden, host/tests).
         only: Vec<String>,
     },
+    /// The defects that tests made lighter must still catch: applies each patch of
+    /// tests/planted/ (or those named) in turn, runs the test its `# test:` line names, reverts
+    /// the patch, and fails unless every such test failed. Needs no tracked change in the tree.
+    Planted {
+        /// Patch names (file names without .patch) [default: all].
+        names: Vec<String>,
+    },
     /// twinray's references against Mitsuba 3 renders of the same scenes (docs/shading-model.md):
     /// makes, once, a Python virtual environment in target/crosscheck/venv with Mitsuba pinned,
     /// and runs `twinray crosscheck` with it (default scenes: every analytic shape and meshes
@@ -144,6 +152,7 @@ fn main() -> Result<()> {
         Task::Ci => ci(),
         Task::Test { quick: true, .. } => suite::quick(),
         Task::Test { jobs, only, .. } => suite::run(suite::build()?, jobs.unwrap_or_else(default_jobs), &only, || {}),
+        Task::Planted { names } => planted::run(&names),
         Task::Crosscheck { scenes, refresh, twinray_args } => crosscheck::run(&scenes, refresh, &twinray_args),
         Task::Bundle { out } => bundle::run_bundle(&repo_root().join(out)),
     }
