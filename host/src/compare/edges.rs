@@ -34,12 +34,6 @@ pub fn scene_diff(scene: &Scene, a: &RenderOutput, b: &RenderOutput) -> ImageDif
     d
 }
 
-/// Which kind of pixel a hit mismatch is.
-enum Apart {
-    InternalEdge,
-    AlphaEdge,
-}
-
 /// Moves the hit mismatches of `diff` (of `a` against `b`, renders of `scene`) where either
 /// answer is right into `diff.internal_edges` and `diff.alpha_edges`.
 pub fn set_apart(diff: &mut ImageDiff, scene: &Scene, a: &RenderOutput, b: &RenderOutput) {
@@ -53,19 +47,16 @@ pub fn set_apart(diff: &mut ImageDiff, scene: &Scene, a: &RenderOutput, b: &Rend
         let ray = camera.sample(((i % width) as u32, (i / width) as u32), 0).ray;
         let (origin, direction) = (ray.origin.truncate().as_dvec3(), ray.direction.truncate().as_dvec3());
         let reach = (f64::from(ray.origin.w), f64::from(ray.direction.w));
-        let kind = if internal_edge(&reference, (ia, ib), origin, direction) {
-            Apart::InternalEdge
+        let apart = if internal_edge(&reference, (ia, ib), origin, direction) {
+            &mut diff.internal_edge_pixels
         } else if alpha_edge(&reference, (ia, ib), (origin, direction), reach)
             || alpha_edge(&reference, (ib, ia), (origin, direction), reach)
         {
-            Apart::AlphaEdge
+            &mut diff.alpha_edge_pixels
         } else {
             continue;
         };
-        match kind {
-            Apart::InternalEdge => diff.internal_edge_pixels.push(i),
-            Apart::AlphaEdge => diff.alpha_edge_pixels.push(i),
-        }
+        apart.push(i);
         diff.hit_mismatches -= 1;
         let (x, y) = (i % width, i / width);
         if !on_silhouette(&a.hit_ids, width, height, x, y) && !on_silhouette(&b.hit_ids, width, height, x, y) {
