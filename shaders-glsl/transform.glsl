@@ -15,14 +15,14 @@ struct StageRay {
     float shift;
 };
 
-// Twin of transform::FAR_BOUNDS: how many bounds from its primitive a ray may start and be
-// transformed where it starts.
-const float FAR_BOUNDS = 16.0;
+// NEAR_BOUNDS (the sphere, in bounds, a far ray is brought onto) and FAR_BOUNDS (how many bounds
+// from its primitive a ray may start and be transformed where it starts) are
+// twinray_shared::transform's, written into twinray_layout.glsl.
 
 // Twin of transform::entry: where the ray (from the centre of a sphere of `radius`, direction)
-// enters the sphere of twice that radius, or its point nearest the centre; 0 where behind.
+// enters the sphere NEAR_BOUNDS times that radius, or its point nearest the centre; 0 where behind.
 float entry(vec3 from, vec3 direction, float radius) {
-    float reach = 2.0 * radius;
+    float reach = NEAR_BOUNDS * radius;
     float a = dot(direction, direction);
     float nearest = -dot(from, direction) / a;
     vec3 closest = from + direction * nearest;
@@ -32,7 +32,8 @@ float entry(vec3 from, vec3 direction, float radius) {
 }
 
 // Twin of transform::near_ray: the world ray in object space, brought near the primitive in the
-// sphere `bound` first where it starts farther than FAR_BOUNDS from it.
+// sphere `bound` first, onto NEAR_BOUNDS times that sphere, where it starts farther than
+// FAR_BOUNDS from it.
 StageRay near_ray(vec3 origin, vec3 direction, vec3 translation, mat3 inverse_part, vec4 bound) {
     vec3 plain = inverse_part * (origin - translation);
     vec3 d = inverse_part * direction;

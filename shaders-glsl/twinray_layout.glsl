@@ -95,6 +95,8 @@ layout(constant_id = SPEC_FEATURES) const uint FEATURES = FEATURES_ALL;
 #define OFFSET_REACH_SCALE 3.0517578e-5
 #define CHECKER_DEPTH 0.001
 #define SELF_ROOT_REACH 0.1
+#define NEAR_BOUNDS 2.0
+#define FAR_BOUNDS 3.0
 #define SPHERE_ON_SURFACE 0.001
 #define PLANE_DISK 1.0
 #define BOX_GAMMA_3 1.7881396e-7

@@ -49,7 +49,13 @@ pub fn far_instances(object_bounds: &[Aabb], transforms: &[Mat4]) -> bool {
     })
 }
 
-/// Whether any object lies far for its size (see [`FAR_FACTOR`]) from where rays start, a box
+/// How many times its own size (as [`FAR_FACTOR`] measures it) a probe's ray may start from an
+/// object before the scene has far instances: the stages bring a ray that starts farther than
+/// this many of its primitive's bounds near it (`twinray_shared::transform::FAR_BOUNDS`), and
+/// would not bring it anywhere without the feature.
+pub const START_FACTOR: f32 = twinray_shared::transform::FAR_BOUNDS;
+
+/// Whether any object lies far for its size (see [`START_FACTOR`]) from where rays start, a box
 /// around every ray origin (`starts`, in the coordinates of `transforms`): a ray from there is
 /// transformed at the magnitude of its distance, however near the world origin the object
 /// stands, and the stages bring it near first only where the scene has far instances. The
@@ -58,7 +64,7 @@ pub fn far_from(object_bounds: &[Aabb], transforms: &[Mat4], starts: &Aabb) -> b
     world_boxes(object_bounds, transforms).iter().any(|b| {
         let (centre, size) = (0.5 * (b.min + b.max), 0.5 * (b.max - b.min).length());
         let farthest = (starts.min - centre).abs().max((starts.max - centre).abs()).length();
-        farthest > FAR_FACTOR * size
+        farthest > START_FACTOR * size
     })
 }
 
@@ -195,18 +201,18 @@ mod tests {
     }
 
     #[test]
-    fn an_object_is_far_from_rays_that_start_sixteen_times_its_size_away() {
+    fn an_object_is_far_from_rays_that_start_three_times_its_size_away() {
         let unit = [cube(Vec3::ZERO, 1.0)];
         let still = [Mat4::IDENTITY];
         let size = 3.0f32.sqrt();
         let at = |x: f32| Aabb { min: Vec3::new(x, 0.0, 0.0), max: Vec3::new(x, 0.0, 0.0) };
-        assert!(!far_from(&unit, &still, &at(FAR_FACTOR * size * 0.99)));
-        assert!(far_from(&unit, &still, &at(-FAR_FACTOR * size * 1.01)), "whichever side");
+        assert!(!far_from(&unit, &still, &at(START_FACTOR * size * 0.99)));
+        assert!(far_from(&unit, &still, &at(-START_FACTOR * size * 1.01)), "whichever side");
         // A box of starts is judged by its farthest corner: one near start does not hide a far one.
         let spread = Aabb { min: Vec3::new(-1.0, 0.0, 0.0), max: Vec3::new(1.0e3, 0.0, 0.0) };
         assert!(far_from(&unit, &still, &spread));
         // Scaled up, the same start is near again; and the translation counts.
-        assert!(!far_from(&unit, &[Mat4::from_scale(Vec3::splat(2.0))], &at(FAR_FACTOR * size * 1.01)));
+        assert!(!far_from(&unit, &[Mat4::from_scale(Vec3::splat(2.0))], &at(START_FACTOR * size * 1.01)));
         let moved = [Mat4::from_translation(Vec3::new(1.0e3, 0.0, 0.0))];
         assert!(!far_from(&unit, &moved, &at(1.0e3)), "rays starting at the object");
         assert!(!far_from(&[], &[], &at(1.0e6)));

@@ -220,6 +220,8 @@ pub fn layout_include() -> Result<String, String> {
         ("OFFSET_REACH_SCALE", OFFSET_REACH_SCALE),
         ("CHECKER_DEPTH", CHECKER_DEPTH),
         ("SELF_ROOT_REACH", crate::surface::SELF_ROOT_REACH),
+        ("NEAR_BOUNDS", crate::transform::NEAR_BOUNDS),
+        ("FAR_BOUNDS", crate::transform::FAR_BOUNDS),
     ];
     // Then the constants each shape's GLSL twin reads, from its registration.
     let shape_constants = SHAPES.iter().flat_map(|shape| shape.spec.glsl_constants.iter().copied());

@@ -64,19 +64,27 @@ pub fn object_ray(origin: Vec3, direction: Vec3, translation: Vec3, inverse: Mat
     (inverse * (origin - translation), inverse * direction)
 }
 
-/// How far from its primitive, in bounds (the radius of `shapes::shape_bound`'s sphere), a ray
-/// may start and still be transformed where it starts: its origin is then rounded at no more
-/// than this many times the object's size. The same factor as the host's rule for far instances
-/// (`reach::FAR_FACTOR`).
-pub const FAR_BOUNDS: f32 = 16.0;
+/// The sphere a ray is brought to, in bounds (the radius of `shapes::shape_bound`'s sphere),
+/// so that its origin is rounded at no more than this many times the object's size. Twice
+/// keeps the moved origin away from the surface, where routines take a root at the origin for
+/// the ray's own (`surface::self_reach2`).
+pub const NEAR_BOUNDS: f32 = 2.0;
+
+/// How far from its primitive, in bounds, a ray may start and still be transformed where it
+/// starts; one farther is brought onto the [`NEAR_BOUNDS`] sphere, whatever its distance. A
+/// nearer ray would gain less than 1.5 from the move and pay the moved origin's own rounding:
+/// from 2 bounds, `box-face-plane`'s p99 went from 9.4e-8 to 1.4e-7 on lavapipe, from 3 it
+/// stayed. The threshold was 16 once, and a torus 1,000 units across grazed from 2,000 (4
+/// bounds) kept a p99 of 1.4e-5 on the H200 (docs/numerics.md, "A ray brought near its
+/// primitive").
+pub const FAR_BOUNDS: f32 = 3.0;
 
 /// Where the ray (`from` the centre of a sphere of radius `radius`, `direction`) enters the
-/// sphere of twice that radius, or, missing it, its point nearest the centre; 0 where that lies
-/// behind. Twice the radius keeps the moved origin away from the surface, where routines take a
-/// root at the origin for the ray's own (`surface::self_reach2`).
+/// sphere [`NEAR_BOUNDS`] times that radius, or, missing it, its point nearest the centre; 0
+/// where that lies behind.
 #[inline(always)]
 fn entry(from: Vec3, direction: Vec3, radius: f32) -> f32 {
-    let reach = 2.0 * radius;
+    let reach = NEAR_BOUNDS * radius;
     let a = direction.dot(direction);
     let nearest = -from.dot(direction) / a;
     let closest = from + direction * nearest;
@@ -92,7 +100,8 @@ fn entry(from: Vec3, direction: Vec3, radius: f32) -> f32 {
 /// The world ray (`origin`, `direction`) for an instance with object-to-world translation
 /// `translation` and world-to-object 3x3 part `inverse`, in object space; where it starts
 /// farther than [`FAR_BOUNDS`] from the primitive in the sphere `bound` (object space: xyz
-/// centre, w radius; a zero radius brings no ray anywhere), first brought near it.
+/// centre, w radius; a zero radius brings no ray anywhere), first brought onto the sphere
+/// [`NEAR_BOUNDS`] times as large.
 ///
 /// The plain object-space origin `M⁻¹ (o - T)` says whether the ray is far and how far to move
 /// it; the moved origin `(o - T) + shift d` comes from `exact::moved_origin`, rounded at its own
