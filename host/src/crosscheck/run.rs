@@ -139,15 +139,31 @@ pub fn read_mitsuba(dir: &Path) -> Result<(Manifest, Vec<PassRender>, PassRender
     Ok((manifest, lights, emitters))
 }
 
+/// One half of a pass: `path` as Mitsuba wrote it, or gzipped beside it (`PATH.gz`, as
+/// tests/crosscheck keeps them: float images of mostly smooth light compress 20 to 30 times).
+/// No more than the image's size is inflated.
 fn read_f32(path: &Path, pixels: usize) -> Result<Vec<[f32; 4]>> {
-    let bytes = std::fs::read(path).map_err(|source| Error::Io { what: "reading", path: path.into(), source })?;
-    if bytes.len() != pixels * 16 {
-        return Err(Error::Input(format!(
-            "{}: {} bytes, not {} (RGBA float32)",
-            path.display(),
-            bytes.len(),
-            pixels * 16
-        )));
+    use std::io::Read;
+    let size = pixels * 16;
+    let zipped = path.with_extension("f32.gz");
+    let (bytes, path) = if !path.exists() && zipped.exists() {
+        let file = std::fs::File::open(&zipped).map_err(|source| Error::Io {
+            what: "reading",
+            path: zipped.clone(),
+            source,
+        })?;
+        let mut bytes = Vec::with_capacity(size);
+        flate2::read::GzDecoder::new(file)
+            .take(size as u64 + 1)
+            .read_to_end(&mut bytes)
+            .map_err(|source| Error::Io { what: "inflating", path: zipped.clone(), source })?;
+        (bytes, zipped)
+    } else {
+        (std::fs::read(path).map_err(|source| Error::Io { what: "reading", path: path.into(), source })?, path.into())
+    };
+    if bytes.len() != size {
+        let got = if bytes.len() > size { format!("more than {size} bytes") } else { format!("{} bytes", bytes.len()) };
+        return Err(Error::Input(format!("{}: {got}, not {size} (RGBA float32)", path.display())));
     }
     let floats: Vec<f32> = bytes.chunks_exact(4).map(|b| f32::from_le_bytes([b[0], b[1], b[2], b[3]])).collect();
     Ok(floats.chunks_exact(4).map(|p| [p[0], p[1], p[2], p[3]]).collect())
@@ -198,4 +214,31 @@ fn ply(mesh: &TriangleMesh, uvs: &[Vec2]) -> Vec<u8> {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::read_f32;
+    use std::io::Write;
+
+    fn gzipped(bytes: &[u8]) -> Vec<u8> {
+        let mut z = flate2::write::GzEncoder::new(Vec::new(), flate2::Compression::default());
+        z.write_all(bytes).unwrap();
+        z.finish().unwrap()
+    }
+
+    #[test]
+    fn a_half_is_read_plain_or_gzipped_and_no_larger_than_its_image() {
+        let dir = tempfile::tempdir().unwrap();
+        let floats: Vec<u8> = (0..8).flat_map(|i| (i as f32).to_le_bytes()).collect();
+        std::fs::write(dir.path().join("p.a.f32"), &floats).unwrap();
+        std::fs::write(dir.path().join("p.b.f32.gz"), gzipped(&floats)).unwrap();
+        let plain = read_f32(&dir.path().join("p.a.f32"), 2).unwrap();
+        assert_eq!(plain, read_f32(&dir.path().join("p.b.f32"), 2).unwrap());
+        assert_eq!(plain[1], [4.0, 5.0, 6.0, 7.0]);
+        // A render that inflates past its image is refused, naming the file, not read whole.
+        std::fs::write(dir.path().join("q.a.f32.gz"), gzipped(&vec![0u8; 1 << 20])).unwrap();
+        let e = read_f32(&dir.path().join("q.a.f32"), 2).unwrap_err().to_string();
+        assert!(e.contains("q.a.f32.gz: more than 32 bytes, not 32"), "{e}");
+    }
 }
