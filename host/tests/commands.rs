@@ -23,4 +23,5 @@ mod pipeline_cache;
 mod probe_cli;
 mod reference_ambiguity;
 mod reference_cache;
+mod reports;
 mod stage_bench;

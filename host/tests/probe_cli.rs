@@ -64,7 +64,7 @@ fn stability_against_world_compares_each_case_with_world_coordinates() {
     let (good, eye) = (dir.path().join("good"), dir.path().join("eye"));
     for (folder, file) in [
         (&good, repo().join("probes/stability/groups-two-far-shapes.toml")),
-        (&eye, repo().join("bench/reports/origin-groups/eye-secondary-rays.toml")),
+        (&eye, repo().join("bench/reports/accuracy/eye-secondary-rays.toml")),
     ] {
         std::fs::create_dir_all(folder).unwrap();
         std::fs::copy(&file, folder.join(file.file_name().unwrap())).unwrap();

@@ -21,7 +21,7 @@ pub fn cache_dir() -> PathBuf {
 }
 
 /// The rust-gpu builder's own target folder (under [`cache_dir`]), and whether it holds the
-/// builder: a cold machine builds it first (197 s on 2 cores, bench/reports/crate-builders).
+/// builder: a cold machine builds it first (197 s on 2 cores, bench/reports/tools/runs/crate-builders.tar.xz).
 pub fn builder_target() -> PathBuf {
     cache_dir().join("builder-target")
 }

@@ -27,7 +27,7 @@ macro_rules! any_hit_stages {
             // Not bounds-checked, as the closest hits and GLSL's twin are not: this stage runs on
             // every candidate hit of a masked mesh. Without its checks Rust was 1.1 to 1.4% faster
             // on a masked glTF model at 16 spp and 1.8% on `cutout` at 1 spp on the H200; the model
-            // at 1 spp is slower for the ray generation's sake (bench/reports/issue53-any-hit).
+            // at 1 spp is slower for the ray generation's sake (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz).
             // SAFETY: the instance id and the object's material are the host's, from the lists
             // it uploads; robust access reads zeros where a stage from disk strays.
             let data = unsafe { *objects.get_unchecked(object as usize) };

@@ -52,12 +52,12 @@ pub fn $name(
     // Copies, as GLSL's twin makes: the driver issues their loads at once, where through
     // references each load waited for the branch that used it. On the H200 at 16 spp, Rust/GLSL
     // went from 1.011 to 0.994 on cylinder, 1.005 to 0.995 on box and 1.004 to 0.999 on cutout,
-    // and from 0.993 to 0.998 on sphere (bench/reports/issue53-closest-hit). References had been
+    // and from 0.993 to 0.998 on sphere (bench/reports/nvidia-code/runs/issue53-closest-hit.tar.xz). References had been
     // faster before the features were specialisation constants, when every field was live.
     // Not bounds-checked, as GLSL's twin is not (nor the intersection stages' primitive read,
     // docs/rust-stages.md): the instance id, the object's material and the custom index are
     // the host's, made from the lists it uploads. The three checks cost Rust 1.7% to 3.6% at
-    // 1 spp on the H100 (bench/reports/issue40-hit).
+    // 1 spp on the H100 (f01fc427:bench/reports/issue40-hit/).
     // SAFETY: see above; robust access reads zeros where a stage from disk strays.
     let material = &unsafe { *materials.get_unchecked(objects.get_unchecked(object as usize).material as usize) };
     let primitive = &unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
@@ -108,7 +108,7 @@ pub fn $name(
     let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     // Not bounds-checked, as the procedural closest hit and GLSL's twin are not: the eight
     // checks cost Rust 2.5% to 5.1% on a textured model at 1 spp on the H200
-    // (bench/reports/issue53-triangle-hit).
+    // (bench/reports/nvidia-code/runs/issue53-triangle-hit.tar.xz).
     // SAFETY: the instance id and the object's material are the host's, from the lists it
     // uploads; robust access reads zeros where a stage from disk strays.
     let data = unsafe { *objects.get_unchecked(object as usize) };

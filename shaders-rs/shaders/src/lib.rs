@@ -83,14 +83,14 @@ pub fn $name(
     // The hit ids are not checked against `hit_ids.len()` here, as the image is not against its
     // size: the host sizes both to the launch. A buffer length read before the first trace is
     // waited for by every thread as the launch starts; on NVIDIA's driver this check cost about
-    // 5 µs a frame, up to 4% at 1 spp (bench/reports/issue53-any-hit/, sixteenth session).
+    // 5 µs a frame, up to 4% at 1 spp (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz, sixteenth session).
     let mut sum = Vec3::ZERO;
     let mut shadow_rays = 0;
     let mut no_payload = 0;
     // Bottom-tested: not `for` over ranges (trace.rs), nor `while`, whose condition rust-gpu
     // tests again after the body, alive across its traces. samples_per_side is at least 1.
     // Unlike the GLSL twin, one sample is looped over too: a branch around a copy of the body
-    // made 1-spp frames up to 1.8% slower (bench/reports/issue53-any-hit/, fourteenth session).
+    // made 1-spp frames up to 1.8% slower (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz, fourteenth session).
     let mut sy = 0;
     loop {
         let mut sx = 0;
@@ -267,7 +267,7 @@ macro_rules! procedural_intersection {
             // (its object's first primitive) plus the AABB's index in its BLAS, both made by the
             // host from one primitive list. Timed over placements on the H100, the check costs
             // 0.4% on `cylinder` at 16 spp, nothing resolved elsewhere (the 3% once measured on
-            // `showcase` was where the driver put the code: bench/reports/rust-raygen, 0).
+            // `showcase` was where the driver put the code: bench/reports/nvidia-code/runs/rust-raygen.tar.xz, 0).
             // SAFETY: see above; every AABB of a BLAS has its primitive at that index.
             let p = unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
             // Where the scene has far instances, the object-space ray from the world ray,

@@ -16,7 +16,7 @@ pub struct SurfaceHit {
 /// `Option` threaded through each candidate, this does in place: rust-gpu writes every
 /// `Option<SurfaceHit>` passed along as a struct with phis at each branch, and the cylinder's
 /// intersection stage so written ran 1.5% slower at 16 spp on the H100 than with this
-/// (bench/reports/issue53-variants). A candidate at the same t as the nearest replaces it,
+/// (bench/reports/nvidia-code/runs/issue53-variants.tar.xz). A candidate at the same t as the nearest replaces it,
 /// as with `closer` and GLSL's twin.
 #[derive(Clone, Copy)]
 pub struct Nearest {
