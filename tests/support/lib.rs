@@ -2,13 +2,15 @@
 //! a validated Vulkan context per test, small renders and the repository's root here; running
 //! the `twinray` binary and planting stages in `cli`; the docs' fenced blocks in `docs`; small
 //! glTF models in `gltf`; scratch
-//! copies of the repository in `scratch`, and what `new-shape` promises in `scaffold`.
+//! copies of the repository in `scratch`, what `new-shape` promises in `scaffold`, and following
+//! a tutorial's blocks in `tutorial`.
 
 pub mod cli;
 pub mod docs;
 pub mod gltf;
 pub mod scaffold;
 pub mod scratch;
+pub mod tutorial;
 
 use std::path::PathBuf;
 use std::sync::Arc;

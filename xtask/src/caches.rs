@@ -1,7 +1,7 @@
 //! The caches a CI run finds at its start, cold or warm: what its total time depends on most
 //! (docs/testing.md, *CI and its time*, has the figures both ways). A cold machine builds the
-//! rust-gpu builder, the tutorial's scratch copy and every lavapipe pipeline; a fresh clone
-//! builds the workspace whatever the machine holds.
+//! rust-gpu builder, the tutorial's scratch copy, every lavapipe pipeline and every
+//! dependency; a fresh clone builds the workspace's own crates whatever the machine holds.
 
 use std::path::{Path, PathBuf};
 
@@ -15,7 +15,7 @@ pub struct Cache {
 }
 
 /// `$XDG_CACHE_HOME`, else `~/.cache`, as twinray, Mesa and the shader builder read it.
-fn cache_home() -> PathBuf {
+pub fn cache_home() -> PathBuf {
     std::env::var_os("XDG_CACHE_HOME")
         .map(PathBuf::from)
         .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
@@ -29,15 +29,19 @@ fn filled(dir: &Path) -> bool {
 
 /// The caches of a CI run of the workspace at `root`, as they are now.
 pub fn survey(root: &Path) -> Vec<Cache> {
-    let target = std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"));
+    let target = crate::process::target_dir(root);
     let mesa = std::env::var_os("MESA_SHADER_CACHE_DIR").map(PathBuf::from).unwrap_or_else(cache_home);
     let twinray = cache_home().join("twinray");
     let builder = twinray_build::builder_target().join("release/twinray-shader-builder");
     // Mesa keeps one of two layouts, by version and settings.
     let mesa_warm = filled(&mesa.join("mesa_shader_cache_db")) || filled(&mesa.join("mesa_shader_cache"));
     let clone = target.join("release/.fingerprint");
+    // A clone that `.ci/run` seeded holds the dependencies' builds, not a build of its own.
+    let built = filled(&clone) && !target.join(crate::clone_builds::SEEDED).exists();
+    let kept = crate::clone_builds::dir();
     [
-        ("cargo's release build", filled(&clone), clone, false),
+        ("cargo's release build", built, clone, false),
+        ("the dependencies' builds", filled(&kept.join("release/deps")), kept, true),
         ("the rust-gpu builder", builder.is_file(), builder, true),
         ("Mesa's shader cache", mesa_warm, mesa.join("mesa_shader_cache_db"), true),
         ("the tutorial's build", filled(&twinray.join("scaffold-target")), twinray.join("scaffold-target"), true),

@@ -2,6 +2,7 @@
 
 mod bundle;
 mod caches;
+mod clone_builds;
 mod crosscheck;
 mod new_shape;
 mod planted;
@@ -241,6 +242,14 @@ fn ci() -> Result<()> {
         docs?.wait()?;
     }
     tests?;
+    // Kept only from a run that passed: a fresh clone on this machine starts from them.
+    process::step("keep the dependencies' builds", || {
+        let root = repo_root();
+        let bytes =
+            clone_builds::save(&process::target_dir(&root), &clone_builds::own_packages(&root)?, &clone_builds::dir())?;
+        println!("kept {:.0} MB in {}", bytes as f64 / 1e6, clone_builds::dir().display());
+        Ok(())
+    })?;
     summary(&caches, started.elapsed().as_secs_f64());
     Ok(())
 }

@@ -2,7 +2,7 @@
 //! line when they fail.
 
 use anyhow::{Context, Result};
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::Instant;
 
@@ -13,6 +13,11 @@ pub fn repo_root() -> PathBuf {
 }
 
 pub use twinray_build::{output, run};
+
+/// Where cargo puts the builds of the workspace at `root`: `CARGO_TARGET_DIR`, or its `target/`.
+pub fn target_dir(root: &Path) -> PathBuf {
+    std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"))
+}
 
 /// `cargo ARGS` in the repository root, with extra environment variables.
 pub fn cargo(args: &[&str], env: &[(&str, &str)]) -> Result<()> {

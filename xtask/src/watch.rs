@@ -30,7 +30,7 @@ pub fn run(args: &WatchArgs) -> Result<()> {
     println!("watch: building the host (release)");
     // With cargo's progress: minutes on a fresh machine.
     cargo(&["build", "--release", "-p", "twinray"], &[])?;
-    let twinray = target_dir(&root).join("release/twinray");
+    let twinray = crate::process::target_dir(&root).join("release/twinray");
     let out = root.join("target/watch");
     let mut seen = snapshot(&root);
     for language in Language::ALL {
@@ -170,11 +170,6 @@ fn changed_files(
         after.iter().filter(|(p, v)| before.get(*p) != Some(v)).map(|(p, (t, _))| (p.clone(), *t)).collect();
     changed.extend(before.keys().filter(|p| !after.contains_key(*p)).map(|p| (p.clone(), SystemTime::now())));
     changed
-}
-
-/// Where cargo puts builds: `CARGO_TARGET_DIR`, or `target/` of the workspace.
-fn target_dir(root: &Path) -> PathBuf {
-    std::env::var_os("CARGO_TARGET_DIR").map(PathBuf::from).unwrap_or_else(|| root.join("target"))
 }
 
 #[cfg(test)]
