@@ -54,7 +54,10 @@ pub fn run(name: &str) -> Result<()> {
     let out = out.to_string_lossy();
     // Built with cargo's progress shown (the host has the new shape), then run quietly.
     cargo(&["build", "--release", "-p", "twinray"], &[])?;
-    cargo(&["run", "--release", "--quiet", "-p", "twinray", "--", "compare", name, "--out-dir", &out], &[])
+    // The verdict is the check here, so the sets are timed in one placement, not six: on
+    // lavapipe the default timing took most of the compare's time.
+    let compare = ["compare", name, "--out-dir", &out, "--placements", "1"];
+    cargo(&[&["run", "--release", "--quiet", "-p", "twinray", "--"][..], &compare].concat(), &[])
         .with_context(|| format!("comparing the Rust and GLSL renders of scene {name}"))?;
     println!(
         "\nnew-shape: {name} renders alike with both sets. Next:\n\
