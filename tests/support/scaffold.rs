@@ -125,8 +125,7 @@ pub fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
     // every thread, which the other test binaries of a CI run share the cores with.
     let raygen = dir.join("shaders-glsl/raygen_main.glsl");
     let body = std::fs::read_to_string(&raygen).unwrap();
-    let looping =
-        "void main() {\n    while (gl_LaunchIDEXT.xy == uvec2(0) && hit_ids[0] != 0xfffffff0u) { hit_ids[1] += 1u; }";
+    let looping = "void main() {\n    while (LAUNCH_ID == uvec2(0) && hit_ids[0] != 0xfffffff0u) { hit_ids[1] += 1u; }";
     std::fs::write(&raygen, body.replacen("void main() {", looping, 1)).unwrap();
     let saved = std::time::Instant::now();
     wait_for("watch: save to verdict", &mut seen);
