@@ -6,7 +6,7 @@
 //! had hit mismatches in `compare`.
 
 use std::path::Path;
-use twinray_tests::cli::{planted_glsl, twinray};
+use twinray_tests::cli::{planted_glsl, twinray, UNTIMED};
 use twinray_tests::gltf::{Quad, UNIT_UV};
 
 /// One way to put the alpha at the cutoff.
@@ -63,8 +63,7 @@ fn quad(dir: &Path, material: &str, colors: [[f32; 4]; 4], texture: Option<&imag
 /// `twinray compare` of the model at `path` at `size`, untimed: its exit status and stdout.
 fn compare(path: &Path, (width, height): (&str, &str), extra: &[&str], dir: &Path) -> std::process::Output {
     let size = ["--width", width, "--height", height];
-    let untimed = ["--runs", "1", "--warmup", "0", "--placements", "1"];
-    twinray(&[&["compare", path.to_str().unwrap()][..], &size, &untimed, extra].concat(), dir)
+    twinray(&[&["compare", path.to_str().unwrap()][..], &size, &UNTIMED, extra].concat(), dir)
 }
 
 #[test]

@@ -3,7 +3,7 @@
 //! and what is wrong (exit code 2, nothing written).
 
 use std::path::{Path, PathBuf};
-use twinray_tests::cli::{assert_bad_input, twinray};
+use twinray_tests::cli::{assert_bad_input, twinray, UNTIMED};
 use twinray_tests::repo_root as repo;
 
 /// A copy of the committed GLSL set, as `cargo xtask shaders` leaves a build folder.
@@ -51,7 +51,7 @@ fn compare_takes_a_folder_of_modules_and_a_single_module_file() {
     let raygen = repo().join("spirv/glsl/raygen.spv").to_string_lossy().into_owned();
     let mix = format!("rust,raygen={raygen}");
     let args = ["--validate", "compare", "--a", &mix, "--b", &folder_arg, "--width", "64", "--height", "48"];
-    let out = twinray(&[&args[..], &["--runs", "1", "--warmup", "0", "--json"]].concat(), dir.path());
+    let out = twinray(&[&args[..], &UNTIMED, &["--json"]].concat(), dir.path());
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
     let json: serde_json::Value = serde_json::from_str(&stdout).expect("compare --json prints JSON");
@@ -59,8 +59,8 @@ fn compare_takes_a_folder_of_modules_and_a_single_module_file() {
     assert_eq!(json["set_b"], folder_arg.as_str());
     assert_eq!(json["pass"], true);
     // The folder holds the GLSL set itself: the two renders agree to the bit with the built-in one.
-    let same = ["compare", "--a", "glsl", "--b", &folder_arg, "--width", "64", "--height", "48", "--runs", "1"];
-    let out = twinray(&[&same[..], &["--warmup", "0", "--json"]].concat(), dir.path());
+    let same = ["compare", "--a", "glsl", "--b", &folder_arg, "--width", "64", "--height", "48"];
+    let out = twinray(&[&same[..], &UNTIMED, &["--json"]].concat(), dir.path());
     let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     assert_eq!((json["rmse"].as_f64(), json["hit_mismatches"].as_u64()), (Some(0.0), Some(0)));
 }
@@ -178,7 +178,7 @@ fn modules_compiled_for_vulkan_1_2_and_1_3_render() {
         assert_eq!(words(&spv)[1], 0x0001_0000 | (version << 8), "glslang wrote SPIR-V 1.{version}");
         let set = format!("glsl,raygen={}", spv.display());
         let args = ["--validate", "compare", "--a", "glsl", "--b", &set, "--width", "64", "--height", "48"];
-        let out = twinray(&[&args[..], &["--runs", "1", "--warmup", "0", "--json"]].concat(), dir.path());
+        let out = twinray(&[&args[..], &UNTIMED, &["--json"]].concat(), dir.path());
         assert!(out.status.success(), "{env}: {}", String::from_utf8_lossy(&out.stderr));
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
         assert_eq!((json["rmse"].as_f64(), json["hit_mismatches"].as_u64()), (Some(0.0), Some(0)), "{env}");

@@ -4,14 +4,14 @@
 
 use serde_json::Value;
 use std::path::Path;
-use twinray_tests::cli::{assert_bad_input, naive_sphere, planted_glsl, planted_include, twinray};
+use twinray_tests::cli::{assert_bad_input, naive_sphere, planted_glsl, planted_include, twinray, UNTIMED};
 use twinray_tests::repo_root as repo;
 
 /// `compare --json` of `scene` (with `extra` arguments) between `a` and `b`: the pixels it names.
 fn named_pixels(scene: &str, extra: &[&str], (a, b): (&str, &str), dir: &Path) -> Vec<Value> {
     let out_dir = dir.join("compare");
     let out_dir = out_dir.to_str().unwrap();
-    let args = [&["compare", scene, "--a", a, "--b", b], extra, &["--runs", "1", "--placements", "1"]].concat();
+    let args = [&["compare", scene, "--a", a, "--b", b], extra, &UNTIMED].concat();
     let out = twinray(&[&args[..], &["--out-dir", out_dir, "--json"]].concat(), dir);
     let stdout = String::from_utf8_lossy(&out.stdout);
     let json: Value = serde_json::from_str(&stdout).unwrap_or_else(|e| panic!("{e}: {stdout}"));

@@ -4,7 +4,7 @@
 //! what the loader says (tests/assimp.rs pins the known ones); a file that loads is skipped.
 
 use std::path::{Path, PathBuf};
-use twinray_tests::cli::{assert_bad_input, twinray};
+use twinray_tests::cli::{assert_bad_input, twinray, UNTIMED};
 
 use twinray::scene::gltf::ASSIMP_TEST_MODELS as MODELS;
 
@@ -281,7 +281,8 @@ fn meshes_with_shared_diagonals_pass_compare() {
     let dir = tempfile::tempdir().unwrap();
     for (eye_x, on_centres) in [(0.0, true), (0.01, false)] {
         let scene = diagonal_grid(dir.path(), eye_x);
-        let out = twinray(&["compare", &scene, "--a", "rust", "--b", "glsl", "--runs", "1", "--json"], dir.path());
+        let out =
+            twinray(&[&["compare", &scene, "--a", "rust", "--b", "glsl", "--json"][..], &UNTIMED].concat(), dir.path());
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
         assert_eq!((json["pass"].as_bool(), json["hit_mismatches"].as_u64()), (Some(true), Some(0)), "{json}");
@@ -468,7 +469,8 @@ fn a_model_with_extras_of_every_json_type_passes_compare() {
     );
     assert_eq!(gltf.matches("\"extras\"").count(), 9, "{gltf}");
     std::fs::write(dir.path().join("extras.gltf"), &gltf).unwrap();
-    let out = twinray(&["compare", "extras.gltf", "--width", "32", "--height", "32", "--runs", "1"], dir.path());
+    let out =
+        twinray(&[&["compare", "extras.gltf", "--width", "32", "--height", "32"][..], &UNTIMED].concat(), dir.path());
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}\n{stdout}", String::from_utf8_lossy(&out.stderr));
     assert!(stdout.contains("PASS"), "{stdout}");

@@ -78,6 +78,10 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     assert!(built.contains("mine: built, 30 modules (twinray-shared 0.1.0)"), "{built}");
     assert!(!built.contains("warning"), "the starter's own code warns of nothing: {built}");
     same_modules(&krate.join("target/twinray/set"), "rust");
+    // Named relatively, as here, the crate still builds in its own target/twinray/.
+    let target: Vec<_> = std::fs::read_dir(krate.join("target")).unwrap().map(|e| e.unwrap().file_name()).collect();
+    assert_eq!(target, ["twinray"], "the build's folders under mine/target");
+    assert!(krate.join("target/twinray/cargo").is_dir());
     assert!(ok(&["build", "mine"], dir).contains("mine: up to date"));
     assert!(files(&krate) == written, "a build wrote in the crate outside target/");
     // Two builds of one changed crate at once take turns: one builds, the other finds it built.

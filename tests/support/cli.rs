@@ -15,6 +15,11 @@ pub fn exe() -> PathBuf {
     exe
 }
 
+/// `compare`'s arguments where its verdict is what a test checks, not its times: one timed
+/// render of each set, no warm-up, one placement (on lavapipe the two compares of
+/// `gltf_cli::meshes_with_shared_diagonals_pass_compare` took 25 s with the defaults, 0.3 s so).
+pub const UNTIMED: [&str; 6] = ["--runs", "1", "--warmup", "0", "--placements", "1"];
+
 pub fn twinray(args: &[&str], dir: &Path) -> Output {
     Command::new(exe()).args(args).current_dir(dir).output().expect("running twinray")
 }

@@ -2,7 +2,7 @@
 //! the tutorial's first step runs it (`xtask/tests/tutorial.rs`): one scratch copy builds the
 //! shader sets and the host once for both, where a second copy cost CI about 260 s on 2 cores.
 
-use crate::scratch::{cargo, scaffold_target, text};
+use crate::scratch::{cargo, cargo_envs, text};
 use std::collections::BTreeMap;
 use std::path::Path;
 use std::process::Command;
@@ -95,7 +95,7 @@ pub fn watch_sees_an_edit_of_the_twin(dir: &Path, name: &str) {
         // busy: 30 s, as it was, is half a minute of a CI run that has ten.
         .args(["xtask", "watch", name, "--changes", "3", "--poll-ms", "100", "--", "--gpu-timeout", "15"])
         .current_dir(dir)
-        .env("CARGO_TARGET_DIR", scaffold_target())
+        .envs(cargo_envs())
         // Every pipeline compiled cold, as on a fresh machine: the verdicts must not need a
         // warm shader cache (a specialised stage once missed it and overran a 3 s deadline).
         .env("MESA_SHADER_CACHE_DISABLE", "true")

@@ -3,7 +3,9 @@
 //! the test (`# test: ARGS`, the arguments of `cargo test` after `cargo test --release`) and
 //! say why (`# why: ...`); `git apply` skips such lines before the diff. Each patch is applied
 //! to a tree with no tracked change, its test run, and the patch reverted whatever happened;
-//! the task fails unless every test ran and failed with its patch in.
+//! the task fails unless every test ran and failed with its patch in. A patch's `# expect: TEXT`
+//! lines, if it has any, are what the failing test must say: a failure without them is the
+//! patch breaking something else (a build, another assertion), not a catch.
 
 use crate::process::repo_root;
 use anyhow::{bail, Context, Result};
@@ -15,6 +17,8 @@ struct Planted {
     name: String,
     patch: PathBuf,
     test: Vec<String>,
+    /// Words the failing test's output must hold for the failure to be this defect's.
+    expect: Vec<String>,
 }
 
 pub fn run(names: &[String]) -> Result<()> {
@@ -33,7 +37,7 @@ pub fn run(names: &[String]) -> Result<()> {
     let mut missed = Vec::new();
     for p in chosen {
         println!("==> {}: cargo test --release {}", p.name, p.test.join(" "));
-        let caught = with_patch(&root, &p.patch, || test_fails(&root, &p.test))?;
+        let caught = with_patch(&root, &p.patch, || test_fails(&root, &p.test, &p.expect))?;
         println!("<== {}: {}", p.name, if caught { "caught" } else { "NOT CAUGHT" });
         if !caught {
             missed.push(p.name.clone());
@@ -59,7 +63,9 @@ fn read(dir: &Path) -> Result<Vec<Planted>> {
             bail!("{}: no `# test: ARGS` line", patch.display());
         };
         let name = patch.file_stem().unwrap_or_default().to_string_lossy().into_owned();
-        out.push(Planted { name, test: test.split_whitespace().map(String::from).collect(), patch });
+        let test = test.split_whitespace().map(String::from).collect();
+        let expect = text.lines().filter_map(|l| l.strip_prefix("# expect: ")).map(String::from).collect();
+        out.push(Planted { name, test, expect, patch });
     }
     out.sort_by(|a, b| a.name.cmp(&b.name));
     Ok(out)
@@ -75,8 +81,9 @@ fn with_patch(root: &Path, patch: &Path, body: impl FnOnce() -> Result<bool>) ->
     result
 }
 
-/// Whether the test ran and failed (a build that fails is an error, not a catch).
-fn test_fails(root: &Path, args: &[String]) -> Result<bool> {
+/// Whether the test ran and failed saying each of `expect` (a build that fails, or a failure
+/// without those words, is an error, not a catch).
+fn test_fails(root: &Path, args: &[String], expect: &[String]) -> Result<bool> {
     let out = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
         .args(["test", "--release"])
         .args(args)
@@ -85,7 +92,11 @@ fn test_fails(root: &Path, args: &[String]) -> Result<bool> {
         .context("running cargo test")?;
     let stdout = String::from_utf8_lossy(&out.stdout);
     if stdout.contains("test result: FAILED") {
-        return Ok(true);
+        let said = format!("{stdout}{}", String::from_utf8_lossy(&out.stderr));
+        return match expect.iter().find(|e| !said.contains(e.as_str())) {
+            Some(missing) => bail!("the test failed without saying {missing:?}:\n{}", tail(&stdout, 20)),
+            None => Ok(true),
+        };
     }
     if !out.status.success() {
         let stderr = String::from_utf8_lossy(&out.stderr);
@@ -108,4 +119,26 @@ fn git(root: &Path, args: &[&str]) -> Result<String> {
         bail!("git {}: {}", args.join(" "), String::from_utf8_lossy(&out.stderr).trim());
     }
     Ok(String::from_utf8_lossy(&out.stdout).into_owned())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_a_patchs_test_and_expected_words() {
+        let dir = tempfile::tempdir().unwrap();
+        let patch = "# test: -p twinray --test commands -- a::b\n# why: because\n# expect: hit mismatches\n# expect: PASS\ndiff --git a/x b/x\n";
+        std::fs::write(dir.path().join("wrong-tie.patch"), patch).unwrap();
+        std::fs::write(dir.path().join("notes.txt"), "# test: not a patch").unwrap();
+        std::fs::write(dir.path().join("bare.patch"), "# test: -p x\ndiff\n").unwrap();
+        let found = read(dir.path()).unwrap();
+        let names: Vec<&str> = found.iter().map(|p| p.name.as_str()).collect();
+        assert_eq!(names, ["bare", "wrong-tie"]);
+        assert!(found[0].expect.is_empty());
+        assert_eq!(found[1].test, ["-p", "twinray", "--test", "commands", "--", "a::b"]);
+        assert_eq!(found[1].expect, ["hit mismatches", "PASS"]);
+        std::fs::write(dir.path().join("untested.patch"), "diff\n").unwrap();
+        assert!(read(dir.path()).is_err(), "a patch without a `# test:` line is refused");
+    }
 }

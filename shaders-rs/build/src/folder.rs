@@ -136,7 +136,9 @@ fn count_modules(set: &Path) -> usize {
 /// a module of the catalog.
 fn compile_crate(dir: &Path, out: &Path, timeout: Duration) -> Result<Vec<String>> {
     let builder = builder::embedded()?;
-    let target = dir.join("target/twinray/cargo");
+    // Absolute: spirv-builder takes a relative target folder as relative to the crate's own
+    // `target/` (`twinray build mine` once built in `mine/target/mine/target/twinray/cargo`).
+    let target = std::path::absolute(dir.join("target/twinray/cargo"))?;
     let mut command = run_builder(&builder, dir, out, &target, &[]);
     // A user's crate is not held to twinray's own rule: its warnings are shown, not fatal.
     command.env("TWINRAY_BUILDER_WARNINGS", "allow");
