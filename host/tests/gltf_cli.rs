@@ -283,7 +283,8 @@ fn meshes_with_shared_diagonals_pass_compare() {
         let scene = diagonal_grid(dir.path(), eye_x);
         let out =
             twinray(&[&["compare", &scene, "--a", "rust", "--b", "glsl", "--json"][..], &UNTIMED].concat(), dir.path());
-        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let said = format!("{}{}", String::from_utf8_lossy(&out.stderr), String::from_utf8_lossy(&out.stdout));
+        assert!(out.status.success(), "{said}");
         let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
         assert_eq!((json["pass"].as_bool(), json["hit_mismatches"].as_u64()), (Some(true), Some(0)), "{json}");
         let edges = json["internal_edges"].as_u64().expect("internal_edges");
