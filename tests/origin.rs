@@ -1,9 +1,10 @@
 //! The local origin is never worse than world coordinates, on cases nobody chose: random scenes
 //! (`twinray::probe::random`: two to four groups of objects far apart, at distances from the
 //! world origin spread over several orders of magnitude, thin shapes among them, each group
-//! probed from close by) probed with both sets at the origins twinray chooses and at world
-//! coordinates, on lavapipe with validation on. A ray the chosen origins get wrong that world
-//! coordinates get right, or a relative t p99 grown beyond `origins::P99_SLACK`, fails.
+//! probed from close by) probed with the Rust set (even seeds) or the GLSL set (odd) at the
+//! origins twinray chooses and at world coordinates, on lavapipe with validation on. A ray the
+//! chosen origins get wrong that world coordinates get right, or a relative t p99 grown beyond
+//! `origins::P99_SLACK`, fails.
 //!
 //! `TWINRAY_ORIGIN_CASES=N` and `TWINRAY_ORIGIN_SEED=S` run N cases from seed S in place of the
 //! few CI runs (`twinray stability --against-world --random N --seed S` is the same check from
@@ -14,7 +15,7 @@ use twinray::probe::origins::{check, table};
 use twinray::probe::random::origin_case;
 use twinray_tests::{set, validated_context};
 
-/// Cases CI runs: each is two sets at two to five launches each, about 10 s on lavapipe.
+/// Cases CI runs: each is one set (rust for even seeds, glsl for odd) at two to five launches.
 const CI_CASES: u64 = 6;
 
 fn env(name: &str, default: u64) -> u64 {
@@ -31,9 +32,11 @@ fn random_far_apart_ray_groups_are_never_worse_at_the_chosen_origins() {
         let text = origin_case(seed);
         let case = ProbeCase::parse(&text, &format!("random case {seed}"), std::env::temp_dir())
             .unwrap_or_else(|e| panic!("random case {seed} does not load: {e}\n{text}"));
-        for set in &sets {
-            checks.push(check(&ctx, &case, set).unwrap_or_else(|e| panic!("random case {seed} with {set}: {e}")));
-        }
+        // One set per case, alternating: where a case's origins come from is the host's choice,
+        // the same for both sets, and each case's random shapes are pipelines of their own for
+        // lavapipe to compile (a second set doubles them); both languages still meet far scenes.
+        let set = &sets[(seed % 2) as usize];
+        checks.push(check(&ctx, &case, set).unwrap_or_else(|e| panic!("random case {seed} with {set}: {e}")));
     }
     ctx.close().expect("validation errors or leaked objects at teardown");
     let worse: Vec<_> = checks.iter().filter(|c| !c.failures.is_empty()).collect();
