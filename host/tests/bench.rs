@@ -110,7 +110,10 @@ fn a_small_bench_writes_every_report_file() {
     assert_eq!(variants.lines().filter(|l| l.starts_with("\"sphere-far-1e5\"")).count(), 2, "{variants}");
     assert!(!variants.contains("cone-apex"));
     for plot in ["error-spp", "error-time", "ratio", "places", "sampler-spp", "sampler-time", "variants"] {
-        image::open(report.join("plots").join(format!("{plot}.png"))).expect("a readable plot");
+        let png = image::open(report.join("plots").join(format!("{plot}.png"))).expect("a readable plot").to_rgb8();
+        // Drawn: a white page with axes, labels and points, not one colour.
+        let colours: std::collections::HashSet<_> = png.pixels().map(|p| p.0).collect();
+        assert!(png.dimensions() == (900, 600) && colours.len() > 2, "{plot}.png: {} colours", colours.len());
         let svg = std::fs::read_to_string(report.join("plots").join(format!("{plot}.svg"))).unwrap();
         assert!(svg.contains("<svg") && svg.trim_end().ends_with("</svg>"), "{plot}.svg");
     }
