@@ -6,7 +6,7 @@
 //! lavapipe for every built-in scene; each scene but showcase in one set here).
 
 use twinray::scene::{MeshFiles, Renderer, Scene};
-use twinray_tests::{assert_same_render, render_scene, repo_root, set, validated_context};
+use twinray_tests::{alternate_set, assert_same_render, render_scene, repo_root, set, validated_context};
 
 /// `scene` rendered by the compute renderer.
 fn with_compute(scene: &Scene) -> Scene {
@@ -37,12 +37,12 @@ fn the_compute_renderer_sees_what_the_pipeline_sees() {
         .iter()
         .enumerate()
         .map(|(k, name)| {
-            let sets: &[&str] = if k == 0 { &["rust", "glsl"] } else { [&["glsl"][..], &["rust"]][k % 2] };
+            let sets = if k == 0 { vec!["rust", "glsl"] } else { vec![alternate_set(k)] };
             (Scene::load(Some(name)).expect("built-in scene"), sets)
         });
     // The naive quartic rounds differently in the two languages (what it is kept to show), so
     // each set is held to its own pipeline only.
-    for (scene, sets) in scenes.chain([(naive_torus(), &["rust", "glsl"][..])]) {
+    for (scene, sets) in scenes.chain([(naive_torus(), vec!["rust", "glsl"])]) {
         let scene = &scene;
         let name = scene.name();
         let compute = with_compute(scene);

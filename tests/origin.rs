@@ -13,7 +13,7 @@
 use twinray::probe::case::ProbeCase;
 use twinray::probe::origins::{check, table};
 use twinray::probe::random::origin_case;
-use twinray_tests::{set, validated_context};
+use twinray_tests::{alternate_set, set, validated_context};
 
 /// Cases CI runs: each is one set (rust for even seeds, glsl for odd) at two to five launches.
 const CI_CASES: u64 = 6;
@@ -26,7 +26,6 @@ fn env(name: &str, default: u64) -> u64 {
 fn random_far_apart_ray_groups_are_never_worse_at_the_chosen_origins() {
     let (count, first) = (env("TWINRAY_ORIGIN_CASES", CI_CASES), env("TWINRAY_ORIGIN_SEED", 0));
     let ctx = validated_context();
-    let sets = [set("rust"), set("glsl")];
     let mut checks = Vec::new();
     for seed in first..first + count {
         let text = origin_case(seed);
@@ -35,8 +34,8 @@ fn random_far_apart_ray_groups_are_never_worse_at_the_chosen_origins() {
         // One set per case, alternating: where a case's origins come from is the host's choice,
         // the same for both sets, and each case's random shapes are pipelines of their own for
         // lavapipe to compile (a second set doubles them); both languages still meet far scenes.
-        let set = &sets[(seed % 2) as usize];
-        checks.push(check(&ctx, &case, set).unwrap_or_else(|e| panic!("random case {seed} with {set}: {e}")));
+        let shaders = set(alternate_set(seed as usize));
+        checks.push(check(&ctx, &case, &shaders).unwrap_or_else(|e| panic!("random case {seed} with {shaders}: {e}")));
     }
     ctx.close().expect("validation errors or leaked objects at teardown");
     let worse: Vec<_> = checks.iter().filter(|c| !c.failures.is_empty()).collect();

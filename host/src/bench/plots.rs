@@ -101,7 +101,7 @@ pub fn write(report: &BenchReport, ratios: &[SceneRatio], dir: &Path) -> Result<
     let error_plot = |name: &str, x_label: &str, data: &[Series], guides: bool| -> Result<()> {
         let png = dir.join(format!("{name}.png"));
         let svg = dir.join(format!("{name}.svg"));
-        write_png(&png, |area| draw_error(area, x_label, data, guides))?;
+        draw_png(&png, |area| draw_error(area, x_label, data, guides))?;
         draw_error(SVGBackend::new(&svg, SIZE).into_drawing_area(), x_label, data, guides).map_err(plot_error)
     };
     error_plot("error-spp", "samples per pixel", &by_spp, true)?;
@@ -109,7 +109,7 @@ pub fn write(report: &BenchReport, ratios: &[SceneRatio], dir: &Path) -> Result<
     if !report.variants.is_empty() {
         let points = variant_points(report);
         let (png, svg) = (dir.join("variants.png"), dir.join("variants.svg"));
-        write_png(&png, |area| draw_scatter(area, &points))?;
+        draw_png(&png, |area| draw_scatter(area, &points))?;
         draw_scatter(SVGBackend::new(&svg, SIZE).into_drawing_area(), &points).map_err(plot_error)?;
     }
     if !report.samplers.is_empty() {
@@ -120,10 +120,10 @@ pub fn write(report: &BenchReport, ratios: &[SceneRatio], dir: &Path) -> Result<
     let cells =
         report.rows.iter().map(|r| (format!("{} {}", r.scene, r.spp), r.set.as_str(), &r.placements.median_ms[..]));
     let strips = place_strips(cells);
-    write_png(&png, |area| draw_places(area, &strips))?;
+    draw_png(&png, |area| draw_places(area, &strips))?;
     draw_places(SVGBackend::new(&svg, SIZE).into_drawing_area(), &strips).map_err(plot_error)?;
     let (png, svg) = (dir.join("ratio.png"), dir.join("ratio.svg"));
-    write_png(&png, |area| draw_ratios(area, ratios))?;
+    draw_png(&png, |area| draw_ratios(area, ratios))?;
     draw_ratios(SVGBackend::new(&svg, SIZE).into_drawing_area(), ratios).map_err(plot_error)
 }
 
@@ -208,7 +208,7 @@ where
 pub fn write_lines(dir: &Path, name: &str, (x_label, y_label): (&str, &str), data: &[Series]) -> Result<()> {
     let _ = plotters::style::register_font("sans-serif", FontStyle::Normal, FONT);
     let (png, svg) = (dir.join(format!("{name}.png")), dir.join(format!("{name}.svg")));
-    write_png(&png, |area| draw_lines(area, x_label, y_label, data))?;
+    draw_png(&png, |area| draw_lines(area, x_label, y_label, data))?;
     draw_lines(SVGBackend::new(&svg, SIZE).into_drawing_area(), x_label, y_label, data).map_err(plot_error)
 }
 
@@ -246,7 +246,7 @@ where
 
 /// Draws a plot into a buffer and writes it as PNG with the host's own encoder (sRGB-tagged,
 /// atomic): plotters' encoder would build a second `image` crate, an older one, in every build.
-fn write_png(path: &Path, draw: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Drawn) -> Result<()> {
+fn draw_png(path: &Path, draw: impl FnOnce(DrawingArea<BitMapBackend<'_>, Shift>) -> Drawn) -> Result<()> {
     let mut rgb = vec![0u8; (SIZE.0 * SIZE.1 * 3) as usize];
     draw(BitMapBackend::with_buffer(&mut rgb, SIZE).into_drawing_area()).map_err(plot_error)?;
     let rgba: Vec<u8> = rgb.chunks_exact(3).flat_map(|p| [p[0], p[1], p[2], 255]).collect();
