@@ -11,11 +11,15 @@ fn showcase() -> Scene {
 }
 
 /// The sets agree bit for bit on lavapipe, so this catches a missing, partial or stale
-/// readback rather than two sets' outputs swapped (the order of copies rules that out).
+/// readback rather than two sets' outputs swapped (the order of copies rules that out). On
+/// `sphere` (procedural shapes, shadow rays of two lights), not showcase: every place is a
+/// pipeline of its own, twelve here, and lavapipe compiles showcase's in 2.0 s, sphere's in
+/// 0.55 s (36 s of a cold run, not yet measured so); what is checked is the bookkeeping of
+/// rounds and readbacks, which no stage kind changes.
 #[test]
 fn each_set_gets_what_it_renders_alone() {
     let ctx = validated_context();
-    let scene = showcase();
+    let scene = Scene::load(Some("sphere")).unwrap_or_else(|e| panic!("sphere: {e}"));
     let sets = [set("rust"), set("glsl"), set("glsl,intersection=rust")];
     let opts = RenderOptions { width: 48, height: 27, warmup: 1, runs: 3, placements: 3, first_placement: 0 };
     let together = render_sets(&ctx, &scene, &sets, &opts).unwrap();

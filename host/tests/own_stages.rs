@@ -8,6 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::Output;
 use twinray_tests::cli::twinray;
 use twinray_tests::repo_root as repo;
+use twinray_tests::scratch::seed_crate_target;
 
 fn text(out: &Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr))
@@ -56,6 +57,18 @@ fn refused(args: &[&str], dir: &Path, krate: &Path, needles: &[&str]) -> String 
     stderr
 }
 
+/// The name of every file and folder under `dir`.
+fn names_under(dir: &Path) -> Vec<String> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).unwrap().map(Result::unwrap) {
+        names.push(entry.file_name().to_string_lossy().into_owned());
+        if entry.file_type().unwrap().is_dir() {
+            names.extend(names_under(&entry.path()));
+        }
+    }
+    names
+}
+
 fn same_modules(set: &Path, language: &str) {
     for entry in std::fs::read_dir(repo().join("spirv").join(language)).unwrap() {
         let path = entry.unwrap().path();
@@ -74,6 +87,7 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     assert!(said.contains("twinray build mine"), "{said}");
     let krate = dir.join("mine");
     let written = files(&krate);
+    seed_crate_target(&krate);
     let built = ok(&["build", "mine"], dir);
     assert!(built.contains("mine: built, 30 modules (twinray-shared 0.1.0)"), "{built}");
     assert!(!built.contains("warning"), "the starter's own code warns of nothing: {built}");
@@ -81,7 +95,8 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     // Named relatively, as here, the crate still builds in its own target/twinray/.
     let target: Vec<_> = std::fs::read_dir(krate.join("target")).unwrap().map(|e| e.unwrap().file_name()).collect();
     assert_eq!(target, ["twinray"], "the build's folders under mine/target");
-    assert!(krate.join("target/twinray/cargo").is_dir());
+    // The crate's own build is there (the target was seeded with its dependencies').
+    assert!(names_under(&krate.join("target/twinray/cargo")).iter().any(|n| n.contains("mine")), "no build of mine");
     assert!(ok(&["build", "mine"], dir).contains("mine: up to date"));
     assert!(files(&krate) == written, "a build wrote in the crate outside target/");
     // Two builds of one changed crate at once take turns: one builds, the other finds it built.
@@ -163,6 +178,7 @@ fn bad_crates_are_refused_in_one_line_and_leave_the_crate_as_it_was() {
     refused(&["new", "9lives"], dir, &dir.join("c"), &["cannot be a crate's name"]);
 
     let krate = dir.join("c");
+    seed_crate_target(&krate);
     let manifest = krate.join("twinray-shared/Cargo.toml");
     let original = std::fs::read_to_string(&manifest).unwrap();
     std::fs::write(&manifest, original.replacen("version = \"0.1.0\"", "version = \"0.2.0\"", 1)).unwrap();
@@ -249,6 +265,7 @@ fn a_crate_written_from_scratch_builds_shows_its_warnings_and_lends_its_one_stag
     let lock = std::fs::read_to_string(dir.join("starter/Cargo.lock")).unwrap();
     std::fs::write(sky.join("Cargo.lock"), lock.replace("name = \"starter\"", "name = \"sky\"")).unwrap();
     std::fs::write(sky.join("src/lib.rs"), SKY_LIB).unwrap();
+    seed_crate_target(&sky);
     let built = ok(&["build", "sky"], dir);
     assert!(built.contains("sky: built, 1 modules (twinray-shared 0.1.0)"), "{built}");
     // A warning of the crate's own is shown, and does not fail its build.

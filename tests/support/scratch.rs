@@ -6,13 +6,18 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
+/// The machine's cache folder, where the tests keep builds between runs.
+fn cache() -> PathBuf {
+    std::env::var_os("XDG_CACHE_HOME")
+        .map(PathBuf::from)
+        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
+        .unwrap_or_else(|| repo().join("target"))
+}
+
 /// The target folder of this test binary's scratch copies, kept between runs: one per test
 /// binary, so that `cargo xtask test` can run two such binaries side by side.
 pub fn scaffold_target() -> PathBuf {
-    let cache = std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(|| repo().join("target"));
+    let cache = cache();
     let exe = std::env::current_exe().expect("the test binary's path");
     let stem = exe.file_stem().unwrap_or_default().to_string_lossy().into_owned();
     let test = stem.split('-').next().unwrap_or("scratch").to_string();
@@ -72,6 +77,30 @@ fn copy_tree(from: &Path, to: &Path) {
             std::fs::File::options().write(true).open(&target).and_then(|f| f.set_modified(modified)).unwrap();
         }
     }
+}
+
+/// Seeds the cargo target of the shader crate `krate` (`target/twinray/cargo`, where `twinray
+/// build` builds it) with the dependencies' builds of a starter crate (`twinray new`), built
+/// once per machine in the cache and found up to date after that: the crate then builds only
+/// its own code and twinray-shared. Each crate of the own-stages tests built core, spirv-std and
+/// glam for the SPIR-V target from nothing (about 13 core-seconds each on 2 cores); a build from
+/// nothing is what the own-stages tutorial's test does, with only the installed binary.
+pub fn seed_crate_target(krate: &Path) {
+    static SEED: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    let seed = SEED.get_or_init(|| {
+        let dir = cache().join("twinray/own-stages-seed");
+        std::fs::create_dir_all(&dir).unwrap();
+        if !crate::cli::twinray(&["build", "starter"], &dir).status.success() {
+            // None yet, or one a stopped run left half made: made afresh.
+            let _ = std::fs::remove_dir_all(dir.join("starter"));
+            let made = crate::cli::twinray(&["new", "starter"], &dir);
+            assert!(made.status.success(), "twinray new: {}", text(&made));
+            let out = crate::cli::twinray(&["build", "starter"], &dir);
+            assert!(out.status.success(), "the seed crate's build: {}", text(&out));
+        }
+        dir.join("starter/target/twinray/cargo")
+    });
+    copy_tree(seed, &krate.join("target/twinray/cargo"));
 }
 
 /// A fresh copy of the repository (`copy_repo`) for the test that holds the scaffold target's

@@ -5,7 +5,8 @@
 //! to a tree with no tracked change, its test run, and the patch reverted whatever happened;
 //! the task fails unless every test ran and failed with its patch in. A patch's `# expect: TEXT`
 //! lines, if it has any, are what the failing test must say: a failure without them is the
-//! patch breaking something else (a build, another assertion), not a catch.
+//! patch breaking something else (a build, another assertion), not a catch. Tests run with the
+//! environment CI gives the binaries that share the cores (`suite::shared_envs`).
 
 use crate::process::repo_root;
 use anyhow::{bail, Context, Result};
@@ -82,11 +83,13 @@ fn with_patch(root: &Path, patch: &Path, body: impl FnOnce() -> Result<bool>) ->
 }
 
 /// Whether the test ran and failed saying each of `expect` (a failure without those words is
-/// not a catch; a build that fails is an error).
+/// not a catch; a build that fails is an error). It runs as CI runs the binaries that share
+/// the cores (`suite::shared_envs`: the short warm-up floor), the lighter way.
 fn test_fails(root: &Path, args: &[String], expect: &[String]) -> Result<bool> {
     let out = Command::new(std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
         .args(["test", "--release"])
         .args(args)
+        .envs(crate::suite::shared_envs())
         .current_dir(root)
         .output()
         .context("running cargo test")?;

@@ -44,6 +44,14 @@ const SLOW_FIRST: [&str; 6] = [
 /// twice-the-work stage of tests/timing.rs measured 0.33 of the time, not about 0.5.
 const ALONE: [&str; 1] = ["tests/timing.rs"];
 
+/// The warm-up floor of the binaries that run side by side (`TWINRAY_MIN_WARM_MS`): 20 ms of
+/// GPU time before each place's timed traces, not the 1000 ms a user's commands take. The floor
+/// makes a time the GPU's at its working clocks (docs/measuring.md); beside another binary on
+/// lavapipe no time is that, and none of these binaries judges a time (those that do are
+/// `ALONE`, and keep the floor). At 1000 ms the floor was most of their work on lavapipe:
+/// `host/tests/bench.rs` took 56 s alone, 10 s at 20 ms. A floor set by the caller is kept.
+const SHARED_WARM_MS: (&str, &str) = ("TWINRAY_MIN_WARM_MS", "20");
+
 /// clippy's lints, warnings denied, on every target of the workspace, from the one release build
 /// the tests need: `cargo clippy` is `cargo check` with clippy-driver as the workspace's rustc
 /// wrapper and its arguments in CLIPPY_ARGS, so the same wrapper on the test build lints the
@@ -123,10 +131,16 @@ pub fn run(binaries: Vec<Binary>, jobs: usize, only: &[String], after_alone: imp
     );
     let outcomes = Mutex::new(Vec::new());
     let started = Instant::now();
-    run_pool(alone, 1, total, &logs, &outcomes);
+    run_pool(alone, (1, &[]), total, &logs, &outcomes);
     after_alone();
-    run_pool(shared, jobs, total, &logs, &outcomes);
+    run_pool(shared, (jobs, &shared_envs()), total, &logs, &outcomes);
     summarize(&outcomes.into_inner().unwrap(), started.elapsed(), &logs)
+}
+
+/// What the binaries that run side by side run with: [`SHARED_WARM_MS`], unless the caller set
+/// a floor of their own.
+pub fn shared_envs() -> Vec<(&'static str, &'static str)> {
+    std::env::var_os(SHARED_WARM_MS.0).is_none().then_some(SHARED_WARM_MS).into_iter().collect()
 }
 
 /// `cargo xtask test --quick`: what catches most slips in a minute or so warm, one step after
@@ -152,8 +166,15 @@ pub fn quick() -> Result<()> {
     Ok(())
 }
 
-/// Runs `binaries`, `jobs` at a time, reporting each (of `total`) as it ends into `outcomes`.
-fn run_pool(binaries: Vec<Binary>, jobs: usize, total: usize, logs: &Path, outcomes: &Mutex<Vec<Outcome>>) {
+/// Runs `binaries`, `jobs` at a time with `envs` set, reporting each (of `total`) as it ends
+/// into `outcomes`.
+fn run_pool(
+    binaries: Vec<Binary>,
+    (jobs, envs): (usize, &[(&str, &str)]),
+    total: usize,
+    logs: &Path,
+    outcomes: &Mutex<Vec<Outcome>>,
+) {
     let queue = Mutex::new(VecDeque::from(binaries));
     std::thread::scope(|scope| {
         for _ in 0..jobs.max(1) {
@@ -161,7 +182,7 @@ fn run_pool(binaries: Vec<Binary>, jobs: usize, total: usize, logs: &Path, outco
                 loop {
                     // Its own statement: a guard in the `while let` would be held through the run.
                     let Some(binary) = queue.lock().unwrap().pop_front() else { break };
-                    let outcome = run_one(&binary, logs);
+                    let outcome = run_one(&binary, logs, envs);
                     let mut all = outcomes.lock().unwrap();
                     report(&outcome, all.len() + 1, total, logs);
                     all.push(outcome);
@@ -177,7 +198,7 @@ fn expected(times: &BTreeMap<String, f64>, label: &str) -> f64 {
     times.get(label).copied().unwrap_or(rank)
 }
 
-fn run_one(binary: &Binary, logs: &Path) -> Outcome {
+fn run_one(binary: &Binary, logs: &Path, envs: &[(&str, &str)]) -> Outcome {
     let (out, err) = log_paths(logs, &binary.label);
     let start = Instant::now();
     let passed = std::fs::File::create(&out)
@@ -188,6 +209,7 @@ fn run_one(binary: &Binary, logs: &Path) -> Outcome {
                 .current_dir(&binary.package_dir)
                 .env("CARGO_MANIFEST_DIR", &binary.package_dir)
                 .env("CARGO", std::env::var("CARGO").unwrap_or_else(|_| "cargo".into()))
+                .envs(envs.iter().copied())
                 .stdout(stdout)
                 .stderr(stderr)
                 .status()
