@@ -89,16 +89,22 @@ pub fn seed_crate_target(krate: &Path) {
     static SEED: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
     let seed = SEED.get_or_init(|| {
         let dir = cache().join("twinray/own-stages-seed");
-        std::fs::create_dir_all(&dir).unwrap();
-        if !crate::cli::twinray(&["build", "starter"], &dir).status.success() {
-            // None yet, or one a stopped run left half made: made afresh.
-            let _ = std::fs::remove_dir_all(dir.join("starter"));
-            let made = crate::cli::twinray(&["new", "starter"], &dir);
-            assert!(made.status.success(), "twinray new: {}", text(&made));
-            let out = crate::cli::twinray(&["build", "starter"], &dir);
-            assert!(out.status.success(), "the seed crate's build: {}", text(&out));
+        let (kept, fresh) = (dir.join("starter"), dir.join("fresh"));
+        let _ = std::fs::remove_dir_all(&fresh);
+        std::fs::create_dir_all(&fresh).unwrap();
+        let made = crate::cli::twinray(&["new", "starter"], &fresh);
+        assert!(made.status.success(), "twinray new: {}", text(&made));
+        // The kept starter serves while this twinray writes the same dependencies; else (none
+        // yet, another version's, one a stopped run left half made) the fresh one replaces it.
+        let lock = |krate: &Path| std::fs::read(krate.join("Cargo.lock")).ok();
+        if lock(&kept).is_none() || lock(&kept) != lock(&fresh.join("starter")) {
+            let _ = std::fs::remove_dir_all(&kept);
+            std::fs::rename(fresh.join("starter"), &kept).unwrap();
         }
-        dir.join("starter/target/twinray/cargo")
+        let _ = std::fs::remove_dir_all(&fresh);
+        let out = crate::cli::twinray(&["build", "starter"], &dir);
+        assert!(out.status.success(), "the seed crate's build: {}", text(&out));
+        kept.join("target/twinray/cargo")
     });
     copy_tree(seed, &krate.join("target/twinray/cargo"));
 }

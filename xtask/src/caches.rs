@@ -1,7 +1,8 @@
 //! The caches a CI run finds at its start, cold or warm: what its total time depends on most
 //! (docs/testing.md, *CI and its time*, has the figures both ways). A cold machine builds the
-//! rust-gpu builder, the tutorial's scratch copy, every lavapipe pipeline and every
-//! dependency; a fresh clone builds the workspace's own crates whatever the machine holds.
+//! rust-gpu builder, the tutorial's scratch copy, the own-stages tests' starter crate, every
+//! lavapipe pipeline and every dependency; a fresh clone builds the workspace's own crates
+//! whatever the machine holds.
 
 use std::path::{Path, PathBuf};
 
@@ -39,12 +40,15 @@ pub fn survey(root: &Path) -> Vec<Cache> {
     // A clone that `.ci/run` seeded holds the dependencies' builds, not a build of its own.
     let built = filled(&clone) && !target.join(crate::clone_builds::SEEDED).exists();
     let kept = crate::clone_builds::dir();
+    let seed = twinray.join("own-stages-seed/starter");
     [
         ("cargo's release build", built, clone, false),
         ("the dependencies' builds", filled(&kept.join("release/deps")), kept, true),
         ("the rust-gpu builder", builder.is_file(), builder, true),
         ("Mesa's shader cache", mesa_warm, mesa.join("mesa_shader_cache_db"), true),
         ("the tutorial's build", filled(&twinray.join("scaffold-target")), twinray.join("scaffold-target"), true),
+        // twinray_tests::scratch::seed_crate_target: the own-stages tests' crates start from it.
+        ("the own-stages tests' starter", filled(&seed.join("target")), seed, true),
     ]
     .into_iter()
     .map(|(what, warm, path, machine)| Cache { what, path, warm, machine })
