@@ -258,8 +258,9 @@ fn ci() -> Result<()> {
 /// docs/testing.md keeps for 2 cores.
 fn summary(caches: &[caches::Cache], total: f64) {
     println!("ci: caches at the start:");
+    let width = caches.iter().map(|c| c.what.len()).max().unwrap_or(0);
     for c in caches {
-        println!("  {:<24} {:<5} {}", c.what, if c.warm { "warm" } else { "cold" }, c.path.display());
+        println!("  {:<width$} {:<5} {}", c.what, if c.warm { "warm" } else { "cold" }, c.path.display());
     }
     println!("ci: steps (\"beside\": in a child process beside the steps after it):");
     for (name, seconds) in process::steps() {
