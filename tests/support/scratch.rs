@@ -6,22 +6,13 @@ use std::ffi::OsString;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
-/// The machine's cache folder, where the tests keep builds between runs.
-fn cache() -> PathBuf {
-    std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(|| repo().join("target"))
-}
-
 /// The target folder of this test binary's scratch copies, kept between runs: one per test
 /// binary, so that `cargo xtask test` can run two such binaries side by side.
 pub fn scaffold_target() -> PathBuf {
-    let cache = cache();
     let exe = std::env::current_exe().expect("the test binary's path");
     let stem = exe.file_stem().unwrap_or_default().to_string_lossy().into_owned();
     let test = stem.split('-').next().unwrap_or("scratch").to_string();
-    cache.join("twinray/scaffold-target").join(test)
+    twinray_build::builder::cache_dir().join("scaffold-target").join(test)
 }
 
 /// The scaffold target for this test alone, until the returned file is dropped, seeded if it is
@@ -88,7 +79,7 @@ fn copy_tree(from: &Path, to: &Path) {
 pub fn seed_crate_target(krate: &Path) {
     static SEED: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
     let seed = SEED.get_or_init(|| {
-        let dir = cache().join("twinray/own-stages-seed");
+        let dir = twinray_build::builder::cache_dir().join("own-stages-seed");
         let (kept, fresh) = (dir.join("starter"), dir.join("fresh"));
         let _ = std::fs::remove_dir_all(&fresh);
         std::fs::create_dir_all(&fresh).unwrap();
