@@ -5,6 +5,7 @@
 mod alpha_texture;
 mod animation;
 mod assimp;
+mod box_exits;
 mod callables;
 mod compute;
 mod condition;

@@ -1,5 +1,6 @@
 // Twin of twinray_shared::shapes::boxes: NaN-safe slab test (pbrt-v3 after Ize 2013) of the box with
-// half extents a.xyz, t_far widened by 1 + 2 gamma_3, every min/max an explicit comparison.
+// half extents a.xyz, t_far widened by 1 + 2 gamma_3 only where it is compared with t_near (an exit
+// is returned as computed), every min/max an explicit comparison.
 #ifndef TWINRAY_BOX_GLSL
 #define TWINRAY_BOX_GLSL
 #include "twinray_layout.glsl"
@@ -23,7 +24,6 @@ Slabs slab(Slabs s, float o, float d, float h, vec3 unit) {
     float b = (h - o) * inv;
     float t0 = a <= b ? a : b;
     float t1 = a <= b ? b : a;
-    t1 = t1 * (1.0 + 2.0 * BOX_GAMMA_3);
     float sign_d = d > 0.0 ? 1.0 : -1.0;
     Slabs next = s;
     if (t0 > s.near) {
@@ -34,7 +34,7 @@ Slabs slab(Slabs s, float o, float d, float h, vec3 unit) {
         next.far = t1;
         next.far_axis = unit * sign_d;
     }
-    next.empty = s.empty || next.near > next.far;
+    next.empty = s.empty || next.near > next.far * (1.0 + 2.0 * BOX_GAMMA_3);
     return next;
 }
 

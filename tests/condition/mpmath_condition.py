@@ -3,9 +3,10 @@
 Reads the JSON file named on the command line: rays, each with the object it hits (its shape in
 object space and its object-to-world transform) and twinray's f64 answers, t and kappa. For each
 ray it finds t again at 50 digits as the root of the shape's implicit function along the ray,
-then moves each of the problem's inputs (the ray's origin and direction, the transform's 3x3
-part and translation) by a relative 1e-30 in turn, solves again, and sums |dt/dp * p| / t:
-kappa by perturbation, independent of twinray's formula. Prints one line per ray and exits 1
+then moves each of the problem's inputs, as seen from the object (the ray's start relative to
+the object's origin, its direction, and the transform's 3x3 part), by a relative 1e-30 in turn,
+solves again, and sums |dt/dp * p| / t: kappa by perturbation, independent of twinray's formula.
+The translation is not an input of its own: where the world's origin lies is not the problem's. Prints one line per ray and exits 1
 where the two kappas, or the two t, disagree by more than 1e-9 relative.
 """
 import json
@@ -39,12 +40,13 @@ def implicit(shape, x):
 
 
 def solve(ray, inputs, guess):
-    """t where the ray of `inputs` (origin, direction, 3x3 part by rows, translation) meets the shape."""
-    o, d, m, tr = inputs[0:3], inputs[3:6], inputs[6:15], inputs[15:18]
+    """t where the ray of `inputs` (start relative to the object's origin, direction, 3x3 part by
+    rows) meets the shape."""
+    s, d, m = inputs[0:3], inputs[3:6], inputs[6:15]
     inverse = matrix([[m[3 * r + c] for c in range(3)] for r in range(3)]) ** -1
 
     def g(t):
-        w = matrix([o[i] + t * d[i] - tr[i] for i in range(3)])
+        w = matrix([s[i] + t * d[i] for i in range(3)])
         x = inverse * w
         return implicit(ray["shape"], [x[0], x[1], x[2]])
 
@@ -55,7 +57,8 @@ def main():
     rays = json.load(open(sys.argv[1]))
     bad = 0
     for ray in rays:
-        inputs = [mpf(v) for v in ray["origin"] + ray["direction"] + ray["matrix"] + ray["translation"]]
+        start = [mpf(o) - mpf(tr) for o, tr in zip(ray["origin"], ray["translation"])]
+        inputs = start + [mpf(v) for v in ray["direction"] + ray["matrix"]]
         t = solve(ray, inputs, mpf(ray["t"]))
         total = mpf(0)
         for k, value in enumerate(inputs):

@@ -1,14 +1,17 @@
-//! The local origin against world coordinates: a case probed at the origins twinray chooses
-//! (`scene::origin::launches`) and again with the GPU at the world origin, with one set, ray
-//! by ray. The local origin exists to make rays more accurate; a case where it makes one ray
-//! wrong that world coordinates get right, or makes the relative t error's p99 grow, is a
-//! failure (`twinray stability --against-world`, `tests/origin.rs`).
+//! The chosen launches against world coordinates and against each ray launched alone: a case
+//! probed at the origins twinray chooses (`scene::launches`), again with the GPU at the world
+//! origin, and a sample of its rays each launched at its own start, with one set, ray by ray.
+//! The local origin exists to make rays more accurate; a case where it makes one ray wrong that
+//! world coordinates get right, or makes the relative t error's p99 grow, is a failure, and so is
+//! a ray whose error at its launch is more than `ALONE_SLACK` times what it is alone (`twinray
+//! stability --against-world`, `tests/origin.rs`).
 
 use super::case::ProbeCase;
-use super::report::{judge, went_through, Outcome};
-use super::run::{probe, Launched, ProbeOutput};
+use super::report::{judge, outcome, went_through, Judged, Outcome};
+use super::run::{probe, probe_alone, record_written, Launched, ProbeOutput, ProbeResult};
 use super::split::relative;
 use crate::error::Result;
+use crate::reference::condition::{t_condition, F32_UNIT_ROUNDOFF};
 use crate::reference::scene::SceneVerdict;
 use crate::shaders::ShaderSet;
 use crate::util::stats::Quantiles;
@@ -27,6 +30,29 @@ use std::sync::Arc;
 /// median ratio 0.87; on the H200 in none of 300. A single origin for rays far apart, the
 /// defect this check is for, grew it 38 to 1000 times (docs/numerics.md, "The local origin").
 pub const P99_SLACK: f64 = 4.0;
+
+/// How much larger a ray's relative t error may be at the chosen origins than launched alone,
+/// at its own start: 2 times the larger of its error alone and κ u, what rounding the problem's
+/// inputs allows (`reference::condition`). Below κ u an error is the noise of any rounding, and
+/// a ray rounded 1e-9 alone and 3e-9 in its launch has lost nothing the problem held.
+pub const ALONE_SLACK: f64 = 2.0;
+
+/// Rays of a case launched alone, at most: each is a launch of its own (a TLAS rebuilt and a
+/// trace), so a case's hits are sampled evenly.
+pub const ALONE_RAYS: usize = 96;
+
+/// A sample of a case's rays, at the chosen origins and each launched alone.
+#[derive(Clone, Debug, serde::Serialize)]
+pub struct AloneCheck {
+    /// Rays compared: hits the reference decides, sampled evenly.
+    pub rays: usize,
+    /// Rays wrong at the chosen origins that get it right alone, or whose error there exceeds
+    /// `ALONE_SLACK` times the larger of their error alone and κ u.
+    pub grown: usize,
+    /// The largest ratio of a ray's error at the chosen origins to the larger of its error alone
+    /// and κ u.
+    pub largest: f64,
+}
 
 /// One side of the comparison: the case's rays as one placement of the GPU's origin got them.
 #[derive(Clone, Debug, serde::Serialize)]
@@ -49,6 +75,8 @@ pub struct OriginCheck {
     pub launches: Vec<Launched>,
     pub chosen: Side,
     pub world: Side,
+    /// The chosen launches against rays launched alone.
+    pub alone: AloneCheck,
     /// Rays wrong at the chosen origins that world coordinates get right.
     pub worse_rays: usize,
     /// Rays right at the chosen origins that world coordinates get wrong.
@@ -69,6 +97,7 @@ pub fn check(ctx: &Arc<Context>, case: &ProbeCase, set: &ShaderSet) -> Result<Or
         std::borrow::Cow::Owned(world) if !at_world => fates(case, &probe(ctx, &world, set, &case.rays, 0, 1)?),
         _ => chosen_rays.clone(),
     };
+    let alone = against_alone(ctx, (case, set), &out)?;
     let pairs = || chosen_rays.iter().zip(&world_rays);
     let worse_rays = pairs().filter(|(c, w)| c.wrong && w.right).count();
     let better_rays = pairs().filter(|(c, w)| c.right && w.wrong).count();
@@ -80,16 +109,57 @@ pub fn check(ctx: &Arc<Context>, case: &ProbeCase, set: &ShaderSet) -> Result<Or
     if chosen.p99 > P99_SLACK * world.p99 {
         failures.push(format!("relative t p99 grew from {:.2e} at world coordinates to {:.2e}", world.p99, chosen.p99));
     }
+    if alone.grown > 0 {
+        failures.push(format!(
+            "{} of {} rays more than {ALONE_SLACK} times worse than launched alone (largest {:.1})",
+            alone.grown, alone.rays, alone.largest
+        ));
+    }
     Ok(OriginCheck {
         case: case.file.name.clone(),
         set: set.to_string(),
         launches: out.launches,
         chosen,
         world,
+        alone,
         worse_rays,
         better_rays,
         failures,
     })
+}
+
+/// A sample of the case's decided hits probed each alone (`run::probe_alone`), against what
+/// the chosen launches gave them (`out`).
+fn against_alone(ctx: &Arc<Context>, (case, set): (&ProbeCase, &ShaderSet), out: &ProbeOutput) -> Result<AloneCheck> {
+    let judged = judge(case, &out.results);
+    let hits: Vec<usize> = judged
+        .iter()
+        .enumerate()
+        .filter(|(_, j)| matches!(j.verdict, SceneVerdict::Hit { .. }))
+        .map(|(i, _)| i)
+        .collect();
+    let sample: Vec<usize> = hits.iter().step_by(hits.len().div_ceil(ALONE_RAYS).max(1)).copied().collect();
+    if sample.is_empty() || out.launches.is_empty() {
+        return Ok(AloneCheck { rays: 0, grown: 0, largest: 0.0 });
+    }
+    let alone = probe_alone(ctx, &case.scene, set, &case.rays, &sample)?;
+    let (mut grown, mut largest) = (0, 0.0f64);
+    for (&i, result) in sample.iter().zip(&alone) {
+        let SceneVerdict::Hit { object, t, normal } = judged[i].verdict else { continue };
+        let fate = |r: &ProbeResult| fate(&judged[i], r);
+        let (chosen, by_itself) = (fate(&out.results[i]), fate(result));
+        let ray = judged[i].ray;
+        let (o, d) = (ray.origin.truncate().as_dvec3(), ray.direction.truncate().as_dvec3());
+        let floor = t_condition(&case.reference.objects[object], o, d, t, normal) * F32_UNIT_ROUNDOFF;
+        let ratio = match (chosen.error, by_itself.error) {
+            (Some(c), Some(a)) => c / a.max(floor),
+            _ if chosen.wrong && by_itself.right => f64::INFINITY,
+            _ => 0.0,
+        };
+        grown += usize::from(ratio > ALONE_SLACK);
+        largest = largest.max(ratio);
+    }
+    Ok(AloneCheck { rays: sample.len(), grown, largest })
 }
 
 /// One ray's fate: decided or not, wrong or right, and its relative t error where it hit the
@@ -103,25 +173,26 @@ struct Fate {
 }
 
 fn fates(case: &ProbeCase, out: &ProbeOutput) -> Vec<Fate> {
-    judge(case, &out.results)
-        .iter()
-        .zip(&out.results)
-        .map(|(j, r)| {
-            let got = f64::from(r.normal_t.w);
-            let t_ref = match j.verdict {
-                SceneVerdict::Hit { t, .. } if j.outcome == Outcome::Agrees => Some(t),
-                _ => None,
-            };
-            let through = t_ref.is_some_and(|t| went_through(got, t));
-            let wrong = through || matches!(j.outcome, Outcome::FalseHit | Outcome::FalseMiss | Outcome::WrongObject);
-            Fate {
-                decided: j.outcome != Outcome::Ambiguous,
-                wrong,
-                right: j.outcome == Outcome::Agrees && !through,
-                error: t_ref.filter(|_| !through).map(|t| relative(got, t)),
-            }
-        })
-        .collect()
+    judge(case, &out.results).iter().zip(&out.results).map(|(j, r)| fate(j, r)).collect()
+}
+
+/// The fate of the result `r` of the ray judged as `j` (its outcome may be another result's:
+/// only its verdict and ray are read).
+fn fate(j: &Judged, r: &ProbeResult) -> Fate {
+    let outcome = outcome(j.verdict, record_written(r), r.ids);
+    let got = f64::from(r.normal_t.w);
+    let t_ref = match j.verdict {
+        SceneVerdict::Hit { t, .. } if outcome == Outcome::Agrees => Some(t),
+        _ => None,
+    };
+    let through = t_ref.is_some_and(|t| went_through(got, t));
+    let wrong = through || matches!(outcome, Outcome::FalseHit | Outcome::FalseMiss | Outcome::WrongObject);
+    Fate {
+        decided: outcome != Outcome::Ambiguous,
+        wrong,
+        right: outcome == Outcome::Agrees && !through,
+        error: t_ref.filter(|_| !through).map(|t| relative(got, t)),
+    }
 }
 
 fn side(fates: &[Fate]) -> Side {
@@ -135,7 +206,7 @@ fn side(fates: &[Fate]) -> Side {
 /// The table `twinray stability --against-world` prints: a row per case and set.
 pub fn table(checks: &[OriginCheck]) -> String {
     let mut s = format!(
-        "{:<28} {:<5} {:>14} {:>7} {:>13} {:>13} {:>6} {:>6} {:>10} {:>10}  verdict\n",
+        "{:<28} {:<5} {:>14} {:>7} {:>13} {:>13} {:>6} {:>6} {:>10} {:>10} {:>12} {:>8}  verdict\n",
         "case",
         "set",
         "local origins",
@@ -145,7 +216,9 @@ pub fn table(checks: &[OriginCheck]) -> String {
         "worse",
         "better",
         "p99 chosen",
-        "p99 world"
+        "p99 world",
+        "grown/alone",
+        "largest"
     );
     for c in checks {
         let verdict =
@@ -156,8 +229,9 @@ pub fn table(checks: &[OriginCheck]) -> String {
             (n, all) if n == all => n.to_string(),
             (n, _) => format!("{n} + world"),
         };
+        let alone = format!("{}/{}", c.alone.grown, c.alone.rays);
         s += &format!(
-            "{:<28} {:<5} {:>14} {:>7} {:>13} {:>13} {:>6} {:>6} {:>10.2e} {:>10.2e}  {verdict}\n",
+            "{:<28} {:<5} {:>14} {:>7} {:>13} {:>13} {:>6} {:>6} {:>10.2e} {:>10.2e} {alone:>12} {:>8.2}  {verdict}\n",
             c.case,
             c.set,
             launches,
@@ -167,7 +241,8 @@ pub fn table(checks: &[OriginCheck]) -> String {
             c.worse_rays,
             c.better_rays,
             c.chosen.p99,
-            c.world.p99
+            c.world.p99,
+            c.alone.largest
         );
     }
     s

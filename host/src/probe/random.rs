@@ -3,8 +3,10 @@
 //! apart, at distances from the world origin spread over several orders of magnitude (one
 //! group, often, at the world origin itself), thin shapes among them, each group probed from
 //! close by: camera rays across a silhouette, secondary rays leaving a surface, rays in and
-//! beside flat faces' planes and grazing rays. Each case is the text of a case file, so a case
-//! that fails can be written out and probed as any other.
+//! beside flat faces' planes and grazing rays; about half of the objects from afar too (a
+//! silhouette or grazing rays from 100 to 3,000 sizes away), so that rays near an object and rays
+//! far from it start within a few of their own distances of each other. Each case is the text of
+//! a case file, so a case that fails can be written out and probed as any other.
 
 use glam::Vec3;
 use std::fmt::Write;
@@ -138,7 +140,7 @@ impl Rng {
     }
 
     /// The generators of object `index` at `at`, about `size` across: a silhouette from 5 to
-    /// 100 sizes away and one more kind of ray, drawn by `seed`.
+    /// 100 sizes away and one more kind of ray, drawn by `seed`; for about half, rays from afar.
     fn generators(&mut self, index: usize, at: Vec3, size: f32, kind: Kind, seed: u64) -> String {
         let from = at + self.direction() * size * 10f32.powf(self.between(0.7, 2.0));
         let mut s =
@@ -157,7 +159,24 @@ impl Rng {
                 size * self.between(2.0, 50.0)
             ),
         };
-        s
+        s + &self.rays_from_afar(index, at, size, seed)
+    }
+
+    /// For about half of the objects, rays from 100 to 3,000 sizes away: a silhouette or
+    /// grazing rays.
+    fn rays_from_afar(&mut self, index: usize, at: Vec3, size: f32, seed: u64) -> String {
+        let distance = size * 10f32.powf(self.between(2.0, 3.5));
+        match self.below(4) {
+            0 => {
+                let from = array(at + self.direction() * distance);
+                format!("\n[[generators]]\nkind = \"silhouette\"\nobject = {index}\nfrom = {from}\ncount = 12\n")
+            }
+            1 => format!(
+                "\n[[generators]]\nkind = \"grazing\"\nobject = {index}\ncount = 64\ndistance = {distance:?}\nseed = {}\n",
+                seed + 7
+            ),
+            _ => String::new(),
+        }
     }
 }
 

@@ -8,6 +8,7 @@ use crate::render::{
     min_warm_ms, place_warm_ms, prepare, sentinel, storage_buffer, submit, transition, Prepared, Trace, Written,
     STORAGE_IMAGE, UNUSED_IMAGE,
 };
+use crate::scene::launches::{self, Launch, LaunchRay, Placed};
 use crate::scene::{origin, reach, GpuOrigin, Renderer, Scene, PROBE_QUERY};
 use crate::shaders::ShaderSet;
 use crate::util::activity;
@@ -16,9 +17,11 @@ use crate::vk::commands::{memory_barrier, TRACING_STAGES};
 use crate::vk::context::Context;
 use crate::vk::timing::Timestamps;
 use ash::vk;
+use glam::Vec3;
 use gpu_allocator::MemoryLocation;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
+use twinray_shared::features;
 pub use twinray_shared::layout::{ProbeRay, ProbeResult};
 
 /// What a probe run produced.
@@ -113,11 +116,13 @@ pub fn probe_module(scene: &Scene) -> &'static str {
 }
 
 /// Traces `rays` through `scene` with `set`: `warmup` untimed passes, then `runs` timed ones.
-/// A scene with a local origin is probed in launches grouped by where the rays start
-/// (`origin::launches`), each with the scene centred on its own origin and its rays moved with
-/// it; one that asks for the eye (`gpu_origin = "eye"`) in one launch centred there. The
-/// results (t, normals, object-space rays) do not depend on it. Each timed pass is the sum of
-/// the launches' passes: the GPU time of every ray once.
+/// A scene with a local origin is probed in launches, each ray launched with the GPU's
+/// coordinates centred where it meets what it can hit (`launches::launches`), its start moved
+/// exactly; one that asks for the eye (`gpu_origin = "eye"`) in one launch centred there. The
+/// scene is uploaded and the pipeline made once; each launch rebuilds the TLAS over instances
+/// moved to its origin (`Prepared::centre`). The results (t, normals, object-space rays) do not
+/// depend on it. Each timed pass is the sum of the launches' passes: the GPU time of every ray
+/// once.
 pub fn probe(
     ctx: &Arc<Context>,
     scene: &Scene,
@@ -126,58 +131,165 @@ pub fn probe(
     warmup: u32,
     runs: u32,
 ) -> Result<ProbeOutput> {
-    // The scene as these rays see it: the far-instances feature judges objects from where they
-    // start, not from the camera's eye.
-    let starting = |rays: &mut dyn Iterator<Item = &ProbeRay>| {
-        let starts = reach::enclose(rays.map(|r| r.origin.truncate()));
-        starts.map_or_else(|| scene.clone(), |s| scene.starting_in(s))
-    };
-    let launches = match scene.origin {
-        None => {
-            let scene = starting(&mut rays.iter());
-            return probe_launch(ctx, &scene, set, rays, (warmup, runs), min_warm_ms()?);
-        }
-        Some(eye) if scene.file.gpu_origin == GpuOrigin::Eye => {
-            vec![origin::Launch { origin: eye, rays: (0..rays.len()).collect() }]
-        }
-        Some(_) => {
-            let starts: Vec<_> = rays.iter().map(|r| r.origin.truncate()).collect();
-            origin::launches(&starts, &scene.build().world_boxes())
-        }
-    };
-    let mut outputs = Vec::with_capacity(launches.len());
-    for (k, launch) in launches.iter().enumerate() {
-        let centred = starting(&mut launch.rays.iter().map(|&i| &rays[i])).centred_on(Some(launch.origin)).into_owned();
-        let moved = |&i: &usize| {
-            let r = rays[i];
-            ProbeRay { origin: origin::to_local(r.origin.truncate(), launch.origin).extend(r.origin.w), ..r }
-        };
-        let local: Vec<ProbeRay> = launch.rays.iter().map(moved).collect();
-        // The first launch brings the GPU's clocks up; the later ones find them up.
-        let warm_ms = if k == 0 { min_warm_ms()? } else { place_warm_ms()? };
-        outputs.push(probe_launch(ctx, &centred, set, &local, (warmup, runs), warm_ms)?);
-    }
-    Ok(gather(rays.len(), &launches, outputs))
-}
-
-/// One launch of `rays` through `scene` as the GPU gets it, every object released after.
-fn probe_launch(
-    ctx: &Arc<Context>,
-    scene: &Scene,
-    set: &ShaderSet,
-    rays: &[ProbeRay],
-    passes: (u32, u32),
-    warm_ms: f64,
-) -> Result<ProbeOutput> {
-    let out = probe_and_release(ctx, scene, set, rays, passes, warm_ms)?;
+    let (scene, launches) = plan(scene, rays);
+    let out = probe_launches(ctx, &scene, set, rays, &launches, (warmup, runs), true)?;
     // Every object of the probe is destroyed by now: catch what the layer said about that too.
     ctx.check_validation()?;
     Ok(out)
 }
 
+/// The rays `each` of `rays`, each launched alone at its own start (as a launch of one ray at
+/// the origins `probe` chooses would be), with the stages specialised as `probe` specialises
+/// them for all of `rays`: what the chosen launches are checked against
+/// (`origins::check`). One untimed pass, no witness; the records in the order of `each`.
+pub fn probe_alone(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    rays: &[ProbeRay],
+    each: &[usize],
+) -> Result<Vec<ProbeResult>> {
+    let (scene, _) = plan(scene, rays);
+    let launches: Vec<Launch> =
+        each.iter().map(|&i| Launch { origin: rays[i].origin.truncate(), rays: vec![i] }).collect();
+    let out = probe_launches(ctx, &scene, set, rays, &launches, (0, 1), false)?;
+    ctx.check_validation()?;
+    Ok(each.iter().map(|&i| out.results[i]).collect())
+}
+
+/// The scene as `rays` see it and their launches. The far-instances feature is judged from
+/// where rays start as well as from where objects stand, around each launch's origin; the one
+/// pipeline of every launch has it where any launch needs it.
+fn plan(scene: &Scene, rays: &[ProbeRay]) -> (Scene, Vec<Launch>) {
+    let starts = |rays: &mut dyn Iterator<Item = &ProbeRay>| reach::enclose(rays.map(|r| r.origin.truncate()));
+    let all = |origin: Vec3| vec![Launch { origin, rays: (0..rays.len()).collect() }];
+    let starting = starts(&mut rays.iter()).map_or_else(|| scene.clone(), |s| scene.starting_in(s));
+    let launches = match scene.origin {
+        None => return (starting, all(Vec3::ZERO)),
+        Some(eye) if scene.file.gpu_origin == GpuOrigin::Eye => return (starting, all(eye)),
+        Some(_) => {
+            let data = scene.build();
+            let placed: Vec<Placed> = data
+                .world_boxes()
+                .into_iter()
+                .zip(&data.instances)
+                .map(|(bounds, i)| Placed { bounds, translation: i.object_to_world.w_axis.truncate() })
+                .collect();
+            let launch_rays: Vec<LaunchRay> = rays
+                .iter()
+                .map(|r| LaunchRay {
+                    origin: r.origin.truncate(),
+                    direction: r.direction.truncate(),
+                    t_min: r.origin.w,
+                    t_max: r.direction.w,
+                })
+                .collect();
+            launches::launches(&launch_rays, &placed)
+        }
+    };
+    let mut scene = starting.centred_on(launches.first().map(|l| l.origin)).into_owned();
+    if scene.file.features.is_none() {
+        let data = scene.build();
+        let far = scene.animation.is_some()
+            || launches.iter().any(|l| data.far_at(l.origin, starts(&mut l.rays.iter().map(|&i| &rays[i])).as_ref()));
+        let bits = (data.plan.features & !features::FAR_INSTANCES) | if far { features::FAR_INSTANCES } else { 0 };
+        let names = features::FEATURES.iter().filter(|f| bits & f.bit != 0).map(|f| f.name.to_string());
+        scene.file.features = Some(names.collect());
+    }
+    (scene, launches)
+}
+
+/// Each launch of `rays` through `scene` (centred at the first launch's origin) with `set`, over
+/// one upload and pipeline; the outputs gathered back in the rays' order.
+fn probe_launches(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    rays: &[ProbeRay],
+    launches: &[Launch],
+    (warmup, runs): (u32, u32),
+    witness: bool,
+) -> Result<ProbeOutput> {
+    let module = probe_module(scene);
+    // A compute probe runs in workgroups of PROBE_GROUP_SIZE rays, at most 65535 of them in a
+    // dispatch (Vulkan's guaranteed maxComputeWorkGroupCount).
+    let most = match module {
+        PROBE_QUERY => b::PROBE_GROUP_SIZE * 65535,
+        _ => ctx.info.max_ray_dispatch_invocation_count,
+    };
+    let largest = launches.iter().map(|l| l.rays.len()).max().unwrap_or(0);
+    if rays.is_empty() || largest > most as usize {
+        return Err(Error::Input(format!("a probe needs 1..={most} rays on {} (got {})", ctx.info.name, rays.len())));
+    }
+    let record = size_of::<ProbeResult>() as u64;
+    let mut buffers =
+        RayBuffers::new(ctx, "probe", &vec![0; largest * size_of::<ProbeRay>()], largest as u64 * record)?;
+    let p = prepare(ctx, scene, set, module, ((1, 1), (1, 1)), &buffers.extra())?;
+    let timestamps = Timestamps::new(ctx, runs)?;
+    let label = format!("the probe trace of {set} ({})", p.pipeline.modules.join(", "));
+    let _doing = activity::doing(label);
+    let mut outputs = Vec::with_capacity(launches.len());
+    for (k, launch) in launches.iter().enumerate() {
+        if k > 0 {
+            p.centre(ctx, &scene.centred_on(Some(launch.origin)), (1, 1))?;
+        }
+        let moved = |&i: &usize| {
+            let r = rays[i];
+            ProbeRay { origin: origin::to_local(r.origin.truncate(), launch.origin).extend(r.origin.w), ..r }
+        };
+        let local: Vec<ProbeRay> = launch.rays.iter().map(moved).collect();
+        buffers.rays.write(bytemuck::cast_slice(&local))?;
+        // The first launch brings the GPU's clocks up; the later ones find them up.
+        let warm_ms = if k == 0 { min_warm_ms()? } else { place_warm_ms()? };
+        let timing = (timestamps.as_ref(), warm_ms);
+        outputs.push(launch_pass(ctx, &p, (&buffers.results, local.len() as u32), (warmup, runs), timing, witness)?);
+    }
+    let mut out = gather(rays.len(), launches, outputs);
+    out.raygen_stack_bytes = p.pipeline.raygen_stack_bytes();
+    out.features = p.pipeline.features;
+    // One launch at the world origin is no local origin.
+    if launches.iter().all(|l| l.origin == Vec3::ZERO) {
+        out.launches.clear();
+    }
+    Ok(out)
+}
+
+/// One launch's passes over the `count` rays in the ray buffer: the witness passes first (where
+/// `witness` asks for them), untimed, so that the timed traces are the probe's as before, then
+/// the timed ones.
+fn launch_pass(
+    ctx: &Arc<Context>,
+    p: &Prepared,
+    (results, count): (&Buffer, u32),
+    passes: (u32, u32),
+    (timestamps, warm_ms): (Option<&Timestamps>, f64),
+    witness: bool,
+) -> Result<ProbeOutput> {
+    let bytes = u64::from(count) * size_of::<ProbeResult>() as u64;
+    let mut witnesses = Vec::new();
+    for sbt in p.witness_sbts.iter().filter(|_| witness) {
+        let pass = Trace { sbt: Some(sbt), ..p.trace(ctx, None, (count, 1), (0, 1))? };
+        witnesses.push(read_pass(ctx, p, pass, results, bytes)?);
+    }
+    let mut witnesses = witnesses.into_iter();
+    let (witness, driver_witness) = (witnesses.next(), witnesses.next());
+    let trace = p.trace_warmed(ctx, timestamps, (count, 1), passes, warm_ms)?;
+    let results = read_pass(ctx, p, trace, results, bytes)?;
+    let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
+    Ok(ProbeOutput {
+        results,
+        witness,
+        driver_witness,
+        gpu_ms,
+        raygen_stack_bytes: 0,
+        launches: Vec::new(),
+        features: 0,
+    })
+}
+
 /// The launches' outputs as one: every record back at its ray's place, each timed pass the sum
 /// of the launches' (the same count in each), a witness only where every launch had it.
-fn gather(count: usize, launches: &[origin::Launch], outputs: Vec<ProbeOutput>) -> ProbeOutput {
+fn gather(count: usize, launches: &[Launch], outputs: Vec<ProbeOutput>) -> ProbeOutput {
     let place = |parts: Vec<Option<Vec<ProbeResult>>>| -> Option<Vec<ProbeResult>> {
         let mut all = vec![bytemuck::Zeroable::zeroed(); count];
         for (launch, part) in launches.iter().zip(parts) {
@@ -189,8 +301,6 @@ fn gather(count: usize, launches: &[origin::Launch], outputs: Vec<ProbeOutput>) 
     };
     let runs = outputs.iter().map(|o| o.gpu_ms.len()).min().unwrap_or(0);
     let gpu_ms = (0..runs).map(|k| outputs.iter().map(|o| o.gpu_ms[k]).sum()).collect();
-    let raygen_stack_bytes = outputs.iter().map(|o| o.raygen_stack_bytes).max().unwrap_or(0);
-    let features = outputs.iter().fold(0, |bits, o| bits | o.features);
     let (mut results, mut witness, mut driver) = (Vec::new(), Vec::new(), Vec::new());
     for o in outputs {
         results.push(Some(o.results));
@@ -202,58 +312,16 @@ fn gather(count: usize, launches: &[origin::Launch], outputs: Vec<ProbeOutput>) 
         witness: place(witness),
         driver_witness: place(driver),
         gpu_ms,
-        raygen_stack_bytes,
+        raygen_stack_bytes: 0,
         launches: launches.iter().map(|l| Launched { origin: l.origin.into(), rays: l.rays.len() }).collect(),
-        features,
+        features: 0,
     }
-}
-
-fn probe_and_release(
-    ctx: &Arc<Context>,
-    scene: &Scene,
-    set: &ShaderSet,
-    rays: &[ProbeRay],
-    (warmup, runs): (u32, u32),
-    warm_ms: f64,
-) -> Result<ProbeOutput> {
-    let count = u32::try_from(rays.len()).unwrap_or(u32::MAX);
-    let module = probe_module(scene);
-    // A compute probe runs in workgroups of PROBE_GROUP_SIZE rays, at most 65535 of them in a
-    // dispatch (Vulkan's guaranteed maxComputeWorkGroupCount).
-    let most = match module {
-        PROBE_QUERY => b::PROBE_GROUP_SIZE * 65535,
-        _ => ctx.info.max_ray_dispatch_invocation_count,
-    };
-    if rays.is_empty() || count > most {
-        return Err(Error::Input(format!("a probe needs 1..={most} rays on {} (got {})", ctx.info.name, rays.len())));
-    }
-    let bytes = u64::from(count) * size_of::<ProbeResult>() as u64;
-    let buffers = RayBuffers::new(ctx, "probe", bytemuck::cast_slice(rays), bytes)?;
-    let p = prepare(ctx, scene, set, module, ((1, 1), (1, 1)), &buffers.extra())?;
-    let results = buffers.results;
-    let timestamps = Timestamps::new(ctx, runs)?;
-    let label = format!("the probe trace of {set} ({})", p.pipeline.modules.join(", "));
-    let _doing = activity::doing(label);
-    // The witness passes first, untimed, so that the timed traces are the probe's as before.
-    let mut witnesses = Vec::new();
-    for sbt in &p.witness_sbts {
-        let pass = Trace { sbt: Some(sbt), ..p.trace(ctx, None, (count, 1), (0, 1))? };
-        witnesses.push(read_pass(ctx, &p, pass, &results, bytes)?);
-    }
-    let mut witnesses = witnesses.into_iter();
-    let (witness, driver_witness) = (witnesses.next(), witnesses.next());
-    let trace = p.trace_warmed(ctx, timestamps.as_ref(), (count, 1), (warmup, runs), warm_ms)?;
-    let results = read_pass(ctx, &p, trace, &results, bytes)?;
-    let gpu_ms = timestamps.map(|t| t.read_ms()).transpose()?.unwrap_or_default();
-    let raygen_stack_bytes = p.pipeline.raygen_stack_bytes();
-    let features = p.pipeline.features;
-    Ok(ProbeOutput { results, witness, driver_witness, gpu_ms, raygen_stack_bytes, launches: Vec::new(), features })
 }
 
 /// The buffers a pass of chosen rays binds besides the scene's: the rays, the results (of
 /// `result_bytes`) and an unused hit-id buffer (the layout binds every binding).
 pub(crate) struct RayBuffers {
-    rays: Buffer,
+    pub rays: Buffer,
     pub results: Buffer,
     unused: Buffer,
 }

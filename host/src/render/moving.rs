@@ -147,10 +147,7 @@ impl<'a> FrameRenderer<'a> {
         let data = frame_data(&posed, self.opts.width, self.opts.height, &self.object_bounds);
         let resources = &self.uploaded.resources;
         if work != AsWork::None {
-            for (record, instance) in self.records.iter_mut().zip(&self.uploaded.data.instances) {
-                record.object_to_world = data.transforms[instance.object as usize];
-            }
-            resources.tlas.borrow_mut().write(&self.records)?;
+            resources.place(&mut self.records, &self.uploaded.data.instances, &data.transforms)?;
         }
         // Moving objects move the scene's bounds, and with them the rays' reach.
         if self.moves.camera || self.moves.objects {

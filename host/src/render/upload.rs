@@ -3,7 +3,7 @@
 
 use super::textures::upload_textures;
 use crate::error::Result;
-use crate::scene::{BlasDesc, Scene, SceneData};
+use crate::scene::{BlasDesc, InstanceDesc, Scene, SceneData};
 use crate::vk::accel::{
     build_aabb_blas, build_tlas, build_triangle_blas, AccelStruct, InstanceRecord, Tlas, TlasFlags,
 };
@@ -12,6 +12,7 @@ use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
 use crate::vk::texture::Texture;
 use ash::vk;
+use glam::Mat4;
 use gpu_allocator::MemoryLocation;
 use std::cell::RefCell;
 use std::rc::Rc;
@@ -40,6 +41,17 @@ impl SceneResources {
             Some((.., buffer)) => buffer.write(bytes),
             None => Err(crate::error::Error::Unsupported(format!("the scene has no buffer at binding {binding}"))),
         }
+    }
+}
+
+impl SceneResources {
+    /// Writes each instance's transform, `transforms[object]` for its object, into `records` and
+    /// the TLAS's instances, for the caller to rebuild or update (`Tlas::record`).
+    pub fn place(&self, records: &mut [InstanceRecord], instances: &[InstanceDesc], transforms: &[Mat4]) -> Result<()> {
+        for (record, instance) in records.iter_mut().zip(instances) {
+            record.object_to_world = transforms[instance.object as usize];
+        }
+        self.tlas.borrow_mut().write(records)
     }
 }
 

@@ -182,18 +182,8 @@ pub fn build(
     let Geometry { blases, primitives, vertices, indices } = geometry;
     let mut data =
         SceneData { plan, blases, vertices, indices, instances, objects, primitives, materials, lights, textures };
-    // Far instances are a matter of where objects stand on the GPU, around `origin`, and, for a
-    // probe, of where its rays start (`starts`, moved there too): a moving scene is taken to
-    // have them, as its objects may move anywhere.
-    let transforms: Vec<Mat4> = data.instances.iter().map(|i| local(i.object_to_world, origin)).collect();
-    let bounds = data.object_bounds();
-    let far_from_starts = |s: &Aabb| {
-        let local = Aabb { min: super::origin::to_local(s.min, origin), max: super::origin::to_local(s.max, origin) };
-        reach::far_from(&bounds, &transforms, &local)
-    };
-    let far =
-        scene.animation.is_some() || reach::far_instances(&bounds, &transforms) || starts.is_some_and(far_from_starts);
-    if scene.features.is_none() && far {
+    // A moving scene is taken to have far instances, as its objects may move anywhere.
+    if scene.features.is_none() && (scene.animation.is_some() || data.far_at(origin, starts)) {
         data.plan.features |= features::FAR_INSTANCES;
     }
     data
@@ -230,6 +220,20 @@ pub fn frame_data(scene: &SceneFile, width: u32, height: u32, object_bounds: &[A
 }
 
 impl SceneData {
+    /// Whether the scene has far instances with the GPU's coordinates centred at `origin`: an
+    /// object lies far from it for its size, or, for a probe, from where its rays start
+    /// (`starts`, in the scene's coordinates, moved there too) (`reach`).
+    pub fn far_at(&self, origin: Vec3, starts: Option<&Aabb>) -> bool {
+        let transforms: Vec<Mat4> = self.instances.iter().map(|i| local(i.object_to_world, origin)).collect();
+        let bounds = self.object_bounds();
+        let far_from_starts = |s: &Aabb| {
+            let local =
+                Aabb { min: super::origin::to_local(s.min, origin), max: super::origin::to_local(s.max, origin) };
+            reach::far_from(&bounds, &transforms, &local)
+        };
+        reach::far_instances(&bounds, &transforms) || starts.is_some_and(far_from_starts)
+    }
+
     /// The hit group of `object` (its TLAS instance's SBT record); none for an object the scene
     /// does not have.
     pub fn hit_group_of(&self, object: u32) -> Option<HitGroup> {

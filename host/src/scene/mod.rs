@@ -8,6 +8,7 @@ mod check;
 pub mod file;
 mod framing;
 pub mod gltf;
+pub mod launches;
 pub mod mesh;
 mod models;
 pub mod obj;

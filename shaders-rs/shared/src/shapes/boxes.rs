@@ -1,7 +1,10 @@
 //! Axis-aligned box centred at the object's origin with half extents `Primitive::a.xyz`: the
-//! slab test of pbrt-v3 (after Ize 2013) with t_far widened by 1 + 2 gamma_3. NaN-safe: an
-//! axis the ray is parallel to is decided by position, never by 0 * inf, and every min/max is
-//! an explicit comparison (the GPU's FMin/FMax are undefined for NaN).
+//! slab test of pbrt-v3 (after Ize 2013), whose t_far is widened by 1 + 2 gamma_3 where it is
+//! compared with t_near, so that rounding cannot make a ray through an edge miss. The widening
+//! is a margin of the comparison only: a ray leaving the box from inside gets its exit as
+//! computed, not 2 gamma_3 (3.6e-7) long. NaN-safe: an axis the ray is parallel to is decided by
+//! position, never by 0 * inf, and every min/max is an explicit comparison (the GPU's FMin/FMax
+//! are undefined for NaN).
 
 use super::uv::ShapeUv;
 use crate::layout::Primitive;
@@ -11,7 +14,7 @@ use glam::{Vec2, Vec3, Vec4};
 /// gamma_3 = 3 eps / (1 - 3 eps), eps = 2^-24 (pbrt's bound on three rounded operations).
 pub const GAMMA_3: f32 = 3.0 * 5.960_464_5e-8 / (1.0 - 3.0 * 5.960_464_5e-8);
 
-/// Slab interval so far, with the axis that set each end.
+/// Slab interval so far, with the axis that set each end; `far` as computed, unwidened.
 #[derive(Clone, Copy)]
 struct Slabs {
     near: f32,
@@ -34,7 +37,6 @@ fn slab(s: &mut Slabs, o: f32, d: f32, h: f32, unit: Vec3) {
     let a = (-h - o) * inv;
     let b = (h - o) * inv;
     let (t0, t1) = if a <= b { (a, b) } else { (b, a) };
-    let t1 = t1 * (1.0 + 2.0 * GAMMA_3);
     let sign = if d > 0.0 { 1.0 } else { -1.0 };
     if t0 > s.near {
         s.near = t0;
@@ -44,7 +46,9 @@ fn slab(s: &mut Slabs, o: f32, d: f32, h: f32, unit: Vec3) {
         s.far = t1;
         s.far_axis = unit * sign;
     }
-    s.empty = s.empty || s.near > s.far;
+    // Widening the least t_far is widening each (a product by a constant above 1 rounds
+    // monotonically), so the interval is empty exactly where pbrt's is.
+    s.empty = s.empty || s.near > s.far * (1.0 + 2.0 * GAMMA_3);
 }
 
 /// The entry point (or the exit, for a ray starting inside) within `[t_min, t_max]`.
@@ -122,7 +126,42 @@ mod tests {
         let hit = intersect(Vec3::new(-5.0, 0.5, 0.5), Vec3::X, &unit_box(), 0.0, 100.0).unwrap();
         assert_eq!((hit.t, hit.normal), (4.0, -Vec3::X));
         let inside = intersect(Vec3::ZERO, Vec3::Y, &unit_box(), 0.0, 100.0).unwrap();
-        assert_eq!((inside.t, inside.normal), (2.0 * (1.0 + 2.0 * GAMMA_3), Vec3::Y));
+        assert_eq!((inside.t, inside.normal), (2.0, Vec3::Y));
+    }
+
+    /// The widening is the comparison's margin, not the answer's: exits from inside come back
+    /// as computed (within an ulp or two of the true exit, as often short as long), and a ray
+    /// through an edge, where rounding may put t_near just past t_far, still hits.
+    #[test]
+    fn exits_are_not_widened_and_edges_still_hit() {
+        let b = unit_box();
+        let mut rng = crate::random::SplitMix64(90);
+        let (mut long, mut short) = (0, 0);
+        for _ in 0..2000 {
+            let o = Vec3::new(rng.unit() - 0.5, 2.0 * rng.unit() - 1.0, 3.0 * rng.unit() - 1.5);
+            let d = Vec3::new(rng.unit() - 0.5, rng.unit() - 0.5, rng.unit() - 0.5).normalize();
+            let hit = intersect(o, d, &b, 0.0, 100.0).unwrap();
+            let exact = [0, 1, 2]
+                .iter()
+                .map(|&k| {
+                    let (o, d, h) = (f64::from(o[k]), f64::from(d[k]), f64::from(b.a[k]));
+                    if d > 0.0 {
+                        (h - o) / d
+                    } else {
+                        (-h - o) / d
+                    }
+                })
+                .fold(f64::INFINITY, f64::min);
+            let error = (f64::from(hit.t) - exact) / exact;
+            assert!(error.abs() < 3.0 * 5.96e-8, "exit {} against {exact}: {error:e}", hit.t);
+            long += usize::from(error > 0.0);
+            short += usize::from(error < 0.0);
+        }
+        assert!(long > 200 && short > 200, "exits {long} long, {short} short");
+        // Through the edge x = 1, y = 2 at 45 degrees: t_near and t_far meet there.
+        let d = Vec3::new(1.0, 1.0, 0.0).normalize();
+        let edge = intersect(Vec3::new(1.0, 2.0, 0.0) - d * 3.0, d, &b, 0.0, 100.0);
+        assert!(edge.is_some_and(|h| (h.t - 3.0).abs() < 1e-5));
     }
 
     /// A ray lying in a face plane (d_i = 0, o_i = +-h_i) gives 0 * inf = NaN in the textbook
