@@ -122,7 +122,7 @@ void trace_query(vec3 origin, float t_min, vec3 direction, float t_max, vec4 bac
     if (committed == gl_RayQueryCommittedIntersectionTriangleEXT) {
         uint kind = rayQueryGetIntersectionFrontFaceEXT(query, true) ? HIT_KIND_TRIANGLE_FRONT : HIT_KIND_TRIANGLE_BACK;
         triangle_hit(object, primitive_id, kind, origin, direction, object_origin, object_direction, t,
-                     world_to_object, mat3(rayQueryGetIntersectionObjectToWorldEXT(query, true)),
+                     world_to_object, rayQueryGetIntersectionObjectToWorldEXT(query, true),
                      rayQueryGetIntersectionBarycentricsEXT(query, true), cone);
     } else {
         uint primitive = rayQueryGetIntersectionInstanceCustomIndexEXT(query, true) + primitive_id;

@@ -60,6 +60,40 @@ StageRay stage_ray(vec3 driver_o, vec3 driver_d, vec3 origin, vec3 direction, ve
     return StageRay(driver_o, driver_d, 0.0);
 }
 
+// Twin of transform::triangle_ray: the world ray in object space, brought near the triangle
+// (p0, p1, p2, object space) first, onto the sphere NEAR_BOUNDS times the one about its centroid
+// through its farthest corner.
+StageRay triangle_ray(vec3 origin, vec3 direction, vec3 translation, mat3 inverse_part, vec3 p0, vec3 p1, vec3 p2) {
+    vec3 centre = (p0 + p1 + p2) * (1.0 / 3.0);
+    float a = length(p0 - centre);
+    float b = length(p1 - centre);
+    float c = length(p2 - centre);
+    float ab = a > b ? a : b;
+    float radius = ab > c ? ab : c;
+    return near_ray(origin, direction, translation, inverse_part, vec4(centre, radius));
+}
+
+// Twin of transform::plane_t: where the ray meets the plane of the triangle, on the world ray; t
+// where the ray was not moved or meets the plane edge-on.
+float plane_t(StageRay ray, vec3 p0, vec3 p1, vec3 p2, float t) {
+    vec3 normal = cross(p1 - p0, p2 - p0);
+    float along = dot(normal, ray.direction);
+    if (ray.shift > 0.0 && along != 0.0) {
+        return ray.shift + dot(normal, p0 - ray.origin) / along;
+    }
+    return t;
+}
+
+// Twin of transform::triangle_t: the t of a hit the driver found on the triangle, measured again
+// on its plane from the world ray brought near it, where the scene has far instances.
+float triangle_t(vec3 origin, vec3 direction, vec3 translation, mat3 inverse_part, vec3 p0, vec3 p1, vec3 p2,
+                 float t) {
+    if (HAS_FEATURE_FAR_INSTANCES) {
+        return plane_t(triangle_ray(origin, direction, translation, inverse_part, p0, p1, p2), p0, p1, p2, t);
+    }
+    return t;
+}
+
 // Twin of StageRay::range: the world ray's [t_min, t_max] in the stage ray's parameter.
 vec2 stage_range(StageRay ray, float t_min, float t_max) {
     return vec2(t_min - ray.shift, t_max - ray.shift);

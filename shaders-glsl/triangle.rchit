@@ -23,5 +23,5 @@ hitAttributeEXT vec2 barycentrics;
 void main() {
     triangle_hit(gl_InstanceID, gl_PrimitiveID, gl_HitKindEXT, gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT,
                  gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT),
-                 mat3(gl_ObjectToWorldEXT), barycentrics, frame.cone.x);
+                 gl_ObjectToWorldEXT, barycentrics, frame.cone.x);
 }

@@ -390,7 +390,7 @@ impl ProbeReport {
             .iter()
             .map(|l| format!("({}, {}, {}) for {}", l.origin[0], l.origin[1], l.origin[2], l.rays))
             .collect();
-        format!("  local origins, by where the rays start: {}\n", each.join("; "))
+        format!("  local origins, by what the rays meet: {}\n", each.join("; "))
     }
 
     /// Per generator, the rays it made and how many of them the set hit.

@@ -45,7 +45,7 @@ pub struct ProbeOutput {
     pub features: u32,
 }
 
-/// One launch of a probe at a local origin (`origin::launches`).
+/// One launch of a probe at a local origin (`launches::launches`).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
 pub struct Launched {
     /// In the scene's coordinates.

@@ -82,14 +82,17 @@ pub fn split<'a>(reference: &SceneReference, hits: impl Iterator<Item = AgreedHi
     for hit in hits {
         let t = hit.result.normal_t.w;
         driven |= hit.driver.is_some();
-        if let Some(t_obj) = hit.driver.and_then(|d| object_t(reference, &hit, d)) {
+        // The driver's witness reports the driver's own t, which the stages measure again on a
+        // triangle (`transform::triangle_t`): the same hit within a relative `report::THROUGH`.
+        let same_hit = |w: &Witness| relative(f64::from(w.t), f64::from(t)) <= super::report::THROUGH;
+        if let Some(t_obj) = hit.driver.and_then(|d| object_t(reference, &hit, d, same_hit)) {
             driver.push(relative(t_obj, hit.t_ref));
         }
         if witness(hit.witness).filter(|w| w.t.to_bits() == t.to_bits()).is_none() {
             out.unrepeated += 1;
             continue;
         }
-        match object_t(reference, &hit, hit.witness) {
+        match object_t(reference, &hit, hit.witness, |w| w.t.to_bits() == t.to_bits()) {
             Some(t_obj) => {
                 stage.push(relative(f64::from(t), t_obj));
                 transform.push(relative(t_obj, hit.t_ref));
@@ -104,10 +107,15 @@ pub fn split<'a>(reference: &SceneReference, hits: impl Iterator<Item = AgreedHi
     out
 }
 
-/// The f64 first hit of the object-space ray a witness record holds, where its t repeats the
-/// probe's and the reference decides the ray.
-fn object_t(reference: &SceneReference, hit: &AgreedHit, record: &ProbeResult) -> Option<f64> {
-    let w = witness(record).filter(|w| w.t.to_bits() == hit.result.normal_t.w.to_bits())?;
+/// The f64 first hit of the object-space ray a witness record holds, where the witness is of the
+/// probe's hit (`repeats`) and the reference decides the ray.
+fn object_t(
+    reference: &SceneReference,
+    hit: &AgreedHit,
+    record: &ProbeResult,
+    repeats: impl Fn(&Witness) -> bool,
+) -> Option<f64> {
+    let w = witness(record).filter(repeats)?;
     let object = reference.objects.get(hit.result.ids.x as usize)?;
     // The witnessed ray starts `shift` along the world ray: its parameter is the world's less
     // the shift, exactly in f64.

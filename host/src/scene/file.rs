@@ -429,8 +429,7 @@ pub enum HitGroups {
 
 /// `gpu_origin`: where the GPU's world coordinates are centred. `Local`: where an object lies
 /// far from the world origin for its size (`reach::far_instances`), at the camera's eye for a
-/// render, and for a probe at an origin per group of rays by where they start
-/// (`origin::launches`), so that the driver's f32 transforms and the stages work at the
+/// render, and for a probe each ray where it meets what it can hit (`launches`), so that the driver's f32 transforms and the stages work at the
 /// magnitude of what a ray sees, not of the world's coordinates (`scene::origin`). `Eye`: at
 /// the camera's eye, always, probes too: what a render's rays get, secondary ones included,
 /// shown by a probe. `World`: at the world origin, always: what the driver alone makes of a far

@@ -260,8 +260,8 @@ impl Scene {
         std::borrow::Cow::Owned(local)
     }
 
-    /// The scene centred on `at` where it is centred at all: a probe centres it beside each
-    /// group of its rays (`origin::launches`).
+    /// The scene centred on `at` where it is centred at all: a probe centres it for each of its
+    /// launches (`launches`).
     pub fn centred_on(&self, at: Option<Vec3>) -> std::borrow::Cow<'_, Scene> {
         match (self.origin, at) {
             (Some(o), Some(at)) if o != at => std::borrow::Cow::Owned(Scene { origin: Some(at), ..self.clone() }),

@@ -11,7 +11,7 @@ use spirv_std::RuntimeArray;
 use twinray_shared::features::{Features, EMISSION, TEXTURES};
 use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Primitive, Vertex};
 use twinray_shared::texture::{self as shared_texture, TriangleHit};
-use twinray_shared::{shading, shapes};
+use twinray_shared::{shading, shapes, transform};
 
 /// Defines a closest-hit entry point for every procedural shape, `$name`: the surface from the
 /// reported object-space normal, its colour `$color` of the material `$m`, object-space point
@@ -104,8 +104,6 @@ pub fn $name(
     $($params)*
 ) {
     let features = Features::new(features);
-    let rays = ((origin, direction), (object_origin, object_direction));
-    let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     // Not bounds-checked, as the procedural closest hit and GLSL's twin are not: the eight
     // checks cost Rust 2.5% to 5.1% on a textured model at 1 spp on the H200
     // (bench/reports/nvidia-code/runs/issue53-triangle-hit.tar.xz).
@@ -114,6 +112,10 @@ pub fn $name(
     let data = unsafe { *objects.get_unchecked(object as usize) };
     let material = unsafe { *materials.get_unchecked(data.material as usize) };
     let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
+    let rays = ((origin, direction), (object_origin, object_direction));
+    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
+    let t = hit::triangle_t(features, rays.0, placed, &v, t);
+    let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let (geometric, shading_normal) = hit::triangle_normals(&v, *barycentrics);
     let ($m, $p, $n) = (&material, surface.object_point(), geometric);
     let cone = hit::cone(&surface, object_to_world.to_mat3(), &v, *barycentrics, frame.cone.x);
@@ -220,6 +222,15 @@ pub fn corner_attributes(
         let c = vertices.get_unchecked((data.vertex_base + *indices.get_unchecked(first + 2)) as usize);
         ([a.uv, b.uv, c.uv], [a.color, b.color, c.color])
     }
+}
+
+/// The t of a hit the driver found on the triangle of vertices `v`, measured again where the
+/// scene has far instances (`transform::triangle_t`): the world ray, and the instance's
+/// translation and world-to-object 3x3 part.
+#[inline(always)]
+pub fn triangle_t(features: Features, ray: (Vec3, Vec3), placed: (Vec3, Mat3), v: &[Vertex; 3], t: f32) -> f32 {
+    let p = [v[0].position.xyz(), v[1].position.xyz(), v[2].position.xyz()];
+    transform::triangle_t(features, ray, placed, p, t)
 }
 
 /// Object-space geometric and shading normals of a triangle at `barycentrics`.

@@ -61,12 +61,17 @@ macro_rules! probe_stages {
         /// starts, and the t they reported, into the payload fields the probe ray generation stage
         /// copies out (as `ProbeResult` documents), so a probe can judge the stages against the
         /// ray they used, apart from the transform's error.
+        ///
+        /// A triangle's hit the stages measure again where the scene has far instances
+        /// (`twinray_shared::transform::triangle_t`): its witness is the ray brought near the
+        /// triangle and the t measured on it, or, where the ray was not moved, the driver's ray.
         #[spirv(closest_hit)]
         #[allow(clippy::too_many_arguments)]
         pub fn probe_witness(
             #[spirv(instance_id)] object: u32,
             #[spirv(instance_custom_index)] primitive_base: u32,
             #[spirv(primitive_id)] primitive_id: u32,
+            #[spirv(hit_kind)] hit_kind: u32,
             #[spirv(world_ray_origin)] world_origin: Vec3,
             #[spirv(world_ray_direction)] world_direction: Vec3,
             #[spirv(object_ray_origin)] object_origin: Vec3,
@@ -76,11 +81,38 @@ macro_rules! probe_stages {
             #[spirv(ray_tmax)] t: f32,
             #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
             #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
+            #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
+            #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
             #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
             #[spirv(spec_constant(id = 3, default = 31))] features: u32,
         ) {
-            // The bound the intersection stage used: its object's routine (zero for the naive ones
-            // and for triangles, whose custom index names no primitive of theirs).
+            let world = (world_origin, world_direction);
+            let placed = (object_to_world.w_axis, world_to_object.to_mat3());
+            use twinray_shared::bindings::{HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT};
+            use twinray_shared::features::FAR_INSTANCES;
+            if (hit_kind == HIT_KIND_TRIANGLE_FRONT) | (hit_kind == HIT_KIND_TRIANGLE_BACK) {
+                let mut ray = twinray_shared::transform::StageRay {
+                    origin: object_origin,
+                    direction: object_direction,
+                    shift: 0.0,
+                };
+                if Features::new(features).has::<FAR_INSTANCES>() & ((object as usize) < objects.len()) {
+                    // SAFETY: the index checked above; the vertices and indices are the host's.
+                    let data = unsafe { *objects.get_unchecked(object as usize) };
+                    let v = crate::hit::triangle_vertices(&data, primitive_id, vertices, indices);
+                    let p = [v[0].position.xyz(), v[1].position.xyz(), v[2].position.xyz()];
+                    let near = twinray_shared::transform::triangle_ray(world, placed, p);
+                    if near.shift > 0.0 {
+                        ray = near;
+                    }
+                    let t = twinray_shared::transform::plane_t(&near, p, t);
+                    witness(payload, (ray.origin, ray.direction), t, ray.shift);
+                    return;
+                }
+                witness(payload, (ray.origin, ray.direction), t, 0.0);
+                return;
+            }
+            // The bound the intersection stage used: its object's routine (zero for the naive ones).
             let mut bound = Vec4::ZERO;
             let primitive = (primitive_base + primitive_id) as usize;
             if (object as usize) < objects.len() && primitive < primitives.len() {
@@ -91,8 +123,8 @@ macro_rules! probe_stages {
             let ray = twinray_shared::transform::stage_ray(
                 Features::new(features),
                 (object_origin, object_direction),
-                (world_origin, world_direction),
-                (object_to_world.w_axis, world_to_object.to_mat3()),
+                world,
+                placed,
                 bound,
             );
             witness(payload, (ray.origin, ray.direction), t, ray.shift);

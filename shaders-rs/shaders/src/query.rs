@@ -211,11 +211,13 @@ pub fn trace_query(
         if committed == CommittedIntersection::Triangle {
             let front = query.get_committed_intersection_front_face();
             let kind = if front { HIT_KIND_TRIANGLE_FRONT } else { HIT_KIND_TRIANGLE_BACK };
+            let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
+            let object_to_world = committed_transform::<false>(query);
+            let t = hit::triangle_t(features, rays.0, (object_to_world.w_axis, world_to_object), &v, t);
             let surface = SurfaceHit::new(object, primitive_id, kind, rays, t, world_to_object);
             let barycentrics: Vec2 = query.get_committed_intersection_barycentrics();
-            let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
             let (geometric, shading_normal) = hit::triangle_normals(&v, barycentrics);
-            let object_to_world = committed_transform::<false>(query).to_mat3();
+            let object_to_world = object_to_world.to_mat3();
             let cone = hit::cone(&surface, object_to_world, &v, barycentrics, spread);
             let color = shading::material_color(&material, surface.object_point(), geometric)
                 * texture::surface_tint(textures, (&material, features), &v, &cone);

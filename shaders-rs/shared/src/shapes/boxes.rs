@@ -158,8 +158,8 @@ mod tests {
             short += usize::from(error < 0.0);
         }
         assert!(long > 200 && short > 200, "exits {long} long, {short} short");
-        // Through the edge x = 1, y = 2 at 45 degrees: t_near and t_far meet there.
-        let d = Vec3::new(1.0, 1.0, 0.0).normalize();
+        // Across the edge x = 1, y = 2 at 45 degrees, touching it only: t_near and t_far meet.
+        let d = Vec3::new(1.0, -1.0, 0.0).normalize();
         let edge = intersect(Vec3::new(1.0, 2.0, 0.0) - d * 3.0, d, &b, 0.0, 100.0);
         assert!(edge.is_some_and(|h| (h.t - 3.0).abs() < 1e-5));
     }
