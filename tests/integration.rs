@@ -26,6 +26,7 @@ mod rays;
 mod reach;
 mod references;
 mod render_sets;
+mod retrace;
 mod scenes;
 mod single_sided;
 mod stability;

@@ -48,9 +48,14 @@ fn probe_names_the_origin_each_group_of_rays_was_launched_at() {
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
     let report: serde_json::Value = serde_json::from_slice(&out.stdout).expect("JSON");
     let launches = report["launches"].as_array().expect("launches");
-    let origins: Vec<&serde_json::Value> = launches.iter().map(|l| &l["origin"]).collect();
-    // The mesh's rays beside the mesh, the sheet's at world coordinates (nothing far near them).
-    assert_eq!(origins, [&serde_json::json!([7000.0, -5000.0, 6490.0]), &serde_json::json!([0.0, 0.0, 0.0])]);
+    let origins: Vec<[f64; 3]> =
+        launches.iter().map(|l| std::array::from_fn(|k| l["origin"][k].as_f64().expect("a coordinate"))).collect();
+    // The mesh's rays beside the mesh (between their starts, 10 units out, and its translation),
+    // the sheet's at world coordinates (its translation is the world origin).
+    assert_eq!(origins.len(), 2, "{origins:?}");
+    let mesh = [7000.0, -5000.0, 6500.0];
+    assert!((0..3).all(|k| (origins[0][k] - mesh[k]).abs() <= 11.0), "{origins:?}");
+    assert_eq!(origins[1], [0.0; 3]);
     let rays: u64 = launches.iter().map(|l| l["rays"].as_u64().unwrap()).sum();
     assert_eq!(rays, report["rays"].as_u64().unwrap(), "every ray in one launch");
 }

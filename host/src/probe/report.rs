@@ -4,6 +4,7 @@
 use super::case::Generated;
 use super::case::ProbeCase;
 use super::run::{count_written, judgeable, no_payload, Launched, Records};
+use super::split::THROUGH;
 use super::split::{relative, split, AgreedHit, TErrorSplit};
 use crate::reference::condition::{condition_multiple, t_condition};
 use crate::reference::scene::SceneVerdict;
@@ -78,11 +79,6 @@ pub struct WorstHit {
     pub condition: f64,
     pub multiple: f64,
 }
-
-/// Relative t beyond the reference's past which a hit on the same object counts as gone
-/// through its first surface: ten times the largest the driver's transform alone has shown on
-/// these cases (its p99 is about 7e-5).
-pub const THROUGH: f64 = 1e-3;
 
 fn ulp(x: f32) -> f64 {
     let x = x.abs();
