@@ -39,7 +39,9 @@ fn retracing_near_the_hit_against_measuring_it_again() {
     let ctx = validated_context();
     let shaders = set("rust");
     println!("| case | rays | driver alone p99 | re-trace p99 | stages' measure p99 | GPU ms: driver, second trace, stages |");
-    for name in ["mesh-turned-scaled-grazing-1e3", "mesh-far-near-and-distant-rays"] {
+    // The suite's one case of a small mesh grazed from afar (a mesh's rays that start near it
+    // keep the driver's t, and are not restarted).
+    for name in ["mesh-turned-scaled-grazing-1e3"] {
         let case = ProbeCase::load(&repo_root().join(format!("probes/stability/{name}.toml"))).expect("case");
         assert_eq!(case.reference.objects.len(), 1, "{name}: the emulation moves one instance");
         let object = &case.reference.objects[0];
