@@ -5,8 +5,8 @@
 
 use crate::error::{Error, Result};
 use crate::render::{
-    min_warm_ms, place_warm_ms, prepare, sentinel, storage_buffer, submit, transition, Prepared, Trace, Written,
-    STORAGE_IMAGE, UNUSED_IMAGE,
+    min_warm_ms, place_warm_ms, prepare_uploaded, sentinel, storage_buffer, submit, transition, Prepared, Trace,
+    Written, STORAGE_IMAGE, UNUSED_IMAGE,
 };
 use crate::scene::launches::{self, Launch, LaunchRay, Placed};
 use crate::scene::{origin, reach, GpuOrigin, Renderer, Scene, PROBE_QUERY};
@@ -120,7 +120,7 @@ pub fn probe_module(scene: &Scene) -> &'static str {
 /// coordinates centred where it meets what it can hit (`launches::launches`), its start moved
 /// exactly; one that asks for the eye (`gpu_origin = "eye"`) in one launch centred there. The
 /// scene is uploaded and the pipeline made once; each launch rebuilds the TLAS over instances
-/// moved to its origin (`Prepared::centre`). The results (t, normals, object-space rays) do not
+/// moved to its origin (`UploadedScene::centre`). The results (t, normals, object-space rays) do not
 /// depend on it. Each timed pass is the sum of the launches' passes: the GPU time of every ray
 /// once.
 pub fn probe(
@@ -164,32 +164,26 @@ fn plan(scene: &Scene, rays: &[ProbeRay]) -> (Scene, Vec<Launch>) {
     let starts = |rays: &mut dyn Iterator<Item = &ProbeRay>| reach::enclose(rays.map(|r| r.origin.truncate()));
     let all = |origin: Vec3| vec![Launch { origin, rays: (0..rays.len()).collect() }];
     let starting = starts(&mut rays.iter()).map_or_else(|| scene.clone(), |s| scene.starting_in(s));
-    let launches = match scene.origin {
+    match scene.origin {
         None => return (starting, all(Vec3::ZERO)),
         Some(eye) if scene.file.gpu_origin == GpuOrigin::Eye => return (starting, all(eye)),
-        Some(_) => {
-            let data = scene.build();
-            let placed: Vec<Placed> = data
-                .world_boxes()
-                .into_iter()
-                .zip(&data.instances)
-                .map(|(bounds, i)| Placed { bounds, translation: i.object_to_world.w_axis.truncate() })
-                .collect();
-            let launch_rays: Vec<LaunchRay> = rays
-                .iter()
-                .map(|r| LaunchRay {
-                    origin: r.origin.truncate(),
-                    direction: r.direction.truncate(),
-                    t_min: r.origin.w,
-                    t_max: r.direction.w,
-                })
-                .collect();
-            launches::launches(&launch_rays, &placed)
-        }
+        Some(_) => {}
+    }
+    // The instances as written: a build places them in the scene's coordinates, wherever the
+    // GPU's are centred.
+    let data = scene.build();
+    let placed: Vec<Placed> = (data.world_boxes().into_iter().zip(&data.instances))
+        .map(|(bounds, i)| Placed { bounds, translation: i.object_to_world.w_axis.truncate() })
+        .collect();
+    let launch_ray = |r: &ProbeRay| LaunchRay {
+        origin: r.origin.truncate(),
+        direction: r.direction.truncate(),
+        t_min: r.origin.w,
+        t_max: r.direction.w,
     };
+    let launches = launches::launches(&rays.iter().map(launch_ray).collect::<Vec<_>>(), &placed);
     let mut scene = starting.centred_on(launches.first().map(|l| l.origin)).into_owned();
     if scene.file.features.is_none() {
-        let data = scene.build();
         let far = scene.animation.is_some()
             || launches.iter().any(|l| data.far_at(l.origin, starts(&mut l.rays.iter().map(|&i| &rays[i])).as_ref()));
         let bits = (data.plan.features & !features::FAR_INSTANCES) | if far { features::FAR_INSTANCES } else { 0 };
@@ -224,14 +218,14 @@ fn probe_launches(
     let record = size_of::<ProbeResult>() as u64;
     let mut buffers =
         RayBuffers::new(ctx, "probe", &vec![0; largest * size_of::<ProbeRay>()], largest as u64 * record)?;
-    let p = prepare(ctx, scene, set, module, ((1, 1), (1, 1)), &buffers.extra())?;
+    let (mut uploaded, p) = prepare_uploaded(ctx, scene, set, module, ((1, 1), (1, 1)), &buffers.extra())?;
     let timestamps = Timestamps::new(ctx, runs)?;
     let label = format!("the probe trace of {set} ({})", p.pipeline.modules.join(", "));
     let _doing = activity::doing(label);
     let mut outputs = Vec::with_capacity(launches.len());
     for (k, launch) in launches.iter().enumerate() {
         if k > 0 {
-            p.centre(ctx, &scene.centred_on(Some(launch.origin)), (1, 1))?;
+            uploaded.centre(ctx, &p.one_shot, &scene.centred_on(Some(launch.origin)), (1, 1))?;
         }
         let moved = |&i: &usize| {
             let r = rays[i];

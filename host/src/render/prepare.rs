@@ -8,9 +8,8 @@ use super::pipeline::{descriptor_bindings, ScenePipeline};
 use super::tracing::Trace;
 use super::upload::{upload_shared, SceneResources, UploadedScene};
 use crate::error::{Error, Result};
-use crate::scene::{frame_data, Aabb, InstanceDesc, Scene};
+use crate::scene::Scene;
 use crate::shaders::ShaderSet;
-use crate::vk::accel::InstanceRecord;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::OneShot;
 use crate::vk::context::{Context, PipelineKind};
@@ -21,7 +20,6 @@ use crate::vk::sbt::ShaderBindingTable;
 use crate::vk::timing::Timestamps;
 use ash::vk;
 use gpu_allocator::MemoryLocation;
-use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
@@ -37,12 +35,7 @@ pub(crate) struct Prepared {
     pub sbt: Option<ShaderBindingTable>,
     /// The probe's witness passes (see `pipeline::PROBE_WITNESSES`), those its pipeline has.
     pub witness_sbts: Vec<ShaderBindingTable>,
-    resources: Rc<SceneResources>,
-    /// The TLAS's instances as last written, each instance's object, and each object's own
-    /// bounds: what [`Prepared::centre`] rewrites the scene from.
-    records: RefCell<Vec<InstanceRecord>>,
-    instances: Vec<InstanceDesc>,
-    object_bounds: Vec<Aabb>,
+    _resources: Rc<SceneResources>,
 }
 
 /// GPU time warm-up traces take at least, when any are asked for: GPU clocks leave their
@@ -75,24 +68,6 @@ fn warm_ms(variable: &str, default: f64) -> Result<f64> {
 }
 
 impl Prepared {
-    /// Moves the uploaded scene to where `scene` (the scene it was uploaded from, centred
-    /// elsewhere) puts the GPU's coordinates: the TLAS rebuilt over instances moved there, the
-    /// frame constants (for `frame` pixels) and the lights rewritten; the BLASes, the pipeline,
-    /// its descriptors and SBT are kept. A probe launches its rays at several origins so.
-    pub fn centre(&self, ctx: &Arc<Context>, scene: &Scene, (width, height): (u32, u32)) -> Result<()> {
-        let file = scene.file_on_gpu(&scene.file);
-        let data = frame_data(&file, width, height, &self.object_bounds);
-        self.resources.place(&mut self.records.borrow_mut(), &self.instances, &data.transforms)?;
-        let tlas = self.resources.tlas.borrow();
-        self.one_shot.run(|_, cmd| {
-            tlas.record(ctx, cmd, false);
-            Ok(())
-        })?;
-        self.resources.write(b::BINDING_FRAME, bytemuck::bytes_of(&data.uniform))?;
-        // Only the scene's lights: the zeros after them, up to MAX_LIGHTS, never change.
-        self.resources.write(b::BINDING_LIGHTS, bytemuck::cast_slice(&data.lights))
-    }
-
     /// The trace of this pipeline over `launch`: `runs` timed traces after warm-up traces that
     /// are at least `warmup` and, when `warmup` > 0 and the device can time, at least
     /// `MIN_WARM_MS` of GPU time in the same submission (two traces run first to count them).
@@ -152,10 +127,25 @@ pub(crate) fn prepare(
     (frame, image_size): ((u32, u32), (u32, u32)),
     extra: &[(u32, &Buffer)],
 ) -> Result<Prepared> {
+    Ok(prepare_uploaded(ctx, scene, set, raygen, (frame, image_size), extra)?.1)
+}
+
+/// [`prepare`], with the upload kept: a probe moves it between its launches
+/// (`UploadedScene::centre`).
+pub(crate) fn prepare_uploaded(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    set: &ShaderSet,
+    raygen: &'static str,
+    (frame, image_size): ((u32, u32), (u32, u32)),
+    extra: &[(u32, &Buffer)],
+) -> Result<(UploadedScene, Prepared)> {
     let image = Rc::new(StorageImage::new(ctx, image_size.0, image_size.1)?);
     let libraries = Libraries::default();
     let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
-    prepare_on(ctx, &upload_shared(ctx, scene, frame)?, (set, linking), (raygen, LayoutDraw::Sbt), image, extra)
+    let uploaded = upload_shared(ctx, scene, frame)?;
+    let prepared = prepare_on(ctx, &uploaded, (set, linking), (raygen, LayoutDraw::Sbt), image, extra)?;
+    Ok((uploaded, prepared))
 }
 
 /// The pipeline of `set` (ray generation stage `raygen`; linked from `libraries` when given,
@@ -194,10 +184,7 @@ pub(crate) fn prepare_on(
         descriptors,
         sbt,
         witness_sbts,
-        resources,
-        records: RefCell::new(scene.instances.clone()),
-        instances: scene.data.instances.clone(),
-        object_bounds: scene.data.object_bounds(),
+        _resources: resources,
     })
 }
 

@@ -3,7 +3,7 @@
 
 use super::textures::upload_textures;
 use crate::error::Result;
-use crate::scene::{BlasDesc, InstanceDesc, Scene, SceneData};
+use crate::scene::{frame_data, Aabb, BlasDesc, InstanceDesc, Scene, SceneData};
 use crate::vk::accel::{
     build_aabb_blas, build_tlas, build_triangle_blas, AccelStruct, InstanceRecord, Tlas, TlasFlags,
 };
@@ -14,7 +14,7 @@ use crate::vk::texture::Texture;
 use ash::vk;
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
-use std::cell::RefCell;
+use std::cell::{OnceCell, RefCell};
 use std::rc::Rc;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
@@ -71,6 +71,35 @@ pub(crate) struct UploadedScene {
     /// The TLAS instances as uploaded: a moving scene rewrites their transforms.
     pub instances: Vec<InstanceRecord>,
     pub accel: AccelStats,
+    /// Each object's own bounds, once [`UploadedScene::centre`] has needed them.
+    object_bounds: OnceCell<Vec<Aabb>>,
+}
+
+impl UploadedScene {
+    /// Moves the upload to where `scene` (the scene it was uploaded from, centred elsewhere)
+    /// puts the GPU's coordinates: the TLAS rebuilt over the instances moved there, the frame
+    /// constants (for `frame` pixels) and the lights rewritten; the BLASes and buffers, and so
+    /// every pipeline's descriptors and SBT over them, are kept. A probe launches its rays at
+    /// several origins so.
+    pub fn centre(
+        &mut self,
+        ctx: &Arc<Context>,
+        one_shot: &OneShot,
+        scene: &Scene,
+        (width, height): (u32, u32),
+    ) -> Result<()> {
+        let bounds = self.object_bounds.get_or_init(|| self.data.object_bounds());
+        let frame = frame_data(&scene.file_on_gpu(&scene.file), width, height, bounds);
+        self.resources.place(&mut self.instances, &self.data.instances, &frame.transforms)?;
+        let tlas = self.resources.tlas.borrow();
+        one_shot.run(|_, cmd| {
+            tlas.record(ctx, cmd, false);
+            Ok(())
+        })?;
+        self.resources.write(b::BINDING_FRAME, bytemuck::bytes_of(&frame.uniform))?;
+        // Only the scene's lights: the zeros after them, up to MAX_LIGHTS, never change.
+        self.resources.write(b::BINDING_LIGHTS, bytemuck::cast_slice(&frame.lights))
+    }
 }
 
 /// Builds the scene's acceleration structures and buffers, frame constants for `frame` pixels.
@@ -188,7 +217,7 @@ fn upload_scene(
     let textures = upload_textures(ctx, one_shot, &data.textures)?;
     let resources =
         SceneResources { _blases: blases, textures, tlas: RefCell::new(tlas), buffers: RefCell::new(buffers) };
-    Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel })
+    Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel, object_bounds: OnceCell::new() })
 }
 
 /// What a scene's acceleration structures hold and took: counts, device memory (bottom-level

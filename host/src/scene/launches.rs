@@ -22,6 +22,7 @@
 //! rays far from it that would round them at their own distance.
 
 use glam::{DVec3, Vec3};
+use std::collections::HashMap;
 use twinray_shared::shapes::spec::Aabb;
 
 /// A ray as launches are chosen for it: where it starts, where it goes, its range of t.
@@ -170,6 +171,38 @@ fn meets(ray: &LaunchRay, b: &Aabb) -> bool {
 /// [`MAX_LAUNCHES`] would be needed; the largest first, the world origin's last where it has
 /// rays.
 pub fn launches(rays: &[LaunchRay], placed: &[Placed]) -> Vec<Launch> {
+    // A probe timed over its rays repeated (`stability --timing-rays`) holds each many times:
+    // each distinct ray is placed once, and its copies go where it goes.
+    let mut distinct: HashMap<[u32; 8], usize> = HashMap::new();
+    let mut unique = Vec::new();
+    let of: Vec<usize> = rays
+        .iter()
+        .map(|r| {
+            let [ox, oy, oz] = r.origin.to_array().map(f32::to_bits);
+            let [dx, dy, dz] = r.direction.to_array().map(f32::to_bits);
+            *distinct.entry([ox, oy, oz, dx, dy, dz, r.t_min.to_bits(), r.t_max.to_bits()]).or_insert_with(|| {
+                unique.push(*r);
+                unique.len() - 1
+            })
+        })
+        .collect();
+    let chosen = choose(&unique, placed);
+    let mut launch_of = vec![0; unique.len()];
+    for (k, launch) in chosen.iter().enumerate() {
+        for &u in &launch.rays {
+            launch_of[u] = k;
+        }
+    }
+    let mut out: Vec<Launch> = chosen.iter().map(|l| Launch { origin: l.origin, rays: Vec::new() }).collect();
+    for (i, &u) in of.iter().enumerate() {
+        out[launch_of[u]].rays.push(i);
+    }
+    out
+}
+
+/// [`launches`] of distinct rays. Placing a ray tests its segment against every instance's box,
+/// and each launch looks at every ray not yet placed.
+fn choose(rays: &[LaunchRay], placed: &[Placed]) -> Vec<Launch> {
     let needs: Vec<Need> = rays.iter().map(|r| Need::new(r, placed)).collect();
     let (mut world, mut left): (Vec<usize>, Vec<usize>) =
         (0..rays.len()).partition(|&i| needs[i].served_by(Vec3::ZERO));

@@ -152,3 +152,15 @@ fn random_rays_move_exactly_and_within_the_slack() {
     // The bound was checked: few cases need more launches than the cap.
     assert!(capped_cases <= 3, "{capped_cases} of 60 cases needed more than {MAX_LAUNCHES} launches");
 }
+
+/// Copies of a ray (a probe timed over its rays repeated) go where the ray goes.
+#[test]
+fn copies_of_a_ray_share_its_launch() {
+    let a = placed(Vec3::new(9000.0, 0.0, 0.0), 1.0);
+    let rays: Vec<LaunchRay> = (0..5).map(|i| toward(Vec3::new(9003.0, 0.1 * i as f32, 2.0), a.translation)).collect();
+    let copies: Vec<LaunchRay> = rays.iter().cycle().take(23).copied().collect();
+    let at = launched_at(&copies, &[a]);
+    for (i, c) in at.iter().enumerate() {
+        assert_eq!(*c, at[i % 5], "copy {i}");
+    }
+}
