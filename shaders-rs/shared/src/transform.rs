@@ -210,6 +210,20 @@ mod tests {
         m.map(|row| row[0] * v[0] + row[1] * v[1] + row[2] * v[2])
     }
 
+    /// An instance turned by `angle` about `axis` (any length) and scaled by `scale`: its 3x3
+    /// part, the f32 world-to-object matrix the stages multiply by, and that matrix exactly in
+    /// f64 (to judge the stages against the matrix they have).
+    fn turned_scaled(axis: [f64; 3], angle: f64, scale: [f64; 3]) -> (M, Mat3, M) {
+        let n = axis.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let rot = turn(axis.map(|x| x / n), angle);
+        let m: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| rot[i][j] * scale[j]));
+        let inv_rows: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| rot[j][i] / scale[i]));
+        let inverse =
+            Mat3::from_cols(f32s(inv_rows.map(|r| r[0])), f32s(inv_rows.map(|r| r[1])), f32s(inv_rows.map(|r| r[2])));
+        let inv: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| f64::from(inverse.col(j)[i])));
+        (m, inverse, inv)
+    }
+
     fn transpose(m: &M) -> M {
         [0, 1, 2].map(|i| [m[0][i], m[1][i], m[2][i]])
     }
@@ -263,15 +277,7 @@ mod tests {
     /// within the ulps of its distance, which a grazing ray turns into t error.
     #[test]
     fn a_ray_brought_near_first_is_rounded_at_the_objects_size() {
-        let n = (4.0f64 + 1.0 + 9.0).sqrt();
-        let rot = turn([2.0 / n, -1.0 / n, 3.0 / n], 0.9);
-        let scale = [1.0, 5.0, 0.2];
-        let m: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| rot[i][j] * scale[j]));
-        let inv_rows: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| rot[j][i] / scale[i]));
-        let inverse =
-            Mat3::from_cols(f32s(inv_rows.map(|r| r[0])), f32s(inv_rows.map(|r| r[1])), f32s(inv_rows.map(|r| r[2])));
-        // The stage multiplies by the f32 matrix: judge it against that matrix, exactly.
-        let inv: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| f64::from(inverse.col(j)[i])));
+        let (m, inverse, inv) = turned_scaled([2.0, -1.0, 3.0], 0.9, [1.0, 5.0, 0.2]);
         let t = [10000.0, -3000.25, 7000.5];
         let bound = Vec4::new(0.0, 0.0, 0.0, 2.0f32.sqrt());
         let (mut near, mut plain) = (0.0f64, 0.0f64);
@@ -302,14 +308,7 @@ mod tests {
     /// driver's form (the whole world-to-object matrix applied where the ray starts) is not.
     #[test]
     fn a_triangle_grazed_from_afar_is_measured_near_it() {
-        let n = (1.0f64 + 4.0 + 4.0).sqrt();
-        let rot = turn([1.0 / n, 2.0 / n, -2.0 / n], 0.6);
-        let scale = [1.0, 4.0, 0.3];
-        let m: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| rot[i][j] * scale[j]));
-        let inv_rows: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| rot[j][i] / scale[i]));
-        let inverse =
-            Mat3::from_cols(f32s(inv_rows.map(|r| r[0])), f32s(inv_rows.map(|r| r[1])), f32s(inv_rows.map(|r| r[2])));
-        let inv: M = [0, 1, 2].map(|i| [0, 1, 2].map(|j| f64::from(inverse.col(j)[i])));
+        let (m, inverse, inv) = turned_scaled([1.0, 2.0, -2.0], 0.6, [1.0, 4.0, 0.3]);
         let t = [10000.0, -3000.25, 7000.5];
         let p = [Vec3::new(-0.5, -0.4, 0.1), Vec3::new(0.6, -0.3, 0.0), Vec3::new(0.0, 0.5, -0.1)];
         let pd = p.map(|v| [f64::from(v.x), f64::from(v.y), f64::from(v.z)]);
