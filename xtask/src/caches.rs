@@ -4,6 +4,7 @@
 //! lavapipe pipeline and every dependency; a fresh clone builds the workspace's own crates
 //! whatever the machine holds.
 
+use crate::process::cache_home;
 use std::path::{Path, PathBuf};
 
 /// One cache: what it is, where it lies, whether it held anything at the start, and whether it
@@ -13,14 +14,6 @@ pub struct Cache {
     pub path: PathBuf,
     pub warm: bool,
     pub machine: bool,
-}
-
-/// `$XDG_CACHE_HOME`, else `~/.cache`, as twinray, Mesa and the shader builder read it.
-pub fn cache_home() -> PathBuf {
-    std::env::var_os("XDG_CACHE_HOME")
-        .map(PathBuf::from)
-        .or_else(|| std::env::var_os("HOME").map(|h| PathBuf::from(h).join(".cache")))
-        .unwrap_or_else(std::env::temp_dir)
 }
 
 /// Whether `dir` holds any entry.

@@ -12,7 +12,7 @@ use std::path::{Path, PathBuf};
 
 /// Where the kept builds lie. `.ci/run` names the same folder.
 pub fn dir() -> PathBuf {
-    crate::caches::cache_home().join("twinray/clone-builds")
+    crate::process::cache_home().join("twinray/clone-builds")
 }
 
 /// The marker `.ci/run` leaves in a `target/` it seeded, so that the run's summary can tell a

@@ -9,6 +9,7 @@
 
 #[macro_use]
 mod any_hit;
+mod flags;
 #[macro_use]
 mod hit;
 #[macro_use]

@@ -31,7 +31,7 @@ macro_rules! probe_stages {
             // SAFETY: the TLAS is bound and built; the payload is this stage's ray_payload variable.
             unsafe {
                 tlas.trace_ray(
-                    crate::trace::PRIMARY_RAY_FLAGS,
+                    crate::flags::PRIMARY_RAY_FLAGS,
                     0xff,
                     0,
                     0,

@@ -171,7 +171,7 @@ pub fn trace_query(
     let mut normal = Vec3::ZERO;
     // SAFETY: as in `visible_query`; the committed intersection is read only when there is one.
     unsafe {
-        query.initialize(tlas, crate::trace::PRIMARY_RAY_FLAGS, 0xff, ray.origin, t_min, ray.direction, t_max);
+        query.initialize(tlas, crate::flags::PRIMARY_RAY_FLAGS, 0xff, ray.origin, t_min, ray.direction, t_max);
         while query.proceed() {
             let closest = if query.get_committed_intersection_type() == CommittedIntersection::None {
                 t_max

@@ -3,6 +3,7 @@
 //! Free functions rather than a struct of references: rust-gpu cannot keep references in a
 //! struct (logical SPIR-V has no pointers to pointers).
 
+use crate::flags::PRIMARY_RAY_FLAGS;
 use crate::query::{visible_query, Mesh};
 use crate::texture::Texture;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
@@ -25,9 +26,6 @@ pub type Lights = RuntimeArray<Light>;
 /// say whether they are (cutouts are not, and their any-hit stage runs), so scenes without
 /// cutouts run none.
 /// `_features` are the scene's: the hit stages read their own.
-/// `bindings::PRIMARY_RAY_FLAGS` as ray flags (GLSL reads the same constant from its layout).
-pub const PRIMARY_RAY_FLAGS: RayFlags = RayFlags::from_bits_truncate(twinray_shared::bindings::PRIMARY_RAY_FLAGS);
-
 pub fn primary(
     tlas: &AccelerationStructure,
     ray: Ray,
