@@ -26,4 +26,5 @@ mod probe_cli;
 mod reference_ambiguity;
 mod reference_cache;
 mod reports;
+mod set_loading;
 mod stage_bench;

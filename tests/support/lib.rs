@@ -136,8 +136,9 @@ pub fn alternate_set(k: usize) -> &'static str {
     ["rust", "glsl"][k % 2]
 }
 
+/// The set `text` names, loaded (folders of sources built with the default deadline).
 pub fn set(text: &str) -> ShaderSet {
-    match text.parse() {
+    match text.parse().and_then(|spec| twinray::shaders::Loader::default().load(&spec)) {
         Ok(set) => set,
         Err(e) => panic!("shader set {text:?}: {e}"),
     }

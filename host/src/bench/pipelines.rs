@@ -10,7 +10,7 @@ use crate::render::layout::LayoutDraw;
 use crate::render::libraries::Libraries;
 use crate::render::pipeline::{used_stages, ScenePipeline};
 use crate::scene::Scene;
-use crate::shaders::{ShaderSet, Stage};
+use crate::shaders::{Language, ShaderSet, Stage, MODULES};
 use crate::util::stats::median;
 use crate::vk::context::{Context, ContextOptions, PipelineKind};
 use serde::Serialize;
@@ -20,17 +20,16 @@ use std::time::Instant;
 /// The 2^n per-stage mixes of `stages`: each from Rust or GLSL (the first is all Rust, the last
 /// all GLSL).
 pub fn all_mixes(stages: &[Stage]) -> Result<Vec<ShaderSet>> {
-    (0..1u32 << stages.len())
-        .map(|bits| {
-            let glsl: Vec<String> = stages
-                .iter()
-                .enumerate()
-                .filter(|(i, _)| bits >> i & 1 == 1)
-                .map(|(_, s)| format!("{}=glsl", s.name()))
-                .collect();
-            std::iter::once("rust".to_string()).chain(glsl).collect::<Vec<_>>().join(",").parse()
-        })
-        .collect()
+    let (rust, glsl) = (ShaderSet::uniform(Language::Rust), ShaderSet::uniform(Language::Glsl));
+    let mixes = (0..1u32 << stages.len()).map(|bits| {
+        let from_glsl: Vec<&str> = MODULES
+            .iter()
+            .filter(|m| stages.iter().enumerate().any(|(i, s)| bits >> i & 1 == 1 && m.stage == *s))
+            .map(|m| m.name)
+            .collect();
+        rust.with_modules_from(&glsl, &from_glsl)
+    });
+    Ok(mixes.collect())
 }
 
 /// One configuration of pipeline creation.

@@ -12,7 +12,7 @@ use std::sync::Arc;
 use twinray::bench::stages::Variant;
 use twinray::bench::{AloneIn, TimeAlone};
 use twinray::render::RenderOptions;
-use twinray::shaders::ShaderSet;
+use twinray::shaders::{Loader, ShaderSet};
 use twinray::Error;
 
 /// Child folders made so far by this process: each child writes into a fresh one.
@@ -126,6 +126,7 @@ pub fn timer(
     scenes: Vec<String>,
 ) -> impl Fn(usize, u32, &ShaderSet, u32) -> twinray::Result<Vec<f64>> + Send + Sync + 'static {
     let exe = std::env::current_exe().map_err(|e| e.to_string());
+    let loader = global.loader().clone();
     let mut common = global.forwarded();
     common.push("bench".into());
     let flags = [
@@ -144,7 +145,7 @@ pub fn timer(
         common.extend(["--width".into(), w.to_string(), "--height".into(), h.to_string()]);
     }
     move |scene, spp, set, first| {
-        let times = child_set(set).and_then(|text| {
+        let times = child_set(&loader, set).and_then(|text| {
             let which = [scenes[scene].clone(), "--sets".into(), text, "--spp".into(), spp.to_string()];
             let args = [&common[..], &which[..], &["--first-placement".into(), first.to_string()]];
             let results = child_results(&exe, &args.concat())?;
@@ -166,13 +167,14 @@ pub fn stage_timer(
     scenes: Vec<String>,
 ) -> impl Fn(usize, Variant, &ShaderSet, u32) -> twinray::Result<f64> {
     let exe = std::env::current_exe().map_err(|e| e.to_string());
+    let loader = global.loader().clone();
     let mut common = global.forwarded();
     common.extend(["stage-bench".into(), "--rounds".into(), "1".into()]);
     let flags =
         [("--width", frame.width), ("--height", frame.height), ("--runs", frame.runs), ("--warmup", frame.warmup)];
     common.extend(flags.into_iter().filter_map(|(f, v)| v.map(|v| [f.to_string(), v.to_string()])).flatten());
     move |scene, variant, set, round| {
-        let ms = child_set(set).and_then(|text| {
+        let ms = child_set(&loader, set).and_then(|text| {
             let (v, r) = (variant.name().to_string(), round.to_string());
             let which =
                 [scenes[scene].clone(), "--variants".into(), v, "--sets".into(), text, "--first-round".into(), r];
@@ -199,9 +201,10 @@ fn no_times(command: &str) -> Error {
 
 /// How a child is told `set`: its text, which must read back as the same modules (a set whose
 /// text named another would have another set timed).
-fn child_set(set: &ShaderSet) -> twinray::Result<String> {
+fn child_set(loader: &Loader, set: &ShaderSet) -> twinray::Result<String> {
     let text = set.to_string();
-    if twinray::shaders::parse_sets(&text).ok().as_deref() != Some(std::slice::from_ref(set)) {
+    let read_back = twinray::shaders::parse_specs(&text).and_then(|specs| loader.load_all(&specs));
+    if read_back.ok().as_deref() != Some(std::slice::from_ref(set)) {
         return Err(Error::Unsupported(format!("{text} does not read back as the set it names")));
     }
     Ok(text)

@@ -11,7 +11,7 @@ use std::process::ExitCode;
 use twinray::bench::animation::{resize_grid, run, write, AnimateConfig};
 use twinray::render::{TlasKind, TlasMode};
 use twinray::scene::check_size;
-use twinray::ShaderSet;
+use twinray::shaders::SetSpec;
 use twinray::{Error, Scene};
 
 /// Most instances the bench resizes a grid to: the scene limit.
@@ -59,10 +59,11 @@ pub fn animate_bench(global: &GlobalArgs, args: AnimateBenchArgs) -> Result<Exit
         path: args.out.clone(),
         source,
     })?;
+    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
     let config = AnimateConfig {
         scenes,
-        set: args.shaders.clone(),
+        set: shaders.clone(),
         modes,
         frames,
         width,
@@ -99,7 +100,7 @@ pub struct AnimateBenchArgs {
     pub frames: Option<u32>,
     /// Shader set that traces.
     #[arg(long, default_value = "rust")]
-    pub shaders: ShaderSet,
+    pub shaders: SetSpec,
     /// Image width [default: the scene's].
     #[arg(long)]
     pub width: Option<u32>,

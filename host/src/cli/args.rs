@@ -4,8 +4,9 @@
 
 use clap::Args;
 use std::path::PathBuf;
+use std::sync::OnceLock;
 use twinray::render::{FrameRange, TlasKind, TlasMode};
-use twinray::ShaderSet;
+use twinray::shaders::{Loader, SetSpec, ShaderSet};
 
 pub use crate::image_args::ViewpointArgs;
 
@@ -70,9 +71,30 @@ pub struct GlobalArgs {
     /// channel, or map it by c / (1 + c) (reinhard). EXR output and every metric stay linear.
     #[arg(long, global = true, value_enum, value_name = "MAP", default_value_t = twinray::util::srgb::ToneMap::Clip)]
     pub tone_map: twinray::util::srgb::ToneMap,
+    /// The loader of this command's sets, made at its first use: after the log and every
+    /// option it needs (`--build-timeout`) are in place, never while the command line is read.
+    #[arg(skip)]
+    pub loader: OnceLock<Loader>,
 }
 
 impl GlobalArgs {
+    /// The set `spec` names, loaded: folders of sources built within `--build-timeout`, every
+    /// module from disk checked.
+    /// `flag` names the option that gave it, in the error of a set that does not load.
+    pub fn load(&self, flag: &str, spec: &SetSpec) -> twinray::Result<ShaderSet> {
+        self.loader().load(spec).map_err(|e| named(flag, e))
+    }
+
+    /// Each of `specs`, loaded, as `load` loads one.
+    pub fn load_all(&self, flag: &str, specs: &[SetSpec]) -> twinray::Result<Vec<ShaderSet>> {
+        self.loader().load_all(specs).map_err(|e| named(flag, e))
+    }
+
+    /// This command's loader of sets.
+    pub fn loader(&self) -> &Loader {
+        self.loader.get_or_init(|| Loader::new(self.build_timeout))
+    }
+
     /// The flags that gave these options, for a `twinray` child process (`view`'s renders).
     pub fn forwarded(&self) -> Vec<String> {
         let mut args = Vec::new();
@@ -90,11 +112,20 @@ impl GlobalArgs {
         pair("--threads", self.threads.map(|n| n.to_string()));
         pair("--pipeline-cache", self.pipeline_cache.as_ref().map(|p| p.display().to_string()));
         pair("--gpu-timeout", self.gpu_timeout.map(|t| t.as_secs_f64().to_string()));
+        pair("--build-timeout", self.build_timeout.map(|t| t.as_secs_f64().to_string()));
         pair("--asset-root", self.asset_root.as_ref().map(|p| p.display().to_string()));
         pair("--tone-map", clap::ValueEnum::to_possible_value(&self.tone_map).map(|v| v.get_name().to_string()));
         let switches = [(self.no_pipeline_cache, "--no-pipeline-cache"), (self.no_robust_access, "--no-robust-access")];
         args.extend(switches.into_iter().filter(|(on, _)| *on).map(|(_, flag)| flag.to_string()));
         args
+    }
+}
+
+/// `e` said of the option `flag`, its kind kept (an input error stays one: exit 2).
+fn named(flag: &str, e: twinray::Error) -> twinray::Error {
+    match e {
+        twinray::Error::Input(message) => twinray::Error::Input(format!("{flag}: {message}")),
+        other => other,
     }
 }
 
@@ -178,7 +209,7 @@ pub struct RenderArgs {
     pub scene: Option<String>,
     /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
     #[arg(long, default_value = "rust")]
-    pub shaders: ShaderSet,
+    pub shaders: SetSpec,
     /// Output PNG file; with --frames, an animated PNG, each frame also as STEM-NNNN.png beside it.
     #[arg(long, default_value = "render.png")]
     pub out: PathBuf,
@@ -196,10 +227,10 @@ pub struct CompareArgs {
     pub scene: Option<String>,
     /// First shader set.
     #[arg(long, default_value = "rust")]
-    pub a: ShaderSet,
+    pub a: SetSpec,
     /// Second shader set.
     #[arg(long, default_value = "glsl")]
-    pub b: ShaderSet,
+    pub b: SetSpec,
     /// Directory for a.png, b.png and diff.png (created if missing); with --frames, those of
     /// the worst frame, and diff-NNNN.png of every frame outside the tolerance.
     #[arg(long, default_value = "compare")]
@@ -259,7 +290,7 @@ pub struct BenchArgs {
     pub reference_spp: u32,
     /// Shader set that renders the references.
     #[arg(long, default_value = "glsl")]
-    pub reference_set: ShaderSet,
+    pub reference_set: SetSpec,
     /// Reference cache folder [default: as for `twinray reference`].
     #[arg(long)]
     pub cache: Option<PathBuf>,

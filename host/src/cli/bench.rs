@@ -27,7 +27,8 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     if let (Some(w), Some(h)) = (args.width, args.height) {
         check_size(w, h).map_err(Error::Input)?;
     }
-    let sets = twinray::shaders::parse_sets(&args.sets)?;
+    let sets = global.load_all("--sets", &twinray::shaders::parse_specs(&args.sets)?)?;
+    let reference_set = global.load("--reference-set", &args.reference_set)?;
     let probes = probes(args.probes.as_deref())?;
     let cache = args.cache.clone().unwrap_or_else(twinray::reference::image::default_cache);
     let isolation = (args.processes > 0).then(|| bench::Isolation {
@@ -53,7 +54,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         first_placement: args.first_placement,
         null: args.null,
         reference_spp: args.reference_spp,
-        reference_set: args.reference_set,
+        reference_set,
         cache,
         out: args.out.clone(),
         shadow_spp,

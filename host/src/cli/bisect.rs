@@ -8,10 +8,11 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::compare::bisect::{bisect as run_bisect, BisectReport, ImageSubject, ProbeSubject};
 use twinray::probe::case::ProbeCase;
-use twinray::ShaderSet;
+use twinray::shaders::SetSpec;
 use twinray::{Error, Scene};
 
 pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
+    let (a, b) = (global.load("--a", &args.a)?, global.load("--b", &args.b)?);
     let report = match &args.probe {
         Some(path) => {
             if args.frame.width.is_some() || args.frame.height.is_some() || args.processes > 0 {
@@ -27,7 +28,7 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
                 runs: args.frame.runs.unwrap_or(runs),
                 placements: args.frame.placements.unwrap_or(placements),
             };
-            run_bisect(&mut subject, &args.a, &args.b)?
+            run_bisect(&mut subject, &a, &b)?
         }
         None => {
             let scene = Scene::load(args.scene.as_deref())?;
@@ -36,8 +37,8 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
             let ctx = context(global)?;
             let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
             let (isolation, cache) =
-                crate::alone::for_scene(global, scene_arg, &opts, &args.a, (args.processes, args.alone.alone_in));
-            let report = run_bisect(&mut ImageSubject { ctx: &ctx, scene: &scene, opts, isolation }, &args.a, &args.b);
+                crate::alone::for_scene(global, scene_arg, &opts, &a, (args.processes, args.alone.alone_in));
+            let report = run_bisect(&mut ImageSubject { ctx: &ctx, scene: &scene, opts, isolation }, &a, &b);
             let _ = std::fs::remove_dir_all(cache);
             report?
         }
@@ -66,10 +67,10 @@ pub struct BisectArgs {
     pub probe: Option<PathBuf>,
     /// Set A.
     #[arg(long, default_value = "rust")]
-    pub a: ShaderSet,
+    pub a: SetSpec,
     /// Set B.
     #[arg(long, default_value = "glsl")]
-    pub b: ShaderSet,
+    pub b: SetSpec,
     #[command(flatten)]
     pub frame: FrameArgs,
     /// Time each set alone in N processes of its own, as `compare --processes` does (not with

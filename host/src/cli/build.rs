@@ -3,13 +3,13 @@
 //! pinned toolchain installed when missing, the backend built once per machine, nothing built
 //! when no file changed, every module checked as sets from disk are.
 
+use crate::args::GlobalArgs;
 use anyhow::Result;
 use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
-use twinray::shaders::sources;
+use twinray::shaders::load::summary;
 use twinray::Error;
-use twinray_build::folder::{self, Options};
 
 #[derive(Args)]
 pub struct BuildArgs {
@@ -20,16 +20,12 @@ pub struct BuildArgs {
     pub force: bool,
 }
 
-pub fn build(args: BuildArgs, timeout: Option<std::time::Duration>) -> Result<ExitCode> {
+pub fn build(global: &GlobalArgs, args: BuildArgs) -> Result<ExitCode> {
     if !args.dir.is_dir() {
         return Err(Error::Input(format!("{}: no such folder", args.dir.display())).into());
     }
-    let mut options = Options { force: args.force, ..Options::default() };
-    if let Some(timeout) = timeout {
-        options.timeout = timeout;
-    }
-    let built = folder::build(&args.dir, options).map_err(|e| Error::Input(format!("{e:#}")))?;
-    println!("build: {}", sources::summary(&args.dir, &built));
+    let built = global.loader().build_now(&args.dir, args.force).map_err(|e| Error::Input(format!("{e:#}")))?;
+    println!("build: {}", summary(&args.dir, &built));
     println!("set: {}", built.set.display());
     Ok(ExitCode::SUCCESS)
 }

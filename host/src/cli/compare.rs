@@ -22,11 +22,13 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
     }
+    let a = global.load("--a", &args.a)?;
+    let b = global.load("--b", &args.b)?;
     let ctx = context(global)?;
     let scene_arg = args.scene.clone().unwrap_or_else(|| twinray::scene::DEFAULT_SCENE.to_string());
     let (isolation, cache) =
-        crate::alone::for_scene(global, scene_arg, &opts, &args.a, (args.processes, args.alone.alone_in));
-    let comparison = compare_sets(&ctx, &scene, (&args.a, &args.b), &opts, isolation.as_ref());
+        crate::alone::for_scene(global, scene_arg, &opts, &a, (args.processes, args.alone.alone_in));
+    let comparison = compare_sets(&ctx, &scene, (&a, &b), &opts, isolation.as_ref());
     let _ = std::fs::remove_dir_all(cache);
     let comparison = comparison?;
     comparison.write_images(&args.out_dir)?;

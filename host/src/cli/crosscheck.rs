@@ -10,7 +10,7 @@ use twinray::crosscheck::report::{html, table};
 use twinray::crosscheck::{check, run};
 use twinray::reference::image::{default_cache, frames};
 use twinray::scene::check_size;
-use twinray::shaders::ShaderSet;
+use twinray::shaders::SetSpec;
 use twinray::{Error, Scene};
 
 #[derive(Args)]
@@ -39,7 +39,7 @@ pub struct CrosscheckArgs {
     pub mitsuba_spp: u32,
     /// Shader set that renders twinray's reference.
     #[arg(long, default_value = "glsl")]
-    pub shaders: ShaderSet,
+    pub shaders: SetSpec,
     /// Reference cache folder [default: as for `twinray reference`].
     #[arg(long)]
     pub cache: Option<PathBuf>,
@@ -84,6 +84,7 @@ pub fn crosscheck(global: &GlobalArgs, args: CrosscheckArgs) -> Result<ExitCode>
         }
         scenes.push((scene, size));
     }
+    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
     let cache = args.cache.clone().unwrap_or_else(default_cache);
     let mut checks = Vec::new();
@@ -96,7 +97,7 @@ pub fn crosscheck(global: &GlobalArgs, args: CrosscheckArgs) -> Result<ExitCode>
             run::render_mitsuba(python, &mitsuba)?;
         }
         eprintln!("crosscheck {}: twinray reference ({} spp)", scene.name(), args.spp);
-        let (radiance, uncovered) = run::twinray_side(&ctx, scene, &args.shaders, *size, args.spp, &cache)?;
+        let (radiance, uncovered) = run::twinray_side(&ctx, scene, &shaders, *size, args.spp, &cache)?;
         let c = check(&radiance, &uncovered, args.spp, &mitsuba, Some(&dir))?;
         eprintln!(
             "crosscheck {}: relative RMSE {:.4} (Mitsuba noise {:.5} of RMSE {:.5}), {} coverage mismatches",

@@ -11,8 +11,8 @@ use twinray::explain::report::{Converged, ExplainReport};
 use twinray::probe::report::Outcome::NoPayload;
 use twinray::reference::image::{default_cache, reference};
 use twinray::scene::check_size;
+use twinray::shaders::SetSpec;
 use twinray::Error;
-use twinray::ShaderSet;
 
 pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
     let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
@@ -20,9 +20,11 @@ pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
     check_size(size.0, size.1).map_err(Error::Input)?;
     let names = args.names.clone().map_or([None, None], |(a, b)| [Some(a), Some(b)]);
     let [name_a, name_b] = names;
-    let mut sets = vec![(name_a.unwrap_or_else(|| label(&args.a, "A")), args.a.clone())];
+    let a = global.load("--a", &args.a)?;
+    let mut sets = vec![(name_a.unwrap_or_else(|| label(&a, "A")), a.clone())];
     if let Some(b) = &args.b {
-        sets.push((name_b.unwrap_or_else(|| label(b, "B")), b.clone()));
+        let b = global.load("--b", b)?;
+        sets.push((name_b.unwrap_or_else(|| label(&b, "B")), b));
     }
     if sets.len() == 2 && sets[0].0 == sets[1].0 {
         sets[0].0 = format!("A ({})", sets[0].0);
@@ -32,7 +34,7 @@ pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
     let px = explain_pixel(&ctx, &scene, &sets, size, args.pixel)?;
     let converged = match args.converged {
         Some(spp) => {
-            let image = reference(&ctx, &scene, &args.a, size, spp, &default_cache())?;
+            let image = reference(&ctx, &scene, &a, size, spp, &default_cache())?;
             let index = (args.pixel.1 * size.0 + args.pixel.0) as usize;
             Some(Converged { spp, value: image.linear[index] })
         }
@@ -86,10 +88,10 @@ pub struct ExplainArgs {
     pub pixel: (u32, u32),
     /// Set A.
     #[arg(long, default_value = "rust")]
-    pub a: ShaderSet,
+    pub a: SetSpec,
     /// Set B; without it, set A alone against the f64 reference.
     #[arg(long)]
-    pub b: Option<ShaderSet>,
+    pub b: Option<SetSpec>,
     #[command(flatten)]
     pub viewpoint: ViewpointArgs,
     /// Image width in pixels [default: the scene's].

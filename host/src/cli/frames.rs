@@ -29,13 +29,14 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
     let frames = range.of(&scene)?;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     check_png_target(&args.out)?;
+    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
     let mode = args.animation.mode();
     let mut movie = AnimatedPng::create(&args.out, (opts.width, opts.height), frames.len() as u32, fps(&scene))?;
     let mut rows = Vec::new();
-    let set = args.shaders.to_string();
+    let set = shaders.to_string();
     let mut problems = Vec::new();
-    render_frames(&ctx, &scene, std::slice::from_ref(&args.shaders), &opts, frames, mode, |frame| {
+    render_frames(&ctx, &scene, std::slice::from_ref(&shaders), &opts, frames, mode, |frame| {
         let out = &frame.outputs[0];
         let mut found = out.written.problems(&set, "pixels");
         if !out.no_payload.is_empty() {
@@ -63,7 +64,7 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
         let value = serde_json::json!({
             "scene": scene.name(),
             "device": ctx.info.name,
-            "set": args.shaders.to_string(),
+            "set": shaders.to_string(),
             "width": opts.width,
             "height": opts.height,
             "tlas": mode.name(),
@@ -80,7 +81,7 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
         scene.name(),
         opts.width,
         opts.height,
-        args.shaders,
+        shaders,
         ctx.info.name,
         mode.name(),
         rows.len()
@@ -114,6 +115,8 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs, range: FrameRange) -> Res
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
     }
+    let a = global.load("--a", &args.a)?;
+    let b = global.load("--b", &args.b)?;
     let ctx = context(global)?;
     std::fs::create_dir_all(&args.out_dir).map_err(|source| Error::Io {
         what: "creating",
@@ -123,7 +126,7 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs, range: FrameRange) -> Res
     let parity = scene.file.parity;
     let pixels = u64::from(opts.width) * u64::from(opts.height);
     let mut worst: Option<(f64, [Vec<u8>; 3])> = None;
-    let sets = (&args.a, &args.b);
+    let sets = (&a, &b);
     let report = compare_frames(&ctx, &scene, sets, &opts, frames, args.animation.mode(), |row, a, b| {
         let diff = diff_image(a, b, &row.diff);
         if !row.pass {

@@ -125,7 +125,7 @@ fn report(global: &GlobalArgs, text: &str, args: &InspectArgs, side: u32) -> Res
         };
         return Ok(SetReport { set: text.to_string(), normalised: !args.raw, modules: vec![module] });
     }
-    let set: ShaderSet = text.parse()?;
+    let set: ShaderSet = global.load("the set", &text.parse()?)?;
     let names = chosen(&set, args.stage.as_deref())?;
     let stacks = if args.no_stacks {
         Vec::new()

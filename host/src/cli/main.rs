@@ -175,9 +175,6 @@ fn main() -> ExitCode {
     crash::quiet_caught_panics();
     let _command = activity::doing(format!("twinray {}", matches.subcommand_name().unwrap_or_default()));
     twinray::util::srgb::set_tone_map(cli.global.tone_map);
-    if let Some(timeout) = cli.global.build_timeout {
-        twinray::shaders::sources::set_build_timeout(timeout);
-    }
     if let Some(Err(e)) = cli.global.asset_root.as_deref().map(twinray::util::input::set_asset_root) {
         eprintln!("error: {e}");
         return ExitCode::from(2);
@@ -186,8 +183,8 @@ fn main() -> ExitCode {
         Command::Info { json } => info::info(&cli.global, json),
         Command::Scenes { json } => scenes::scenes(json),
         Command::New(args) => new::new(args),
-        Command::Build(args) => build::build(args, cli.global.build_timeout),
-        Command::Watch(args) => watch::watch(args),
+        Command::Build(args) => build::build(&cli.global, args),
+        Command::Watch(args) => watch::watch(&cli.global, args),
         Command::Render(args) => render::render(&cli.global, args),
         Command::Compare(args) => compare::compare(&cli.global, args),
         Command::Bisect(args) => bisect::bisect(&cli.global, args),

@@ -47,7 +47,8 @@ pub fn places(global: &GlobalArgs, args: PlacesArgs) -> Result<ExitCode> {
     }
     let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
     check_size(size.0, size.1).map_err(Error::Input)?;
-    let sets = twinray::shaders::ShaderSet::distinct(&twinray::shaders::parse_sets(&args.sets)?);
+    let sets =
+        twinray::shaders::ShaderSet::distinct(&global.load_all("--sets", &twinray::shaders::parse_specs(&args.sets)?)?);
     if let Some(out) = &args.out {
         twinray::util::output::check_file_target(out)?;
     }

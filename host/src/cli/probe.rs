@@ -7,7 +7,7 @@ use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::scene::shape::Formula;
-use twinray::ShaderSet;
+use twinray::shaders::SetSpec;
 
 pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
     let mut case = twinray::probe::case::ProbeCase::load(&args.case)?;
@@ -18,12 +18,13 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
     if let Some(path) = &args.rays_out {
         twinray::util::output::check_file_target(path).map_err(|e| twinray::Error::Input(format!("--rays-out {e}")))?;
     }
+    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
-    let out = twinray::probe::probe(&ctx, &case.scene, &args.shaders, &case.rays, args.warmup, args.runs)?;
+    let out = twinray::probe::probe(&ctx, &case.scene, &shaders, &case.rays, args.warmup, args.runs)?;
     let median = twinray::util::stats::median(&out.gpu_ms);
     let label = match args.formula.as_deref() {
-        Some(formula) => format!("{} ({formula})", args.shaders),
-        None => args.shaders.to_string(),
+        Some(formula) => format!("{} ({formula})", shaders),
+        None => shaders.to_string(),
     };
     let report = twinray::probe::report::evaluate(&case, out.records(), &label, &ctx.info.name, median);
     if let Some(path) = &args.rays_out {
@@ -45,7 +46,7 @@ pub struct ProbeArgs {
     pub case: PathBuf,
     /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
     #[arg(long, default_value = "rust")]
-    pub shaders: ShaderSet,
+    pub shaders: SetSpec,
     /// Intersection formula for every shape that has both: robust, or naive (the textbook
     /// forms kept on purpose) [default: as the scene says].
     #[arg(long, value_parser = ["robust", "naive"])]

@@ -7,8 +7,9 @@ use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray::scene::check_size;
+use twinray::shaders::SetSpec;
 use twinray::util::output::{check_image_target, write_image};
-use twinray::{Error, Scene, ShaderSet};
+use twinray::{Error, Scene};
 
 pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
     let scene = Scene::load(args.scene.as_deref())?;
@@ -19,16 +20,17 @@ pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
         check_image_target(out)?;
     }
     let cache = args.cache.unwrap_or_else(twinray::reference::image::default_cache);
+    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
     let start = std::time::Instant::now();
-    let r = twinray::reference::image::reference(&ctx, &scene, &args.shaders, size, args.spp, &cache)?;
+    let r = twinray::reference::image::reference(&ctx, &scene, &shaders, size, args.spp, &cache)?;
     if let Some(out) = &args.out {
         write_image(out, (r.width, r.height), &r.linear, &twinray::render::to_picture(&r.linear))?;
     }
     if args.json {
         let value = serde_json::json!({
             "scene": scene.name(),
-            "set": args.shaders.to_string(),
+            "set": shaders.to_string(),
             "width": r.width,
             "height": r.height,
             "spp": r.spp,
@@ -45,7 +47,7 @@ pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
             r.width,
             r.height,
             r.spp,
-            args.shaders,
+            shaders,
             r.path.display()
         );
     }
@@ -61,7 +63,7 @@ pub struct ReferenceArgs {
     pub spp: u32,
     /// Shader set that renders it.
     #[arg(long, default_value = "glsl")]
-    pub shaders: ShaderSet,
+    pub shaders: SetSpec,
     /// Image width in pixels [default: the scene's].
     #[arg(long)]
     pub width: Option<u32>,

@@ -17,18 +17,19 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     let load_ms = loading.elapsed().as_secs_f64() * 1e3;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     check_image_target(&args.out)?;
+    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
-    let out = twinray::render(&ctx, &scene, &args.shaders, &opts)?;
+    let out = twinray::render(&ctx, &scene, &shaders, &opts)?;
     write_image(&args.out, (out.width, out.height), &out.linear, &out.picture())?;
     let median = out.median_ms();
-    let set = args.shaders.to_string();
+    let set = shaders.to_string();
     let mut problems = out.written.problems(&set, "pixels");
     problems.extend(twinray::explain::no_payload::render_lines(&scene, &out, &set));
     if args.frame.json {
         let value = serde_json::json!({
             "scene": scene.name(),
             "device": ctx.info.name,
-            "set": args.shaders.to_string(),
+            "set": shaders.to_string(),
             "width": out.width,
             "height": out.height,
             "out": args.out,

@@ -10,7 +10,8 @@ use twinray::probe::case::ProbeCase;
 use twinray::scene::shape::Formula;
 
 pub fn stability(global: &GlobalArgs, args: StabilityArgs) -> Result<ExitCode> {
-    let sets = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::ShaderSet>, _>>()?;
+    let specs = args.sets.split(';').map(str::parse).collect::<Result<Vec<twinray::shaders::SetSpec>, _>>()?;
+    let sets = global.load_all("--sets", &specs)?;
     if args.against_world {
         return against_world(global, &args, &sets);
     }

@@ -15,7 +15,7 @@ pub fn stage_bench(global: &GlobalArgs, args: StageBenchArgs) -> Result<ExitCode
     use twinray::bench::stages::{run, table, StagePlan, Variant};
     let scenes = args.scenes.iter().map(|name| Scene::load(Some(name))).collect::<Result<Vec<_>, _>>()?;
     let variants = Variant::parse_list(&args.variants)?;
-    let sets = twinray::shaders::parse_sets(&args.sets)?;
+    let sets = global.load_all("--sets", &twinray::shaders::parse_specs(&args.sets)?)?;
     if args.frame.placements.is_some() {
         let why =
             "stage-bench: each round makes every pipeline afresh (a placement); give --rounds instead of --placements";

@@ -10,8 +10,8 @@ use twinray::Error;
 
 pub fn view(global: &GlobalArgs, args: ViewArgs) -> Result<ExitCode> {
     // Refuse bad sets now, with exit 2: later, a set that stops loading is a message in the page.
-    for spec in [&args.a, &args.b] {
-        spec.parse::<twinray::ShaderSet>()?;
+    for (flag, spec) in [("--a", &args.a), ("--b", &args.b)] {
+        global.load(flag, &spec.parse()?)?;
     }
     let sources = match &args.sources {
         Some(dir) if !dir.is_dir() => {

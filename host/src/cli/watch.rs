@@ -4,6 +4,7 @@
 //! with the time from the save to it. A build error, a refused module or a stage that never
 //! returns is a verdict line too, and the next save is compared as usual.
 
+use crate::args::GlobalArgs;
 use anyhow::{Context, Result};
 use clap::Args;
 use std::collections::BTreeMap;
@@ -43,7 +44,7 @@ fn snapshot(dir: &Path) -> Snapshot {
     files.into_iter().filter_map(|f| Some((f.clone(), dir.join(&f).metadata().ok()?.modified().ok()?))).collect()
 }
 
-pub fn watch(args: WatchArgs) -> Result<ExitCode> {
+pub fn watch(global: &GlobalArgs, args: WatchArgs) -> Result<ExitCode> {
     if sources_in(&args.dir).is_none() {
         let message = format!("{}: no shader sources to watch (a Cargo.toml or a raygen.rgen)", args.dir.display());
         return Err(Error::Input(message).into());
@@ -51,7 +52,7 @@ pub fn watch(args: WatchArgs) -> Result<ExitCode> {
     println!("watch: {} against {} (Ctrl-C to stop)", args.dir.display(), args.against);
     // Seen before the first compare: a save while it runs is the next turn's, not lost.
     let mut seen = snapshot(&args.dir);
-    compare(&args)?;
+    compare(global, &args)?;
     let mut saves = 0;
     while args.changes == 0 || saves < args.changes {
         std::thread::sleep(Duration::from_millis(args.poll_ms));
@@ -70,7 +71,7 @@ pub fn watch(args: WatchArgs) -> Result<ExitCode> {
             "\nwatch: changed {}",
             if names.is_empty() { "(a file was removed)".into() } else { names.join(", ") }
         );
-        compare(&args)?;
+        compare(global, &args)?;
         let to_verdict = SystemTime::now().duration_since(saved).unwrap_or_default();
         println!("watch: save to verdict {:.1} s", to_verdict.as_secs_f64());
     }
@@ -79,10 +80,10 @@ pub fn watch(args: WatchArgs) -> Result<ExitCode> {
 
 /// One `twinray compare` in a process of its own; what it prints is the verdict, and an exit
 /// that is not a verdict (a refusal, a deadline, a crash) gets a line of its own.
-fn compare(args: &WatchArgs) -> Result<()> {
+fn compare(global: &GlobalArgs, args: &WatchArgs) -> Result<()> {
     let exe = std::env::current_exe().context("finding the twinray binary")?;
     let mut command = Command::new(exe);
-    command.arg("compare").args(args.scene.as_deref());
+    command.args(global.forwarded()).arg("compare").args(args.scene.as_deref());
     command.arg("--a").arg(&args.dir).arg("--b").arg(&args.against);
     command.args(["--runs", "1", "--warmup", "0", "--placements", "1", "--gpu-timeout=20"]);
     command.args(&args.compare_args);

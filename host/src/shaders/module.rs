@@ -64,7 +64,7 @@ pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String>
 /// Says, once per process for each, what `module` indexes without `NonUniform`: every device
 /// twinray has run on reads the right descriptor without the decoration, so no render would
 /// show the fault, and it is said on every device. (When the module is used, not when it is
-/// read: sets are read while the command line is, before the log is set up.)
+/// read: a set loaded and never rendered says nothing.)
 fn report_non_uniform(module: &DiskModule) {
     static SAID: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
     let mut said = SAID.lock().unwrap_or_else(|e| e.into_inner());

@@ -1,23 +1,11 @@
-//! A shader set, written as a base followed by overrides, each `KEY=VALUE`:
-//!
-//! - the base: `rust`, `glsl` (the built-in sets), a folder of compiled modules (`NAME.spv`
-//!   for each module of the catalog, as `cargo xtask shaders` writes them), or a folder of
-//!   stage sources, built first (`sources`: a Rust shader crate, GLSL twins);
-//! - `STAGE=LANGUAGE` or `STAGE=FOLDER`: every module of a stage (`raygen`, `miss`,
-//!   `intersection`, `closest_hit`) from that set;
-//! - `MODULE=LANGUAGE`, `MODULE=FOLDER` or `MODULE=FILE.spv`: one module of the catalog
-//!   (`sphere_intersection`, `raygen`, ...) from there; `raygen=FILE.spv` and `miss=FILE.spv`
-//!   name the module of that name.
-//!
-//! Every file is read and checked when the set is parsed, so a bad module is an input error
-//! before any GPU work.
+//! A loaded shader set: where each module of the catalog comes from, every module read from
+//! disk already checked. Sets are written as text (`super::spec::SetSpec`) and loaded by a
+//! `super::load::Loader`; a loaded set prints as the text that loads it back.
 
-use super::module::{load, Origin, StageModule};
+use super::module::{Origin, StageModule};
+use super::spec::SetSpec;
 use crate::error::{Error, Result};
 use std::fmt;
-use std::path::{Path, PathBuf};
-use std::str::FromStr;
-use std::sync::Arc;
 use twinray_shared::catalog::{Language, ModuleSpec, Stage, MODULES};
 
 /// Which module each stage uses.
@@ -38,13 +26,6 @@ impl PartialEq for ShaderSet {
 }
 
 impl Eq for ShaderSet {}
-
-/// What the value of an item names.
-enum Target {
-    Language(Language),
-    Folder(PathBuf),
-    File(PathBuf),
-}
 
 impl ShaderSet {
     /// Every module from the built-in set of `language`.
@@ -150,135 +131,25 @@ impl ShaderSet {
         self.origins.iter().any(|o| !matches!(o, Origin::Builtin(_)))
     }
 
-    fn set_where(&mut self, target: &Target, mut which: impl FnMut(&ModuleSpec) -> bool) -> Result<(), String> {
-        for (spec, origin) in MODULES.iter().zip(self.origins.iter_mut()) {
+    /// Each module `which` picks taken from `origin`.
+    pub(super) fn set_where(
+        &mut self,
+        mut which: impl FnMut(&ModuleSpec) -> bool,
+        origin: impl Fn(&ModuleSpec) -> Result<Origin, String>,
+    ) -> Result<(), String> {
+        for (spec, slot) in MODULES.iter().zip(self.origins.iter_mut()) {
             if which(spec) {
-                *origin = match target {
-                    Target::Language(language) => Origin::Builtin(*language),
-                    Target::Folder(dir) => from_folder(spec, dir)?,
-                    Target::File(file) => Origin::Disk(Arc::new(load(spec, file)?)),
-                };
+                *slot = origin(spec)?;
             }
         }
         Ok(())
     }
-}
 
-/// Module `spec` of a folder set: `DIR/NAME.spv`, checked, or missing.
-fn from_folder(spec: &ModuleSpec, dir: &Path) -> Result<Origin, String> {
-    let path = dir.join(format!("{}.spv", spec.name));
-    if path.exists() {
-        Ok(Origin::Disk(Arc::new(load(spec, &path)?)))
-    } else {
-        Ok(Origin::Missing(path))
+    /// Names a set loaded from `spec` by its text, when it reads files (built-in sets print
+    /// canonically).
+    pub(super) fn named(&mut self, spec: &SetSpec) {
+        self.text = self.from_disk().then(|| spec.to_string());
     }
-}
-
-fn target(word: &str) -> Result<Target, String> {
-    match word.to_ascii_lowercase().as_str() {
-        "rust" => return Ok(Target::Language(Language::Rust)),
-        "glsl" => return Ok(Target::Language(Language::Glsl)),
-        _ => {}
-    }
-    let path = PathBuf::from(word);
-    if path.is_dir() && super::sources::holds_sources(&path) {
-        Ok(Target::Folder(super::sources::built(&path)?))
-    } else if path.is_dir() && MODULES.iter().any(|m| path.join(format!("{}.spv", m.name)).exists()) {
-        Ok(Target::Folder(path))
-    } else if path.is_dir() {
-        Err(format!(
-            "{word}: neither a set nor a shader crate (no NAME.spv of the catalog, no Cargo.toml, no raygen.rgen)"
-        ))
-    } else if path.is_file() {
-        Ok(Target::File(path))
-    } else if word.ends_with(".spv") || word.contains('/') {
-        Err(format!("{word}: no such file or folder"))
-    } else {
-        Err(format!(
-            "unknown language {word:?} (expected rust, glsl, a shader crate, a folder of modules or a .spv file)"
-        ))
-    }
-}
-
-fn parse_stage(word: &str) -> Option<Stage> {
-    let normalized = word.to_ascii_lowercase().replace('-', "_");
-    Stage::ALL.into_iter().find(|s| s.name() == normalized)
-}
-
-impl ShaderSet {
-    fn apply(&mut self, key: &str, value: &str) -> Result<(), String> {
-        let target = target(value)?;
-        let module = MODULES.iter().find(|m| m.name == key);
-        match (parse_stage(key), &target, module) {
-            (Some(stage), Target::File(_), None) => {
-                let names: Vec<_> = MODULES.iter().filter(|m| m.stage == stage).map(|m| m.name).collect();
-                Err(format!("{key}={value}: the {key} stage has several modules; name one ({})", names.join(", ")))
-            }
-            (_, Target::File(_), Some(m)) => self.set_where(&target, |s| s.name == m.name),
-            (Some(stage), _, _) => self.set_where(&target, |s| s.stage == stage),
-            (None, _, Some(m)) => self.set_where(&target, |s| s.name == m.name),
-            (None, _, None) => {
-                let stages: Vec<_> = Stage::ALL.iter().map(|s| s.name()).collect();
-                Err(format!("unknown stage {key:?} (expected one of {}, or a module name)", stages.join(", ")))
-            }
-        }
-    }
-}
-
-impl FromStr for ShaderSet {
-    type Err = Error;
-
-    fn from_str(text: &str) -> Result<Self> {
-        let fail = |message: String| Error::Input(format!("shader set {text:?}: {message}"));
-        let mut parts = text.split(',').map(str::trim);
-        let mut set = match target(parts.next().unwrap_or_default()).map_err(fail)? {
-            Target::Language(language) => ShaderSet::uniform(language),
-            Target::Folder(dir) => {
-                let mut set = ShaderSet::uniform(Language::Rust);
-                set.set_where(&Target::Folder(dir), |_| true).map_err(fail)?;
-                set
-            }
-            Target::File(file) => {
-                return Err(fail(format!(
-                    "{}: a base set is rust, glsl or a folder; name the module of a file (MODULE=FILE.spv)",
-                    file.display()
-                )))
-            }
-        };
-        let mut named: Vec<&str> = Vec::new();
-        for part in parts {
-            let (key, value) = part
-                .split_once('=')
-                .ok_or_else(|| fail(format!("{part:?} is not STAGE=LANGUAGE (e.g. intersection=glsl)")))?;
-            // Which of two answers was meant is a guess: say so instead.
-            if named.contains(&key.trim()) {
-                return Err(fail(format!("{:?} is named twice", key.trim())));
-            }
-            named.push(key.trim());
-            set.apply(key.trim(), value.trim()).map_err(fail)?;
-        }
-        if set.from_disk() {
-            let parts: Vec<&str> = text.split(',').map(str::trim).collect();
-            set.text = Some(parts.join(","));
-        }
-        Ok(set)
-    }
-}
-
-/// Several sets, comma-separated, where a `KEY=VALUE` item changes the set before it:
-/// "rust,glsl,rust,intersection=glsl" is rust, glsl and a mix.
-pub fn parse_sets(text: &str) -> Result<Vec<ShaderSet>> {
-    let mut groups: Vec<String> = Vec::new();
-    for item in text.split(',').map(str::trim) {
-        match groups.last_mut() {
-            Some(group) if item.contains('=') => {
-                group.push(',');
-                group.push_str(item);
-            }
-            _ => groups.push(item.to_string()),
-        }
-    }
-    groups.iter().map(|g| g.parse()).collect()
 }
 
 /// A built-in set in the shortest form that parses to it (stage overrides in stage order, then
@@ -335,14 +206,11 @@ impl ShaderSet {
 
 #[cfg(test)]
 mod tests {
+    use super::super::load::Loader;
     use super::*;
 
-    #[test]
-    fn set_lists_attach_stage_overrides_to_the_set_before() {
-        let sets = super::parse_sets("rust, glsl,rust,intersection=glsl,miss=glsl").unwrap();
-        let names: Vec<String> = sets.iter().map(|s| s.to_string()).collect();
-        assert_eq!(names, ["rust", "glsl", "rust,miss=glsl,intersection=glsl"]); // stage order
-        assert!(super::parse_sets("intersection=glsl").is_err(), "an override needs a set before it");
+    fn load(text: &str) -> Result<ShaderSet> {
+        Loader::default().load(&text.parse()?)
     }
 
     /// What `twinray bisect` prints, and hands to `--processes`' children as text: every
@@ -355,49 +223,45 @@ mod tests {
             for spec in MODULES {
                 let swapped = from.with_modules_from(to, &[spec.name]);
                 let text = swapped.to_string();
-                assert_eq!(text.parse::<ShaderSet>().ok(), Some(swapped), "{} swapped: {text}", spec.name);
+                assert_eq!(load(&text).ok(), Some(swapped), "{} swapped: {text}", spec.name);
             }
         }
     }
 
     #[test]
-    fn parses_plain_and_mixed_sets() {
-        let mixed: ShaderSet = "rust,intersection=glsl".parse().unwrap();
+    fn loads_plain_and_mixed_sets() {
+        let mixed = load("rust,intersection=glsl").unwrap();
         assert_eq!(mixed.language(Stage::Intersection), Some(Language::Glsl));
         assert_eq!(mixed.language(Stage::ClosestHit), Some(Language::Rust));
         assert_eq!(mixed.to_string(), "rust,intersection=glsl");
-        assert_eq!("GLSL".parse::<ShaderSet>().unwrap(), ShaderSet::uniform(Language::Glsl));
-        assert_eq!("glsl,closest-hit=rust".parse::<ShaderSet>().unwrap().to_string(), "glsl,closest_hit=rust");
-        let one: ShaderSet = "rust,sphere_intersection=glsl".parse().unwrap();
+        assert_eq!(load("GLSL").unwrap(), ShaderSet::uniform(Language::Glsl));
+        assert_eq!(load("glsl,closest-hit=rust").unwrap().to_string(), "glsl,closest_hit=rust");
+        let one = load("rust,sphere_intersection=glsl").unwrap();
         assert_eq!(one.language(Stage::Intersection), None, "one module of the stage differs");
         assert_eq!(one.to_string(), "rust,sphere_intersection=glsl");
-        assert_eq!(one.to_string().parse::<ShaderSet>().unwrap(), one);
+        assert_eq!(load(&one.to_string()).unwrap(), one);
     }
 
     #[test]
-    fn rejects_unknown_languages_and_stages() {
-        let e = "hlsl".parse::<ShaderSet>().unwrap_err().to_string();
+    fn refuses_unknown_languages_and_missing_files_when_loaded() {
+        let e = load("hlsl").unwrap_err().to_string();
         assert!(e.contains("unknown language \"hlsl\""), "{e}");
-        let e = "rust,anyhit=glsl".parse::<ShaderSet>().unwrap_err().to_string();
-        assert!(e.contains("unknown stage \"anyhit\""), "{e}");
-        let e = "rust,glsl".parse::<ShaderSet>().unwrap_err().to_string();
-        assert!(e.contains("STAGE=LANGUAGE"), "{e}");
-        let e = "rust,raygen=no/such/raygen.spv".parse::<ShaderSet>().unwrap_err().to_string();
+        let e = load("rust,raygen=no/such/raygen.spv").unwrap_err().to_string();
         assert!(e.contains("no/such/raygen.spv: no such file or folder"), "{e}");
     }
 
     #[test]
-    fn modules_taken_from_another_set_print_as_a_set_that_parses_back() {
+    fn modules_taken_from_another_set_print_as_a_set_that_loads_back() {
         let (rust, glsl) = (ShaderSet::uniform(Language::Rust), ShaderSet::uniform(Language::Glsl));
         let swapped = rust.with_modules_from(&glsl, &["miss", "shadow_miss"]);
         assert_eq!(swapped.to_string(), "rust,miss=glsl");
         assert!(!swapped.same_module(&rust, "miss") && swapped.same_module(&glsl, "miss"));
         assert!(swapped.same_module(&rust, "raygen"));
         let file = format!("{}/../spirv/rust/sphere_naive_intersection.spv", env!("CARGO_MANIFEST_DIR"));
-        let naive: ShaderSet = format!("rust,sphere_intersection={file}").parse().unwrap();
+        let naive = load(&format!("rust,sphere_intersection={file}")).unwrap();
         let planted = rust.with_modules_from(&naive, &["sphere_intersection"]);
         assert_eq!(planted, naive);
-        assert_eq!(planted.to_string().parse::<ShaderSet>().unwrap(), naive);
+        assert_eq!(load(&planted.to_string()).unwrap(), naive);
         assert!(!planted.same_module(&rust, "sphere_intersection"));
     }
 }
