@@ -1,6 +1,6 @@
 #!/bin/sh
 # A RUSTC_WRAPPER for minimising the corpus: rustc, without coverage instrumentation for every
-# crate but twinray's own (twinray, twinray-shared, twinray-build) and the fuzz targets, so that
+# crate but twinray's own (twinray-host, twinray-shared, twinray-compile) and the fuzz targets, so that
 # a merge keeps the inputs that reach new edges of twinray's code, not of the JSON, image and
 # TOML parsers it calls (docs/testing.md, "Fuzzing"). Fuzz runs themselves do not use it.
 #   RUSTC_WRAPPER=$PWD/rustc-own-edges.sh cargo +nightly-2026-08-15 fuzz build -s none -O --target-dir target/own-edges
@@ -12,7 +12,7 @@ for a in "$@"; do
   prev="$a"
 done
 case "$name" in
-  twinray|twinray_shared|twinray_build) exec "$rustc" "$@" ;;
+  twinray_host|twinray_shared|twinray_compile) exec "$rustc" "$@" ;;
 esac
 [ $bin = 1 ] && exec "$rustc" "$@"
 # Every other crate: drop the sancov pass and its options.

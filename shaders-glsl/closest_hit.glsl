@@ -1,4 +1,4 @@
-// Twin of twinray_shaders::describe: the payload of a hit, and the material's colour. Included
+// Twin of twinray_stages::describe: the payload of a hit, and the material's colour. Included
 // by the closest-hit stages after they declare `payload`.
 #ifndef TWINRAY_CLOSEST_HIT_GLSL
 #define TWINRAY_CLOSEST_HIT_GLSL

@@ -1,5 +1,5 @@
 // The body of twinray explain's stages (explain.rgen, explain_query.comp), twin of the Rust
-// entry points twinray_shaders::explain and explain_query: one ray per launch index, traced as
+// entry points twinray_stages::explain and explain_query: one ray per launch index, traced as
 // the renderer traces rays of its kind (trace.glsl's trace_primary or visible, which the
 // renderers call); writes the primary ray's payload, or whether the shadow ray was occluded.
 // With SHADOW_QUERY and RENDER_COMPUTE defined, both are traced inline by ray queries.

@@ -1,5 +1,5 @@
 #version 460
-// Twin of twinray_shaders::miss: primary rays that hit nothing see the background.
+// Twin of twinray_stages::miss: primary rays that hit nothing see the background.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 #include "twinray_layout.glsl"

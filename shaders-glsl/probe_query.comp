@@ -1,5 +1,5 @@
 #version 460
-// Twin of twinray_shaders::probe_query: the probe of the compute renderer, one ray per
+// Twin of twinray_stages::probe_query: the probe of the compute renderer, one ray per
 // invocation, traced inline by the code that traces the renderer's primary rays; writes what it
 // described, or NO_HIT.
 #extension GL_EXT_ray_query : require

@@ -1,5 +1,5 @@
 #version 460
-// Twin of twinray_shaders::probe_witness (with DRIVER_RAY defined, of probe_witness_driver): the
+// Twin of twinray_stages::probe_witness (with DRIVER_RAY defined, of probe_witness_driver): the
 // probe's witness, a closest-hit stage twinray puts in place of a hit group's own (same
 // intersection and any-hit stages) for one extra pass of the probe. It packs the object-space
 // ray the intersection stages use (transform.glsl's stage_ray, brought near the primitive as

@@ -1,5 +1,5 @@
 #version 460
-// Twin of twinray_shaders::procedural_closest_hit (with CALLABLE_MATERIALS defined, of
+// Twin of twinray_stages::procedural_closest_hit (with CALLABLE_MATERIALS defined, of
 // procedural_closest_hit_callable; with FLAT_MATERIAL, of procedural_closest_hit_flat): every
 // procedural shape, described from the reported object-space normal.
 #extension GL_EXT_ray_tracing : require

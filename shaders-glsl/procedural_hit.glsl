@@ -1,4 +1,4 @@
-// Twin of the body of twinray_shaders::procedural_closest_hit (hit.rs): the payload of a hit on
+// Twin of the body of twinray_stages::procedural_closest_hit (hit.rs): the payload of a hit on
 // a procedural shape, from the object-space normal its intersection reported. Shared by the
 // procedural closest-hit stages and the compute renderer (render.comp), which reads the same
 // values from its ray query. Included after `objects`, `primitives`, `materials`, `textures` and
@@ -9,7 +9,7 @@
 #include "shape_dispatch.glsl"
 #include "texture.glsl"
 
-// Twin of twinray_shaders::hit::procedural_tint: what the material's colour is multiplied by
+// Twin of twinray_stages::hit::procedural_tint: what the material's colour is multiplied by
 // (tint) and the radiance emitted (emission) at a hit of shape `kind` on `primitive`; textures
 // and emission read only where the scene uses them (HAS_FEATURE_*).
 void procedural_tint(Material material, Primitive primitive, uint kind, vec3 point, vec3 normal,

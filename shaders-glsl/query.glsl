@@ -1,4 +1,4 @@
-// Twin of twinray_shaders::query: tracing inline with ray queries, deciding what the
+// Twin of twinray_stages::query: tracing inline with ray queries, deciding what the
 // pipeline's stages would (a procedural candidate by its shape's routine, a cutout's holes by
 // its pattern) and describing the committed hit as its closest-hit stage would. Included after
 // the includer declares tlas, objects, primitives, materials, vertices, indices and textures;
@@ -83,7 +83,7 @@ bool visible(vec3 origin, vec3 direction, float distance) {
 #include "procedural_hit.glsl"
 #include "triangle_hit.glsl"
 
-// Twin of twinray_shaders::query::trace_query: the ray over [t_min, t_max] traced inline, each
+// Twin of twinray_stages::query::trace_query: the ray over [t_min, t_max] traced inline, each
 // candidate decided by candidate_hit and committed if no farther than the closest so far; the
 // committed hit described into `payload` as the closest-hit stage of its hit group would, or
 // `background` as the miss stage would. cone: the spread angle of the ray's cone (0: texture

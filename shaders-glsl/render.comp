@@ -1,5 +1,5 @@
 #version 460
-// Twin of twinray_shaders::render_compute: the compute renderer (renderer = "compute"), which
+// Twin of twinray_stages::render_compute: the compute renderer (renderer = "compute"), which
 // traces primary and shadow rays inline with ray queries, with no pipeline stages or SBT.
 #extension GL_EXT_ray_query : require
 #extension GL_GOOGLE_include_directive : require

@@ -1,5 +1,5 @@
 #version 460
-// Twin of twinray_shaders::shadow_miss: a shadow ray that reaches its light.
+// Twin of twinray_stages::shadow_miss: a shadow ray that reaches its light.
 #extension GL_EXT_ray_tracing : require
 #extension GL_GOOGLE_include_directive : require
 #include "twinray_layout.glsl"

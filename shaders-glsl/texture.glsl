@@ -109,7 +109,7 @@ void shape_footprint(Material material, vec2 uv, vec3 du, vec3 dv, vec3 normal, 
     dy = transform_gradient(material, vec2(dot(du, o1), dot(dv, o1)));
 }
 
-// Twin of twinray_shaders::texture::filtered: texture `slot`'s colour over a cone's footprint
+// Twin of twinray_stages::texture::filtered: texture `slot`'s colour over a cone's footprint
 // (at, dx, dy).
 vec3 filtered_at(uint slot, vec2 at, vec2 dx, vec2 dy) {
     uint count;
@@ -132,14 +132,14 @@ vec3 filtered(uint slot, uint set, Material material, Vertex v0, Vertex v1, Vert
     return filtered_at(slot, at, dx, dy);
 }
 
-// Twin of twinray_shaders::texture::shape_textures: what a procedural shape's colour (color) and
+// Twin of twinray_stages::texture::shape_textures: what a procedural shape's colour (color) and
 // emission (light) are multiplied by, each texture filtered over the footprint (at, dx, dy).
 void shape_textures(Material material, vec2 at, vec2 dx, vec2 dy, out vec3 color, out vec3 light) {
     color = material.texture.x == 0u ? vec3(1.0) : filtered_at(material.texture.x, at, dx, dy);
     light = material.texture.z == 0u ? vec3(1.0) : filtered_at(material.texture.z, at, dx, dy);
 }
 
-// Twin of twinray_shaders::texture::surface_tint: what the material's colour is multiplied by on
+// Twin of twinray_stages::texture::surface_tint: what the material's colour is multiplied by on
 // a mesh: the vertex colour, times its texture sampled over the cone's footprint.
 vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
                   vec3 direction, float width) {
@@ -151,7 +151,7 @@ vec3 surface_tint(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 objec
                                 barycentrics, direction, width);
 }
 
-// Twin of twinray_shaders::texture::surface_emission: the radiance a mesh emits at the hit.
+// Twin of twinray_stages::texture::surface_emission: the radiance a mesh emits at the hit.
 vec3 surface_emission(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 object_to_world, vec2 barycentrics,
                       vec3 direction, float width) {
     if (!HAS_FEATURE_EMISSION) {
@@ -164,7 +164,7 @@ vec3 surface_emission(Material material, Vertex v0, Vertex v1, Vertex v2, mat3 o
                                              object_to_world, barycentrics, direction, width);
 }
 
-// Twin of twinray_shaders::texture::surface_alpha: the alpha a mesh's vertex colours and
+// Twin of twinray_stages::texture::surface_alpha: the alpha a mesh's vertex colours and
 // texture (at level 0) give the surface at the hit.
 float surface_alpha(Material material, Vertex v0, Vertex v1, Vertex v2, vec2 barycentrics) {
     vec4 color = interpolate(v0.color, v1.color, v2.color, barycentrics.x, barycentrics.y);

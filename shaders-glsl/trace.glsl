@@ -1,4 +1,4 @@
-// Twin of twinray_shaders::trace: primary rays, and shading with shadow rays to every light.
+// Twin of twinray_stages::trace: primary rays, and shading with shadow rays to every light.
 // Included by raygen.rgen after it declares tlas, frame, lights, payload and shadow_payload.
 #ifndef TWINRAY_TRACE_GLSL
 #define TWINRAY_TRACE_GLSL
@@ -11,7 +11,7 @@
 #endif
 
 #ifdef RENDER_COMPUTE
-// Twin of twinray_shaders::query::primary_query.
+// Twin of twinray_stages::query::primary_query.
 void trace_primary(vec3 origin, vec3 direction) {
     trace_query(origin, frame.reach.z, direction, frame.reach.x, frame.background, frame.cone.x);
 }

@@ -1,5 +1,5 @@
 #version 460
-// Twin of twinray_shaders::triangle_closest_hit (with CALLABLE_MATERIALS defined, of
+// Twin of twinray_stages::triangle_closest_hit (with CALLABLE_MATERIALS defined, of
 // triangle_closest_hit_callable; with FLAT_MATERIAL, of triangle_closest_hit_flat): triangle
 // meshes, normals from the vertices.
 #extension GL_EXT_ray_tracing : require

@@ -1,4 +1,4 @@
-// Twin of the body of twinray_shaders::triangle_closest_hit (hit.rs): the payload of a hit on
+// Twin of the body of twinray_stages::triangle_closest_hit (hit.rs): the payload of a hit on
 // a triangle, normals from its vertices. Shared by the triangle closest-hit stages and the
 // compute renderer (render.comp), which reads the same values from its ray query. Included
 // after `objects`, `materials`, `vertices`, `indices`, `textures` and `payload`.

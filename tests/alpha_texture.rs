@@ -6,11 +6,11 @@
 //! leaves undecided only rays within rounding of the cutoff (a texel's border, a bilinear
 //! contour), a small share of the quad.
 
-use twinray::compare::hit_count;
-use twinray::explain::rays::Camera;
-use twinray::reference::scene::{SceneReference, SceneVerdict};
-use twinray::render::NO_HIT_ID;
-use twinray::scene::Scene;
+use twinray_host::compare::hit_count;
+use twinray_host::explain::rays::Camera;
+use twinray_host::reference::scene::{SceneReference, SceneVerdict};
+use twinray_host::render::NO_HIT_ID;
+use twinray_host::scene::Scene;
 use twinray_tests::gltf::Quad;
 use twinray_tests::{allow_installed_models, render_scene, validated_context, SCENE_TEST_SIZE};
 

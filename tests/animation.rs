@@ -3,10 +3,10 @@
 //! on every frame of the built-in moving scene.
 
 use std::sync::Arc;
-use twinray::compare::{diff, verdict};
-use twinray::render::{render_frames, AsWork, TlasKind, TlasMode};
-use twinray::scene::MeshFiles;
-use twinray::{Context, RenderOptions, RenderOutput, Scene};
+use twinray_host::compare::{diff, verdict};
+use twinray_host::render::{render_frames, AsWork, TlasKind, TlasMode};
+use twinray_host::scene::MeshFiles;
+use twinray_host::{Context, RenderOptions, RenderOutput, Scene};
 use twinray_tests::{set, validated_context};
 
 const SIZE: (u32, u32) = (128, 96);
@@ -124,7 +124,7 @@ fn a_frame_renders_as_the_still_scene_of_its_values() {
         let mode = TlasMode { kind, rebuild_every: 0 };
         for language in ["rust", "glsl"] {
             let rendered = frames(&ctx, &moving, &[language], 0..4, mode);
-            let expected = twinray::render(&ctx, &still, &set(language), &opts()).unwrap();
+            let expected = twinray_host::render(&ctx, &still, &set(language), &opts()).unwrap();
             assert!(same(&rendered[2].1[0], &expected), "{language} {kind:?}: frame 2 differs from the still scene");
             assert!(!same(&rendered[1].1[0], &expected), "{language}: frame 1 should differ from frame 2");
             let expected_work = if kind == TlasKind::Update { AsWork::Update } else { AsWork::Build };
@@ -173,7 +173,7 @@ fn the_orbit_scene_agrees_across_tlas_modes_sets_and_its_still_frames() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
     let k = count - 3;
-    let still = twinray::render(&ctx, &scene.at_frame(k), &set("rust"), &opts()).unwrap();
+    let still = twinray_host::render(&ctx, &scene.at_frame(k), &set("rust"), &opts()).unwrap();
     assert!(same(&updated[k as usize].1[0], &still), "frame {k} differs from Scene::at_frame({k})");
     ctx.close().unwrap();
 }
@@ -252,7 +252,7 @@ degrees_per_second = [0.0, 0.0, 20.0]
         let d = diff(&outputs[0], &outputs[1], scene.file.parity.pixel_threshold);
         assert!(verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty(), "frame {k}: {d:?}");
     }
-    let still = twinray::render(&ctx, &last, &set("rust"), &opts()).unwrap();
+    let still = twinray_host::render(&ctx, &last, &set("rust"), &opts()).unwrap();
     assert!(same(&rendered[3].1[0], &still), "frame 3 differs from Scene::at_frame(3)");
     assert!(!same(&rendered[0].1[0], &rendered[3].1[0]), "nothing moved on screen");
     ctx.close().unwrap();

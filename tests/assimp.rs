@@ -10,12 +10,12 @@
 //! textured spider renders alike in both sets.
 
 use std::path::Path;
-use twinray::scene::file::MaterialDesc;
-use twinray::scene::shape::Normals;
-use twinray::Scene;
+use twinray_host::scene::file::MaterialDesc;
+use twinray_host::scene::shape::Normals;
+use twinray_host::Scene;
 use twinray_tests::{render_scene, validated_context, SCENE_TEST_SIZE};
 
-use twinray::scene::gltf::ASSIMP_TEST_MODELS as MODELS;
+use twinray_host::scene::gltf::ASSIMP_TEST_MODELS as MODELS;
 
 /// Models that must render, relative to `MODELS`.
 const RENDERED: [&str; 14] = [
@@ -50,14 +50,14 @@ const REFUSED: [(&str, &str); 10] = [
 ];
 
 /// Rust against GLSL on `scene` at `SCENE_TEST_SIZE`: within its parity, and something hit.
-fn renders_alike(ctx: &std::sync::Arc<twinray::Context>, scene: &Scene, name: &str) {
+fn renders_alike(ctx: &std::sync::Arc<twinray_host::Context>, scene: &Scene, name: &str) {
     let (rust, glsl) = (render_scene(ctx, scene, "rust"), render_scene(ctx, scene, "glsl"));
     let parity = scene.file.parity;
-    let d = twinray::compare::scene_diff(scene, &rust, &glsl);
-    let failures = twinray::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
+    let d = twinray_host::compare::scene_diff(scene, &rust, &glsl);
+    let failures = twinray_host::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
     eprintln!("{name}: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
     assert!(failures.is_empty(), "{name}: rust against glsl: {failures:?}");
-    assert!(twinray::compare::hit_count(&rust) > 0, "{name}: the model is not in the picture");
+    assert!(twinray_host::compare::hit_count(&rust) > 0, "{name}: the model is not in the picture");
     // Every mesh in one BLAS each, kept no larger than built (compacted where the driver can).
     let a = rust.accel;
     let triangles: usize = scene.meshes.values().map(|m| m.indices.len() / 3).sum();
@@ -67,7 +67,7 @@ fn renders_alike(ctx: &std::sync::Arc<twinray::Context>, scene: &Scene, name: &s
 
 #[test]
 fn every_model_renders_alike_in_both_sets_or_is_refused_with_its_fault_named() {
-    let files = twinray::scene::gltf::models_under(Path::new(MODELS));
+    let files = twinray_host::scene::gltf::models_under(Path::new(MODELS));
     assert!(
         files.len() >= 40,
         "{MODELS} holds {} glTF files: run `cargo xtask setup` (assimp-testmodels)",
@@ -80,7 +80,7 @@ fn every_model_renders_alike_in_both_sets_or_is_refused_with_its_fault_named() {
         let scene = match Scene::load(path.to_str()) {
             Ok(scene) => scene,
             Err(e) => {
-                assert!(matches!(e, twinray::Error::Scene { .. }), "{name}: not bad input: {e}");
+                assert!(matches!(e, twinray_host::Error::Scene { .. }), "{name}: not bad input: {e}");
                 eprintln!("{name}: refused: {e}");
                 refused.push((name, e.to_string()));
                 continue;
@@ -116,7 +116,7 @@ fn obj_scene(file: &str) -> Scene {
          [materials.m]\nkind = \"diffuse\"\ncolor = [0.8, 0.8, 0.8]\n[[lights]]\nkind = \"directional\"\ndirection = [1.0, 2.0, 1.5]\ncolor = [1.0, 1.0, 1.0]\nintensity = 1.0\n\
          [shapes.s]\nkind = \"mesh\"\nfile = \"{file}\"\nnormals = \"smooth\"\n[[objects]]\nshape = \"s\"\nmaterial = \"m\"\n"
     );
-    Scene::parse(&text, file, twinray::scene::MeshFiles::Folder(OBJ_MODELS.into()))
+    Scene::parse(&text, file, twinray_host::scene::MeshFiles::Folder(OBJ_MODELS.into()))
         .unwrap_or_else(|e| panic!("{file}: {e}"))
 }
 
@@ -129,7 +129,7 @@ fn every_obj_model_loads_or_is_refused_naming_the_file() {
     let mut loaded = Vec::new();
     for path in &files {
         let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        match twinray::scene::mesh::load_obj(path, Normals::Smooth) {
+        match twinray_host::scene::mesh::load_obj(path, Normals::Smooth) {
             Ok(mesh) => {
                 assert!(!mesh.indices.is_empty(), "{name}");
                 loaded.push(name);
@@ -203,7 +203,8 @@ fn engines(body: &str) -> Scene {
          up = [0.0, 1.0, 0.0]\nfov_y_degrees = 45.0\n[[lights]]\nkind = \"directional\"\ndirection = [1.0, 2.0, 1.5]\n\
          color = [1.0, 1.0, 1.0]\nintensity = 1.0\n{body}"
     );
-    Scene::parse(&text, "engines.toml", twinray::scene::MeshFiles::Folder(MODELS.into())).expect("the engines' scene")
+    Scene::parse(&text, "engines.toml", twinray_host::scene::MeshFiles::Folder(MODELS.into()))
+        .expect("the engines' scene")
 }
 
 /// Over a million triangles of a model no one here made, placed by a scene file: 16 instances

@@ -6,9 +6,9 @@
 //! often short as long, with a median within a tenth of the widening.
 
 use glam::Vec3;
-use twinray::probe::{probe, ProbeRay};
-use twinray::reference::scene::{SceneReference, SceneVerdict};
-use twinray::scene::{MeshFiles, Scene};
+use twinray_host::probe::{probe, ProbeRay};
+use twinray_host::reference::scene::{SceneReference, SceneVerdict};
+use twinray_host::scene::{MeshFiles, Scene};
 use twinray_shared::bindings::NO_HIT;
 use twinray_shared::random::SplitMix64;
 use twinray_tests::{set, validated_context, SCENE_HEAD};

@@ -5,8 +5,8 @@
 //! for its material. Either way the image is the one a single closest-hit stage gives, on
 //! scenes with every material kind, procedural shapes and meshes, in both sets and mixed.
 
-use twinray::compare::{diff, verdict};
-use twinray::scene::{HitGroups, MaterialShading, Scene};
+use twinray_host::compare::{diff, verdict};
+use twinray_host::scene::{HitGroups, MaterialShading, Scene};
 use twinray_tests::{render_scene, validated_context, SCENE_TEST_SIZE};
 
 /// Renders `materials`, `cutout` and `meshes` as written with the first set of each pair and

@@ -5,7 +5,7 @@
 //! meshes, instances, rect lights and cutouts, in both sets and mixed (bit-identical on
 //! lavapipe for every built-in scene; each scene but showcase in one set here).
 
-use twinray::scene::{MeshFiles, Renderer, Scene};
+use twinray_host::scene::{MeshFiles, Renderer, Scene};
 use twinray_tests::{alternate_set, assert_same_render, render_scene, repo_root, set, validated_context};
 
 /// `scene` rendered by the compute renderer.
@@ -68,12 +68,12 @@ fn the_compute_renderer_sees_what_the_pipeline_sees() {
 fn a_compute_scene_has_one_stage() {
     let scene = with_compute(&Scene::load(Some("cutout")).expect("cutout"));
     let plan = scene.build().plan;
-    let modules = twinray::render::pipeline::plan_modules(&plan, plan.render_raygen());
+    let modules = twinray_host::render::pipeline::plan_modules(&plan, plan.render_raygen());
     assert_eq!(modules, ["render_compute"]);
-    let stages = twinray::render::pipeline::used_stages(&plan, plan.render_raygen());
-    assert_eq!(stages, [twinray::shaders::Stage::Compute]);
+    let stages = twinray_host::render::pipeline::used_stages(&plan, plan.render_raygen());
+    assert_eq!(stages, [twinray_host::sets::Stage::Compute]);
     // The probe still traces through the pipeline's stages.
-    assert!(twinray::render::pipeline::plan_modules(&plan, "probe").contains(&"cutout_any_hit"));
+    assert!(twinray_host::render::pipeline::plan_modules(&plan, "probe").contains(&"cutout_any_hit"));
 }
 
 /// On a device without ray queries a compute scene fails before any GPU work, in one line
@@ -83,7 +83,7 @@ fn a_device_without_ray_queries_refuses_compute_scenes_by_name() {
     let mut ctx = validated_context();
     std::sync::Arc::get_mut(&mut ctx).expect("the only reference").info.ray_query = false;
     let scene = with_compute(&Scene::load(Some("meshes")).expect("meshes"));
-    let err = twinray::render(&ctx, &scene, &set("glsl"), &twinray_tests::small_render()).err().expect("an error");
+    let err = twinray_host::render(&ctx, &scene, &set("glsl"), &twinray_tests::small_render()).err().expect("an error");
     let message = err.to_string();
     assert!(message.contains("VK_KHR_ray_query") && message.contains("renderer"), "{message}");
     assert_eq!(message.lines().count(), 1, "{message}");
@@ -97,13 +97,15 @@ fn a_device_without_ray_queries_refuses_compute_scenes_by_name() {
 fn compute_scenes_are_probed_as_the_compute_renderer_traces() {
     twinray_tests::allow_installed_models();
     let ctx = validated_context();
-    let cases = twinray::probe::stability::case_files(&repo_root().join("probes")).expect("probe cases");
+    let cases = twinray_host::probe::stability::case_files(&repo_root().join("probes")).expect("probe cases");
     for path in cases {
-        let case = twinray::probe::case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let case =
+            twinray_host::probe::case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         for set_text in ["rust", "glsl"] {
-            let pipeline = twinray::probe::probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+            let pipeline =
+                twinray_host::probe::probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
             let compute = with_compute(&case.scene);
-            let queried = twinray::probe::probe(&ctx, &compute, &set(set_text), &case.rays, 0, 1).expect("probe");
+            let queried = twinray_host::probe::probe(&ctx, &compute, &set(set_text), &case.rays, 0, 1).expect("probe");
             assert_eq!(queried.raygen_stack_bytes, 0, "{}: the compute probe ran", path.display());
             let differ = pipeline.results.iter().zip(&queried.results).filter(|(p, q)| p.ids != q.ids).count();
             assert_eq!(differ, 0, "{} with {set_text}: {differ} rays hit something else", path.display());

@@ -1,14 +1,14 @@
 //! The condition numbers every probe report carries beside the forward error
-//! (`twinray::reference::condition`), checked against mpmath's: a handful of rays on turned,
+//! (`twinray_host::reference::condition`), checked against mpmath's: a handful of rays on turned,
 //! scaled and far shapes of every kind the formula treats alike (quadrics, a torus, a box and a
 //! mesh's triangle), written to a file that `condition/mpmath_condition.py` reads. There, t is
 //! found again at 50 digits and κ by moving each input in turn, with no use of twinray's formula.
 //! `cargo xtask setup` installs Debian's python3-mpmath.
 
-use twinray::reference::condition::t_condition;
-use twinray::reference::scene::{RefObject, SceneReference, SceneVerdict};
-use twinray::reference::shapes::{RefRay, RefShape};
-use twinray::scene::{MeshFiles, Scene};
+use twinray_host::reference::condition::t_condition;
+use twinray_host::reference::scene::{RefObject, SceneReference, SceneVerdict};
+use twinray_host::reference::shapes::{RefRay, RefShape};
+use twinray_host::scene::{MeshFiles, Scene};
 use twinray_tests::SCENE_HEAD;
 
 /// After `SCENE_HEAD`: one shape of each kind the check covers.
@@ -135,7 +135,8 @@ fn condition_numbers_agree_with_mpmath() {
                 t_max: 1e30,
                 noise_floor: 0.0,
             };
-            let Some(Some((shape, _, _))) = object.first_shape(&local, twinray::reference::scene::Faces::Front) else {
+            let Some(Some((shape, _, _))) = object.first_shape(&local, twinray_host::reference::scene::Faces::Front)
+            else {
                 continue;
             };
             let kappa = t_condition(object, od, dd, t, normal);

@@ -3,7 +3,7 @@
 //! here. docs/shading-model.md says how a scene is converted and how the passes compose.
 
 use twinray::crosscheck::{check, run::twinray_side, SceneCheck};
-use twinray::Scene;
+use twinray_host::Scene;
 use twinray_tests::{repo_root, set, validated_context};
 
 /// Samples per pixel of twinray's reference: its noise then sits below Mitsuba's at 2048. The

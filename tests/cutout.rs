@@ -4,9 +4,9 @@
 //! same holes; and only cutout objects get a hit group with an any-hit stage.
 
 use glam::{UVec2, Vec2, Vec3};
-use twinray::render::pipeline::plan_modules;
-use twinray::scene::{MeshFiles, Scene};
-use twinray::RenderOptions;
+use twinray_host::render::pipeline::plan_modules;
+use twinray_host::scene::{MeshFiles, Scene};
+use twinray_host::RenderOptions;
 use twinray_tests::{set, validated_context};
 
 /// A floor under two cutouts 1 unit above it, lit only by a directional light from
@@ -103,7 +103,7 @@ fn light_falls_through_the_holes_exactly_where_the_pattern_says() {
     let frame = scene.frame_uniform(w, h);
     let light = Vec3::new(0.5, 1.0, 0.0).normalize();
     for set_text in ["rust", "glsl", "rust,any_hit=glsl", "glsl,any_hit=rust"] {
-        let out = twinray::render(&ctx, &scene, &set(set_text), &RenderOptions::once(w, h, 0, 1))
+        let out = twinray_host::render(&ctx, &scene, &set(set_text), &RenderOptions::once(w, h, 0, 1))
             .unwrap_or_else(|e| panic!("{set_text}: {e}"));
         let (mut lit, mut shadowed, mut through, mut stopped) = (0, 0, 0, 0);
         let mut wrong = Vec::new();
@@ -193,11 +193,11 @@ fn only_cutouts_get_an_any_hit_stage() {
 #[test]
 fn probes_through_holes_keep_their_normals() {
     let path = twinray_tests::repo_root().join("probes/cutout-holes.toml");
-    let case = twinray::probe::case::ProbeCase::load(&path).expect("case");
+    let case = twinray_host::probe::case::ProbeCase::load(&path).expect("case");
     let ctx = validated_context();
     for set_text in ["rust", "glsl", "glsl,any_hit=rust"] {
-        let out = twinray::probe::probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-        let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
+        let out = twinray_host::probe::probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
+        let r = twinray_host::probe::report::evaluate(&case, out.records(), set_text, "test", None);
         eprintln!("{}", r.summary());
         assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{set_text}");
         assert!(r.decided > 8000, "{set_text}: {} decided", r.decided);

@@ -1,8 +1,8 @@
 //! docs/scene-format.md stays true: its complete example loads and renders, and every kind
 //! that `twinray scenes` lists is documented there and used by some built-in scene.
 
-use twinray::scene::{file::kinds, MeshFiles, Scene, BUILTIN};
-use twinray::RenderOptions;
+use twinray_host::scene::{file::kinds, MeshFiles, Scene, BUILTIN};
+use twinray_host::RenderOptions;
 use twinray_tests::{repo_root, set, validated_context};
 
 fn format_doc() -> String {
@@ -25,8 +25,8 @@ fn the_documented_example_loads_and_renders() {
         .unwrap_or_else(|e| panic!("the documented example does not load: {e}"));
     let ctx = validated_context();
     let opts = RenderOptions::once(64, 36, 0, 1);
-    let out = twinray::render(&ctx, &scene, &set("rust"), &opts).expect("the documented example renders");
-    assert!(twinray::compare::hit_count(&out) > 0);
+    let out = twinray_host::render(&ctx, &scene, &set("rust"), &opts).expect("the documented example renders");
+    assert!(twinray_host::compare::hit_count(&out) > 0);
 }
 
 /// The animation the docs show, appended to the complete example, loads, moves what it says.

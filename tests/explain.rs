@@ -5,11 +5,11 @@
 //! shadow rays remade at each set's own hits, add up to the pixel its image holds, in every way
 //! the scene's renderer traces (traceRay, ray-query shadows, the compute renderer).
 
-use twinray::explain::parting::first_parting;
-use twinray::explain::pixel::explain_pixel;
-use twinray::explain::rays::Camera;
-use twinray::probe::probe;
-use twinray::render::hit_id;
+use twinray_host::explain::parting::first_parting;
+use twinray_host::explain::pixel::explain_pixel;
+use twinray_host::explain::rays::Camera;
+use twinray_host::probe::probe;
+use twinray_host::render::hit_id;
 use twinray_tests::{render_scene, set, validated_context, SCENE_TEST_SIZE};
 
 #[test]
@@ -26,7 +26,7 @@ fn the_cpu_made_first_sample_of_every_pixel_hits_what_the_image_records() {
         ("cutout", 2, &["glsl"]),
     ];
     for (name, samples, sets) in cases {
-        let mut scene = twinray::Scene::load(Some(name)).expect("built-in scene");
+        let mut scene = twinray_host::Scene::load(Some(name)).expect("built-in scene");
         scene.file.image.samples = samples;
         let rays = Camera::new(&scene, SCENE_TEST_SIZE).first_samples();
         for &set_text in sets {
@@ -46,26 +46,26 @@ fn the_cpu_made_first_sample_of_every_pixel_hits_what_the_image_records() {
 
 #[test]
 fn a_pixel_outside_the_image_is_bad_input() {
-    let scene = twinray::Scene::load(Some("showcase")).expect("built-in scene");
+    let scene = twinray_host::Scene::load(Some("showcase")).expect("built-in scene");
     let camera = Camera::new(&scene, (16, 8));
     assert!(camera.primary_samples((15, 7)).is_ok());
     for pixel in [(16, 0), (0, 8)] {
         let e = camera.primary_samples(pixel).expect_err("outside");
-        assert!(matches!(e, twinray::Error::Input(_)) && e.to_string().contains("outside the 16x8 image"), "{e}");
+        assert!(matches!(e, twinray_host::Error::Input(_)) && e.to_string().contains("outside the 16x8 image"), "{e}");
     }
 }
 
 /// `scene` with `line` added at its top level (before its first table).
-fn with_top_level(name: &str, line: &str) -> twinray::Scene {
-    let (text, source, meshes) = twinray::Scene::read(Some(name)).expect("built-in scene");
-    twinray::Scene::parse(&format!("{line}\n{text}"), &source, meshes).expect("scene with {line}")
+fn with_top_level(name: &str, line: &str) -> twinray_host::Scene {
+    let (text, source, meshes) = twinray_host::Scene::read(Some(name)).expect("built-in scene");
+    twinray_host::Scene::parse(&format!("{line}\n{text}"), &source, meshes).expect("scene with {line}")
 }
 
 /// Built-in scene `name` moved by (1e4, -1e4, 1e4), the GPU centred on its camera as a far scene
 /// is: explain must remake the image's rays in the coordinates the image was made in.
-fn far(name: &str) -> twinray::Scene {
-    let mut scene = twinray::Scene::load(Some(name)).expect("built-in scene");
-    twinray::scene::origin::rebase(&mut scene.file, glam::Vec3::new(-1e4, 1e4, -1e4));
+fn far(name: &str) -> twinray_host::Scene {
+    let mut scene = twinray_host::Scene::load(Some(name)).expect("built-in scene");
+    twinray_host::scene::origin::rebase(&mut scene.file, glam::Vec3::new(-1e4, 1e4, -1e4));
     scene.origin = Some(glam::Vec3::from(scene.file.camera.eye));
     scene
 }
@@ -79,15 +79,15 @@ fn identical_sets_agree_on_every_ray_and_their_rays_add_up_to_their_pixels() {
     // (scene, set) costs a render and a trace pipeline that lavapipe compiles from nothing on a
     // cold machine.
     let scenes = [
-        ("showcase", twinray::Scene::load(Some("showcase")).unwrap(), &["rust", "glsl"][..]),
-        ("cutout", twinray::Scene::load(Some("cutout")).unwrap(), &["glsl"]),
+        ("showcase", twinray_host::Scene::load(Some("showcase")).unwrap(), &["rust", "glsl"][..]),
+        ("cutout", twinray_host::Scene::load(Some("cutout")).unwrap(), &["glsl"]),
         ("cutout, ray-query shadows", with_top_level("cutout", "shadow_method = \"query\""), &["rust"]),
         ("cutout, compute renderer", with_top_level("cutout", "renderer = \"compute\""), &["glsl"]),
         ("showcase, 1.7e4 from the origin", far("showcase"), &["rust"]),
     ];
     let size = (64, 48);
     for (label, scene, names) in scenes {
-        let sets: Vec<(String, twinray::ShaderSet)> = names.iter().map(|n| (n.to_string(), set(n))).collect();
+        let sets: Vec<(String, twinray_host::ShaderSet)> = names.iter().map(|n| (n.to_string(), set(n))).collect();
         let mut shadow_rays = 0;
         for pixel in [(10, 40), (32, 30), (50, 20)] {
             let px = explain_pixel(&ctx, &scene, &sets, size, pixel).expect("explain");

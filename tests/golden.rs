@@ -7,8 +7,8 @@
 //! Tolerance: the scene's parity tolerance on colour, which covers a different Mesa or LLVM
 //! build rounding a few pixels differently; a changed shader fails it.
 
-use twinray::compare::{color_diff, color_verdict};
-use twinray::util::output::write_linear_png;
+use twinray_host::compare::{color_diff, color_verdict};
+use twinray_host::util::output::write_linear_png;
 use twinray_tests::{builtin_scenes, render_scene, repo_root, validated_context, SCENE_TEST_SIZE};
 
 fn check_goldens(set: &str) {

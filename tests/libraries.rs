@@ -4,12 +4,12 @@
 //! (`render::layout`) renders the same bits.
 
 use std::sync::Arc;
-use twinray::render::layout::{Layout, LayoutDraw};
-use twinray::render::libraries::Libraries;
-use twinray::render::pipeline::ScenePipeline;
-use twinray::scene::MaterialShading;
-use twinray::vk::context::PipelineKind;
-use twinray::{Context, RenderOptions, Scene};
+use twinray_host::render::layout::{Layout, LayoutDraw};
+use twinray_host::render::libraries::Libraries;
+use twinray_host::render::pipeline::ScenePipeline;
+use twinray_host::scene::MaterialShading;
+use twinray_host::vk::context::PipelineKind;
+use twinray_host::{Context, RenderOptions, Scene};
 use twinray_tests::{render_scene, set, validated_context_making, SCENE_TEST_SIZE};
 
 fn context(kind: PipelineKind) -> Arc<Context> {
@@ -64,7 +64,7 @@ fn each_library_is_compiled_once() {
 /// creates pipelines directly (see `Context::pipeline_threads`).
 #[test]
 fn deferred_creation_renders_the_same_bits() {
-    use twinray::ContextOptions;
+    use twinray_host::ContextOptions;
     let scene = Scene::load(Some("showcase")).unwrap();
     let reference = render_scene(&context(PipelineKind::Monolithic), &scene, "rust");
     for kind in [PipelineKind::Monolithic, PipelineKind::Libraries] {
@@ -103,7 +103,7 @@ fn every_layout_renders_the_same_bits() {
     assert!(layouts.iter().all(|l| *l != Layout::new(LayoutDraw::Sbt, 10)), "{layouts:?}");
     let render = |ctx: &Arc<Context>, scene: &Scene, s: &str, place: u32| {
         let opts = RenderOptions { first_placement: place, ..RenderOptions::once(width, height, 0, 1) };
-        twinray::render(ctx, scene, &set(s), &opts).unwrap()
+        twinray_host::render(ctx, scene, &set(s), &opts).unwrap()
     };
     let (whole, linked) = (context(PipelineKind::Monolithic), context(PipelineKind::Libraries));
     for (scene, s) in &scenes {

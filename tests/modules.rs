@@ -2,8 +2,8 @@
 //! host asks for, only bindings from twinray_shared::bindings, the same bindings in both
 //! languages, and each binding visible to the module's stage in the host's descriptor layout.
 
-use twinray::render::pipeline::{descriptor_bindings, stage_flag};
-use twinray::shaders::{Language, Stage, MODULES};
+use twinray_host::render::pipeline::{descriptor_bindings, stage_flag};
+use twinray_host::sets::{Language, Stage, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 use twinray_tests::repo_root;
 
@@ -92,7 +92,7 @@ fn compute_modules_run_the_workgroups_the_host_dispatches() {
     const OP_EXECUTION_MODE: u32 = 16;
     const LOCAL_SIZE: u32 = 17;
     for spec in MODULES.iter().filter(|m| m.stage == Stage::Compute) {
-        let (x, y) = twinray::render::pipeline::workgroup(spec.name).expect("a compute module has a workgroup");
+        let (x, y) = twinray_host::render::pipeline::workgroup(spec.name).expect("a compute module has a workgroup");
         for language in Language::ALL {
             let path = repo_root().join(spec.spirv_path(language));
             let bytes = std::fs::read(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));

@@ -1,5 +1,5 @@
 //! Where a probe's launches are centred, checked on cases nobody chose: random scenes
-//! (`twinray::probe::random`: two to four groups of objects far apart, at distances from the
+//! (`twinray_host::probe::random`: two to four groups of objects far apart, at distances from the
 //! world origin spread over several orders of magnitude, thin shapes and meshes among them, each
 //! group probed from close by and about half from afar too) probed with both sets at the
 //! origins twinray chooses, at world coordinates, and a sample of their rays each launched
@@ -15,12 +15,12 @@
 //! And the condition multiple, measured at the object, fails a far case launched at world
 //! coordinates: what centring the launches is for.
 
-use twinray::probe::case::ProbeCase;
-use twinray::probe::origins::{check, table};
-use twinray::probe::random::origin_case;
-use twinray::probe::report::evaluate;
-use twinray::probe::run::probe;
-use twinray::probe::stability::{failures, MAX_CONDITION_MULTIPLE_P99};
+use twinray_host::probe::case::ProbeCase;
+use twinray_host::probe::origins::{check, table};
+use twinray_host::probe::random::origin_case;
+use twinray_host::probe::report::evaluate;
+use twinray_host::probe::run::probe;
+use twinray_host::probe::stability::{failures, MAX_CONDITION_MULTIPLE_P99};
 use twinray_tests::{repo_root, set, validated_context};
 
 /// Cases CI runs, each with both sets: two to five groups, 200 to 2,400 rays each.
@@ -66,7 +66,7 @@ fn a_far_case_at_world_coordinates_misses_the_condition_bound() {
     let case = ProbeCase::load(&path).expect("case");
     let ctx = validated_context();
     let shaders = set("rust");
-    let report = |scene: &twinray::scene::Scene| {
+    let report = |scene: &twinray_host::scene::Scene| {
         let out = probe(&ctx, scene, &shaders, &case.rays, 0, 1).expect("probe");
         evaluate(&case, out.records(), "rust", &ctx.info.name, None)
     };

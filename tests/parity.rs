@@ -9,8 +9,8 @@
 //! tolerance is tight enough to catch a change far smaller than a shader slip.
 
 use std::sync::Arc;
-use twinray::compare::{diff, verdict};
-use twinray::{Context, RenderOutput, Scene};
+use twinray_host::compare::{diff, verdict};
+use twinray_host::{Context, RenderOutput, Scene};
 use twinray_tests::{default_scene, render, validated_context, TEST_SIZE};
 
 fn failures(a: &RenderOutput, b: &RenderOutput) -> Vec<String> {
@@ -35,7 +35,7 @@ fn rust_and_glsl_sets_agree_within_tolerance() {
     let f = failures(&rust, &glsl);
     assert!(f.is_empty(), "rust vs glsl: {f:?}");
     // The image is not trivially empty: most pixels see a sphere, some see the background.
-    let hits = twinray::compare::hit_count(&rust);
+    let hits = twinray_host::compare::hit_count(&rust);
     assert!(hits > 1000 && hits < u64::from(TEST_SIZE * TEST_SIZE), "{hits} hit pixels");
 }
 

@@ -4,9 +4,9 @@
 //! both sets alike: specialising changes no pixel, and dropping a used feature changes the
 //! image the same way in Rust and GLSL (so each language reads each feature's bit).
 
-use twinray::render::layout::LayoutDraw;
-use twinray::render::pipeline::ScenePipeline;
-use twinray::scene::{MeshFiles, Renderer, Scene};
+use twinray_host::render::layout::LayoutDraw;
+use twinray_host::render::pipeline::ScenePipeline;
+use twinray_host::scene::{MeshFiles, Renderer, Scene};
 use twinray_shared::features;
 use twinray_tests::{assert_same_render, default_scene, render_scene, set, validated_context, SCENE_TEST_SIZE};
 
@@ -31,7 +31,7 @@ fn spheres_only_scene_builds_one_hit_group_and_no_shadow_miss() {
 fn a_shadow_casting_light_adds_the_shadow_miss_shader() {
     let mut scene = default_scene();
     for light in &mut scene.file.lights {
-        if let twinray::scene::file::LightDesc::Directional { shadows, .. } = light {
+        if let twinray_host::scene::file::LightDesc::Directional { shadows, .. } = light {
             *shadows = true;
         }
     }
@@ -49,8 +49,8 @@ fn a_shadow_casting_light_adds_the_shadow_miss_shader() {
 /// a callable record for every material kind, each pointing at its kind's callable.
 #[test]
 fn callable_materials_get_a_record_per_material_kind() {
-    let mut scene = twinray::scene::Scene::load(Some("showcase")).expect("showcase");
-    scene.file.material_shading = twinray::scene::MaterialShading::Callable;
+    let mut scene = twinray_host::scene::Scene::load(Some("showcase")).expect("showcase");
+    scene.file.material_shading = twinray_host::scene::MaterialShading::Callable;
     let plan = scene.build().plan;
     assert_eq!(plan.callables(), ["flat_material", "checker_material"]);
     let ctx = validated_context();
@@ -132,7 +132,7 @@ fn a_scene_uses_the_features_its_materials_and_lights_need() {
 
 /// Renders `scene` with `set_text` as it is, with every feature's code and without `drop`;
 /// asserts the first two render alike, the third differently, and returns the third.
-fn dropped(scene: &Scene, set_text: &str, drop: &str) -> twinray::RenderOutput {
+fn dropped(scene: &Scene, set_text: &str, drop: &str) -> twinray_host::RenderOutput {
     let ctx = validated_context();
     let all = features::names(features::ALL);
     let all: Vec<&str> = all.split(',').collect();

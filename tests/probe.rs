@@ -3,9 +3,9 @@
 //! and every ray the f64 reference decides must agree in hit or miss, t and normal.
 
 use glam::{DVec3, Vec4};
-use twinray::probe::{probe, ProbeRay};
-use twinray::reference::shapes::{intersect, RefRay, RefShape, Verdict};
-use twinray::scene::{MeshFiles, Scene};
+use twinray_host::probe::{probe, ProbeRay};
+use twinray_host::reference::shapes::{intersect, RefRay, RefShape, Verdict};
+use twinray_host::scene::{MeshFiles, Scene};
 use twinray_shared::bindings::NO_HIT;
 use twinray_tests::{set, validated_context, SCENE_HEAD};
 
@@ -113,14 +113,15 @@ fn shipped_and_documented_probe_cases_run_clean_in_both_sets() {
     let dir = tempfile::tempdir().unwrap();
     let example = dir.path().join("example.toml");
     std::fs::write(&example, &doc[start..end]).unwrap();
-    let mut cases = twinray::probe::stability::case_files(&root.join("probes")).expect("probe cases");
+    let mut cases = twinray_host::probe::stability::case_files(&root.join("probes")).expect("probe cases");
     cases.push(example);
     let ctx = validated_context();
     for path in cases {
-        let case = twinray::probe::case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+        let case =
+            twinray_host::probe::case::ProbeCase::load(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
         for set_text in ["rust", "glsl"] {
             let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-            let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
+            let r = twinray_host::probe::report::evaluate(&case, out.records(), set_text, "test", None);
             eprintln!("{}", r.summary());
             assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{} with {set_text}", path.display());
             assert!(r.decided > 0, "{}: nothing decided", path.display());
@@ -145,12 +146,12 @@ fn naive_sphere_fails_where_the_robust_one_holds() {
     let path = twinray_tests::repo_root().join("probes/far-sphere.toml");
     let ctx = validated_context();
     for set_text in ["rust", "glsl"] {
-        let mut case = twinray::probe::case::ProbeCase::load(&path).expect("case");
+        let mut case = twinray_host::probe::case::ProbeCase::load(&path).expect("case");
         let robust = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-        let robust = twinray::probe::report::evaluate(&case, robust.records(), set_text, "test", None);
-        case.set_formula(twinray::scene::shape::Formula::Naive);
+        let robust = twinray_host::probe::report::evaluate(&case, robust.records(), set_text, "test", None);
+        case.set_formula(twinray_host::scene::shape::Formula::Naive);
         let naive = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-        let naive = twinray::probe::report::evaluate(&case, naive.records(), set_text, "test", None);
+        let naive = twinray_host::probe::report::evaluate(&case, naive.records(), set_text, "test", None);
         assert_eq!(robust.false_hits + robust.false_misses, 0, "{set_text} robust");
         assert!(robust.relative_t_error.p99 < 1e-6, "{set_text} robust p99 {}", robust.relative_t_error.p99);
         assert!(naive.false_hits + naive.false_misses > 50, "{set_text} naive: {}", naive.summary());
@@ -174,13 +175,13 @@ fn naive_sphere_fails_where_the_robust_one_holds() {
 #[test]
 fn the_stages_own_transform_keeps_a_far_instance_precise_and_the_drivers_is_reported() {
     let path = twinray_tests::repo_root().join("probes/far-instances.toml");
-    let case = twinray::probe::case::ProbeCase::load(&path).expect("case");
+    let case = twinray_host::probe::case::ProbeCase::load(&path).expect("case");
     let ctx = validated_context();
     let mut witnesses = Vec::new();
     for set_text in ["rust", "glsl"] {
         let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
         witnesses.push(out.witness.clone().expect("a witness pass"));
-        let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
+        let r = twinray_host::probe::report::evaluate(&case, out.records(), set_text, "test", None);
         let split = r.t_error_by_source.clone().expect("a witness pass");
         let agreed = r.decided - r.false_hits - r.false_misses - r.wrong_object;
         let hits = out.results.iter().filter(|h| h.ids.w != NO_HIT).count();
@@ -202,8 +203,8 @@ fn the_stages_own_transform_keeps_a_far_instance_precise_and_the_drivers_is_repo
     // The twins' witnesses hand back the same object-space rays, from the same place along the
     // world ray, bit for bit: one formula in both languages (twinray_shared::transform and
     // transform.glsl).
-    let ray = |r: &twinray::probe::ProbeResult| {
-        twinray::probe::split::witness(r).map(|w| (w.origin, w.direction, w.shift.to_bits()))
+    let ray = |r: &twinray_host::probe::ProbeResult| {
+        twinray_host::probe::split::witness(r).map(|w| (w.origin, w.direction, w.shift.to_bits()))
     };
     let (rust, glsl) = (&witnesses[0], &witnesses[1]);
     let same = rust.iter().zip(glsl).filter(|(r, g)| ray(r) == ray(g)).count();
@@ -250,14 +251,14 @@ fn a_ray_a_few_bounds_away_is_brought_near() {
 /// driver's transform.
 fn near_rays(name: &str) -> Vec<(&'static str, f64, f64, f64)> {
     let path = twinray_tests::repo_root().join(format!("probes/stability/{name}.toml"));
-    let case = twinray::probe::case::ProbeCase::load(&path).expect("case");
+    let case = twinray_host::probe::case::ProbeCase::load(&path).expect("case");
     assert_eq!(case.scene.build().plan.features & twinray_shared::features::FAR_INSTANCES, 0, "a render's rule");
     let ctx = validated_context();
     ["rust", "glsl"]
         .into_iter()
         .map(|set_text| {
             let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-            let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
+            let r = twinray_host::probe::report::evaluate(&case, out.records(), set_text, "test", None);
             assert!(r.features.contains("far-instances"), "{set_text}: {}", r.summary());
             assert_eq!(r.false_hits + r.false_misses + r.wrong_object + r.through, 0, "{set_text}: {}", r.summary());
             let split = r.t_error_by_source.clone().expect("a witness pass");
@@ -277,12 +278,12 @@ fn without_far_instances_the_stages_take_the_drivers_ray() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("far-driver.toml");
     std::fs::write(&path, text).unwrap();
-    let case = twinray::probe::case::ProbeCase::load(&path).expect("case");
+    let case = twinray_host::probe::case::ProbeCase::load(&path).expect("case");
     assert_eq!(case.scene.build().plan.features, 0);
     let ctx = validated_context();
     for set_text in ["rust", "glsl"] {
         let out = probe(&ctx, &case.scene, &set(set_text), &case.rays, 0, 1).expect("probe");
-        let r = twinray::probe::report::evaluate(&case, out.records(), set_text, "test", None);
+        let r = twinray_host::probe::report::evaluate(&case, out.records(), set_text, "test", None);
         let split = r.t_error_by_source.clone().expect("a witness pass");
         let driver = split.driver.expect("the driver's witness").p99;
         assert_eq!((r.false_hits, r.false_misses, r.wrong_object), (0, 0, 0), "{set_text}");
@@ -297,7 +298,7 @@ fn without_far_instances_the_stages_take_the_drivers_ray() {
 #[test]
 fn a_folder_set_without_the_witness_probes_without_the_split() {
     let root = twinray_tests::repo_root();
-    let case = twinray::probe::case::ProbeCase::load(&root.join("probes/far-instances.toml")).expect("case");
+    let case = twinray_host::probe::case::ProbeCase::load(&root.join("probes/far-instances.toml")).expect("case");
     let dir = tempfile::tempdir().unwrap();
     for entry in std::fs::read_dir(root.join("spirv/rust")).unwrap() {
         let path = entry.unwrap().path();
@@ -310,11 +311,11 @@ fn a_folder_set_without_the_witness_probes_without_the_split() {
     let without = probe(&ctx, &case.scene, &set(dir.path().to_str().unwrap()), &case.rays, 0, 1).expect("probe");
     assert!(with.witness.is_some() && without.witness.is_none());
     // A miss's t and normal are whatever the payload held: compare hits, and which rays hit.
-    let answers = |out: &twinray::probe::ProbeOutput| -> Vec<_> {
+    let answers = |out: &twinray_host::probe::ProbeOutput| -> Vec<_> {
         out.results.iter().map(|r| (r.ids, if r.ids.w == NO_HIT { Vec4::ZERO } else { r.normal_t })).collect()
     };
     assert_eq!(answers(&with), answers(&without));
-    let r = twinray::probe::report::evaluate(&case, without.records(), "old", "test", None);
+    let r = twinray_host::probe::report::evaluate(&case, without.records(), "old", "test", None);
     assert!(r.t_error_by_source.is_none() && r.summary().contains("by source: n/a"), "{}", r.summary());
     // A folder from before the driver's witness: the split, without the driver's figure.
     let older = tempfile::tempdir().unwrap();
@@ -326,7 +327,7 @@ fn a_folder_set_without_the_witness_probes_without_the_split() {
     }
     let out = probe(&ctx, &case.scene, &set(older.path().to_str().unwrap()), &case.rays, 0, 1).expect("probe");
     assert!(out.witness.is_some() && out.driver_witness.is_none());
-    let r = twinray::probe::report::evaluate(&case, out.records(), "older", "test", None);
+    let r = twinray_host::probe::report::evaluate(&case, out.records(), "older", "test", None);
     let split = r.t_error_by_source.expect("the stages' witness");
     assert!(split.driver.is_none() && !split.summary().contains("driver"), "{}", split.summary());
 }
@@ -396,7 +397,7 @@ fn a_scene_far_from_the_origin_hits_what_it_hits_at_the_origin() {
             let n = [(x.wrapping_sub(1), y), (x + 1, y), (x, y.wrapping_sub(1)), (x, y + 1)];
             n.iter().any(|&(nx, ny)| nx < w && ny < h && id(nx, ny) != id(x, y))
         };
-        let hits = a.hit_ids.iter().filter(|&&i| i != twinray::render::NO_HIT_ID).count();
+        let hits = a.hit_ids.iter().filter(|&&i| i != twinray_host::render::NO_HIT_ID).count();
         assert!(hits > w * h / 10, "{label}: the shapes fill the view ({hits} pixels)");
         let (mut differ, mut off_edge) = (0, Vec::new());
         for (i, (x, y)) in (0..h).flat_map(|y| (0..w).map(move |x| (x, y))).enumerate() {

@@ -1,4 +1,4 @@
-//! The shared f32 intersection routines against the f64 reference (`twinray::reference`),
+//! The shared f32 intersection routines against the f64 reference (`twinray_host::reference`),
 //! with property-based tests: random rays from 2 to 50 shape sizes away, aimed into and around
 //! each shape's bounds, with random direction lengths (as in scaled instances). On every ray
 //! the reference decides (ambiguous rays are skipped), hit and miss must agree and t and the
@@ -6,7 +6,7 @@
 
 use glam::{DVec3, Vec3, Vec4};
 use proptest::prelude::*;
-use twinray::reference::shapes::{intersect, RefRay, RefShape, Verdict};
+use twinray_host::reference::shapes::{intersect, RefRay, RefShape, Verdict};
 use twinray_shared::layout::Primitive;
 use twinray_shared::shapes::{boxes, cone, cylinder, plane, sphere, torus};
 use twinray_shared::surface::SurfaceHit;

@@ -2,13 +2,13 @@
 //! from ray generation (`shadow_method = "query"`) give the image `traceRay` shadows give, on
 //! scenes with every shape, meshes, rect lights and cutouts, in both sets and mixed.
 
-use twinray::scene::Scene;
+use twinray_host::scene::Scene;
 use twinray_tests::{assert_same_render, render_scene, set, validated_context};
 
 /// `scene` with its shadow rays traced by ray queries.
 fn with_queries(scene: &Scene) -> Scene {
     let mut query = scene.clone();
-    query.file.shadow_method = twinray::scene::ShadowMethod::Query;
+    query.file.shadow_method = twinray_host::scene::ShadowMethod::Query;
     query
 }
 
@@ -45,7 +45,7 @@ fn query_shadows_match_traced_shadows() {
 fn query_pipelines_have_no_shadow_miss_stage() {
     let scene = with_queries(&Scene::load(Some("showcase")).expect("showcase"));
     let plan = scene.build().plan;
-    let modules = twinray::render::pipeline::plan_modules(&plan, plan.render_raygen());
+    let modules = twinray_host::render::pipeline::plan_modules(&plan, plan.render_raygen());
     assert_eq!(&modules[..2], ["raygen_query", "miss"]);
     assert!(!modules.contains(&"shadow_miss"), "{modules:?}");
 }
@@ -58,11 +58,11 @@ fn a_device_without_ray_queries_refuses_query_scenes_by_name() {
     let mut ctx = validated_context();
     std::sync::Arc::get_mut(&mut ctx).expect("the only reference").info.ray_query = false;
     let scene = with_queries(&Scene::load(Some("lights")).expect("lights"));
-    let err = twinray::render(&ctx, &scene, &set("rust"), &twinray_tests::small_render()).err().expect("an error");
+    let err = twinray_host::render(&ctx, &scene, &set("rust"), &twinray_tests::small_render()).err().expect("an error");
     let message = err.to_string();
     assert!(message.contains("VK_KHR_ray_query") && message.contains("shadow_method"), "{message}");
     assert_eq!(message.lines().count(), 1, "{message}");
     // Scenes that trace their shadows still render.
     let traced = Scene::load(Some("lights")).expect("lights");
-    twinray::render(&ctx, &traced, &set("rust"), &twinray_tests::small_render()).expect("traced shadows render");
+    twinray_host::render(&ctx, &traced, &set("rust"), &twinray_tests::small_render()).expect("traced shadows render");
 }

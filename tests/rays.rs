@@ -1,7 +1,7 @@
 //! Rays counted as traced (for Mrays/s): primary rays are pixels times samples, and ray
 //! generation counts each shadow ray as it traces it, in both sets.
 
-use twinray::scene::{MeshFiles, Scene};
+use twinray_host::scene::{MeshFiles, Scene};
 use twinray_tests::{render_scene, validated_context, SCENE_TEST_SIZE};
 
 /// A floor filling the whole view from above, lit by `lights` (TOML), 2 x 2 samples.

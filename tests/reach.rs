@@ -3,7 +3,7 @@
 //! 1,500 (300,000) units along the light, out of view, casts its shadow on it. With the fixed
 //! reach of 1,000 units these rendered as empty background, unshadowed.
 
-use twinray::{RenderOptions, Scene};
+use twinray_host::{RenderOptions, Scene};
 use twinray_tests::{repo_root, set, validated_context};
 
 /// The pixel at the centre of the occluder's shadow (the sphere's point (0, 70.7, 70.7) of
@@ -24,13 +24,13 @@ fn far_scenes_render_whole_with_their_distant_shadows() {
             reach.x > extent && reach.x < extent * 1.1,
             "{name}: primary rays reach the sphere's far side: {reach}"
         );
-        let [rust, glsl] = ["rust", "glsl"].map(|s| twinray::render(&ctx, &scene, &set(s), &opts).unwrap());
-        let d = twinray::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
-        let failures = twinray::compare::verdict(&d, &scene.file.parity, 96 * 96);
+        let [rust, glsl] = ["rust", "glsl"].map(|s| twinray_host::render(&ctx, &scene, &set(s), &opts).unwrap());
+        let d = twinray_host::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
+        let failures = twinray_host::compare::verdict(&d, &scene.file.parity, 96 * 96);
         assert!(failures.is_empty(), "{name}: {failures:?}");
         for out in [&rust, &glsl] {
             assert!(out.written.is_clean(), "{name}: {:?}", out.written);
-            let hits = twinray::compare::hit_count(out);
+            let hits = twinray_host::compare::hit_count(out);
             assert!(hits > 96 * 96 * 2 / 5, "{name}: the sphere fills nearly half the view ({hits} pixels hit)");
             let luminance = |(x, y): (usize, usize)| out.linear[y * 96 + x].iter().sum::<f32>();
             let id = |(x, y): (usize, usize)| out.hit_ids[y * 96 + x];
@@ -46,7 +46,7 @@ fn a_scene_f32_cannot_resolve_is_refused_by_name() {
     let text = std::fs::read_to_string(repo_root().join("tests/reach/far-1e6.toml")).unwrap();
     // The occluder shrunk to a millimetre at 300,000 units, where f32 steps by 1/32.
     let tiny = text.replace("radius = 10000.0", "radius = 0.001");
-    let e = Scene::parse(&tiny, "tiny.toml", twinray::scene::MeshFiles::Builtin).unwrap_err().to_string();
+    let e = Scene::parse(&tiny, "tiny.toml", twinray_host::scene::MeshFiles::Builtin).unwrap_err().to_string();
     assert!(e.contains("object 1 (shape \"blocker\")") && e.contains("f32 cannot resolve it"), "{e}");
 }
 
@@ -56,7 +56,7 @@ fn a_scene_f32_cannot_resolve_is_refused_by_name() {
 /// that they light what they lit at the same distance (rect lights' irradiance is their solid
 /// angle's, which scaling keeps; directional lights have no distance).
 fn scaled(scene: &Scene, s: f32) -> Scene {
-    use twinray::scene::file::{LightDesc, Scale};
+    use twinray_host::scene::file::{LightDesc, Scale};
     let (file, source, meshes) = (scene.file.clone(), scene.source.clone(), scene.meshes.clone());
     // The GPU centred as the scene is (on the camera, which moves `s` times as far), or not.
     let mut out =
@@ -111,14 +111,17 @@ fn a_scene_scaled_by_powers_of_ten_renders_the_same_picture() {
     for name in ["lights"] {
         let scene = Scene::load(Some(name)).unwrap();
         for s in ["rust", "glsl"] {
-            let one = twinray::render(&ctx, &scene, &set(s), &opts).unwrap();
-            assert!(twinray::compare::hit_count(&one) > u64::from(width * height) / 4, "{name}: the scene is in view");
+            let one = twinray_host::render(&ctx, &scene, &set(s), &opts).unwrap();
+            assert!(
+                twinray_host::compare::hit_count(&one) > u64::from(width * height) / 4,
+                "{name}: the scene is in view"
+            );
             for k in (-4..=4).filter(|&k| k != 0) {
                 let big = scaled(&scene, 10f32.powi(k));
                 let reach = big.frame_uniform(width, height).reach;
-                let out = twinray::render(&ctx, &big, &set(s), &opts).unwrap();
-                let d = twinray::compare::diff(&one, &out, scene.file.parity.pixel_threshold);
-                let failures = twinray::compare::verdict(&d, &scene.file.parity, u64::from(width * height));
+                let out = twinray_host::render(&ctx, &big, &set(s), &opts).unwrap();
+                let d = twinray_host::compare::diff(&one, &out, scene.file.parity.pixel_threshold);
+                let failures = twinray_host::compare::verdict(&d, &scene.file.parity, u64::from(width * height));
                 eprintln!(
                     "{name} {s} x10^{k}: reach {reach}, rmse {:.6}, {} hit mismatches ({} off silhouette)",
                     d.color.rmse, d.hit_mismatches, d.hit_mismatches_off_silhouette

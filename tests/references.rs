@@ -1,8 +1,8 @@
 //! Converged references: cached under a key of scene, size, samples and shaders (a changed
 //! scene or set renders again), and what renders with more samples converge to.
 
-use twinray::reference::image::reference;
-use twinray::{render, RenderOptions};
+use twinray_host::reference::image::reference;
+use twinray_host::{render, RenderOptions};
 use twinray_tests::{set, validated_context};
 
 fn rmse(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
@@ -14,7 +14,7 @@ fn rmse(a: &[[f32; 3]], b: &[[f32; 3]]) -> f64 {
 fn references_are_cached_per_scene_set_and_samples() {
     let ctx = validated_context();
     let dir = tempfile::tempdir().unwrap();
-    let scene = twinray::Scene::load(Some("lights")).unwrap();
+    let scene = twinray_host::Scene::load(Some("lights")).unwrap();
     let size = (24, 24);
     let first = reference(&ctx, &scene, &set("glsl"), size, 16, dir.path()).unwrap();
     assert!(!first.cached);
@@ -37,7 +37,7 @@ fn references_are_cached_per_scene_set_and_samples() {
 fn renders_converge_to_the_reference_as_samples_grow() {
     let ctx = validated_context();
     let dir = tempfile::tempdir().unwrap();
-    let scene = twinray::Scene::load(Some("lights")).unwrap();
+    let scene = twinray_host::Scene::load(Some("lights")).unwrap();
     let (width, height) = (32, 32);
     let truth = reference(&ctx, &scene, &set("glsl"), (width, height), 1024, dir.path()).unwrap();
     let error = |side: u32| {
@@ -55,9 +55,9 @@ fn renders_converge_to_the_reference_as_samples_grow() {
 fn both_sets_place_random_shadow_samples_alike_and_stratified_ones_converge_faster() {
     use twinray::bench::plots::log_slope;
     use twinray::bench::samplers::{study, Study};
-    use twinray::scene::file::ShadowSampler;
+    use twinray_host::scene::file::ShadowSampler;
     let ctx = validated_context();
-    let mut scene = twinray::Scene::load(Some("lights")).unwrap();
+    let mut scene = twinray_host::Scene::load(Some("lights")).unwrap();
     let opts = RenderOptions::once(32, 32, 0, 1);
     let stratified = render(&ctx, &scene, &set("glsl"), &opts).unwrap();
     scene.file.shadow_sampler = ShadowSampler::Random;
@@ -75,7 +75,7 @@ fn both_sets_place_random_shadow_samples_alike_and_stratified_ones_converge_fast
         warmup: 0,
         runs: 1,
     };
-    let rows = study(&ctx, &twinray::Scene::load(Some("lights")).unwrap(), &s, &|_| {}).unwrap();
+    let rows = study(&ctx, &twinray_host::Scene::load(Some("lights")).unwrap(), &s, &|_| {}).unwrap();
     let slope = |sampler: &str| {
         let points: Vec<(f64, f64)> =
             rows.iter().filter(|r| r.sampler == sampler).map(|r| (f64::from(r.shadow_spp), r.rmse)).collect();

@@ -2,7 +2,7 @@
 //! sets share the scene and the output image, are timed in turn over several placements, and
 //! each must still get its own image, hit ids and timings.
 
-use twinray::{render_sets, RenderOptions, Scene};
+use twinray_host::{render_sets, RenderOptions, Scene};
 use twinray_tests::{set, validated_context};
 
 /// Soft shadows, every shape and a mesh: every stage of every set runs.
@@ -29,8 +29,8 @@ fn each_set_gets_what_it_renders_alone() {
     assert_eq!(places.len(), sets.len() * opts.placements as usize, "{places:?}");
     assert_eq!(places.iter().collect::<std::collections::HashSet<_>>().len(), places.len(), "{places:?}");
     for (s, out) in sets.iter().zip(&together) {
-        let alone =
-            twinray::render(&ctx, &scene, s, &RenderOptions { runs: 1, warmup: 0, placements: 1, ..opts }).unwrap();
+        let alone = twinray_host::render(&ctx, &scene, s, &RenderOptions { runs: 1, warmup: 0, placements: 1, ..opts })
+            .unwrap();
         // Bit-exact: the same pipeline traced the same rays over the same scene.
         assert_eq!(out.hit_ids, alone.hit_ids, "{s}: hit ids");
         assert_eq!(out.rays, alone.rays, "{s}: ray counts");

@@ -13,13 +13,13 @@
 //! as the driver found them); the stages' measure is the case as it runs.
 
 use glam::DVec3;
-use twinray::probe::case::ProbeCase;
-use twinray::probe::run::probe;
-use twinray::probe::ProbeRay;
-use twinray::reference::scene::SceneVerdict;
-use twinray::reference::shapes::bounding_radius;
-use twinray::scene::Scene;
-use twinray::util::stats::{median, Quantiles};
+use twinray_host::probe::case::ProbeCase;
+use twinray_host::probe::run::probe;
+use twinray_host::probe::ProbeRay;
+use twinray_host::reference::scene::SceneVerdict;
+use twinray_host::reference::shapes::bounding_radius;
+use twinray_host::scene::Scene;
+use twinray_host::util::stats::{median, Quantiles};
 use twinray_tests::{repo_root, set, validated_context};
 
 /// Relative t errors of `results` (t of each ray of `each`) against the reference's t.
@@ -69,11 +69,11 @@ fn retracing_near_the_hit_against_measuring_it_again() {
         centred.file.objects[0].translate = [0.0; 3];
         let second: Vec<ProbeRay> = hits.iter().map(|h| h.3).collect();
         let retrace = probe(&ctx, &centred, &shaders, &second, 2, 5).expect("re-trace");
-        let t = |out: &twinray::probe::run::ProbeOutput, k: usize| f64::from(out.results[k].normal_t.w);
+        let t = |out: &twinray_host::probe::run::ProbeOutput, k: usize| f64::from(out.results[k].normal_t.w);
         let d = errors(&t_ref, (0..hits.len()).map(|k| t(&driver, k)));
         let r = errors(&t_ref, (0..hits.len()).map(|k| hits[k].2 + t(&retrace, k)));
         let s = errors(&t_ref, (0..hits.len()).map(|k| t(&stages, k)));
-        let ms = |out: &twinray::probe::run::ProbeOutput| median(&out.gpu_ms).unwrap_or(f64::NAN);
+        let ms = |out: &twinray_host::probe::run::ProbeOutput| median(&out.gpu_ms).unwrap_or(f64::NAN);
         println!(
             "| {name} | {} | {:.1e} | {:.1e} | {:.1e} | {:.3}, {:.3}, {:.3} |",
             hits.len(),

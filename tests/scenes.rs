@@ -3,7 +3,7 @@
 //! (its `[parity]` table; see scenes/spheres.toml for why a tolerance and not equality).
 //! The context closes at the end, so an object leaked by any of the renders fails the test.
 
-use twinray::compare::{scene_diff, verdict};
+use twinray_host::compare::{scene_diff, verdict};
 use twinray_tests::{builtin_scenes, render_scene, validated_context, SCENE_TEST_SIZE};
 
 /// One mix per scene, taken in turn, so every stage is mixed in across the suite.
@@ -20,7 +20,7 @@ fn every_builtin_scene_agrees_across_sets_and_a_mix() {
         let glsl = render_scene(&ctx, scene, "glsl");
         let mix = MIXES[i % MIXES.len()];
         let mixed = render_scene(&ctx, scene, mix);
-        assert!(twinray::compare::hit_count(&rust) > 0, "{}: nothing visible", scene.name());
+        assert!(twinray_host::compare::hit_count(&rust) > 0, "{}: nothing visible", scene.name());
         let parity = scene.file.parity;
         for (label, a, b) in
             [("rust vs glsl", &rust, &glsl), ("mix vs rust", &mixed, &rust), ("mix vs glsl", &mixed, &glsl)]

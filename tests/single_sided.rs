@@ -4,9 +4,9 @@
 //! decides the front by the winding in world space. A shadow ray sees both faces.
 
 use glam::DVec3;
-use twinray::probe::{probe, ProbeRay};
-use twinray::reference::scene::{SceneReference, SceneVerdict};
-use twinray::scene::{MeshFiles, Scene};
+use twinray_host::probe::{probe, ProbeRay};
+use twinray_host::reference::scene::{SceneReference, SceneVerdict};
+use twinray_host::scene::{MeshFiles, Scene};
 use twinray_shared::bindings::{MASK_OCCLUDER, NO_HIT};
 use twinray_tests::{set, validated_context, SCENE_HEAD};
 

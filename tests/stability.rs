@@ -5,8 +5,8 @@
 //! 8 or the case's own bound), and the naive formulas fail where docs/numerics.md says they do,
 //! by far more than the problems' conditioning allows.
 
-use twinray::probe::stability::{case_files, run, Timing};
-use twinray::scene::shape::Formula;
+use twinray_host::probe::stability::{case_files, run, Timing};
+use twinray_host::scene::shape::Formula;
 use twinray_tests::{repo_root, set, validated_context};
 
 /// Cases where the naive formulas give wrong answers (false hits or misses).
@@ -31,7 +31,7 @@ fn robust_formulas_meet_every_target_and_naive_ones_fail_where_expected() {
     let sets = [set("rust"), set("glsl")];
     // Accuracy only: one timed pass over the case's own rays.
     let timing = Timing { warmup: 0, runs: 1, rays: 0 };
-    let skip = |s: &twinray::probe::stability::Skipped| panic!("{}", s.line());
+    let skip = |s: &twinray_host::probe::stability::Skipped| panic!("{}", s.line());
     let mut rows = run(&ctx, &files, &sets, &[Formula::Robust], timing, skip).expect("suite").rows;
     // The naive formulas only on the cases asserted on below: on the others nothing is checked,
     // and each case's naive stages are pipelines of their own for lavapipe to compile (about

@@ -7,8 +7,8 @@
 //! coordinate transform.
 
 use std::path::Path;
-use twinray::render::{RenderOptions, RenderOutput};
-use twinray::scene::Scene;
+use twinray_host::render::{RenderOptions, RenderOutput};
+use twinray_host::scene::Scene;
 use twinray_tests::{set, validated_context};
 
 const SIZE: (u32, u32) = (128, 96);
@@ -103,7 +103,7 @@ fn scene(dir: &Path, samples: u32, lod: &str, transform: &str) -> Scene {
 
 fn render(scene: &Scene, shaders: &str) -> RenderOutput {
     let opts = RenderOptions::once(SIZE.0, SIZE.1, 0, 1);
-    twinray::render(&validated_context(), scene, &set(shaders), &opts).unwrap_or_else(|e| panic!("{e}"))
+    twinray_host::render(&validated_context(), scene, &set(shaders), &opts).unwrap_or_else(|e| panic!("{e}"))
 }
 
 /// RMSE of `a` against `b` over rows `rows` (luminance-free: the mean of the channels).
@@ -130,7 +130,8 @@ fn ray_cones_neither_alias_in_the_distance_nor_blur_near_by() {
     // The first row that sees the floor: its horizon. Far: the 12 rows under it, where a pixel
     // spans from 30 down to 2 checker cells along the view; near: the bottom quarter, where a
     // cell spans many pixels.
-    let horizon = (0..SIZE.1).find(|&y| rust.hit_ids[(y * SIZE.0) as usize] != twinray::render::NO_HIT_ID).unwrap();
+    let horizon =
+        (0..SIZE.1).find(|&y| rust.hit_ids[(y * SIZE.0) as usize] != twinray_host::render::NO_HIT_ID).unwrap();
     let (far, near) = (horizon..horizon + 12, SIZE.1 - SIZE.1 / 4..SIZE.1);
     let (cones_far, zero_far) = (rmse(&rust, &truth, far.clone()), rmse(&zero, &truth, far));
     let (cones_near, zero_near) = (rmse(&rust, &truth, near.clone()), rmse(&zero, &truth, near));
@@ -142,10 +143,10 @@ fn ray_cones_neither_alias_in_the_distance_nor_blur_near_by() {
     assert!(cones_far < 0.3 * zero_far, "level 0 aliases in the distance; the cones should not");
     assert!(cones_near <= 1.1 * zero_near + 0.005, "the cones blur what level 0 shows sharp");
     // Both sets alike.
-    let d = twinray::compare::diff(&rust, &glsl, cones.file.parity.pixel_threshold);
+    let d = twinray_host::compare::diff(&rust, &glsl, cones.file.parity.pixel_threshold);
     eprintln!("rust against glsl: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
     assert_eq!(d.hit_mismatches, 0);
-    assert!(twinray::compare::verdict(&d, &cones.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+    assert!(twinray_host::compare::verdict(&d, &cones.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
 }
 
 /// The material's transform moves the texture: half a checker cell along u turns black cells
@@ -158,9 +159,9 @@ fn a_texture_transform_moves_the_texture() {
     let (moved, glsl) = (render(&moved_scene, "rust"), render(&moved_scene, "glsl"));
     let near = SIZE.1 - SIZE.1 / 8..SIZE.1;
     assert!(rmse(&plain, &moved, near) > 0.3, "the transform changed nothing");
-    let d = twinray::compare::diff(&moved, &glsl, moved_scene.file.parity.pixel_threshold);
+    let d = twinray_host::compare::diff(&moved, &glsl, moved_scene.file.parity.pixel_threshold);
     assert_eq!(d.hit_mismatches, 0);
-    assert!(twinray::compare::verdict(&d, &moved_scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+    assert!(twinray_host::compare::verdict(&d, &moved_scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
 }
 
 /// A checker of alpha: opaque white cells and transparent ones.
@@ -228,7 +229,7 @@ intensity = 1.0
 
 /// What share of the pixels see object `object` first.
 fn share(out: &RenderOutput, object: u64) -> f64 {
-    out.hit_ids.iter().filter(|&&id| id != twinray::render::NO_HIT_ID && id >> 32 == object).count() as f64
+    out.hit_ids.iter().filter(|&&id| id != twinray_host::render::NO_HIT_ID && id >> 32 == object).count() as f64
         / out.hit_ids.len() as f64
 }
 
@@ -247,9 +248,9 @@ fn a_texture_s_alpha_cuts_holes_for_every_ray() {
         (0..rust.hit_ids.len()).filter(|&i| rust.hit_ids[i] >> 32 == 1).map(|i| rust.linear[i][2]).collect();
     let lit = lower_pixels.iter().filter(|&&b| b > 0.1).count() as f64 / lower_pixels.len() as f64;
     assert!((0.2..0.8).contains(&lit), "share of the lower floor lit through the holes: {lit}");
-    let d = twinray::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
+    let d = twinray_host::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
     assert_eq!(d.hit_mismatches, 0);
-    assert!(twinray::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+    assert!(twinray_host::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
     let clear = render(&masked_scene(dir.path(), 0.4, ""), "glsl");
     assert_eq!(share(&clear, 0), 0.0, "opacity 0.4 under a threshold of 0.5: no surface");
 }
@@ -265,10 +266,10 @@ fn rays_traced_inline_test_the_same_alpha() {
         let scene = masked_scene(dir.path(), 1.0, top);
         for language in ["rust", "glsl"] {
             let inline = render(&scene, language);
-            let d = twinray::compare::diff(&pipeline, &inline, scene.file.parity.pixel_threshold);
+            let d = twinray_host::compare::diff(&pipeline, &inline, scene.file.parity.pixel_threshold);
             eprintln!("{top}, {language}: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
             assert_eq!(d.hit_mismatches, 0, "{top}, {language}");
-            assert!(twinray::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+            assert!(twinray_host::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
         }
     }
 }
@@ -298,9 +299,9 @@ fn a_procedural_floor_filters_as_the_mesh_does() {
     assert!(against_mesh < 0.01, "the rectangle filters otherwise than the mesh: rmse {against_mesh}");
     let level_zero = render(&floor_of(dir.path(), "zero", (1, "zero"), rectangle, (material, "")), "rust");
     assert!(rmse(&level_zero, &mesh_image, 0..SIZE.1) > 5.0 * against_mesh.max(0.002), "filtering changed nothing");
-    let d = twinray::compare::diff(&rust, &glsl, flat.file.parity.pixel_threshold);
+    let d = twinray_host::compare::diff(&rust, &glsl, flat.file.parity.pixel_threshold);
     assert_eq!(d.hit_mismatches, 0);
-    assert!(twinray::compare::verdict(&d, &flat.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+    assert!(twinray_host::compare::verdict(&d, &flat.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
 }
 
 /// A material's emission adds to the light it reflects: the factor times its texture (black
@@ -324,7 +325,7 @@ fn emission_adds_its_factor_times_its_texture() {
         assert!((s[0] - s[1]).abs() < 0.02 && (s[1] - s[2]).abs() < 0.02, "pixel {i}: {s:?}");
         s[0]
     };
-    let object = |i: usize, o: u64| rust.hit_ids[i] != twinray::render::NO_HIT_ID && rust.hit_ids[i] >> 32 == o;
+    let object = |i: usize, o: u64| rust.hit_ids[i] != twinray_host::render::NO_HIT_ID && rust.hit_ids[i] >> 32 == o;
     let ball: Vec<f32> = (0..rust.hit_ids.len()).filter(|&i| object(i, 1)).map(added).collect();
     let (low, high) = ball.iter().fold((f32::MAX, f32::MIN), |(l, h), &s| (l.min(s), h.max(s)));
     eprintln!("ball: {} pixels emit {low:.3} to {high:.3} of the factor", ball.len());
@@ -341,9 +342,9 @@ fn emission_adds_its_factor_times_its_texture() {
     eprintln!("near floor: {dark:.3} emit nothing, {bright:.3} the factor");
     assert!(dark > 0.3 && bright > 0.3, "the texture does not shape the emission");
     assert!(floor.iter().all(|s| (-0.01..=1.01).contains(s)), "emission beyond the factor times [0, 1]");
-    let d = twinray::compare::diff(&rust, &glsl, glowing.file.parity.pixel_threshold);
+    let d = twinray_host::compare::diff(&rust, &glsl, glowing.file.parity.pixel_threshold);
     assert_eq!(d.hit_mismatches, 0);
-    assert!(twinray::compare::verdict(&d, &glowing.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+    assert!(twinray_host::compare::verdict(&d, &glowing.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
 }
 
 /// A 64x64 image whose red grows with u and green with v: texel (i, j) holds 8-bit sRGB
@@ -371,7 +372,7 @@ fn uv_image_at(c: f64) -> f64 {
 
 /// Every procedural shape wears a texture through its documented parametrisation, in both
 /// sets: each pixel that sees a shape emits what the image holds at the coordinates the f64
-/// reference finds for its ray (`twinray::reference::uv`), the shapes emitting their texture
+/// reference finds for its ray (`twinray_host::reference::uv`), the shapes emitting their texture
 /// and reflecting nothing. Pixels within a texel of the image's edges (seams, where repeat
 /// wrapping blends both ends) are left out.
 #[test]
@@ -383,23 +384,23 @@ fn every_shape_reads_its_texture_where_the_reference_puts_the_coordinates() {
     std::fs::write(&path, text).unwrap();
     let scene = Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"));
     let (rust, glsl) = (render(&scene, "rust"), render(&scene, "glsl"));
-    let d = twinray::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
+    let d = twinray_host::compare::diff(&rust, &glsl, scene.file.parity.pixel_threshold);
     assert_eq!(d.hit_mismatches, 0);
-    assert!(twinray::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
-    let reference = twinray::reference::scene::SceneReference::new(&scene).unwrap();
-    let rays = twinray::explain::rays::Camera::new(&scene, SIZE).first_samples();
+    assert!(twinray_host::compare::verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty());
+    let reference = twinray_host::reference::scene::SceneReference::new(&scene).unwrap();
+    let rays = twinray_host::explain::rays::Camera::new(&scene, SIZE).first_samples();
     let mut checked = vec![0usize; reference.objects.len()];
     let mut first = std::collections::BTreeMap::new();
     let mut wrong = Vec::new();
     for (i, ray) in rays.iter().enumerate() {
         let (o, d) = (ray.origin.truncate().as_dvec3(), ray.direction.truncate().as_dvec3());
         let reach = (f64::from(ray.origin.w), f64::from(ray.direction.w));
-        let twinray::reference::scene::SceneVerdict::Hit { object, .. } = reference.trace(o, d, reach.0, reach.1)
+        let twinray_host::reference::scene::SceneVerdict::Hit { object, .. } = reference.trace(o, d, reach.0, reach.1)
         else {
             continue;
         };
         let Some((k, p)) = reference.shape_hit(object, o, d, reach) else { continue };
-        let (uv, _) = twinray::reference::uv::uv(&reference.objects[object].shapes[k], p).unwrap();
+        let (uv, _) = twinray_host::reference::uv::uv(&reference.objects[object].shapes[k], p).unwrap();
         if uv.min_element() < 1.0 / 64.0 || uv.max_element() > 63.0 / 64.0 {
             continue;
         }
@@ -423,9 +424,14 @@ fn every_shape_reads_its_texture_where_the_reference_puts_the_coordinates() {
     let sets = [("rust".to_string(), set("rust")), ("glsl".to_string(), set("glsl"))];
     for object in [0, 4] {
         let i = first[&object];
-        let px =
-            twinray::explain::pixel::explain_pixel(&validated_context(), &scene, &sets, SIZE, (i % SIZE.0, i / SIZE.0))
-                .unwrap_or_else(|e| panic!("{e}"));
+        let px = twinray_host::explain::pixel::explain_pixel(
+            &validated_context(),
+            &scene,
+            &sets,
+            SIZE,
+            (i % SIZE.0, i / SIZE.0),
+        )
+        .unwrap_or_else(|e| panic!("{e}"));
         let truth = px.reference_surfaces[0].as_ref().expect("the reference's surface");
         for s in &px.sets {
             let on = s.samples[0].surface.as_ref().expect("the set's surface");

@@ -5,8 +5,8 @@
 //! up before any GPU run.
 
 use glam::{DVec3, Vec3, Vec4};
-use twinray::reference::shapes::{intersect, RefRay, RefShape, Verdict};
-use twinray::reference::surface;
+use twinray_host::reference::shapes::{intersect, RefRay, RefShape, Verdict};
+use twinray_host::reference::surface;
 use twinray_shared::layout::Primitive;
 use twinray_shared::offset::offset_ray;
 use twinray_shared::shapes::torus;

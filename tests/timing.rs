@@ -2,8 +2,8 @@
 //! of itself (the null control) is not resolved; a ray generation stage that does the work
 //! twice is resolved as slower, its interval excluding 1.
 
-use twinray::compare::compare_sets;
-use twinray::{RenderOptions, Scene, ShaderSet};
+use twinray_host::compare::compare_sets;
+use twinray_host::{RenderOptions, Scene, ShaderSet};
 use twinray_tests::{set, validated_context};
 
 fn sphere() -> Scene {
@@ -82,7 +82,7 @@ fn twice_the_work_is_resolved_as_slower() {
     panic!("twice the work not resolved as slower, twice: {tries:?}");
 }
 
-fn each_set_led_as_often(r: &twinray::compare::CompareReport) {
+fn each_set_led_as_often(r: &twinray_host::compare::CompareReport) {
     // Each set was timed at both ends of the order, as often.
     for p in [&r.placements_a, &r.placements_b] {
         let first = p.position.iter().filter(|&&x| x == 0).count();

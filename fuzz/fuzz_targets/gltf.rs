@@ -1,10 +1,10 @@
 #![no_main]
-// See twinray::fuzz::gltf: what it feeds the bytes to, and what counts as a finding. The
-// mutator (twinray::fuzz::mutate) edits the JSON as JSON and a GLB's binary chunk as bytes,
+// See twinray_host::fuzz::gltf: what it feeds the bytes to, and what counts as a finding. The
+// mutator (twinray_host::fuzz::mutate) edits the JSON as JSON and a GLB's binary chunk as bytes,
 // and writes the container back whole; libFuzzer's own mutator does the byte-level edits.
-use twinray::fuzz::mutate::{self, Rng};
+use twinray_host::fuzz::mutate::{self, Rng};
 
-libfuzzer_sys::fuzz_target!(|data: &[u8]| twinray::fuzz::gltf(data));
+libfuzzer_sys::fuzz_target!(|data: &[u8]| twinray_host::fuzz::gltf(data));
 
 libfuzzer_sys::fuzz_mutator!(|data: &mut [u8], size: usize, max_size: usize, seed: u32| {
     let mut rng = Rng::new(seed as u64);

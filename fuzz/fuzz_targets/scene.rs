@@ -1,3 +1,3 @@
 #![no_main]
-// See twinray::fuzz::scene: what it feeds the bytes to, and what counts as a finding.
-libfuzzer_sys::fuzz_target!(|data: &[u8]| twinray::fuzz::scene(data));
+// See twinray_host::fuzz::scene: what it feeds the bytes to, and what counts as a finding.
+libfuzzer_sys::fuzz_target!(|data: &[u8]| twinray_host::fuzz::scene(data));

@@ -1,7 +1,7 @@
 #!/bin/bash
 # The deadline, device-lost and hostile-stage paths on a GPU machine (the H100 here), with
 # the bundle of `cargo xtask bundle`, the library's unit-test binary copied into it as
-# BUNDLE/unit-tests (`cargo test --release -p twinray --lib --no-run` prints its path), and
+# BUNDLE/unit-tests (`cargo test --release -p twinray-host --lib --no-run` prints its path), and
 # the stages of tests/hostile/stages/ compiled by glslang into STAGES (long.rgen as
 # long-N.spv for SPIN=N, N in 1 300 1000 3000 10000); SCENES is tests/reach:
 #

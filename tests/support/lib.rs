@@ -1,4 +1,4 @@
-//! The one support library of every integration test (`tests/`, `host/tests/`, `xtask/tests/`):
+//! The one support library of every integration test (`tests/`, `app/tests/`, `xtask/tests/`):
 //! a validated Vulkan context per test, small renders and the repository's root here; running
 //! the `twinray` binary and planting stages in `cli`; the docs' fenced blocks in `docs`; small
 //! glTF models in `gltf`; scratch
@@ -14,7 +14,7 @@ pub mod tutorial;
 
 use std::path::PathBuf;
 use std::sync::Arc;
-use twinray::{Context, ContextOptions, RenderOptions, RenderOutput, Scene, ShaderSet, Validation};
+use twinray_host::{Context, ContextOptions, RenderOptions, RenderOutput, Scene, ShaderSet, Validation};
 
 /// Test renders stay small: lavapipe traces the 1024-sphere scene at about 0.4 Mrays/s.
 pub const TEST_SIZE: u32 = 256;
@@ -23,7 +23,7 @@ pub const TEST_SIZE: u32 = 256;
 /// absolute path, outside their own folders: the whole disk is their asset root, as
 /// `--asset-root /` gives a command (what confinement refuses is tested in host/tests).
 pub fn allow_installed_models() {
-    twinray::util::input::set_asset_root(std::path::Path::new("/")).expect("the asset root");
+    twinray_host::util::input::set_asset_root(std::path::Path::new("/")).expect("the asset root");
 }
 
 /// The repository root.
@@ -41,7 +41,7 @@ pub fn validated_context() -> Arc<Context> {
 
 /// As [`validated_context`], making pipelines as `pipelines` says (`None`: the default,
 /// libraries where the device has them).
-pub fn validated_context_making(pipelines: Option<twinray::vk::context::PipelineKind>) -> Arc<Context> {
+pub fn validated_context_making(pipelines: Option<twinray_host::vk::context::PipelineKind>) -> Arc<Context> {
     let options = ContextOptions {
         validation: Validation::Required,
         device_filter: None,
@@ -68,7 +68,7 @@ pub const SCENE_TEST_SIZE: (u32, u32) = (160, 120);
 pub fn render_scene(ctx: &Arc<Context>, scene: &Scene, set_text: &str) -> RenderOutput {
     let (width, height) = SCENE_TEST_SIZE;
     let opts = RenderOptions::once(width, height, 0, 1);
-    match twinray::render(ctx, scene, &set(set_text), &opts) {
+    match twinray_host::render(ctx, scene, &set(set_text), &opts) {
         Ok(out) => out,
         Err(e) => panic!("rendering {} with {set_text}: {e}", scene.name()),
     }
@@ -76,13 +76,13 @@ pub fn render_scene(ctx: &Arc<Context>, scene: &Scene, set_text: &str) -> Render
 
 /// Asserts that two renders of `scene` at `SCENE_TEST_SIZE` (`label` says which) hit the same
 /// object and primitive in every pixel (but where either answer is right, as `compare` judges:
-/// `twinray::compare::edges`), trace the same shadow rays, and give images within the scene's
+/// `twinray_host::compare::edges`), trace the same shadow rays, and give images within the scene's
 /// parity.
 pub fn assert_same_render(label: &str, a: &RenderOutput, b: &RenderOutput, scene: &Scene) {
     let name = scene.name();
     let parity = scene.file.parity;
-    let d = twinray::compare::scene_diff(scene, a, b);
-    let f = twinray::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
+    let d = twinray_host::compare::scene_diff(scene, a, b);
+    let f = twinray_host::compare::verdict(&d, &parity, u64::from(SCENE_TEST_SIZE.0 * SCENE_TEST_SIZE.1));
     eprintln!(
         "{name} {label}: rmse {:.6}, {} over, {} hit mismatches ({} + {} set apart), shadow rays {} / {}",
         d.color.rmse,
@@ -100,7 +100,7 @@ pub fn assert_same_render(label: &str, a: &RenderOutput, b: &RenderOutput, scene
 
 /// Every built-in scene, loaded.
 pub fn builtin_scenes() -> Vec<Scene> {
-    twinray::scene::BUILTIN
+    twinray_host::scene::BUILTIN
         .iter()
         .map(|(name, _)| Scene::load(Some(name)).unwrap_or_else(|e| panic!("built-in scene {name}: {e}")))
         .collect()
@@ -138,7 +138,7 @@ pub fn alternate_set(k: usize) -> &'static str {
 
 /// The set `text` names, loaded (folders of sources built with the default deadline).
 pub fn set(text: &str) -> ShaderSet {
-    match text.parse().and_then(|spec| twinray::shaders::Loader::default().load(&spec)) {
+    match text.parse().and_then(|spec| twinray_host::sets::Loader::default().load(&spec)) {
         Ok(set) => set,
         Err(e) => panic!("shader set {text:?}: {e}"),
     }
@@ -146,7 +146,7 @@ pub fn set(text: &str) -> ShaderSet {
 
 /// Renders `scene` with `set` at the test size, failing the test on any error.
 pub fn render(ctx: &Arc<Context>, scene: &Scene, set_text: &str) -> RenderOutput {
-    match twinray::render(ctx, scene, &set(set_text), &small_render()) {
+    match twinray_host::render(ctx, scene, &set(set_text), &small_render()) {
         Ok(out) => out,
         Err(e) => panic!("rendering {} with {set_text}: {e}", scene.name()),
     }

@@ -12,7 +12,7 @@ pub fn scaffold_target() -> PathBuf {
     let exe = std::env::current_exe().expect("the test binary's path");
     let stem = exe.file_stem().unwrap_or_default().to_string_lossy().into_owned();
     let test = stem.split('-').next().unwrap_or("scratch").to_string();
-    twinray_build::builder::cache_dir().join("scaffold-target").join(test)
+    twinray_compile::builder::cache_dir().join("scaffold-target").join(test)
 }
 
 /// The scaffold target for this test alone, until the returned file is dropped, seeded if it is
@@ -79,7 +79,7 @@ fn copy_tree(from: &Path, to: &Path) {
 pub fn seed_crate_target(krate: &Path) {
     static SEED: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
     let seed = SEED.get_or_init(|| {
-        let dir = twinray_build::builder::cache_dir().join("own-stages-seed");
+        let dir = twinray_compile::builder::cache_dir().join("own-stages-seed");
         let (kept, fresh) = (dir.join("starter"), dir.join("fresh"));
         let _ = std::fs::remove_dir_all(&fresh);
         std::fs::create_dir_all(&fresh).unwrap();

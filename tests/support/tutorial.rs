@@ -8,7 +8,7 @@
 //!
 //! A block of any other kind fails the test, so nothing the reader is told to do is skipped.
 //! `xtask/tests/tutorial.rs` follows docs/tutorial.md in a scratch copy of the repository;
-//! `host/tests/own_stages_tutorial.rs` follows docs/tutorial-own-stages.md outside it.
+//! `app/tests/own_stages_tutorial.rs` follows docs/tutorial-own-stages.md outside it.
 
 use crate::docs::{fenced, Block};
 use std::ffi::OsString;

@@ -26,7 +26,7 @@ pub fn survey(root: &Path) -> Vec<Cache> {
     let target = crate::process::target_dir(root);
     let mesa = std::env::var_os("MESA_SHADER_CACHE_DIR").map(PathBuf::from).unwrap_or_else(cache_home);
     let twinray = cache_home().join("twinray");
-    let builder = twinray_build::builder_target().join("release/twinray-shader-builder");
+    let builder = twinray_compile::builder_target().join("release/twinray-shader-builder");
     // Mesa keeps one of two layouts, by version and settings.
     let mesa_warm = filled(&mesa.join("mesa_shader_cache_db")) || filled(&mesa.join("mesa_shader_cache"));
     let clone = target.join("release/.fingerprint");

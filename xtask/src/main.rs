@@ -207,7 +207,7 @@ fn ci() -> Result<()> {
         cargo(&["fmt", "--all", "--", "--check"], &[])?;
         process::run_tool(
             "rustfmt",
-            &["--check", "--edition", "2021", "shaders-rs/shaders/src/lib.rs", "shaders-rs/builder/src/main.rs"],
+            &["--check", "--edition", "2021", "shaders-rs/stages/src/lib.rs", "shaders-rs/builder/src/main.rs"],
         )
     })?;
     // The shader check builds rust-gpu on the pinned nightly in target folders of its own: on a
@@ -232,7 +232,7 @@ fn ci() -> Result<()> {
         suite::run(binaries, default_jobs(), &[], || {
             let rustdoc = [("RUSTDOCFLAGS", "-D warnings")];
             let doc = process::cargo_command(
-                &["doc", "--release", "--no-deps", "-p", "twinray", "-p", "twinray-shared"],
+                &["doc", "--release", "--no-deps", "-p", "twinray-host", "-p", "twinray", "-p", "twinray-shared"],
                 &rustdoc,
             );
             docs = Some(process::Background::start("docs", doc));

@@ -20,7 +20,7 @@ pub fn repo_root() -> PathBuf {
     manifest.parent().map(PathBuf::from).unwrap_or(manifest)
 }
 
-pub use twinray_build::{output, run};
+pub use twinray_compile::{output, run};
 
 /// Where cargo puts the builds of the workspace at `root`: `CARGO_TARGET_DIR`, or its `target/`.
 pub fn target_dir(root: &Path) -> PathBuf {

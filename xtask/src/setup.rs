@@ -5,7 +5,7 @@ use crate::process::{self, output};
 use anyhow::{bail, Result};
 use std::path::Path;
 use std::process::Command;
-use twinray_build::ensure_toolchain;
+use twinray_compile::ensure_toolchain;
 
 /// Lavapipe exposes VK_KHR_ray_tracing_pipeline from Mesa 25 on (bookworm's own 22.3 does not).
 const MIN_MESA_MAJOR: u32 = 25;
@@ -30,7 +30,7 @@ pub fn run(scope: Scope) -> Result<()> {
         packages.extend(["chromium", "chromium-driver"]);
         // Models no one here made: the glTF tests load every one (docs/gltf.md).
         packages.push("assimp-testmodels");
-        // The confinement test watches which files twinray opens (host/tests/gltf_cli.rs).
+        // The confinement test watches which files twinray opens (app/tests/gltf_cli.rs).
         packages.push("strace");
         // The condition numbers of probe reports are checked against mpmath's (tests/condition.rs).
         packages.push("python3-mpmath");

@@ -7,7 +7,7 @@
 use crate::process::repo_root;
 use anyhow::{bail, Context, Result};
 use std::path::Path;
-use twinray_build::{build_set, read_module, require_tools, Output};
+use twinray_compile::{build_set, read_module, require_tools, Output};
 use twinray_shared::catalog::{Language, MODULES};
 
 const LAYOUT_INCLUDE: &str = "shaders-glsl/twinray_layout.glsl";
@@ -75,7 +75,7 @@ pub fn build_into(out: &Path, names: &[String]) -> Result<()> {
     }
     for language in Language::ALL {
         let dir = out.join(language.name());
-        twinray_build::build_set_without(&root, language, &dir, Output::Shown, bits)?;
+        twinray_compile::build_set_without(&root, language, &dir, Output::Shown, bits)?;
         let without = if names.is_empty() { String::new() } else { format!(" without {}", names.join(", ")) };
         println!("shaders: the {} set{without} in {}", language.name(), dir.display());
     }

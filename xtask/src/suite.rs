@@ -33,10 +33,10 @@ pub struct Binary {
 const SLOW_FIRST: [&str; 6] = [
     "xtask/tests/tutorial.rs",
     "tests/integration.rs",
-    "host/tests/commands.rs",
-    "host/tests/bench.rs",
-    "host/tests/view.rs",
-    "host/tests/hostile_stages.rs",
+    "app/tests/commands.rs",
+    "app/tests/bench.rs",
+    "app/tests/view.rs",
+    "app/tests/hostile_stages.rs",
 ];
 
 /// Binaries that time GPU work and assert on the ratios: they run alone, before the rest. Beside
@@ -49,7 +49,7 @@ const ALONE: [&str; 1] = ["tests/timing.rs"];
 /// makes a time the GPU's at its working clocks (docs/measuring.md); beside another binary on
 /// lavapipe no time is that, and none of these binaries judges a time (those that do are
 /// `ALONE`, and keep the floor). At 1000 ms the floor was most of their work on lavapipe:
-/// `host/tests/bench.rs` took 56 s alone, 10 s at 20 ms. A floor set by the caller is kept.
+/// `app/tests/bench.rs` took 56 s alone, 10 s at 20 ms. A floor set by the caller is kept.
 const SHARED_WARM_MS: (&str, &str) = ("TWINRAY_MIN_WARM_MS", "20");
 
 /// clippy's lints, warnings denied, on every target of the workspace, from the one release build
@@ -150,7 +150,10 @@ pub fn shared_envs() -> Vec<(&'static str, &'static str)> {
 pub fn quick() -> Result<()> {
     let started = Instant::now();
     crate::process::step("unit tests", || {
-        crate::process::cargo(&["test", "--release", "-p", "twinray-shared", "-p", "twinray", "--lib"], &[])
+        crate::process::cargo(
+            &["test", "--release", "-p", "twinray-shared", "-p", "twinray-host", "-p", "twinray", "--lib"],
+            &[],
+        )
     })?;
     crate::process::step("parity on the default scene", || {
         crate::process::cargo(
@@ -292,9 +295,9 @@ mod tests {
     #[test]
     fn reads_a_test_binary_from_cargos_messages_and_nothing_else() {
         let root = Path::new("/r");
-        let test = r#"{"reason":"compiler-artifact","manifest_path":"/r/host/Cargo.toml","target":{"src_path":"/r/host/tests/cli.rs"},"profile":{"test":true},"executable":"/r/target/release/deps/cli-1"}"#;
+        let test = r#"{"reason":"compiler-artifact","manifest_path":"/r/host/Cargo.toml","target":{"src_path":"/r/app/tests/cli.rs"},"profile":{"test":true},"executable":"/r/target/release/deps/cli-1"}"#;
         let binary = test_binary(root, test).unwrap();
-        assert_eq!(binary.label, "host/tests/cli.rs");
+        assert_eq!(binary.label, "app/tests/cli.rs");
         assert_eq!(binary.path, Path::new("/r/target/release/deps/cli-1"));
         assert_eq!(binary.package_dir, Path::new("/r/host"));
         let program = test.replace(r#""test":true"#, r#""test":false"#);

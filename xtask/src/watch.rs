@@ -11,7 +11,7 @@ use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Command;
 use std::time::{Duration, Instant, SystemTime};
-use twinray_build::{build_set, exit_words, require_tools, sets_for, sources, Output, GENERATORS};
+use twinray_compile::{build_set, exit_words, require_tools, sets_for, sources, Output, GENERATORS};
 use twinray_shared::catalog::Language;
 
 pub struct WatchArgs {

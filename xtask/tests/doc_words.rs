@@ -1,5 +1,5 @@
 //! No stale `cargo xtask` words in the docs (README.md, CONTRIBUTING.md, docs/*.md): every
-//! task they name exists, and every flag they give it is in that task's `--help`. host/tests/doc_words.rs
+//! task they name exists, and every flag they give it is in that task's `--help`. app/tests/doc_words.rs
 //! checks the rest (links, paths, `twinray` commands, quoted code).
 
 use std::process::Command;

@@ -8,7 +8,7 @@ use crate::error::Result;
 use crate::explain::no_payload;
 use crate::render::{render_frames, AsWork, Frame, RayCounts, RenderOptions, RenderOutput, TlasMode};
 use crate::scene::{Parity, Scene};
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::vk::context::Context;
 use serde::Serialize;
 use std::ops::Range;

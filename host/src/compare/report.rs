@@ -9,7 +9,7 @@ use crate::explain::no_payload;
 use crate::render::isolated::{render_timed, AloneIn, Isolation};
 use crate::render::{PlacementTimes, RayCounts, RenderOptions, RenderOutput};
 use crate::scene::Scene;
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::util::interval::RatioInterval;
 use crate::util::output::write_png;
 use crate::util::stats::Spread;

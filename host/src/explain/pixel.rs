@@ -13,7 +13,7 @@ use crate::probe::report::{outcome, Outcome};
 use crate::reference::scene::{SceneReference, SceneVerdict};
 use crate::render::{render_sets, RenderOptions};
 use crate::scene::{Scene, SceneData};
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::vk::context::Context;
 use glam::{UVec4, Vec3};
 use std::sync::Arc;

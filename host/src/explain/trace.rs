@@ -8,7 +8,7 @@ use crate::error::{Error, Result};
 use crate::probe::run::{read_pass, record_written, RayBuffers};
 use crate::render::prepare;
 use crate::scene::{PipelinePlan, Scene, EXPLAIN, EXPLAIN_QUERY};
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::vk::context::Context;
 use std::sync::Arc;
 use twinray_shared::bindings as b;

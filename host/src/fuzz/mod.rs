@@ -1,5 +1,5 @@
 //! What the fuzz targets (`fuzz/`, run with `cargo fuzz`) and their seed test
-//! (`host/tests/fuzz_seeds.rs`, run by `cargo test`) feed arbitrary bytes. Each goes as far
+//! (`app/tests/fuzz_seeds.rs`, run by `cargo test`) feed arbitrary bytes. Each goes as far
 //! as input can reach without a GPU: parse, check, then build what a render or probe would
 //! build from the result. An `Err` is the right answer to bad input; a panic, a hang or an
 //! allocation that eats the machine is a finding.
@@ -47,7 +47,7 @@ pub fn gltf(bytes: &[u8]) {
 /// twinray; it is a separate program, fuzzed upstream.)
 pub fn module(bytes: &[u8]) {
     let Ok(info) = twinray_shared::spirv_info::parse(bytes) else { return };
-    for spec in crate::shaders::MODULES {
+    for spec in crate::sets::MODULES {
         let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
         let _ = twinray_shared::module_check::check_module(spec, &info, &entry);
     }

@@ -3,7 +3,7 @@
 //! whole (chunk lengths and padding right). Byte flips alone spend nearly every input on JSON
 //! that no longer parses; these reach the loader's checks of counts, offsets, strides,
 //! indices, URIs and images. The same mutator drives libFuzzer (`fuzz/fuzz_targets/gltf.rs`)
-//! and, from a fixed seed, the short run that `cargo test` makes (`host/tests/fuzz_seeds.rs`).
+//! and, from a fixed seed, the short run that `cargo test` makes (`app/tests/fuzz_seeds.rs`).
 
 pub use super::rng::Rng;
 use serde_json::{Map, Value};

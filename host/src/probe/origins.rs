@@ -13,7 +13,7 @@ use super::split::relative;
 use crate::error::Result;
 use crate::reference::condition::{t_condition, F32_UNIT_ROUNDOFF};
 use crate::reference::scene::SceneVerdict;
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::util::stats::Quantiles;
 use crate::vk::context::Context;
 use std::sync::Arc;

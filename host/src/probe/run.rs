@@ -10,7 +10,7 @@ use crate::render::{
 };
 use crate::scene::launches::{self, Launch, LaunchRay, Placed};
 use crate::scene::{origin, reach, GpuOrigin, Renderer, Scene, PROBE_QUERY};
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::util::activity;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::{memory_barrier, TRACING_STAGES};

@@ -8,7 +8,7 @@ use super::report::{evaluate, ProbeReport};
 use super::run::{probe, ProbeOutput};
 use crate::error::{Error, Result};
 use crate::scene::shape::Formula;
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::vk::context::Context;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;

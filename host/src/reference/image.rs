@@ -6,7 +6,7 @@
 use crate::error::{Error, Result};
 use crate::render::{render, RenderOptions};
 use crate::scene::Scene;
-use crate::shaders::{ShaderSet, MODULES};
+use crate::sets::{ShaderSet, MODULES};
 use crate::util::checksum::{fnv1a, Fnv};
 use crate::util::input::read_bounded;
 use crate::util::output::{cache_dir, file_safe};

@@ -9,7 +9,8 @@ use serde::Serialize;
 use std::ops::Range;
 
 /// How the TLAS is remade when objects move (`--tlas`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "kebab-case")]
 pub enum TlasKind {
     /// A full build every frame, preferring fast trace.

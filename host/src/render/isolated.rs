@@ -14,7 +14,7 @@ use super::placement::Retimed;
 use super::{render_sets, PlacementTimes, RenderOptions, RenderOutput};
 use crate::error::Result;
 use crate::scene::Scene;
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::vk::context::Context;
 use std::sync::Arc;
 
@@ -24,7 +24,8 @@ use std::sync::Arc;
 pub type TimeAlone = dyn Fn(usize, u32, &ShaderSet, u32) -> Result<Vec<f64>> + Send + Sync;
 
 /// What `--processes` times each set alone in.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum, serde::Serialize)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "lowercase")]
 pub enum AloneIn {
     /// A child `twinray bench` process of that set only.

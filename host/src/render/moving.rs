@@ -13,7 +13,7 @@ use crate::error::{Error, Result};
 use crate::scene::animation::Moves;
 use crate::scene::file::SceneFile;
 use crate::scene::{check_size, frame_data, Aabb, Scene};
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::util::activity;
 use crate::vk::accel::InstanceRecord;
 use crate::vk::commands::OneShot;

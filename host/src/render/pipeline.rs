@@ -9,7 +9,7 @@ use super::layout::{stages_in_group_order, Layout, LayoutDraw};
 use super::libraries::{Libraries, LibraryDesc};
 use crate::error::{Error, Result};
 use crate::scene::{HitGroup, PipelinePlan, EXPLAIN_QUERY, PROBE_QUERY, RENDER_COMPUTE};
-use crate::shaders::{capabilities, ShaderSet, Stage, StageModule};
+use crate::sets::{capabilities, ShaderSet, Stage, StageModule};
 use crate::util::activity;
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline, StageDesc};
@@ -126,7 +126,7 @@ pub fn used_stages(plan: &PipelinePlan, raygen: &'static str) -> Vec<Stage> {
     let names = plan_modules(plan, raygen);
     Stage::ALL
         .into_iter()
-        .filter(|stage| names.iter().any(|n| crate::shaders::MODULES.iter().any(|m| m.name == *n && m.stage == *stage)))
+        .filter(|stage| names.iter().any(|n| crate::sets::MODULES.iter().any(|m| m.name == *n && m.stage == *stage)))
         .collect()
 }
 
@@ -263,7 +263,7 @@ impl Specialisation {
 }
 
 /// An error naming the module, what it declares and the device, when a module declares a
-/// capability or extension the device does not have enabled (`shaders::capabilities`): ray
+/// capability or extension the device does not have enabled (`sets::capabilities`): ray
 /// queries where the device lacks VK_KHR_ray_query, or anything twinray does not turn on.
 fn require_device_features(ctx: &Context, modules: &[StageModule]) -> Result<()> {
     for m in modules {

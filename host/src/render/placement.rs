@@ -23,7 +23,7 @@ use super::libraries::Libraries;
 use super::pipeline::ScenePipeline;
 use super::upload::UploadedScene;
 use crate::error::Result;
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::util::interval::RatioInterval;
 use crate::vk::context::{Context, PipelineKind};
 use serde::Serialize;

@@ -9,7 +9,7 @@ use super::tracing::Trace;
 use super::upload::{upload_shared, SceneResources, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::Scene;
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::OneShot;
 use crate::vk::context::{Context, PipelineKind};

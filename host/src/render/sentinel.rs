@@ -64,7 +64,7 @@ mod tests {
     /// What poisoning a set's outputs costs in setup: GPU time of filling a 1920x1080 image and
     /// its hit ids with the sentinel, as each set's output trace does first (never inside the
     /// timed traces). A measurement, run by hand on each device:
-    /// `cargo test --release -p twinray --lib -- --ignored sentinel_setup_cost --nocapture`.
+    /// `cargo test --release -p twinray-host --lib -- --ignored sentinel_setup_cost --nocapture`.
     #[test]
     #[ignore = "a measurement: prints what the sentinel costs on this machine's device"]
     fn sentinel_setup_cost() {

@@ -12,7 +12,7 @@ use super::tracing::{self, Trace};
 use super::upload::{upload_shared, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::{check_size, Scene};
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::util::{activity, progress};
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::memory_barrier;

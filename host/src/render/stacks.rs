@@ -9,7 +9,7 @@
 
 use super::pipeline::{descriptor_bindings, stage_descs, Specialisation};
 use crate::error::Result;
-use crate::shaders::{capabilities, Language, ShaderSet, Stage, StageModule};
+use crate::sets::{capabilities, Language, ShaderSet, Stage, StageModule};
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, PipelineDesc, RtPipeline};
 use ash::vk;

@@ -28,7 +28,8 @@ pub fn unorm(v: f32) -> u8 {
 
 /// What an 8-bit image (PNG) does with radiance above 1, before the sRGB encoding. The linear
 /// outputs (`--out FILE.exr`) and every parity metric keep the radiance as rendered.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 pub enum ToneMap {
     /// Each channel clipped to 1: what is at most 1 is shown as it is.
     #[default]

@@ -364,7 +364,7 @@ fn aabb_bytes(b: &vk::AabbPositionsKHR) -> Vec<u8> {
 /// front is the side from which a triangle's corners run counterclockwise in a right-handed
 /// frame (the spec says clockwise, in DXR's left-handed one), glTF's front; glTF decides in
 /// world space, where a mirroring transform turns the winding over: the determinant's sign
-/// joins the two. `host/tests/single_sided.rs` checks both sides and a mirrored node.
+/// joins the two. `app/tests/single_sided.rs` checks both sides and a mirrored node.
 pub fn facing_flags(single_sided: bool, object_to_world: &Mat4) -> vk::GeometryInstanceFlagsKHR {
     if !single_sided {
         vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE

@@ -59,7 +59,8 @@ impl Default for ContextOptions {
 pub const DEFAULT_GPU_TIMEOUT: Duration = Duration::from_secs(120);
 
 /// How ray tracing pipelines are made.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize, clap::ValueEnum)]
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[cfg_attr(feature = "clap", derive(clap::ValueEnum))]
 #[serde(rename_all = "snake_case")]
 pub enum PipelineKind {
     /// Each pipeline compiled whole from its stages.

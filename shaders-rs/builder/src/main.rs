@@ -1,4 +1,4 @@
-//! Compiles the `twinray-shaders` crate to SPIR-V 1.4 with rust-gpu, one module per entry point.
+//! Compiles the `twinray-stages` crate to SPIR-V 1.4 with rust-gpu, one module per entry point.
 //!
 //! Usage: `twinray-shader-builder <shader-crate-dir> <out-dir> <shader-target-dir> [features]`
 //! (features: the shader crate's cargo features, comma-separated, e.g. `without-textures`).

@@ -4,7 +4,7 @@
 //! A driver may fuse and reassociate floating-point operations that are not decorated
 //! `NoContraction` (SPIR-V 2.15), and a reassociated `(x + y) - y` is `x`: so the Rust set's
 //! build decorates every floating-point operation of this module's functions `NoContraction`
-//! (`twinray-build`'s `exact` pass, which finds them by name; each is kept out of line for
+//! (`twinray-compile`'s `exact` pass, which finds them by name; each is kept out of line for
 //! that), and the GLSL twins (shaders-glsl/exact.glsl) declare their results `precise`.
 
 use glam::Vec3;

@@ -19,7 +19,7 @@ pub use subject::{Gap, ImageSubject, ProbeSubject, Run, Subject, PROBE_T_TOLERAN
 
 use crate::error::Result;
 use crate::render::isolated::AloneIn;
-use crate::shaders::{ShaderSet, Stage, MODULES};
+use crate::sets::{ShaderSet, Stage, MODULES};
 use crate::util::interval::RatioInterval;
 use crate::util::stats::median;
 use serde::Serialize;

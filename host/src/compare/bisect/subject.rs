@@ -10,7 +10,7 @@ use crate::render::pipeline::plan_modules;
 use crate::render::placement::orders;
 use crate::render::{RenderOptions, RenderOutput, Written};
 use crate::scene::Scene;
-use crate::shaders::ShaderSet;
+use crate::sets::ShaderSet;
 use crate::util::stats::median;
 use crate::vk::context::Context;
 use serde::Serialize;

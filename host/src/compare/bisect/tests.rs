@@ -1,7 +1,7 @@
 //! Bisecting a made-up subject whose image and time depend on chosen modules in known ways.
 
 use super::*;
-use crate::shaders::Language;
+use crate::sets::Language;
 
 /// Four "pixels"; each module from GLSL adds its term to them and its cost to the time.
 struct Fake {

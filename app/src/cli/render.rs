@@ -1,0 +1,71 @@
+//! `twinray render`: one scene with one set, to a PNG (a moving scene's frames: `frames`).
+
+use crate::args::{GlobalArgs, RenderArgs};
+use crate::session::{context, load_still, refuse_viewpoint_with_frames, render_options, RENDER_TRACES};
+use anyhow::Result;
+use std::process::ExitCode;
+use twinray_host::compare::hit_count;
+use twinray_host::util::output::{check_image_target, write_image};
+
+pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
+    if let Some(range) = args.animation.frames {
+        refuse_viewpoint_with_frames(&args.viewpoint)?;
+        return crate::frames::render(global, args, range);
+    }
+    let loading = std::time::Instant::now();
+    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
+    let load_ms = loading.elapsed().as_secs_f64() * 1e3;
+    let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
+    check_image_target(&args.out)?;
+    let shaders = global.load("--shaders", &args.shaders)?;
+    let ctx = context(global)?;
+    let out = twinray_host::render(&ctx, &scene, &shaders, &opts)?;
+    write_image(&args.out, (out.width, out.height), &out.linear, &out.picture())?;
+    let median = out.median_ms();
+    let set = shaders.to_string();
+    let mut problems = out.written.problems(&set, "pixels");
+    problems.extend(twinray_host::explain::no_payload::render_lines(&scene, &out, &set));
+    if args.frame.json {
+        let value = serde_json::json!({
+            "scene": scene.name(),
+            "device": ctx.info.name,
+            "set": shaders.to_string(),
+            "width": out.width,
+            "height": out.height,
+            "out": args.out,
+            "gpu_ms": median,
+            "gpu_ms_spread": out.spread(),
+            "gpu_ms_runs": out.gpu_ms,
+            "warmup_traces": out.warmup_traces,
+            "rays": out.rays,
+            "mrays_per_s": out.mrays_per_s(),
+            "cpu_threads": ctx.info.cpu_threads,
+            "hit_pixels": hit_count(&out),
+            "written": out.written,
+            "load_ms": load_ms,
+            "acceleration_structures": out.accel,
+            "pass": problems.is_empty(),
+            "failures": problems,
+        });
+        println!("{value}");
+    } else {
+        let ms = out.spread().map_or("n/a".into(), |s| {
+            let rate = out.mrays_per_s().map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
+            format!("{:.3} ms (median of {}, IQR {:.3}){rate}", s.median, s.samples, s.iqr())
+        });
+        println!(
+            "{} {}x{} with {set} on {}: GPU {ms} of {}",
+            scene.name(),
+            out.width,
+            out.height,
+            ctx.info.name,
+            out.rays
+        );
+        println!("  scene loaded in {load_ms:.0} ms; {}", out.accel);
+        for problem in &problems {
+            println!("FAIL: {problem} (magenta in {})", args.out.display());
+        }
+        println!("wrote {}", args.out.display());
+    }
+    Ok(if problems.is_empty() { ExitCode::SUCCESS } else { ExitCode::FAILURE })
+}
