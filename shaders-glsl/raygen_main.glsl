@@ -81,13 +81,13 @@ void main() {
     uint pixel_index = pixel.y * LAUNCH_SIZE.x + pixel.x;
     // Not checked against hit_ids.length(), as in the Rust twin: the host sizes it to the launch,
     // and a length read before the first trace cost about 10 us a frame (up to 8% at 1 spp) on
-    // NVIDIA (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz, sixteenth session).
+    // NVIDIA (twinray's nvidia-code bench report).
     vec3 sum = vec3(0.0);
     uint shadow_rays = 0u;
     uint no_payload = 0u;
     // One sample is not looped over: NVIDIA's driver keeps a top-tested loop whose constant count
     // is 1, and that cost 0.3 to 1.7% of a 1-spp frame on 8 of 9 scenes, nothing at 16 spp
-    // (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz, fourteenth session). The Rust twin keeps its bottom-tested
+    // (twinray's nvidia-code bench report). The Rust twin keeps its bottom-tested
     // loop: the same branch there made 1-spp frames up to 1.8% slower.
     if (SAMPLES_PER_SIDE == 1u) {
         one_sample(pixel, pixel_index, 0u, 0u, sum, shadow_rays, no_payload);

@@ -2,7 +2,7 @@
 // world ray with the instance's translation taken off the world origin first and, for a robust
 // routine and a ray that starts far from its primitive, the ray brought near it before the
 // transform, so that a shape far from the world origin or from the ray's start keeps its
-// precision (docs/numerics.md).
+// precision (twinray's guide, *Numerics*).
 #ifndef TWINRAY_TRANSFORM_GLSL
 #define TWINRAY_TRANSFORM_GLSL
 #include "twinray_layout.glsl"

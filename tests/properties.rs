@@ -25,7 +25,7 @@ fn primitive(a: Vec4, b: Vec4) -> Primitive {
     Primitive { a, b, tint: Vec4::ONE }
 }
 
-/// Tolerances: single rays, not percentiles, so a few ULPs more than issue 4's p99 targets
+/// Tolerances: single rays, not percentiles, so a few ULPs more than the probe suite's p99 targets
 /// (1e-6 quadrics, 1e-5 torus); the GPU suite measures the percentiles.
 fn cases() -> Vec<(&'static str, Case)> {
     vec![

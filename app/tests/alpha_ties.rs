@@ -1,7 +1,7 @@
 //! Alpha exactly at the cutoff: a glTF quad whose alpha equals its material's cutoff, by its
 //! base colour factor, by its vertex colours and by its texture, rendered by both sets with
 //! `compare`. A tie is decided alike in both (the surface is there: alpha >= cutoff), so no
-//! pixel differs. Before issue 78 the sets interpolated a vertex colour's alpha of 1 to
+//! pixel differs. Without the tie-safe interpolation, the sets interpolated a vertex colour's alpha of 1 to
 //! 0.99999994 in one set and 1 in the other, and a BLEND material of alpha 0.5 (tested at 0.5)
 //! had hit mismatches in `compare`.
 

@@ -263,7 +263,7 @@ fn bisect_times_each_set_alone_in_processes_of_its_own() {
     let stdout = String::from_utf8_lossy(&out.stdout);
     // Exit code 1 says a difference was left unpinned: here a time difference, which on
     // lavapipe at 32x24 is resolved in some runs (the Rust raygen is a few percent slower
-    // there, f01fc427:bench/reports/issue40-lavapipe/) and not in others. 2 would be an error.
+    // there, bench/reports/nvidia-code) and not in others. 2 would be an error.
     assert!(matches!(out.status.code(), Some(0 | 1)), "{stdout}{}", String::from_utf8_lossy(&out.stderr));
     let json: serde_json::Value = serde_json::from_str(&stdout).expect("bisect --json prints JSON");
     let clean = json["pinned"] == true && json["failures"].as_array().is_some_and(|f| f.is_empty());

@@ -329,7 +329,7 @@ fn reference_renders_then_reads_the_cache() {
 }
 
 /// Parity belongs to comparisons and the name can come from the file: a scene with neither
-/// renders (issue 11), and its name is the file's stem.
+/// renders, and its name is the file's stem.
 #[test]
 fn a_scene_without_parity_or_name_renders() {
     let dir = tempfile::tempdir().unwrap();

@@ -16,9 +16,9 @@ const KNOWN: &[(&str, &[u64], &str)] = &[(
     "across the primary ray's trace (56 bytes against 44) the Rust stage keeps the launch size, which \
      rust-gpu loads once at the entry point where glslang reads gl_LaunchSizeEXT at each use, and the \
      lights' length for the light loop's bounds check; across the shadow rays it keeps less (188 against \
-     208). Both were removed and timed on the H100 (bench/reports/nvidia-code/runs/issue40-final.tar.xz): reading the size from \
+     208). Both were removed and timed on the H100 (bench/reports/nvidia-code/runs/live-bytes-cut.tar.xz): reading the size from \
      the frame at each use moved cells by -0.7% to +1.3%, and a light loop bounded by light_count alone \
-     was 8% slower on box at 16 spp. Not kept: issue 40, item 2",
+     was 8% slower on box at 16 spp. Not kept.",
 )];
 
 /// Whether `bytes` (sorted) keeps more than `bound` (sorted) across some call, calls matched

@@ -283,3 +283,55 @@ fn a_crate_written_from_scratch_builds_shows_its_warnings_and_lends_its_one_stag
     assert_eq!(boxes.status.code(), Some(2), "{}", text(&boxes));
     assert!(text(&boxes).contains("shadow_miss"), "{}", text(&boxes));
 }
+
+/// Folders and files only a checkout of twinray has: a comment of the starter crate that
+/// names one points its reader at nothing.
+const REPO_ONLY: &[&str] = &[
+    "docs/",
+    "bench/",
+    "probes/",
+    "tests/",
+    "host/",
+    "app/",
+    "xtask/",
+    "spirv/",
+    "scenes/",
+    "shaders-glsl",
+    "shaders-rs",
+    "../",
+];
+
+/// The lines of `text` a reader reads as prose: every line of a README or manifest, the
+/// comments of source files (code strings name the built-in sets' files for the host).
+fn prose(name: &str, text: &str) -> Vec<(usize, String)> {
+    let whole = name.ends_with(".md") || name.ends_with(".toml");
+    text.lines()
+        .enumerate()
+        .filter(|(_, l)| {
+            let t = l.trim_start();
+            whole || t.starts_with("//") || t.starts_with('#') || t.starts_with('*') || l.contains(" // ")
+        })
+        .map(|(n, l)| (n + 1, l.to_string()))
+        .collect()
+}
+
+#[test]
+fn the_starter_crate_names_no_file_only_a_checkout_has() {
+    let scratch = tempfile::tempdir().unwrap();
+    ok(&["new", "mine", "--glsl"], scratch.path());
+    let written = files(&scratch.path().join("mine"));
+    assert!(written.len() > 50, "{} files written", written.len());
+    let mut found = Vec::new();
+    for (path, bytes) in &written {
+        let name = path.display().to_string();
+        if name.ends_with("Cargo.lock") {
+            continue;
+        }
+        for (n, line) in prose(&name, &String::from_utf8_lossy(bytes)) {
+            if let Some(what) = REPO_ONLY.iter().find(|w| line.contains(*w)) {
+                found.push(format!("{name}:{n}: {what} in {}", line.trim()));
+            }
+        }
+    }
+    assert!(found.is_empty(), "the starter crate refers to a checkout's files:\n{}", found.join("\n"));
+}

@@ -93,7 +93,7 @@ pub fn time_alone(global: &GlobalArgs, settings: ChildSettings, scenes: Vec<Stri
 /// A set timed alone as a child process would time it, on a fresh Vulkan device (context,
 /// upload, outputs) in this process: on the H100 each of 12 such devices timed its set within
 /// 0.2% of the child process that started at the same place, in half the time
-/// (bench/reports/placement/runs/issue53-devices.tar.xz).
+/// (bench/reports/placement/runs/alone-in-devices.tar.xz).
 fn device_timer(
     global: &GlobalArgs,
     settings: ChildSettings,

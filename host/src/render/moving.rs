@@ -212,7 +212,7 @@ pub fn render_frames(
 /// The warm-up before each later frame: a fifth of the first frame's `first` traces (which
 /// filled `MIN_WARM_MS` of GPU time after the idle of building pipelines), at least the
 /// `asked` count. A frame follows the last on a GPU busy a moment ago, and 200 ms each (the
-/// floor before issue 40) kept per-frame times steady (docs/measuring.md, animate-bench).
+/// warm-up floor of the time) kept per-frame times steady (docs/measuring.md, animate-bench).
 fn between_frames(first: u32, asked: u32) -> u32 {
     first.div_ceil(5).max(asked.min(first))
 }

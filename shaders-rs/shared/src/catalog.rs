@@ -8,9 +8,9 @@ use crate::spirv_info::ModuleInfo;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 /// The language a module of a built-in set is written in.
 pub enum Language {
-    /// Rust, compiled by rust-gpu (`shaders-rs/stages`).
+    /// Rust, compiled by rust-gpu.
     Rust,
-    /// GLSL, compiled by glslang (`shaders-glsl`).
+    /// GLSL, compiled by glslang.
     Glsl,
 }
 
@@ -86,16 +86,16 @@ impl Language {
 /// Where a module's GLSL twin comes from.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum GlslSource {
-    /// A stage file of `shaders-glsl/`.
+    /// A stage file of the GLSL twins.
     File(&'static str),
-    /// A stage file of `shaders-glsl/` compiled with a preprocessor macro defined (`-D`).
+    /// A stage file of the GLSL twins compiled with a preprocessor macro defined (`-D`).
     Variant {
         /// The stage file.
         file: &'static str,
         /// The macro defined.
         define: &'static str,
     },
-    /// The intersection stage of a registered shape: `shaders-glsl/shapes/SHAPE.glsl` with
+    /// The intersection stage of a registered shape: `shapes/SHAPE.glsl` of the GLSL twins with
     /// `intersection_main.glsl` around its `SHAPE_intersect` (or `SHAPE_naive_intersect`);
     /// `cargo xtask shaders` writes the few lines that join them ([`ModuleSpec::glsl_wrapper`]).
     Shape {
@@ -108,7 +108,7 @@ pub enum GlslSource {
     },
 }
 
-/// One compiled module: `spirv/<language>/<name>.spv`, built from the Rust entry point `name`
+/// One compiled module: `<language>/<name>.spv` in twinray's built-in sets, built from the Rust entry point `name`
 /// or from its GLSL source.
 #[derive(Clone, Copy, Debug)]
 pub struct ModuleSpec {
@@ -255,7 +255,7 @@ impl ModuleSpec {
         format!("spirv/{}/{}.spv", language.name(), self.name)
     }
 
-    /// The GLSL file that glslang compiles for this module, relative to `shaders-glsl/`: the
+    /// The GLSL file that glslang compiles for this module, relative to the GLSL twins' folder: the
     /// stage file, or for a shape the wrapper `cargo xtask shaders` writes.
     pub fn glsl_file(&self) -> String {
         match self.glsl {
@@ -265,7 +265,7 @@ impl ModuleSpec {
     }
 
     /// For a shape's intersection module: the GLSL stage that puts `intersection_main.glsl`
-    /// around the shape's function, to be compiled with `shaders-glsl/` on the include path.
+    /// around the shape's function, to be compiled with the GLSL twins' folder on the include path.
     pub fn glsl_wrapper(&self) -> Option<String> {
         let GlslSource::Shape { shape, hit_kind, naive } = self.glsl else { return None };
         let function = if naive { format!("{shape}_naive_intersect") } else { format!("{shape}_intersect") };

@@ -5,7 +5,7 @@
 //! `NoContraction` (SPIR-V 2.15), and a reassociated `(x + y) - y` is `x`: so the Rust set's
 //! build decorates every floating-point operation of this module's functions `NoContraction`
 //! (`twinray-compile`'s `exact` pass, which finds them by name; each is kept out of line for
-//! that), and the GLSL twins (shaders-glsl/exact.glsl) declare their results `precise`.
+//! that), and the GLSL twins (exact.glsl) declare their results `precise`.
 
 use glam::Vec3;
 #[cfg(target_arch = "spirv")]

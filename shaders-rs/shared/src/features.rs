@@ -8,7 +8,7 @@
 //! A set can also be built without a feature's code at all (`cargo xtask shaders --without
 //! textures --out DIR`: the cargo feature `without-textures`, GLSL's `TWINRAY_WITHOUT_TEXTURES`),
 //! the baseline that measures whether specialisation leaves anything of the code behind
-//! (docs/measuring.md).
+//! (twinray's guide, *Measuring*).
 
 /// One feature: its bit in `SPEC_FEATURES`, its name (in `--without` and reports), and what in
 /// a scene turns it on.

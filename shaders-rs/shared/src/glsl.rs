@@ -1,4 +1,4 @@
-//! Generates `shaders-glsl/twinray_layout.glsl`, the GLSL mirror of [`crate::layout`] and
+//! Generates `twinray_layout.glsl` of the GLSL twins, the GLSL mirror of [`crate::layout`] and
 //! [`crate::bindings`], so the two shader sets cannot read different layouts.
 //!
 //! Each field is listed with its GLSL type; the Rust offset comes from `offset_of!`, and
@@ -256,7 +256,7 @@ fn features_glsl(s: &mut String) -> std::fmt::Result {
     Ok(())
 }
 
-/// `shaders-glsl/shape_dispatch.glsl`, generated from the shape registry: every shape's GLSL
+/// `shape_dispatch.glsl` of the GLSL twins, generated from the shape registry: every shape's GLSL
 /// routine, chosen by `ObjectData::shape` (the twin of `twinray_shared::shapes::intersect_shape`),
 /// for stages that meet procedural primitives themselves (ray queries).
 pub fn shape_dispatch_include() -> String {

@@ -238,7 +238,7 @@ impl HitPayload {
     /// nothing is seen, instead of the last ray's payload, or whatever the driver's memory
     /// held, being judged. Only those six words: filling all twenty cost the GLSL set 3.7% on
     /// showcase on an H100 (1920x1080, 12 placements), the six at most 0.5% on any scene
-    /// (bench/reports/stage-costs/runs/payload-poison.tar.xz).
+    /// (twinray's stage-costs bench report).
     pub fn poison(&mut self) {
         let f = f32::from_bits(crate::bindings::UNWRITTEN);
         self.ids.w = crate::bindings::UNWRITTEN;

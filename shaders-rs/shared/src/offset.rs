@@ -1,7 +1,7 @@
 //! Origins of secondary rays: Wächter and Binder, "A Fast and Robust Method for Avoiding
 //! Self-Intersection" (Ray Tracing Gems ch. 6). The point moves along the geometric normal by a
 //! number of ULPs that scales with its magnitude, so shadow rays start off the surface at any
-//! distance from the origin and can use t_min = 0 (docs/numerics.md).
+//! distance from the origin and can use t_min = 0 (twinray's guide, *Numerics*).
 
 use glam::Vec3;
 
@@ -35,7 +35,7 @@ pub fn offset_ray(p: Vec3, n: Vec3) -> Vec3 {
 /// of the ray's origin and of t, which grows with |o| + t <= max |p_i| + t. Near the world
 /// origin and far from the eye the two differ: `twinray crosscheck` found a disk 9 units from
 /// the eye shadowing itself where |z| was in [1/32, 1/16), 256 ULPs of z being 1e-6 and the
-/// hit point's error 2e-6 (docs/shading-model.md).
+/// hit point's error 2e-6 (twinray's guide, *Shading model*).
 ///
 /// Near the origin it takes no fixed step (`OFFSET_FLOAT_SCALE`, a length in scene units), only
 /// the reach's: the same scene modelled 1e4 times smaller has every point within 1/32 of the

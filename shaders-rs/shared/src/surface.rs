@@ -16,7 +16,7 @@ pub struct SurfaceHit {
 /// `Option` threaded through each candidate, this does in place: rust-gpu writes every
 /// `Option<SurfaceHit>` passed along as a struct with phis at each branch, and the cylinder's
 /// intersection stage so written ran 1.5% slower at 16 spp on the H100 than with this
-/// (bench/reports/nvidia-code/runs/issue53-variants.tar.xz). A candidate at the same t as the nearest replaces it,
+/// (twinray's nvidia-code bench report). A candidate at the same t as the nearest replaces it,
 /// as with `closer` and GLSL's twin.
 #[derive(Clone, Copy)]
 pub struct Nearest {
@@ -66,7 +66,7 @@ pub fn closer(best: Option<SurfaceHit>, candidate: SurfaceHit, t_min: f32, t_max
 }
 
 /// Stable roots of `a t^2 + 2 half_b t + c` given the discriminant `half_b^2 - a c >= 0`:
-/// q = -(half_b + sign(half_b) sqrt(disc)), roots c / q and q / a (docs/numerics.md). A root whose
+/// q = -(half_b + sign(half_b) sqrt(disc)), roots c / q and q / a (twinray's guide, *Numerics*). A root whose
 /// denominator is zero (a ray parallel to a cone's generator) is returned as `None`.
 pub fn stable_roots(a: f32, half_b: f32, c: f32, discriminant: f32) -> (Option<f32>, Option<f32>) {
     #[cfg(target_arch = "spirv")]

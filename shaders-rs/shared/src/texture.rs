@@ -25,7 +25,7 @@ use spirv_std::num_traits::Float;
 /// vertex) the differences are exactly 0 and the result is exactly `a0`, however a compiler
 /// fuses or orders the rest. The weighted sum `a0 (1 - u - v) + ...` rounds the weights, and gave
 /// 0.99999994 in one set and 1 in the other: an alpha of 0.5 times that fell on either side of a
-/// cutoff of 0.5 (docs/numerics.md, "Alpha at the cutoff").
+/// cutoff of 0.5 (twinray's guide, *Numerics*, "Alpha at the cutoff").
 pub fn interpolate(a: [Vec4; 3], u: f32, v: f32) -> Vec4 {
     a[0] + (a[1] - a[0]) * u + (a[2] - a[0]) * v
 }

@@ -3,7 +3,7 @@
 //! applies the whole world-to-object matrix in f32, `M⁻¹ o + t'` with `t' = -M⁻¹ T`, and for an
 //! instance far from the world origin both terms are large and cancel, so the object-space
 //! origin carries an error of the order of the world coordinates' ulp (2.5e-4 relative t error
-//! on lavapipe for a shape 1e4 away seen from 10 units, docs/numerics.md). Taking the
+//! on lavapipe for a shape 1e4 away seen from 10 units, twinray's guide, *Numerics*). Taking the
 //! instance's translation off the world origin first, `M⁻¹ (o - T)`, rounds `o - T` at the
 //! magnitude of the ray's distance from the instance, not of the world coordinates: the bound
 //! of pbrt's transformed-point error analysis (Pharr, Jakob and Humphreys, *Physically Based
@@ -14,7 +14,7 @@
 //! its primitive ([`near_ray`]): the origin moved along the world ray to the sphere twice the
 //! primitive's bound, with `o - T` and the move both computed without rounding at the
 //! distance, then transformed. The rounding is then of the order of the object's size.
-//! The GLSL twins are in shaders-glsl/transform.glsl.
+//! The GLSL twins are in transform.glsl.
 
 use crate::exact::moved_origin;
 use crate::features::{Features, FAR_INSTANCES};
@@ -75,7 +75,7 @@ pub const NEAR_BOUNDS: f32 = 2.0;
 /// nearer ray would gain less than 1.5 from the move and pay the moved origin's own rounding:
 /// from 2 bounds, `box-face-plane`'s p99 went from 9.4e-8 to 1.4e-7 on lavapipe, from 3 it
 /// stayed. The threshold was 16 once, and a torus 1,000 units across grazed from 2,000 (4
-/// bounds) kept a p99 of 1.4e-5 on the H200 (docs/numerics.md, "A ray brought near its
+/// bounds) kept a p99 of 1.4e-5 on the H200 (twinray's guide, *Numerics*, "A ray brought near its
 /// primitive").
 pub const FAR_BOUNDS: f32 = 3.0;
 

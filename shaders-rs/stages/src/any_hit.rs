@@ -27,7 +27,7 @@ macro_rules! any_hit_stages {
             // Not bounds-checked, as the closest hits and GLSL's twin are not: this stage runs on
             // every candidate hit of a masked mesh. Without its checks Rust was 1.1 to 1.4% faster
             // on a masked glTF model at 16 spp and 1.8% on `cutout` at 1 spp on the H200; the model
-            // at 1 spp is slower for the ray generation's sake (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz).
+            // at 1 spp is slower for the ray generation's sake (twinray's nvidia-code bench report).
             // SAFETY: the instance id and the object's material are the host's, from the lists
             // it uploads; robust access reads zeros where a stage from disk strays.
             let data = unsafe { *objects.get_unchecked(object as usize) };
@@ -36,7 +36,7 @@ macro_rules! any_hit_stages {
             if material.cutout_pattern == CUTOUT_TEXTURE {
                 let corners = hit::corner_attributes(&data, primitive_id, vertices, indices);
                 // Indexed here, not in `surface_alpha`: handed the array, that function read wrong
-                // texels on NVIDIA's driver 580 (every hit a hole), not on lavapipe (docs/rust-stages.md).
+                // texels on NVIDIA's driver 580 (every hit a hole), not on lavapipe (twinray's guide, *Rust stages*).
                 // SAFETY: the host writes every slot of the array, and a material's slot lies within it.
                 let image = unsafe { textures.index(material.texture.x as usize) };
                 let features = Features::new(features);

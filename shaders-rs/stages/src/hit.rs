@@ -18,7 +18,7 @@ use twinray_shared::{shading, shapes, transform};
 /// `$p` and normal `$n` (the entry also declares `$params`).
 ///
 /// Expands to one `#[spirv(closest_hit)] pub fn $name(..)` taking the hit's built-ins, the
-/// object, primitive and material buffers and the payload; docs/rust-stages.md shows
+/// object, primitive and material buffers and the payload; twinray's guide, *Rust stages* shows
 /// `procedural_closest_hit_flat` expanded.
 macro_rules! procedural_closest_hit {
     ($(#[$doc:meta])* $name:ident, [$($params:tt)*], |$m:ident, $p:ident, $n:ident| $color:expr) => {
@@ -52,12 +52,12 @@ pub fn $name(
     // Copies, as GLSL's twin makes: the driver issues their loads at once, where through
     // references each load waited for the branch that used it. On the H200 at 16 spp, Rust/GLSL
     // went from 1.011 to 0.994 on cylinder, 1.005 to 0.995 on box and 1.004 to 0.999 on cutout,
-    // and from 0.993 to 0.998 on sphere (bench/reports/nvidia-code/runs/issue53-closest-hit.tar.xz). References had been
+    // and from 0.993 to 0.998 on sphere (twinray's nvidia-code bench report). References had been
     // faster before the features were specialisation constants, when every field was live.
     // Not bounds-checked, as GLSL's twin is not (nor the intersection stages' primitive read,
-    // docs/rust-stages.md): the instance id, the object's material and the custom index are
+    // twinray's guide, *Rust stages*): the instance id, the object's material and the custom index are
     // the host's, made from the lists it uploads. The three checks cost Rust 1.7% to 3.6% at
-    // 1 spp on the H100 (f01fc427:bench/reports/issue40-hit/).
+    // 1 spp on the H100 (twinray's nvidia-code bench report).
     // SAFETY: see above; robust access reads zeros where a stage from disk strays.
     let material = &unsafe { *materials.get_unchecked(objects.get_unchecked(object as usize).material as usize) };
     let primitive = &unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
@@ -106,7 +106,7 @@ pub fn $name(
     let features = Features::new(features);
     // Not bounds-checked, as the procedural closest hit and GLSL's twin are not: the eight
     // checks cost Rust 2.5% to 5.1% on a textured model at 1 spp on the H200
-    // (bench/reports/nvidia-code/runs/issue53-triangle-hit.tar.xz).
+    // (twinray's nvidia-code bench report).
     // SAFETY: the instance id and the object's material are the host's, from the lists it
     // uploads; robust access reads zeros where a stage from disk strays.
     let data = unsafe { *objects.get_unchecked(object as usize) };
@@ -190,7 +190,7 @@ impl SurfaceHit {
 /// The vertices of triangle `primitive_id` of a mesh object, read without bounds checks. Each
 /// read written out, not through a closure: rust-gpu builds a closure's captures as a struct of
 /// pointers, and NVIDIA's driver 580 crashes creating a pipeline with one
-/// (docs/upstream/nvidia-pointer-struct).
+/// (the upstream note *nvidia-pointer-struct* of twinray's guide).
 pub fn triangle_vertices(data: &ObjectData, primitive_id: u32, vertices: &[Vertex], indices: &[u32]) -> [Vertex; 3] {
     let first = (data.index_base + 3 * primitive_id) as usize;
     // SAFETY: the object's first index and first vertex are the host's, and its indices lie

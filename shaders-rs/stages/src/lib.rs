@@ -1,5 +1,6 @@
 //! twinray's Rust ray tracing stages. Each `pub fn` with a `#[spirv(...)]` stage attribute is an
-//! entry point; `cargo xtask shaders` writes one SPIR-V module per entry point to `spirv/rust/`.
+//! entry point; a build (`twinray build`, or twinray's own for its built-in set) writes one SPIR-V
+//! module per entry point.
 //! Bindings are literals here because attributes need them; a test checks them against
 //! `twinray_shared::bindings`. Ray generation shades; the hit stages only describe the surface.
 #![cfg_attr(target_arch = "spirv", no_std)]
@@ -52,7 +53,7 @@ fn hit_id_base(pixel_index: u32) -> usize {
 /// Expands to one `#[spirv($stage)] pub fn $name(..)`: the built-ins, the renderers' common
 /// bindings (TLAS, image, frame, lights, hit ids) and specialisation constants, then
 /// `$params`; its body is `$setup` and the sample loop below. Used three times: `raygen`,
-/// `raygen_query` and `render_compute`. docs/rust-stages.md shows stages as plain Rust.
+/// `raygen_query` and `render_compute`. twinray's guide, *Rust stages* shows stages as plain Rust.
 macro_rules! renderer {
     (
         $(#[$doc:meta])* $name:ident, #[spirv($($stage:tt)*)], [$($builtins:tt)*], $frame:ident,
@@ -84,14 +85,14 @@ pub fn $name(
     // The hit ids are not checked against `hit_ids.len()` here, as the image is not against its
     // size: the host sizes both to the launch. A buffer length read before the first trace is
     // waited for by every thread as the launch starts; on NVIDIA's driver this check cost about
-    // 5 µs a frame, up to 4% at 1 spp (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz, sixteenth session).
+    // 5 µs a frame, up to 4% at 1 spp (twinray's nvidia-code bench report).
     let mut sum = Vec3::ZERO;
     let mut shadow_rays = 0;
     let mut no_payload = 0;
     // Bottom-tested: not `for` over ranges (trace.rs), nor `while`, whose condition rust-gpu
     // tests again after the body, alive across its traces. samples_per_side is at least 1.
     // Unlike the GLSL twin, one sample is looped over too: a branch around a copy of the body
-    // made 1-spp frames up to 1.8% slower (bench/reports/nvidia-code/runs/issue53-any-hit.tar.xz, fourteenth session).
+    // made 1-spp frames up to 1.8% slower (twinray's nvidia-code bench report).
     let mut sy = 0;
     loop {
         let mut sx = 0;
@@ -244,7 +245,7 @@ pub fn shadow_miss(#[spirv(incoming_ray_payload)] shadow: &mut ShadowPayload) {
 /// often reads one buffer, as the spine's did.
 ///
 /// Expands to one `#[spirv(intersection)] pub fn $name(..)` that reports `$intersect`'s hit
-/// with hit kind `$hit_kind`, on the ray brought near the primitive's sphere `$bound`; docs/rust-stages.md shows the sphere's expanded.
+/// with hit kind `$hit_kind`, on the ray brought near the primitive's sphere `$bound`; twinray's guide, *Rust stages* shows the sphere's expanded.
 macro_rules! procedural_intersection {
     ($name:ident, $intersect:path, $bound:expr, $hit_kind:expr) => {
         #[spirv(intersection)]
@@ -268,7 +269,7 @@ macro_rules! procedural_intersection {
             // (its object's first primitive) plus the AABB's index in its BLAS, both made by the
             // host from one primitive list. Timed over placements on the H100, the check costs
             // 0.4% on `cylinder` at 16 spp, nothing resolved elsewhere (the 3% once measured on
-            // `showcase` was where the driver put the code: bench/reports/nvidia-code/runs/rust-raygen.tar.xz, 0).
+            // `showcase` was where the driver put the code: twinray's nvidia-code bench report, 0).
             // SAFETY: see above; every AABB of a BLAS has its primitive at that index.
             let p = unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
             // Where the scene has far instances, the object-space ray from the world ray,
@@ -299,7 +300,7 @@ macro_rules! procedural_intersection {
 }
 
 /// The intersection entry points of every registered shape (`twinray_shared::shapes`): its
-/// robust routine and, for shapes that keep one, the textbook variant (issue 4).
+/// robust routine and, for shapes that keep one, the textbook variant, the probes' baseline.
 ///
 /// Expands to one `procedural_intersection!` per registry line (two for a line with
 /// `naive`), so that a shape's line in `twinray_shared::shapes` is all its stage needs.

@@ -21,7 +21,7 @@ macro_rules! probe_stages {
         ) {
             let i = launch_id.x as usize;
             // Checked before the trace: a bounds check of the write after it would keep the buffer's
-            // length alive across the call (docs/rust-stages.md, "Writing loops around traceRay in Rust").
+            // length alive across the call (twinray's guide, *Rust stages*, "Writing loops around traceRay in Rust").
             if i >= rays.len() || i >= results.len() {
                 return;
             }

@@ -80,7 +80,7 @@ unsafe fn candidate_hit(
                         let corners = hit::corner_attributes(&data, primitive_id, vertices, indices);
                         let b: Vec2 = query.get_candidate_intersection_barycentrics();
                         // Indexed here and the image handed on, as `triangle_cutout_any_hit` does
-                        // (docs/rust-stages.md).
+                        // (twinray's guide, *Rust stages*).
                         let image = textures.index(m.texture.x as usize);
                         alpha *= texture::surface_alpha(image, (m, features), corners, b);
                     }

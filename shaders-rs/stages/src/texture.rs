@@ -1,6 +1,6 @@
 //! The scene's textures: one runtime array of combined image samplers, indexed per hit by the
 //! material's slot (so non-uniformly: `cargo xtask shaders` decorates the accesses
-//! `NonUniform`, which rust-gpu cannot yet; see docs/upstream/non-uniform.md), sampled with
+//! `NonUniform`, which rust-gpu cannot yet; see the upstream note *non-uniform* of twinray's guide), sampled with
 //! the explicit gradients of the ray cone's footprint (`twinray_shared::texture`).
 
 use core::arch::asm;

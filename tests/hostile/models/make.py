@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Writes this folder's hostile glTF models, each one square (two triangles) with one fault
-of a class issue 54 named: python3 tests/hostile/models/make.py. The files are committed;
+of a class the glTF loader refuses: python3 tests/hostile/models/make.py. The files are committed;
 tests/hostile/cases.json says what each must be refused with."""
 import base64
 import json

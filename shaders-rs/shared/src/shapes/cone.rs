@@ -1,5 +1,5 @@
 //! Capped cone about the object's y axis, centred at its origin: apex at y = `a.y`, base of
-//! radius `a.x` at y = -`a.y`. The quadratic of docs/numerics.md with apex A, axis v = -y and
+//! radius `a.x` at y = -`a.y`. The quadratic of twinray's guide, *Numerics* with apex A, axis v = -y and
 //! cos^2 of the half-angle; roots as c / q and q / a with the stable q, since a -> 0 for rays
 //! parallel to a generator. Only the nappe between apex and base counts, plus the base disk.
 //!
@@ -138,7 +138,7 @@ mod tests {
     #[test]
     fn side_base_and_mirror_nappe() {
         let side = intersect(Vec3::new(-5.0, 0.0, 0.0), Vec3::X, &cone(), 0.0, 100.0).unwrap();
-        assert!((side.t / 4.5 - 1.0).abs() < 1e-6, "{}", side.t); // relative: issue 4 sets precision targets
+        assert!((side.t / 4.5 - 1.0).abs() < 1e-6, "{}", side.t); // relative, as the probes' precision targets are
         assert!(side.normal.x < 0.0 && side.normal.y > 0.0);
         let base = intersect(Vec3::new(0.2, -5.0, 0.0), Vec3::Y, &cone(), 0.0, 100.0).unwrap();
         assert_eq!((base.t, base.normal), (4.0, -Vec3::Y));

@@ -1,6 +1,6 @@
 //! Capped cylinder about the object's y axis, centred at its origin: radius `a.x`, half height
 //! `a.y`. The side uses the Lagrange-identity discriminant a r^2 - (o x d)_y^2, which does not
-//! cancel far from the axis (docs/numerics.md); side and caps are tested separately, with
+//! cancel far from the axis (twinray's guide, *Numerics*); side and caps are tested separately, with
 //! inclusive comparisons, so rays through the rim are not lost.
 
 use super::sphere::ON_SURFACE;
@@ -16,7 +16,7 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
 }
 
 /// The textbook form: side discriminant k1^2 - k2 k0, roots (-k1 -+ sqrt) / k2, no self-root
-/// rejection. Kept on purpose: it cancels far from the axis (docs/numerics.md: on lavapipe, 183
+/// rejection. Kept on purpose: it cancels far from the axis (twinray's guide, *Numerics*: on lavapipe, 183
 /// of 639 decided rays wrong in `cylinder-grazing-far`, t p99 1e-4 in `cylinder-far-1e4`).
 pub fn naive_intersect(
     origin: Vec3,
@@ -143,7 +143,7 @@ mod tests {
         assert!(intersect(Vec3::new(1.0, 5.0, 0.0), -Vec3::Y, &cylinder(), 0.0, 100.0).is_some());
     }
 
-    /// Far from the axis the textbook discriminant k1^2 - k2 k0 cancels (docs/numerics.md,
+    /// Far from the axis the textbook discriminant k1^2 - k2 k0 cancels (twinray's guide, *Numerics*,
     /// `cylinder-grazing-far`); rays across the silhouette must agree with the exact answer.
     #[test]
     fn far_silhouette_is_decided_correctly() {

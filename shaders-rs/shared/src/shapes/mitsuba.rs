@@ -1,4 +1,4 @@
-//! Each shape kind's equivalent in Mitsuba 3, for `twinray crosscheck` (docs/shading-model.md):
+//! Each shape kind's equivalent in Mitsuba 3, for `twinray crosscheck` (twinray's guide, *Shading model*):
 //! one of Mitsuba's own shapes placed in the shape's object space, or, for shapes Mitsuba
 //! lacks, a fine triangle mesh with the exact normals at its vertices.
 

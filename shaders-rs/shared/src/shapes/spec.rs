@@ -244,7 +244,7 @@ pub struct ShapeKind {
     pub count: fn(&Values) -> u64,
     /// The primitives of one shape of this kind, with their boxes, in object space.
     pub primitives: fn(&Values) -> Vec<(Primitive, Aabb)>,
-    /// The same shape in Mitsuba 3, for `twinray crosscheck` (docs/shading-model.md); none
+    /// The same shape in Mitsuba 3, for `twinray crosscheck` (twinray's guide, *Shading model*); none
     /// (`mitsuba::none`) where there is no equivalent.
     pub mitsuba: fn(&Values) -> Vec<super::mitsuba::MitsubaPart>,
 }

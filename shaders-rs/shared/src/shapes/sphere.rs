@@ -1,5 +1,5 @@
 //! Ray/sphere intersection in the cancellation-free form of Ray Tracing Gems ch. 7
-//! (Haines, Günther, Akenine-Möller); see docs/numerics.md. Valid for any non-zero direction
+//! (Haines, Günther, Akenine-Möller); see twinray's guide, *Numerics*. Valid for any non-zero direction
 //! length, so scaled instances work.
 
 use super::uv::{around_y, ShapeUv};
@@ -12,7 +12,7 @@ use spirv_std::num_traits::Float;
 /// Relative distance from the surface, |c| / r^2 (c = |o - C|^2 - r^2), under which a ray's
 /// origin counts as lying on the sphere. Such a ray, a shadow ray leaving the surface, has
 /// one root at its own origin that rounding may put at a small positive t: that root is not a
-/// hit (docs/numerics.md, `sphere-surface-far`: without it, 204 of 1622 decided shadow rays
+/// hit (twinray's guide, *Numerics*, `sphere-surface-far`: without it, 204 of 1622 decided shadow rays
 /// hit their own sphere on lavapipe). A ray 256 ULPs off the surface, as
 /// the Ray Tracing Gems offset places it, is well inside this band at any magnitude.
 pub const ON_SURFACE: f32 = 1.0e-3;
@@ -83,8 +83,8 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
 
 /// The textbook form, as in the hello-sphere example: roots (-b' -+ sqrt(b'^2 - ac)) / a.
 /// Kept on purpose, to show what the stable form buys: its discriminant cancels for distant
-/// spheres (docs/numerics.md: 632 of 4000 decided silhouette rays wrong at distance 1e4,
-/// `probes/far-sphere.toml` on lavapipe).
+/// spheres (twinray's guide, *Numerics*: 632 of 4000 decided silhouette rays wrong at distance 1e4,
+/// the probe case far-sphere on lavapipe).
 pub fn naive_intersect(
     origin: Vec3,
     direction: Vec3,
@@ -276,7 +276,7 @@ mod tests {
     }
 
     /// A unit sphere 1e4 away, rays across its silhouette: the naive discriminant gets hit/miss
-    /// wrong on 632 of 4000 such rays on lavapipe (docs/numerics.md); this form must agree with f64 away from
+    /// wrong on 632 of 4000 such rays on lavapipe (twinray's guide, *Numerics*); this form must agree with f64 away from
     /// tangency and keep t to 1e-6 relative.
     #[test]
     fn far_sphere_matches_f64_reference() {

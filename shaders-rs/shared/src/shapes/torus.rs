@@ -1,5 +1,5 @@
 //! Torus about the object's y axis, centred at its origin: ring radius R = `a.x` in the xz
-//! plane, tube radius r = `a.y`. The recipe of docs/numerics.md: work with R = 1 and a unit
+//! plane, tube radius r = `a.y`. The recipe of twinray's guide, *Numerics*: work with R = 1 and a unit
 //! direction; move the origin along the ray onto the bounding sphere of radius R + 2r (not
 //! R + r: grazing rays would be lost); solve the quartic from there with Inigo Quilez's closed
 //! form; add the shift back; polish each root with Newton steps on the distance function
@@ -132,7 +132,7 @@ fn polish_step(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
 }
 
 /// `s` moved onto the surface along the ray by Newton steps on g (written out, not a loop:
-/// see docs/rust-stages.md on loops NVIDIA's driver miscompiles).
+/// see twinray's guide, *Rust stages* on loops NVIDIA's driver miscompiles).
 fn polish(o: Vec3, d: Vec3, r: f32, s: f32) -> f32 {
     let s = polish_step(o, d, r, s);
     let s = polish_step(o, d, r, s);
@@ -283,7 +283,7 @@ pub fn intersect(origin: Vec3, direction: Vec3, primitive: &Primitive, t_min: f3
 
 /// The quartic solved from the ray's own origin, without the shift onto the bounding sphere,
 /// without polish and without self-root rejection. Kept on purpose: on lavapipe it gets 544,
-/// 782 and 692 of about 2300 decided rays wrong from 40, 400 and 4000 away (docs/numerics.md,
+/// 782 and 692 of about 2300 decided rays wrong from 40, 400 and 4000 away (twinray's guide, *Numerics*,
 /// `torus-far-*`).
 pub fn naive_intersect(
     origin: Vec3,
@@ -380,7 +380,7 @@ mod tests {
     }
 
     /// Seen from far away, the unshifted quartic gets 24-34% of rays wrong
-    /// (docs/numerics.md, `torus-far-*`); with the shift and the polish the answer matches the exact one, and t is
+    /// (twinray's guide, *Numerics*, `torus-far-*`); with the shift and the polish the answer matches the exact one, and t is
     /// relatively accurate.
     #[test]
     fn far_camera_keeps_hit_miss_and_t() {

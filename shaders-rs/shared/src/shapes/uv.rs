@@ -1,7 +1,7 @@
 //! Texture coordinates on the procedural shapes: each shape's `uv` gives the (u, v) of its
 //! parametrisation at an object-space point of its surface, and their gradients, which carry
 //! the ray cone's footprint into texture space (`texture::shape_footprint`). The conventions
-//! every shape follows (docs/scene-format.md has the table): each piece holds the image once,
+//! every shape follows (twinray's guide, *Scene format* has the table): each piece holds the image once,
 //! seen from outside it is not mirrored, and v runs down the image (v = 0 at its top), as in
 //! glTF. Shapes about the y axis turn u once around it, growing to the right of a viewer
 //! outside who has +y up, and run v from the top (+y) down.
