@@ -54,18 +54,33 @@ fn seed(dir: &Path, profile: &str) {
 }
 
 /// Copies a folder, leaving out executables without an extension (the test binaries in deps/).
+/// A file that vanishes while it is copied is left out too: CI builds the docs in the same
+/// target beside the tests, and rustdoc's temporary files come and go; the copy only seeds a
+/// cache, and cargo rebuilds whatever it lacks.
 fn copy_tree(from: &Path, to: &Path) {
     std::fs::create_dir_all(to).unwrap();
-    for entry in std::fs::read_dir(from).unwrap().map(Result::unwrap) {
-        let (path, kind) = (entry.path(), entry.file_type().unwrap());
-        let target = to.join(entry.file_name());
-        if kind.is_dir() {
-            copy_tree(&path, &target);
-        } else if kind.is_file() && !(from.ends_with("deps") && path.extension().is_none()) {
-            std::fs::copy(&path, &target).unwrap_or_else(|e| panic!("copying {}: {e}", path.display()));
-            // cargo compares these times with each other's.
-            let modified = entry.metadata().and_then(|m| m.modified()).unwrap();
-            std::fs::File::options().write(true).open(&target).and_then(|f| f.set_modified(modified)).unwrap();
+    let gone = |e: &std::io::Error| e.kind() == std::io::ErrorKind::NotFound;
+    let entries = match std::fs::read_dir(from) {
+        Err(e) if gone(&e) => return,
+        entries => entries.unwrap_or_else(|e| panic!("listing {}: {e}", from.display())),
+    };
+    for entry in entries {
+        let copied = entry.and_then(|entry| {
+            let (path, kind) = (entry.path(), entry.file_type()?);
+            let target = to.join(entry.file_name());
+            if kind.is_dir() {
+                copy_tree(&path, &target);
+            } else if kind.is_file() && !(from.ends_with("deps") && path.extension().is_none()) {
+                // cargo compares these times with each other's.
+                let modified = entry.metadata()?.modified()?;
+                std::fs::copy(&path, &target)?;
+                std::fs::File::options().write(true).open(&target)?.set_modified(modified)?;
+            }
+            Ok(())
+        });
+        match copied {
+            Err(e) if !gone(&e) => panic!("copying from {}: {e}", from.display()),
+            _ => {}
         }
     }
 }
