@@ -1,5 +1,5 @@
 //! Comments and docs say why, not when: no figure or choice is dated by the sitting that made
-//! it ("the fourteenth session") and no issue number stands as a reason ("issue 40",
+//! it (an ordinal before "session") and no issue number stands as a reason ("issue 40",
 //! "runs/issue53-...") in code or docs. The measurements keep their history in bench/reports,
 //! whose folders are named by the question they answer and which the docs link by that name;
 //! an upstream project's issue is cited as `owner/repo#N`.
@@ -108,7 +108,7 @@ fn the_check_finds_what_it_is_for() {
         "kept since issue 40",
         "(Issue 78 taught the mutator)",
         "runs/issue53-any-hit.tar.xz",
-        "measured in the fourteenth session",
+        concat!("measured in the fourteenth", " session"),
         "the seventeenth sitting",
         "sessions 4 to 18",
         "issues 11 and 22",
