@@ -1,7 +1,8 @@
 //! Pipelines linked from libraries against pipelines made whole, on lavapipe with validation
 //! on: bit-identical images and hit ids for both sets and a mix, and each library compiled
-//! once however many sets and mixes link it; and every place's layout of a pipeline
-//! (`render::layout`) renders the same bits.
+//! once however many sets and mixes link it, and on a CPU device once per context however
+//! many renders link it; and every place's layout of a pipeline (`render::layout`) renders
+//! the same bits.
 
 use std::sync::Arc;
 use twinray_host::render::layout::{Layout, LayoutDraw};
@@ -54,6 +55,31 @@ fn each_library_is_compiled_once() {
     assert_eq!(count, [10, 20, 26, 26, 26]);
     drop(pipelines);
     drop(libraries);
+    ctx.close().unwrap();
+}
+
+/// On a CPU device the context keeps every library it makes for a render
+/// (`Context::keeps_libraries`): rendering a scene again links the libraries of the first
+/// render, the same bits, where lavapipe finds the code it compiled (which holds each group's
+/// handle); another set adds its own. On a GPU a context keeps none.
+#[test]
+fn a_cpu_device_renders_a_scene_again_from_the_libraries_it_kept() {
+    let ctx = context(PipelineKind::Libraries);
+    let scene = Scene::load(Some("showcase")).unwrap();
+    let first = render_scene(&ctx, &scene, "rust");
+    let kept = ctx.kept.len();
+    let again = render_scene(&ctx, &scene, "rust");
+    assert!(first.rgba == again.rgba && first.hit_ids == again.hit_ids, "a second render differs");
+    if ctx.keeps_libraries() {
+        // Ray generation, two miss stages and seven hit groups (see the test above).
+        assert_eq!(kept, 10, "libraries kept after one render of showcase");
+        assert_eq!(ctx.kept.len(), 10, "the second render made libraries of its own");
+        render_scene(&ctx, &scene, "glsl");
+        assert_eq!(ctx.kept.len(), 20, "the GLSL set's libraries are its own");
+    } else {
+        assert_eq!(kept, 0, "a GPU's context keeps no library");
+    }
+    // The kept libraries go with the device: the layer reports any that do not.
     ctx.close().unwrap();
 }
 

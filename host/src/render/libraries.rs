@@ -2,12 +2,15 @@
 //! stage and each hit group compiled once into a library, and a scene's pipeline linked from
 //! them in shader binding table order. A [`Libraries`] keeps what it compiled, keyed by the
 //! exact SPIR-V and specialisation of each library, so every set and per-stage mix built
-//! through it compiles each module once.
+//! through it compiles each module once; on a device whose context keeps libraries
+//! (`Context::keeps_libraries`), [`Libraries::of`] finds those of every pipeline the context
+//! linked before.
 
 use crate::error::Result;
 use crate::util::checksum::Fnv;
 use crate::vk::context::Context;
 use crate::vk::pipeline::{GroupDesc, Interface, PipelineDesc, RtPipeline, StageDesc};
+use ash::vk;
 use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::rc::Rc;
@@ -30,41 +33,68 @@ pub(crate) struct LibraryDesc<'a> {
     pub spec_bytes: &'a [u8],
 }
 
-/// The libraries compiled so far, shared by every pipeline linked through this.
+/// A linked pipeline and the libraries it was linked from.
+pub(crate) struct Linked {
+    pub pipeline: RtPipeline,
+    /// Its libraries in its groups' order.
+    pub libraries: Vec<vk::Pipeline>,
+    /// Those of them this `Libraries` owns (none that the context keeps), kept alive with it.
+    pub held: Vec<Rc<RtPipeline>>,
+}
+
+/// The libraries compiled so far, shared by every pipeline linked through this (and, where
+/// the context keeps them, by every pipeline linked on the context).
 #[derive(Default)]
 pub struct Libraries {
     made: RefCell<HashMap<u64, Rc<RtPipeline>>>,
     compiled: Cell<usize>,
+    /// Libraries go to the context (`Context::kept`), not to `made`.
+    in_context: bool,
 }
 
 impl Libraries {
-    /// Libraries compiled so far (each module and specialisation once).
+    /// Libraries for pipelines of `ctx`: those the context keeps where it keeps them, else
+    /// this one's own.
+    pub fn of(ctx: &Context) -> Self {
+        Libraries { in_context: ctx.keeps_libraries(), ..Self::default() }
+    }
+
+    /// Libraries compiled through this so far (each module and specialisation once).
     pub fn compiled(&self) -> usize {
         self.compiled.get()
     }
 
     /// The pipeline linked from `libraries` (in SBT group order), compiling those not made
-    /// before; returns it with the libraries it holds.
+    /// before.
     pub(crate) fn link(
         &self,
         ctx: &Arc<Context>,
         bindings: &[crate::vk::pipeline::Binding],
         libraries: &[LibraryDesc],
-    ) -> Result<(RtPipeline, Vec<Rc<RtPipeline>>)> {
-        let held = libraries.iter().map(|l| self.library(ctx, bindings, l)).collect::<Result<Vec<_>>>()?;
-        let refs: Vec<&RtPipeline> = held.iter().map(|l| l.as_ref()).collect();
-        Ok((RtPipeline::link(ctx, bindings, &refs, INTERFACE)?, held))
+    ) -> Result<Linked> {
+        let (mut raw, mut held) = (Vec::new(), Vec::new());
+        for desc in libraries {
+            let (library, own) = self.library(ctx, bindings, desc)?;
+            raw.push(library);
+            held.extend(own);
+        }
+        Ok(Linked { pipeline: RtPipeline::link(ctx, bindings, &raw, INTERFACE)?, libraries: raw, held })
     }
 
+    /// The library `desc` describes, made unless this or the context has it; with the
+    /// pipeline that owns it when this does.
     fn library(
         &self,
         ctx: &Arc<Context>,
         bindings: &[crate::vk::pipeline::Binding],
         desc: &LibraryDesc,
-    ) -> Result<Rc<RtPipeline>> {
+    ) -> Result<(vk::Pipeline, Option<Rc<RtPipeline>>)> {
         let key = key(desc);
         if let Some(made) = self.made.borrow().get(&key) {
-            return Ok(made.clone());
+            return Ok((made.raw, Some(made.clone())));
+        }
+        if let Some(kept) = self.in_context.then(|| ctx.kept.get(key)).flatten() {
+            return Ok((kept, None));
         }
         let pipeline = PipelineDesc {
             bindings,
@@ -72,10 +102,14 @@ impl Libraries {
             groups: std::slice::from_ref(&desc.group),
             max_recursion_depth: INTERFACE.max_recursion_depth,
         };
-        let library = Rc::new(RtPipeline::library(ctx, &pipeline, INTERFACE)?);
+        let library = RtPipeline::library(ctx, &pipeline, INTERFACE)?;
         self.compiled.set(self.compiled.get() + 1);
+        if self.in_context {
+            return Ok((library.keep(key), None));
+        }
+        let library = Rc::new(library);
         self.made.borrow_mut().insert(key, library.clone());
-        Ok(library)
+        Ok((library.raw, Some(library)))
     }
 }
 

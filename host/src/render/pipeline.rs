@@ -36,9 +36,10 @@ pub struct ScenePipeline {
     pub features: u32,
     /// Where ray generation's group lies in the pipeline's layout (`super::layout`).
     raygen_group: u32,
-    /// The libraries it was linked from (none when made whole), in layout order, kept while it
-    /// lives.
-    _libraries: Vec<std::rc::Rc<RtPipeline>>,
+    /// The libraries it was linked from (none when made whole), in layout order.
+    libraries: Vec<vk::Pipeline>,
+    /// Those of them no context keeps, kept while it lives.
+    _held: Vec<std::rc::Rc<RtPipeline>>,
 }
 
 /// The probe's witness closest-hit stages: the object-space ray the intersection stages
@@ -171,18 +172,19 @@ impl ScenePipeline {
         require_device_features(ctx, modules)?;
         let bindings = descriptor_bindings();
         let stages = stage_descs(modules, &spec);
-        let (rt, held) = if compute {
+        let (rt, linked, held) = if compute {
             // One stage, no groups, no SBT, nothing to link.
-            (RtPipeline::compute(ctx, &bindings, &stages[0])?, Vec::new())
+            (RtPipeline::compute(ctx, &bindings, &stages[0])?, Vec::new(), Vec::new())
         } else if let Some(libraries) = libraries {
             let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, spec_bytes)).collect();
-            libraries.link(ctx, &bindings, &descs)?
+            let linked = libraries.link(ctx, &bindings, &descs)?;
+            (linked.pipeline, linked.libraries, linked.held)
         } else {
             let depth = twinray_shared::interface::MAX_RECURSION_DEPTH;
             let (stages, groups) = stages_in_group_order(&stages, &groups);
             let desc =
                 PipelineDesc { bindings: &bindings, stages: &stages, groups: &groups, max_recursion_depth: depth };
-            (RtPipeline::new(ctx, &desc)?, Vec::new())
+            (RtPipeline::new(ctx, &desc)?, Vec::new(), Vec::new())
         };
         let records = if compute { Default::default() } else { sbt_records(plan) };
         let witnessed = witness_records(&records, groups.len(), witness.len());
@@ -195,7 +197,8 @@ impl ScenePipeline {
             workgroup: workgroup(raygen),
             features: plan.features,
             raygen_group: if compute { 0 } else { layout.position(0) },
-            _libraries: held,
+            libraries: linked,
+            _held: held,
         })
     }
 
@@ -203,8 +206,8 @@ impl ScenePipeline {
     /// Of a linked pipeline, the ray generation library's figure: the same compiled stage,
     /// and the validation layer (1.3.239) counts a linked pipeline's groups as none.
     pub fn raygen_stack_bytes(&self) -> u64 {
-        match self._libraries.get(self.raygen_group as usize) {
-            Some(raygen) => raygen.raygen_stack_bytes(),
+        match self.libraries.get(self.raygen_group as usize) {
+            Some(&raygen) => self.rt.library_raygen_stack_bytes(raygen),
             None => self.rt.raygen_stack_bytes_of(self.raygen_group),
         }
     }

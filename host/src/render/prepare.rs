@@ -141,7 +141,7 @@ pub(crate) fn prepare_uploaded(
     extra: &[(u32, &Buffer)],
 ) -> Result<(UploadedScene, Prepared)> {
     let image = Rc::new(StorageImage::new(ctx, image_size.0, image_size.1)?);
-    let libraries = Libraries::default();
+    let libraries = Libraries::of(ctx);
     let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
     let uploaded = upload_shared(ctx, scene, frame)?;
     let prepared = prepare_on(ctx, &uploaded, (set, linking), (raygen, LayoutDraw::Sbt), image, extra)?;

@@ -227,7 +227,7 @@ impl SetRender {
         sets: &[(ShaderSet, PipelineKind)],
         (opts, layout): (&RenderOptions, LayoutDraw),
     ) -> Result<Vec<Self>> {
-        let libraries = Libraries::default();
+        let libraries = Libraries::of(ctx);
         sets.iter()
             .map(|(set, kind)| {
                 let linking = (*kind == PipelineKind::Libraries).then_some(&libraries);

@@ -4,6 +4,7 @@
 pub use super::device::DeviceInfo;
 use super::device::{create_device, device_info, robustness, Robustness};
 use super::device_select;
+use super::kept::KeptPipelines;
 use super::pipeline_cache::{cache_file, PipelineCache};
 use super::validation::{self, Messenger, Validation, ValidationLog};
 use crate::error::{Error, Result, VkContext};
@@ -96,6 +97,8 @@ pub struct Context {
     /// Set when GPU work did not finish: the device may still be running it, so nothing made
     /// from it may be destroyed (each owner's `Drop` leaks instead).
     abandoned: AtomicBool,
+    /// Pipelines kept until the device goes (see [`Context::keeps_libraries`]).
+    pub kept: KeptPipelines,
 }
 
 impl Context {
@@ -198,6 +201,7 @@ impl Context {
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
                 .max(1),
             gpu_timeout: options.gpu_timeout,
+            kept: KeptPipelines::default(),
             abandoned: AtomicBool::new(false),
         }))
     }
@@ -265,6 +269,19 @@ impl Context {
         self.pipelines
     }
 
+    /// Whether every pipeline linked on this context shares the libraries made before it
+    /// (`Context::kept`): on a CPU device. Lavapipe compiles a linked pipeline's code at its
+    /// first trace, looked up in Mesa's shader cache by the pipeline's whole code, which holds
+    /// each group's handle as a constant; handles are the device's running count, so libraries
+    /// made afresh give the same stages new handles, and every pipeline after the first of a
+    /// context compiled again (a test rendering one scene at nine scales compiled it nine
+    /// times). A CPU device places no code for a timing to vary (each pipeline's code is
+    /// loaded anew either way); a GPU's pipelines keep their own libraries, as the bench's
+    /// placements assume.
+    pub fn keeps_libraries(&self) -> bool {
+        self.info.cpu_threads.is_some()
+    }
+
     /// The pipeline cache to create pipelines with (null when none was asked for).
     pub fn pipeline_cache(&self) -> vk::PipelineCache {
         self.pipeline_cache.as_ref().map_or(vk::PipelineCache::null(), |c| c.raw)
@@ -307,6 +324,7 @@ impl Context {
         // the allocator goes before the device.
         unsafe {
             let _ = self.device.device_wait_idle();
+            self.kept.destroy(&self.device);
             if let Some(cache) = self.pipeline_cache.take() {
                 // A cache that cannot be written costs the next run its warm start, nothing more.
                 if let Err(e) = cache.save(&self.device) {

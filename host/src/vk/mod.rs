@@ -10,6 +10,7 @@ pub mod descriptors;
 pub mod device;
 pub mod device_select;
 pub mod image;
+pub mod kept;
 pub mod pipeline;
 pub mod pipeline_cache;
 pub mod sbt;

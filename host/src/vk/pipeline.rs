@@ -4,6 +4,7 @@
 //! query renderer). What goes in it is decided above this layer (`render::pipeline`).
 
 use super::context::Context;
+use super::kept::KeptPipeline;
 use crate::error::{Error, Result, VkContext};
 use crate::util::watchdog;
 use ash::vk;
@@ -91,17 +92,28 @@ impl RtPipeline {
     }
 
     /// A pipeline linked from `libraries`, its groups theirs in order: each library made by
-    /// [`RtPipeline::library`] with `bindings` and `interface`.
+    /// [`RtPipeline::library`] with `bindings` and `interface`, alive (or kept) until this is.
     pub fn link(
         ctx: &Arc<Context>,
         bindings: &[Binding],
-        libraries: &[&RtPipeline],
+        libraries: &[vk::Pipeline],
         interface: Interface,
     ) -> Result<Self> {
-        let raw: Vec<vk::Pipeline> = libraries.iter().map(|l| l.raw).collect();
         let desc =
             PipelineDesc { bindings, stages: &[], groups: &[], max_recursion_depth: interface.max_recursion_depth };
-        Self::make(ctx, &desc, Making::Linked(interface, &raw))
+        Self::make(ctx, &desc, Making::Linked(interface, libraries))
+    }
+
+    /// Hands this pipeline to its context to keep under `key` until the device goes
+    /// (`Context::kept`); its handle.
+    pub fn keep(mut self, key: u64) -> vk::Pipeline {
+        let kept = KeptPipeline {
+            set_layout: std::mem::take(&mut self.set_layout),
+            layout: std::mem::take(&mut self.layout),
+            raw: std::mem::take(&mut self.raw),
+        };
+        self.ctx.kept.insert(key, kept);
+        kept.raw
     }
 
     /// A compute pipeline of `stage` over a set with `bindings`.
@@ -174,9 +186,19 @@ impl RtPipeline {
     /// Bytes of stack the `shader` stage of group `group` needs (the driver's figure). The
     /// caller names a group of this ray tracing pipeline that has such a stage.
     pub fn group_stack_bytes(&self, group: u32, shader: vk::ShaderGroupShaderKHR) -> u64 {
-        // SAFETY: a live ray tracing pipeline; the group and its stage are the caller's promise,
-        // which the validation layer checks.
-        unsafe { self.ctx.rt.get_ray_tracing_shader_group_stack_size(self.raw, group, shader) }
+        self.stack_bytes_in(self.raw, group, shader)
+    }
+
+    /// As [`Self::group_stack_bytes`], of the ray generation library `library` this was linked
+    /// from (its one group).
+    pub fn library_raygen_stack_bytes(&self, library: vk::Pipeline) -> u64 {
+        self.stack_bytes_in(library, 0, vk::ShaderGroupShaderKHR::GENERAL)
+    }
+
+    fn stack_bytes_in(&self, pipeline: vk::Pipeline, group: u32, shader: vk::ShaderGroupShaderKHR) -> u64 {
+        // SAFETY: a live ray tracing pipeline of this device; the group and its stage are the
+        // caller's promise, which the validation layer checks.
+        unsafe { self.ctx.rt.get_ray_tracing_shader_group_stack_size(pipeline, group, shader) }
     }
 }
 
