@@ -127,15 +127,17 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     let exact = (json["max_abs_diff"].as_u64(), json["hit_mismatches"].as_u64(), json["rmse"].as_f64());
     assert_eq!(exact, (Some(0), Some(0), Some(0.0)), "unchanged, the crate renders bit for bit as rust: {json}");
 
-    // A new material response in the closest hit, saved while `twinray watch` looks: the
-    // crate is rebuilt and the verdict, now a fail, comes with the time from the save.
+    // A new material response in the closest hit, saved while `twinray watch` compares the
+    // crate with its GLSL twins: the crate is rebuilt and the verdict, now a fail, comes with
+    // the time from the save; then a save of a twin, which lies in the crate's folder but is
+    // a set of its own, is seen too.
     let lib = krate.join("src/lib.rs");
     let source = std::fs::read_to_string(&lib).unwrap();
     let old = "procedural_closest_hit, [], |m, p, n| shading::material_color(m, p, n)";
     assert!(source.contains(old), "the starter's closest hit moved: this test must follow");
     let log = dir.join("watch.log");
     let mut watch = std::process::Command::new(twinray_tests::cli::exe())
-        .args(["watch", "mine", "--changes", "1", "--", "--width", "64", "--height", "48"])
+        .args(["watch", "mine", "--against", "./mine/glsl", "--changes", "2", "--", "--width", "64", "--height", "48"])
         .current_dir(dir)
         .stdout(std::fs::File::create(&log).unwrap())
         .stderr(std::process::Stdio::null())
@@ -148,11 +150,18 @@ fn a_new_crate_is_the_rust_set_until_edited() {
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
     std::fs::write(&lib, source.replacen(old, &format!("{old} * 0.5"), 1)).unwrap();
+    while !watched().contains("watch: save to verdict") {
+        assert!(start.elapsed().as_secs() < 600, "watch gave no verdict on the crate's save:\n{}", watched());
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    }
+    let twin = krate.join("glsl/raygen.rgen");
+    std::fs::write(&twin, std::fs::read_to_string(&twin).unwrap() + "// edited while watched\n").unwrap();
     let ended = twinray_tests::cli::wait_within(&mut watch, std::time::Duration::from_secs(300));
     let said = watched();
     assert!(ended.is_ok_and(|s| s.success()), "watch: {said}");
     assert!(said.contains("watch: changed src/lib.rs") && said.contains("FAIL"), "{said}");
-    assert!(said.contains("watch: save to verdict"), "{said}");
+    assert!(said.contains("watch: changed ./mine/glsl/raygen.rgen"), "the twin's save was not seen: {said}");
+    assert_eq!(said.matches("watch: save to verdict").count(), 2, "{said}");
     let out = compare("./mine", "rust");
     assert_eq!(out.status.code(), Some(1), "{}", text(&out));
     // Per-stage mixes take the folder too: its closest hits fail, its (unchanged) raygen passes.

@@ -1,8 +1,9 @@
 //! `twinray watch DIR [SCENE]`: the edit loop of a folder of stage sources outside any
-//! checkout. On every save in DIR (outside its `target/`), `twinray compare` of DIR against
-//! `--against` runs in a process of its own, which builds DIR first; its verdict is printed
-//! with the time from the save to it. A build error, a refused module or a stage that never
-//! returns is a verdict line too, and the next save is compared as usual.
+//! checkout. On every save in DIR or in a folder or file `--against` names (outside their
+//! `target/`), `twinray compare` of DIR against `--against` runs in a process of its own,
+//! which builds both first; its verdict is printed with the time from the save to it. A build
+//! error, a refused module or a stage that never returns is a verdict line too, and the next
+//! save is compared as usual.
 
 use crate::args::GlobalArgs;
 use anyhow::{Context, Result};
@@ -13,6 +14,7 @@ use std::process::{Command, ExitCode};
 use std::time::{Duration, SystemTime};
 use twinray_compile::exit_words;
 use twinray_compile::folder::{source_files, sources_in};
+use twinray_host::sets::SetSpec;
 use twinray_host::Error;
 
 #[derive(Args)]
@@ -21,7 +23,7 @@ pub struct WatchArgs {
     pub dir: PathBuf,
     /// The scene to compare on [default: spheres].
     pub scene: Option<String>,
-    /// The set DIR is compared with (set b).
+    /// The set DIR is compared with (set b); the folders and files it names are watched too.
     #[arg(long, default_value = "rust")]
     pub against: String,
     /// How often DIR is looked at for saves, in milliseconds.
@@ -36,12 +38,37 @@ pub struct WatchArgs {
     pub compare_args: Vec<String>,
 }
 
-/// When each source file was last written.
+/// When each watched file was last written: DIR's files by their names in it, the files of
+/// what `--against` names by their paths as written.
 type Snapshot = BTreeMap<PathBuf, SystemTime>;
 
-fn snapshot(dir: &Path) -> Snapshot {
-    let files = source_files(dir).unwrap_or_default();
-    files.into_iter().filter_map(|f| Some((f.clone(), dir.join(&f).metadata().ok()?.modified().ok()?))).collect()
+/// The folders and files whose saves start a compare: DIR, then each folder or `.spv` file
+/// `--against` names (a crate's GLSL twins, `--against ./mine/glsl`, among them).
+fn watched(args: &WatchArgs) -> Result<Vec<PathBuf>> {
+    let against: SetSpec = args.against.parse().map_err(|e: Error| Error::Input(format!("--against: {e}")))?;
+    let mut roots = vec![args.dir.clone()];
+    roots.extend(against.paths().filter(|p| !same_place(p, &args.dir)).map(Path::to_path_buf));
+    Ok(roots)
+}
+
+fn same_place(a: &Path, b: &Path) -> bool {
+    a == b || a.canonicalize().ok().is_some_and(|a| b.canonicalize().ok() == Some(a))
+}
+
+fn snapshot(roots: &[PathBuf]) -> Snapshot {
+    let modified = |path: &Path| path.metadata().ok()?.modified().ok();
+    let mut out = Snapshot::new();
+    for (k, root) in roots.iter().enumerate() {
+        if root.is_file() {
+            out.extend(modified(root).map(|t| (root.clone(), t)));
+            continue;
+        }
+        for file in source_files(root).unwrap_or_default() {
+            let name = if k == 0 { file.clone() } else { root.join(&file) };
+            out.extend(modified(&root.join(&file)).map(|t| (name, t)));
+        }
+    }
+    out
 }
 
 pub fn watch(global: &GlobalArgs, args: WatchArgs) -> Result<ExitCode> {
@@ -49,14 +76,15 @@ pub fn watch(global: &GlobalArgs, args: WatchArgs) -> Result<ExitCode> {
         let message = format!("{}: no shader sources to watch (a Cargo.toml or a raygen.rgen)", args.dir.display());
         return Err(Error::Input(message).into());
     }
+    let roots = watched(&args)?;
     println!("watch: {} against {} (Ctrl-C to stop)", args.dir.display(), args.against);
     // Seen before the first compare: a save while it runs is the next turn's, not lost.
-    let mut seen = snapshot(&args.dir);
+    let mut seen = snapshot(&roots);
     compare(global, &args)?;
     let mut saves = 0;
     while args.changes == 0 || saves < args.changes {
         std::thread::sleep(Duration::from_millis(args.poll_ms));
-        let now = snapshot(&args.dir);
+        let now = snapshot(&roots);
         let changed: Vec<_> =
             now.iter().filter(|(f, t)| seen.get(*f) != Some(t)).map(|(f, t)| (f.clone(), *t)).collect();
         let removed = seen.keys().any(|f| !now.contains_key(f));

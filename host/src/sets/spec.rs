@@ -16,7 +16,7 @@
 
 use crate::error::{Error, Result};
 use std::fmt;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::str::FromStr;
 use twinray_shared::catalog::{Language, Stage, MODULES};
 
@@ -53,7 +53,15 @@ impl SetSpec {
 
     /// Whether loading it reads any file (a folder or a `.spv` file is named).
     pub fn names_paths(&self) -> bool {
-        std::iter::once(&self.base).chain(self.overrides.iter().map(|(_, s)| s)).any(|s| matches!(s, Source::Path(_)))
+        self.paths().next().is_some()
+    }
+
+    /// Every folder or `.spv` file it names, base first, as written.
+    pub fn paths(&self) -> impl Iterator<Item = &Path> {
+        std::iter::once(&self.base).chain(self.overrides.iter().map(|(_, s)| s)).filter_map(|s| match s {
+            Source::Path(p) => Some(p.as_path()),
+            Source::Language(_) => None,
+        })
     }
 }
 
@@ -161,5 +169,13 @@ mod tests {
         assert_eq!(far.overrides[0], (Key::Stage(Stage::Raygen), Source::Path("no/such/raygen.spv".into())));
         assert_eq!(far.overrides[1], (Key::Stage(Stage::ClosestHit), Source::Language(Language::Glsl)));
         assert!(far.names_paths() && !SetSpec::builtin(Language::Glsl).names_paths());
+    }
+
+    #[test]
+    fn paths_are_the_base_and_overrides_that_name_files_in_order() {
+        let spec: SetSpec = "./mine,miss=glsl,closest_hit=twins/glsl".parse().unwrap();
+        let paths: Vec<&Path> = spec.paths().collect();
+        assert_eq!(paths, [Path::new("./mine"), Path::new("twins/glsl")]);
+        assert_eq!(SetSpec::builtin(Language::Rust).paths().count(), 0);
     }
 }
