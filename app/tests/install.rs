@@ -1,5 +1,5 @@
 //! What `cargo install --path app` gives: a `twinray` that works from any directory (its
-//! shaders and built-in scenes are inside it), from a package that carries them.
+//! shaders, built-in scenes and probe cases are inside it), from a package that carries them.
 
 use std::process::Command;
 
@@ -17,7 +17,7 @@ fn the_binary_renders_a_builtin_scene_from_a_foreign_directory() {
 }
 
 #[test]
-fn the_package_carries_the_shaders_scenes_and_readme() {
+fn the_package_carries_the_shaders_scenes_probes_and_readme() {
     let cargo = std::env::var("CARGO").unwrap_or_else(|_| "cargo".into());
     let out = Command::new(cargo)
         .args(["package", "--list", "--allow-dirty", "-p", "twinray-host"])
@@ -26,7 +26,9 @@ fn the_package_carries_the_shaders_scenes_and_readme() {
         .unwrap();
     let list = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    for file in ["README.md", "build.rs", "spirv/rust/raygen.spv", "spirv/glsl/raygen.spv", "scenes/spheres.toml"] {
-        assert!(list.lines().any(|l| l == file), "the package lacks {file}:\n{list}");
+    let files = ["README.md", "build.rs", "spirv/rust/raygen.spv", "spirv/glsl/raygen.spv", "scenes/spheres.toml"];
+    let probes = ["probes/far-sphere.toml", "probes/stability/sphere-far-1e5.toml"];
+    for file in files.iter().chain(&probes) {
+        assert!(list.lines().any(|l| l == *file), "the package lacks {file}:\n{list}");
     }
 }

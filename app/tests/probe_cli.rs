@@ -1,14 +1,17 @@
 //! `twinray probe` as a user runs it: rays made and hit per generator, and `--rays-out`, the
 //! CSV that finds the ray behind a false hit.
 
-use twinray_tests::cli::twinray;
+use twinray_tests::cli::{assert_bad_input, twinray};
 use twinray_tests::repo_root as repo;
 
+/// Run as the docs write it from a folder without `probes/` (an installed `twinray`): the
+/// built-in case.
 #[test]
 fn probe_prints_rays_per_generator_and_writes_every_ray() {
     let dir = tempfile::tempdir().unwrap();
-    let case = repo().join("probes/surface-rays.toml");
-    let args = ["probe", case.to_str().unwrap(), "--shaders", "glsl", "--runs", "1", "--rays-out", "rays.csv"];
+    let case = "probes/surface-rays.toml";
+    assert!(!dir.path().join(case).exists());
+    let args = ["probe", case, "--shaders", "glsl", "--runs", "1", "--rays-out", "rays.csv"];
     let out = twinray(&args, dir.path());
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -40,6 +43,12 @@ fn probe_prints_rays_per_generator_and_writes_every_ray() {
 }
 
 /// Rays in two groups far apart are launched at an origin each, and the probe says where.
+#[test]
+fn a_case_that_is_neither_a_file_nor_built_in_is_refused_naming_the_built_in_ones() {
+    assert_bad_input(&["probe", "probes/no-such-case.toml"], &["no-such-case", "nor a built-in case", "far-sphere"]);
+    assert_bad_input(&["bisect", "--probe", "nope", "--a", "rust", "--b", "glsl"], &["probe case nope"]);
+}
+
 #[test]
 fn probe_names_the_origin_each_group_of_rays_was_launched_at() {
     let dir = tempfile::tempdir().unwrap();

@@ -15,7 +15,7 @@ pub fn files(dir: &Path) -> BTreeMap<String, Vec<u8>> {
         for entry in std::fs::read_dir(&d).unwrap() {
             let path = entry.unwrap().path();
             let relative = path.strip_prefix(dir).unwrap().to_string_lossy().into_owned();
-            // The build folder, and host/spirv and host/scenes: links to folders listed anyway.
+            // The build folder, and host/spirv, host/scenes and host/probes: links to folders listed anyway.
             if relative == "target" || path.is_symlink() {
                 continue;
             }

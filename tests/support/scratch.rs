@@ -141,7 +141,7 @@ pub fn copy_repo(to: &Path) {
         let name = String::from_utf8_lossy(name).into_owned();
         let (from, dest) = (repo().join(&name), to.join(&name));
         if let Ok(target) = std::fs::read_link(&from) {
-            // host/spirv and host/scenes: the links the host's package reads through.
+            // host/spirv, host/scenes and host/probes: the links the host's package reads through.
             std::fs::create_dir_all(dest.parent().unwrap()).unwrap();
             std::os::unix::fs::symlink(target, &dest).unwrap_or_else(|e| panic!("linking {name}: {e}"));
             continue;

@@ -7,7 +7,6 @@ use clap::Args;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use twinray_host::compare::bisect::{bisect as run_bisect, BisectReport, ImageSubject, ProbeSubject};
-use twinray_host::probe::case::ProbeCase;
 use twinray_host::sets::SetSpec;
 use twinray_host::{Error, Scene};
 
@@ -18,7 +17,7 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
             if args.frame.width.is_some() || args.frame.height.is_some() || args.processes > 0 {
                 return Err(Error::Input("--width, --height and --processes do not apply to --probe".into()).into());
             }
-            let case = ProbeCase::load(path)?;
+            let case = twinray_host::probe::builtin::open(path)?;
             let ctx = context(global)?;
             let (warmup, runs, placements) = COMPARE_TRACES;
             let mut subject = ProbeSubject {
@@ -61,8 +60,8 @@ pub struct BisectArgs {
     /// Scene file (TOML), glTF model (.gltf, .glb), OBJ model (.obj), or the name of a built-in scene [default: spheres].
     #[arg(conflicts_with = "probe")]
     pub scene: Option<String>,
-    /// Bisect on a probe case's rays (TOML; see docs/probe-format.md) instead of a scene's
-    /// image: which stage makes false hits or misses.
+    /// Bisect on a probe case's rays (TOML, see docs/probe-format.md, or a built-in case's
+    /// name) instead of a scene's image: which stage makes false hits or misses.
     #[arg(long, value_name = "CASE")]
     pub probe: Option<PathBuf>,
     /// Set A.

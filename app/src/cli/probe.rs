@@ -10,7 +10,7 @@ use twinray_host::scene::shape::Formula;
 use twinray_host::sets::SetSpec;
 
 pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
-    let mut case = twinray_host::probe::case::ProbeCase::load(&args.case)?;
+    let mut case = twinray_host::probe::builtin::open(&args.case)?;
     if let Some(formula) = args.formula.as_deref() {
         let formula = if formula == "naive" { Formula::Naive } else { Formula::Robust };
         case.set_formula(formula);
@@ -43,7 +43,8 @@ pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
 
 #[derive(Args)]
 pub struct ProbeArgs {
-    /// Probe case file (TOML; see docs/probe-format.md).
+    /// Probe case file (TOML; see docs/probe-format.md), or a built-in case by its name
+    /// (`far-sphere`, `probes/far-sphere.toml`, `stability/sphere-far-1e5`).
     pub case: PathBuf,
     /// Shader set: rust, glsl, or a mix such as rust,intersection=glsl.
     #[arg(long, default_value = "rust")]

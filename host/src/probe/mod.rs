@@ -1,6 +1,7 @@
 //! Probing: rays traced one by one through a scene's ordinary pipeline and judged against the
 //! f64 reference; probe case files, their ray generators, and the hard-case suite.
 
+pub mod builtin;
 pub mod case;
 mod edges;
 pub mod generate;
