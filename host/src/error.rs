@@ -13,9 +13,12 @@ pub enum Error {
     /// Bad input from the user: a scene, a shader-set spec, a size. The CLI exits with code 2.
     #[error("{0}")]
     Input(String),
-    /// A scene or probe case that cannot be read, parsed or checked.
+    /// A scene that cannot be read, parsed or checked.
     #[error("scene {path}: {message}")]
     Scene { path: String, message: String },
+    /// A probe case that cannot be read, parsed or checked (its inline scene's faults too).
+    #[error("probe case {path}: {message}")]
+    Case { path: String, message: String },
     /// The Vulkan loader library is missing.
     #[error("could not load the Vulkan loader (libvulkan.so.1): {0}")]
     Loader(#[from] ash::LoadingError),
@@ -88,7 +91,9 @@ impl Error {
     pub fn is_input(&self) -> bool {
         match self {
             Error::While { cause, .. } => cause.is_input(),
-            other => matches!(other, Error::Input(_) | Error::Scene { .. } | Error::DeviceLacks(_)),
+            other => {
+                matches!(other, Error::Input(_) | Error::Scene { .. } | Error::Case { .. } | Error::DeviceLacks(_))
+            }
         }
     }
 

@@ -149,22 +149,32 @@ fn with_inline_defaults(text: &str, table: &toml::Table) -> std::result::Result<
     Ok(document.to_string())
 }
 
+/// `e` as the case `source`'s error where it names the case's own text (its TOML or its inline
+/// scene): a user reads of a probe case, not of a scene.
+fn as_case(source: &str, e: Error) -> Error {
+    match e {
+        Error::Scene { path, message } if path == source => Error::Case { path, message },
+        other => other,
+    }
+}
+
 impl ProbeCase {
     /// Reads a case file: its scene, its rays (given and generated) and the reference.
     pub fn load(path: &Path) -> Result<ProbeCase> {
         let source = path.display().to_string();
         let text = read_text(path, MAX_TEXT_BYTES)
-            .map_err(|e| Error::Scene { path: source.clone(), message: format!("cannot read: {e}") })?;
+            .map_err(|e| Error::Case { path: source.clone(), message: format!("cannot read: {e}") })?;
         ProbeCase::parse(&text, &source, path.parent().map(Path::to_path_buf).unwrap_or_default())
     }
 
     /// Parses case text; `source` names it in errors, and named scenes and mesh files are
     /// looked up relative to `folder`.
     pub fn parse(text: &str, source: &str, folder: std::path::PathBuf) -> Result<ProbeCase> {
-        let case_error = |message: String| Error::Scene { path: source.into(), message };
+        let case_error = |message: String| Error::Case { path: source.into(), message };
         let text = text.to_string();
         let source = source.to_string();
-        let file: ProbeFile = toml::from_str(&text).map_err(|e| crate::scene::toml_error(&source, &text, &e))?;
+        let file: ProbeFile =
+            toml::from_str(&text).map_err(|e| as_case(&source, crate::scene::toml_error(&source, &text, &e)))?;
         let scene = match &file.scene {
             SceneRef::Named(name) => {
                 let relative = folder.join(name);
@@ -173,7 +183,8 @@ impl ProbeCase {
             }
             SceneRef::Inline(table) => {
                 let document = with_inline_defaults(&text, table).map_err(case_error)?;
-                let mut scene = Scene::parse_embedded(&document, &source, MeshFiles::Folder(folder))?;
+                let mut scene = Scene::parse_embedded(&document, &source, MeshFiles::Folder(folder))
+                    .map_err(|e| as_case(&source, e))?;
                 if !table.contains_key("name") {
                     scene.file.name = "inline".into();
                 }
