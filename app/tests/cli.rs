@@ -11,7 +11,7 @@ use twinray_tests::repo_root as repo;
 fn missing_scene_file() {
     assert_bad_input(&["render", "no/such/scene.toml", "--out", "x.png"], &["no/such/scene.toml", "no such file"]);
     assert_bad_input(&["compare", "nosuchscene"], &["nosuchscene", "built-ins: spheres"]);
-    assert_bad_input(&["probe", "no/such/case.toml"], &["no/such/case.toml", "cannot read"]);
+    assert_bad_input(&["probe", "no/such/case.toml"], &["probe case no/such/case.toml", "no such file"]);
 }
 
 #[test]

@@ -93,21 +93,20 @@ impl Libraries {
         if let Some(made) = self.made.borrow().get(&key) {
             return Ok((made.raw, Some(made.clone())));
         }
-        if let Some(kept) = self.in_context.then(|| ctx.kept.get(key)).flatten() {
-            return Ok((kept, None));
-        }
         let pipeline = PipelineDesc {
             bindings,
             stages: &desc.stages,
             groups: std::slice::from_ref(&desc.group),
             max_recursion_depth: INTERFACE.max_recursion_depth,
         };
-        let library = RtPipeline::library(ctx, &pipeline, INTERFACE)?;
-        self.compiled.set(self.compiled.get() + 1);
+        let make = || RtPipeline::library(ctx, &pipeline, INTERFACE);
         if self.in_context {
-            return Ok((library.keep(key), None));
+            let (kept, made) = ctx.kept.get_or_make(key, || make().map(RtPipeline::into_kept))?;
+            self.compiled.set(self.compiled.get() + usize::from(made));
+            return Ok((kept, None));
         }
-        let library = Rc::new(library);
+        let library = Rc::new(make()?);
+        self.compiled.set(self.compiled.get() + 1);
         self.made.borrow_mut().insert(key, library.clone());
         Ok((library.raw, Some(library)))
     }

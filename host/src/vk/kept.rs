@@ -3,6 +3,7 @@
 //! handles, destroyed by the context itself, because a pipeline that held the context (as every
 //! other Vulkan object here does) would keep it alive from inside it.
 
+use crate::error::Result;
 use ash::vk;
 use std::collections::HashMap;
 use std::sync::Mutex;
@@ -20,15 +21,16 @@ pub struct KeptPipeline {
 pub struct KeptPipelines(Mutex<HashMap<u64, KeptPipeline>>);
 
 impl KeptPipelines {
-    /// The pipeline kept under `key`, if one is.
-    pub fn get(&self, key: u64) -> Option<vk::Pipeline> {
-        self.0.lock().unwrap_or_else(|e| e.into_inner()).get(&key).map(|k| k.raw)
-    }
-
-    /// Keeps `pipeline` under `key`; the context destroys it with its device.
-    pub fn insert(&self, key: u64, pipeline: KeptPipeline) {
-        let replaced = self.0.lock().unwrap_or_else(|e| e.into_inner()).insert(key, pipeline);
-        debug_assert!(replaced.is_none(), "a kept pipeline is made once per key");
+    /// The pipeline kept under `key`, made by `make` and kept unless one is (made once however
+    /// many threads ask: they wait while it is made); whether `make` made it.
+    pub fn get_or_make(&self, key: u64, make: impl FnOnce() -> Result<KeptPipeline>) -> Result<(vk::Pipeline, bool)> {
+        let mut kept = self.0.lock().unwrap_or_else(|e| e.into_inner());
+        if let Some(k) = kept.get(&key) {
+            return Ok((k.raw, false));
+        }
+        let made = make()?;
+        kept.insert(key, made);
+        Ok((made.raw, true))
     }
 
     /// How many are kept.

@@ -104,16 +104,14 @@ impl RtPipeline {
         Self::make(ctx, &desc, Making::Linked(interface, libraries))
     }
 
-    /// Hands this pipeline to its context to keep under `key` until the device goes
-    /// (`Context::kept`); its handle.
-    pub fn keep(mut self, key: u64) -> vk::Pipeline {
-        let kept = KeptPipeline {
+    /// This pipeline's handles, for its context to keep until the device goes
+    /// (`Context::kept`), which then destroys them instead of this.
+    pub fn into_kept(mut self) -> KeptPipeline {
+        KeptPipeline {
             set_layout: std::mem::take(&mut self.set_layout),
             layout: std::mem::take(&mut self.layout),
             raw: std::mem::take(&mut self.raw),
-        };
-        self.ctx.kept.insert(key, kept);
-        kept.raw
+        }
     }
 
     /// A compute pipeline of `stage` over a set with `bindings`.
