@@ -56,7 +56,7 @@ pub struct RenderOutput {
     pub rays: RayCounts,
     /// Untimed traces before the timed ones: the asked-for count, raised to fill `MIN_WARM_MS`.
     pub warmup_traces: u32,
-    /// Stack bytes the ray generation stage needs (see `RtPipeline::raygen_stack_bytes`).
+    /// Stack bytes the ray generation stage needs (see `RtPipeline::raygen_stack_bytes_of`).
     pub raygen_stack_bytes: u64,
     /// What the set left unwritten, or wrote as NaN or infinity.
     pub written: Written,

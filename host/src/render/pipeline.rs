@@ -202,7 +202,7 @@ impl ScenePipeline {
         })
     }
 
-    /// What ray generation keeps across each trace call (see `RtPipeline::raygen_stack_bytes`).
+    /// What ray generation keeps across each trace call (see `RtPipeline::raygen_stack_bytes_of`).
     /// Of a linked pipeline, the ray generation library's figure: the same compiled stage,
     /// and the validation layer (1.3.239) counts a linked pipeline's groups as none.
     pub fn raygen_stack_bytes(&self) -> u64 {

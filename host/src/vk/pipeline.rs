@@ -166,14 +166,9 @@ impl RtPipeline {
         Ok(pipeline)
     }
 
-    /// Bytes of stack the ray generation stage (group 0) needs: the state it keeps across each
-    /// trace call (the driver's figure; lavapipe reports a constant); 0 for a compute pipeline,
-    /// which keeps none.
-    pub fn raygen_stack_bytes(&self) -> u64 {
-        self.raygen_stack_bytes_of(0)
-    }
-
-    /// As [`Self::raygen_stack_bytes`], of the ray generation stage in group `group`.
+    /// Bytes of stack the ray generation stage in group `group` needs: the state it keeps
+    /// across each trace call (the driver's figure; lavapipe reports a constant); 0 for a
+    /// compute pipeline, which keeps none.
     pub fn raygen_stack_bytes_of(&self, group: u32) -> u64 {
         if self.bind_point != vk::PipelineBindPoint::RAY_TRACING_KHR {
             return 0;
