@@ -228,6 +228,64 @@ fn bad_crates_are_refused_in_one_line_and_leave_the_crate_as_it_was() {
     assert!(started.elapsed().as_secs() < 60, "the deadline was not kept: {:?}", started.elapsed());
 }
 
+/// The probe report of `case` with `set`, and whether the command passed.
+fn probe(case: &str, set: &str, dir: &Path) -> (serde_json::Value, Option<i32>) {
+    let out = twinray(&["--validate", "probe", case, "--shaders", set, "--json", "--runs", "1", "--warmup", "0"], dir);
+    let json = serde_json::from_slice(&out.stdout).unwrap_or_else(|e| panic!("{case} with {set}: {e}: {}", text(&out)));
+    (json, out.status.code())
+}
+
+#[test]
+fn a_crates_own_shape_renders_in_both_languages_and_is_judged_by_its_own_definition() {
+    let scratch = tempfile::tempdir().unwrap();
+    let dir = scratch.path();
+    let said = ok(&["new", "shapes", "--glsl", "--shape", "capsule"], dir);
+    assert!(said.contains("the shape capsule (hit kind 32)"), "{said}");
+    let krate = dir.join("shapes");
+    seed_crate_target(&krate);
+    let written = files(&krate);
+    let small = ["--width", "96", "--height", "72", "--runs", "1", "--warmup", "0", "--placements", "1"];
+    let compare = |a: &str, b: &str| {
+        let args = [&["--validate", "compare", "shapes/scenes/capsule.toml", "--a", a, "--b", b][..], &small].concat();
+        twinray(&args, dir)
+    };
+    let both = compare("shapes", "shapes/glsl");
+    assert!(both.status.success(), "Rust against its GLSL twin: {}", text(&both));
+    assert!(text(&both).contains("PASS"), "{}", text(&both));
+    assert!(files(&krate) == written, "building wrote in the crate outside target/ (its Cargo.lock?)");
+    for set in ["shapes", "shapes/glsl"] {
+        let (report, code) = probe("shapes/probes/capsule.toml", set, dir);
+        assert_eq!(code, Some(0), "{set}: {report}");
+        let wrong = (report["false_hits"].as_u64(), report["false_misses"].as_u64());
+        assert_eq!(wrong, (Some(0), Some(0)), "{set} against the crate's definition: {report}");
+        assert!(report["decided"].as_u64() > Some(8000), "{report}");
+    }
+    // A logic slip in the GPU routine alone (the side runs past the caps), which the crate's
+    // f64 distance does not share: the probe sees it.
+    let routine = krate.join("shared/src/capsule.rs");
+    let source = std::fs::read_to_string(&routine).unwrap();
+    let exact = "if q.y.abs() <= half {";
+    assert!(source.contains(exact), "the template's side test moved: this test must follow");
+    std::fs::write(&routine, source.replacen(exact, "if q.y.abs() <= half * 1.2 {", 1)).unwrap();
+    let (report, code) = probe("shapes/probes/capsule.toml", "shapes", dir);
+    assert_eq!(code, Some(1), "{report}");
+    assert!(report["false_hits"].as_u64() > Some(10), "the planted slip: {report}");
+    std::fs::write(&routine, source).unwrap();
+    ok(&["build", "shapes"], dir);
+    // A set that lacks the shape: one line, exit 2.
+    let lacks = |args: &[&str], needle: &str| {
+        let out = twinray(args, dir);
+        let stderr = String::from_utf8_lossy(&out.stderr).into_owned();
+        assert_eq!((out.status.code(), stderr.trim().lines().count()), (Some(2), 1), "{args:?}: {stderr}");
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    };
+    let render = ["render", "shapes/scenes/capsule.toml", "--shaders", "rust", "--out", "x.png"];
+    lacks(&render, "unknown shape kind \"capsule\"");
+    let mixed = ["compare", "shapes/scenes/capsule.toml", "--a", "shapes", "--b", "rust"];
+    lacks(&mixed, "no module capsule_intersection");
+    refused(&["new", "shapes", "--shape", "capsule"], dir, &krate, &["has a shape \"capsule\" already"]);
+}
+
 /// A crate as a stranger writes one, from scratch: no toolchain file, no lint settings, one
 /// stage, the contract by a path of its own.
 const SKY_MANIFEST: &str = r#"[package]
@@ -336,7 +394,10 @@ fn the_starter_crate_names_no_file_only_a_checkout_has() {
         if name.ends_with("Cargo.lock") {
             continue;
         }
-        for (n, line) in prose(&name, &String::from_utf8_lossy(bytes)) {
+        // A path dependency within the crate (its shared library's on the contract) is no
+        // reference to a checkout.
+        let within = |line: &str| line.contains("path = \"../twinray-shared\"");
+        for (n, line) in prose(&name, &String::from_utf8_lossy(bytes)).into_iter().filter(|(_, l)| !within(l)) {
             if let Some(what) = REPO_ONLY.iter().find(|w| line.contains(*w)) {
                 found.push(format!("{name}:{n}: {what} in {}", line.trim()));
             }

@@ -12,12 +12,13 @@ use twinray_host::{Error, Scene};
 
 pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
     let (a, b) = (global.load("--a", &args.a)?, global.load("--b", &args.b)?);
+    let own = twinray_host::ShaderSet::own_kinds(&[&a, &b]);
     let report = match &args.probe {
         Some(path) => {
             if args.frame.width.is_some() || args.frame.height.is_some() || args.processes > 0 {
                 return Err(Error::Input("--width, --height and --processes do not apply to --probe".into()).into());
             }
-            let case = twinray_host::probe::builtin::open(path)?;
+            let case = twinray_host::probe::builtin::open(path, &own)?;
             let ctx = context(global)?;
             let (warmup, runs, placements) = COMPARE_TRACES;
             let mut subject = ProbeSubject {
@@ -30,7 +31,7 @@ pub fn bisect(global: &GlobalArgs, args: BisectArgs) -> Result<ExitCode> {
             run_bisect(&mut subject, &a, &b)?
         }
         None => {
-            let scene = Scene::load(args.scene.as_deref())?;
+            let scene = Scene::load_with(args.scene.as_deref(), &own)?;
             let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
             crate::timed_alone::check_runs(args.processes, opts.runs)?;
             let ctx = context(global)?;

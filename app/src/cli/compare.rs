@@ -16,14 +16,15 @@ pub fn compare(global: &GlobalArgs, args: CompareArgs) -> Result<ExitCode> {
         refuse_viewpoint_with_frames(&args.viewpoint)?;
         return crate::frames::compare(global, args, range);
     }
-    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
-    let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
-    crate::timed_alone::check_runs(args.processes, opts.runs)?;
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
     }
+    // The sets first: a scene may name the kinds of the crates they were built from.
     let a = global.load("--a", &args.a)?;
     let b = global.load("--b", &args.b)?;
+    let scene = load_still(args.scene.as_deref(), &args.viewpoint, &[&a, &b])?;
+    let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
+    crate::timed_alone::check_runs(args.processes, opts.runs)?;
     let ctx = context(global)?;
     let scene_arg = args.scene.clone().unwrap_or_else(|| twinray_host::scene::DEFAULT_SCENE.to_string());
     let (isolation, cache) =

@@ -15,9 +15,6 @@ use twinray_host::sets::SetSpec;
 use twinray_host::Error;
 
 pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
-    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
-    let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
-    check_size(size.0, size.1).map_err(Error::Input)?;
     let names = args.names.clone().map_or([None, None], |(a, b)| [Some(a), Some(b)]);
     let [name_a, name_b] = names;
     let a = global.load("--a", &args.a)?;
@@ -26,6 +23,10 @@ pub fn explain(global: &GlobalArgs, args: ExplainArgs) -> Result<ExitCode> {
         let b = global.load("--b", b)?;
         sets.push((name_b.unwrap_or_else(|| label(&b, "B")), b));
     }
+    let loaded: Vec<_> = sets.iter().map(|(_, s)| s).collect();
+    let scene = load_still(args.scene.as_deref(), &args.viewpoint, &loaded)?;
+    let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
+    check_size(size.0, size.1).map_err(Error::Input)?;
     if sets.len() == 2 && sets[0].0 == sets[1].0 {
         sets[0].0 = format!("A ({})", sets[0].0);
         sets[1].0 = format!("B ({})", sets[1].0);

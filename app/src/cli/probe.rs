@@ -10,16 +10,18 @@ use twinray_host::scene::shape::Formula;
 use twinray_host::sets::SetSpec;
 
 pub fn probe(global: &GlobalArgs, args: ProbeArgs) -> Result<ExitCode> {
-    let mut case = twinray_host::probe::builtin::open(&args.case)?;
-    if let Some(formula) = args.formula.as_deref() {
-        let formula = if formula == "naive" { Formula::Naive } else { Formula::Robust };
-        case.set_formula(formula);
-    }
     if let Some(path) = &args.rays_out {
         twinray_host::util::output::check_file_target(path)
             .map_err(|e| twinray_host::Error::Input(format!("--rays-out {e}")))?;
     }
+    // The set first: a case's scene may name the kinds of the crate it was built from.
     let shaders = global.load("--shaders", &args.shaders)?;
+    let own = twinray_host::ShaderSet::own_kinds(&[&shaders]);
+    let mut case = twinray_host::probe::builtin::open(&args.case, &own)?;
+    if let Some(formula) = args.formula.as_deref() {
+        let formula = if formula == "naive" { Formula::Naive } else { Formula::Robust };
+        case.set_formula(formula);
+    }
     let ctx = context(global)?;
     let out = twinray_host::probe::probe(&ctx, &case.scene, &shaders, &case.rays, args.warmup, args.runs)?;
     let median = twinray_host::util::stats::median(&out.gpu_ms);

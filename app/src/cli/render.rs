@@ -12,12 +12,13 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
         refuse_viewpoint_with_frames(&args.viewpoint)?;
         return crate::frames::render(global, args, range);
     }
+    check_image_target(&args.out)?;
+    // The set first: a scene may name the kinds of the crate it was built from.
+    let shaders = global.load("--shaders", &args.shaders)?;
     let loading = std::time::Instant::now();
-    let scene = load_still(args.scene.as_deref(), &args.viewpoint)?;
+    let scene = load_still(args.scene.as_deref(), &args.viewpoint, &[&shaders])?;
     let load_ms = loading.elapsed().as_secs_f64() * 1e3;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
-    check_image_target(&args.out)?;
-    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
     let out = twinray_host::render(&ctx, &scene, &shaders, &opts)?;
     write_image(&args.out, (out.width, out.height), &out.linear, &out.picture())?;

@@ -6,7 +6,7 @@ use anyhow::{Context as _, Result};
 use std::sync::Arc;
 use twinray_host::scene::check_size;
 use twinray_host::util::output::cache_dir;
-use twinray_host::{Context, ContextOptions, Error, RenderOptions, Scene, Validation};
+use twinray_host::{Context, ContextOptions, Error, RenderOptions, Scene, ShaderSet, Validation};
 
 pub fn context(global: &GlobalArgs) -> Result<Arc<Context>> {
     Context::new(&options(global)).context("setting up Vulkan")
@@ -35,8 +35,9 @@ pub fn options(global: &GlobalArgs) -> ContextOptions {
 
 /// The still scene `arg` names (a file or a built-in name), at the frame and from the camera
 /// `viewpoint` asks for.
-pub fn load_still(arg: Option<&str>, viewpoint: &ViewpointArgs) -> Result<Scene, Error> {
-    let scene = Scene::load(arg)?;
+/// Its shapes may be of the kinds of the crates `sets` were built from.
+pub fn load_still(arg: Option<&str>, viewpoint: &ViewpointArgs, sets: &[&ShaderSet]) -> Result<Scene, Error> {
+    let scene = Scene::load_with(arg, &ShaderSet::own_kinds(sets))?;
     let frames = scene.frame_count();
     let frame = viewpoint.frame.unwrap_or(0);
     if frame >= frames {

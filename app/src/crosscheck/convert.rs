@@ -175,6 +175,10 @@ fn parts(scene: &Scene, name: &str, notes: &mut Vec<String>) -> Result<Vec<Mitsu
             }
             Ok(parts)
         }
+        Some(ShapeDesc::Own(own)) => Err(Error::Input(format!(
+            "{}: shape {name:?} is of a crate's own kind {:?}, which has no Mitsuba equivalent",
+            scene.source, own.kind
+        ))),
         Some(ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_)) => {
             let data =
                 scene.meshes.get(name).ok_or_else(|| Error::Input(format!("no mesh data for shape {name:?}")))?;

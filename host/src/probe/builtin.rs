@@ -4,6 +4,7 @@
 
 use super::case::ProbeCase;
 use crate::error::{Error, Result};
+use crate::sets::own::CrateShapes;
 use std::path::Path;
 
 include!(concat!(env!("OUT_DIR"), "/builtin_probes.rs"));
@@ -20,9 +21,10 @@ pub fn find(name: &str) -> Option<(&'static str, &'static str)> {
 }
 
 /// The case in the file `arg`, or, where no such file is, the built-in case it names.
-pub fn open(arg: &Path) -> Result<ProbeCase> {
+/// Its scene may name the kinds of the crates' `own` shapes.
+pub fn open(arg: &Path, own: &[&'static CrateShapes]) -> Result<ProbeCase> {
     if arg.exists() {
-        return ProbeCase::load(arg);
+        return ProbeCase::load_with(arg, own);
     }
     let Some((name, text)) = arg.to_str().and_then(find) else {
         let names: Vec<&str> = BUILTIN_PROBES.iter().map(|(n, _)| *n).filter(|n| !n.contains('/')).collect();
@@ -33,7 +35,7 @@ pub fn open(arg: &Path) -> Result<ProbeCase> {
         )));
     };
     // A built-in case names no file of its own but by an absolute path: there is no folder.
-    ProbeCase::parse(text, &format!("probes/{name}.toml (built in)"), std::path::PathBuf::new())
+    ProbeCase::parse_with(text, &format!("probes/{name}.toml (built in)"), std::path::PathBuf::new(), own)
 }
 
 #[cfg(test)]
@@ -64,7 +66,7 @@ mod tests {
 
     #[test]
     fn a_name_that_is_neither_a_file_nor_built_in_lists_the_built_in_cases() {
-        let e = open(Path::new("no/such/case.toml")).err().expect("refused").to_string();
+        let e = open(Path::new("no/such/case.toml"), &[]).err().expect("refused").to_string();
         assert!(e.contains("no/such/case.toml") && e.contains("far-sphere") && e.contains("stability/NAME"), "{e}");
     }
 }

@@ -6,6 +6,7 @@ use crate::error::{Error, Result};
 use crate::reference::scene::SceneReference;
 use crate::scene::shape::Formula;
 use crate::scene::{MeshFiles, Scene};
+use crate::sets::own::CrateShapes;
 use crate::util::input::{read_text, MAX_TEXT_BYTES};
 use serde::Deserialize;
 use std::path::Path;
@@ -161,15 +162,30 @@ fn as_case(source: &str, e: Error) -> Error {
 impl ProbeCase {
     /// Reads a case file: its scene, its rays (given and generated) and the reference.
     pub fn load(path: &Path) -> Result<ProbeCase> {
+        ProbeCase::load_with(path, &[])
+    }
+
+    /// [`ProbeCase::load`] with the kinds of the crates' `own` shapes as well as twinray's.
+    pub fn load_with(path: &Path, own: &[&'static CrateShapes]) -> Result<ProbeCase> {
         let source = path.display().to_string();
         let text = read_text(path, MAX_TEXT_BYTES)
             .map_err(|e| Error::Case { path: source.clone(), message: format!("cannot read: {e}") })?;
-        ProbeCase::parse(&text, &source, path.parent().map(Path::to_path_buf).unwrap_or_default())
+        ProbeCase::parse_with(&text, &source, path.parent().map(Path::to_path_buf).unwrap_or_default(), own)
     }
 
     /// Parses case text; `source` names it in errors, and named scenes and mesh files are
     /// looked up relative to `folder`.
     pub fn parse(text: &str, source: &str, folder: std::path::PathBuf) -> Result<ProbeCase> {
+        ProbeCase::parse_with(text, source, folder, &[])
+    }
+
+    /// [`ProbeCase::parse`] with the kinds of the crates' `own` shapes as well as twinray's.
+    pub fn parse_with(
+        text: &str,
+        source: &str,
+        folder: std::path::PathBuf,
+        own: &[&'static CrateShapes],
+    ) -> Result<ProbeCase> {
         let case_error = |message: String| Error::Case { path: source.into(), message };
         let text = text.to_string();
         let source = source.to_string();
@@ -178,12 +194,15 @@ impl ProbeCase {
         let scene = match &file.scene {
             SceneRef::Named(name) => {
                 let relative = folder.join(name);
-                let scene = Scene::load(Some(if relative.exists() { relative.to_str().unwrap_or(name) } else { name }));
+                let scene = Scene::load_with(
+                    Some(if relative.exists() { relative.to_str().unwrap_or(name) } else { name }),
+                    own,
+                );
                 scene.map_err(|e| case_error(format!("scene: {e}")))?
             }
             SceneRef::Inline(table) => {
                 let document = with_inline_defaults(&text, table).map_err(case_error)?;
-                let mut scene = Scene::parse_embedded(&document, &source, MeshFiles::Folder(folder))
+                let mut scene = Scene::parse_embedded(&document, &source, MeshFiles::Folder(folder), own)
                     .map_err(|e| as_case(&source, e))?;
                 if !table.contains_key("name") {
                     scene.file.name = "inline".into();

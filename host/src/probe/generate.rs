@@ -260,12 +260,15 @@ fn surface_points(
     seed: u32,
 ) -> Result<Vec<(u32, DVec3, DVec3)>, String> {
     let o = find(reference, object)?;
-    if let Some(RefShape::Traced { shape, .. }) = o.shapes.iter().find(|s| matches!(s, RefShape::Traced { .. })) {
-        let name = shape.name;
+    let by_distance = o.shapes.iter().find_map(|s| match s {
+        RefShape::Traced { shape, .. } => Some(shape.name),
+        RefShape::Own { shape, .. } => Some(shape.shape().name),
+        _ => None,
+    });
+    if let Some(name) = by_distance {
         return Err(format!(
-            "object {object} is a {name}, which the f64 reference knows by its distance alone \
-             (host/src/reference/traced.rs): it has no surface to draw points from; probe it with \
-             `silhouette` generators or [[rays]]"
+            "object {object} is a {name}, which the f64 reference knows by its distance alone: it has \
+             no surface to draw points from; probe it with `silhouette` generators or [[rays]]"
         ));
     }
     let mut cumulative = Vec::with_capacity(o.shapes.len());
@@ -404,7 +407,7 @@ fn face_point(shape: &RefShape, [a, b, c]: [f64; 3]) -> Option<(DVec3, DVec3)> {
             let point = p[0] + (p[1] - p[0]) * u + (p[2] - p[0]) * v;
             Some((point, (p[1] - p[0]).cross(p[2] - p[0]).normalize()))
         }
-        RefShape::Sphere { .. } | RefShape::Torus { .. } | RefShape::Traced { .. } => None,
+        RefShape::Sphere { .. } | RefShape::Torus { .. } | RefShape::Traced { .. } | RefShape::Own { .. } => None,
     }
 }
 

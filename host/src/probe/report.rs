@@ -64,7 +64,8 @@ pub struct ProbeReport {
     /// Rays whose record the set never wrote (still the sentinel; judged as nothing else), and
     /// hits it wrote with a NaN or infinite t or normal.
     pub written: Written,
-    /// False when the set left records unwritten or non-finite.
+    /// False when the set left records unwritten or non-finite, or answered a decided ray
+    /// otherwise than the reference (a false hit, a false miss, a wrong object).
     pub pass: bool,
     /// Why `pass` is false.
     pub failures: Vec<String>,
@@ -215,6 +216,16 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
     report.decided = report.rays - report.ambiguous - unjudged as usize;
     let stages = judged.iter().zip(results).filter(|(_, r)| no_payload(r)).map(|(j, _)| &j.verdict);
     report.failures.extend(no_payload_lines(&case.scene, stages, set));
+    // A verdict, not only figures: a ray decided otherwise than the reference fails the case.
+    let (hits, misses, objects) = (report.false_hits, report.false_misses, report.wrong_object);
+    if hits + misses + objects > 0 {
+        report.failures.push(format!(
+            "{} decided rays answered otherwise than the f64 reference: {hits} false hits, {misses} false misses, \
+             {objects} wrong object",
+            hits + misses + objects
+        ));
+    }
+    report.pass = report.failures.is_empty();
     let all = &judged;
     for (generated, judged) in report.generators.iter_mut().zip(generator_spans(case)) {
         let hits = |range: std::ops::Range<usize>, results: &[ProbeResult]| {

@@ -6,8 +6,9 @@
 use super::cutout::{Corners, Coverage, RefCutout};
 use super::shapes::{from_primitive, intersect, RefRay, RefShape, Verdict};
 use super::texel::RefTexture;
-use crate::scene::{BlasDesc, HitGroup, Scene, SceneData};
+use crate::scene::{BlasDesc, HitGeometry, HitGroup, Scene, SceneData};
 use glam::{DMat4, DVec2, DVec3, Vec4Swizzles};
+use twinray_shared::custom::Parameters;
 use twinray_shared::layout::Material;
 
 /// One object: its shapes in object space and the transforms to and from it.
@@ -335,6 +336,18 @@ fn shapes(data: &SceneData, group: HitGroup, blas: usize, primitive_base: u32) -
                 .collect())
         }
         BlasDesc::Aabbs(boxes) => {
+            if let HitGeometry::Own(shape) = group.geometry {
+                let primitives = &data.primitives[primitive_base as usize..][..boxes.len()];
+                return Ok(primitives
+                    .iter()
+                    .zip(boxes)
+                    .map(|(p, b)| RefShape::Own {
+                        shape,
+                        parameters: Parameters::of(p),
+                        bounds: (b.min.as_dvec3(), b.max.as_dvec3()),
+                    })
+                    .collect());
+            }
             let name = group.shape().map_or("triangles", |s| s.name);
             (0..boxes.len())
                 .map(|k| {

@@ -10,10 +10,12 @@
 
 use super::ray::{first, Candidate, F32_EPS};
 pub use super::ray::{RefRay, Verdict, AMBIGUOUS_ULPS};
-use super::traced::{torus, traced};
+use super::traced::{own, torus, traced};
 pub use super::traced::{TracedShape, TRACED};
+use crate::sets::own::OwnShapeRef;
 use glam::DVec3;
 use glam::DVec4;
+use twinray_shared::custom::Parameters;
 use twinray_shared::layout::Primitive;
 use twinray_shared::shapes::plane::DISK;
 
@@ -38,6 +40,9 @@ pub enum RefShape {
     Triangle { p: [DVec3; 3] },
     /// A shape of [`TRACED`], with its primitive's `a`.
     Traced { shape: &'static TracedShape, a: DVec4 },
+    /// A crate's own shape, known by the signed distance the crate defines, with its
+    /// primitive's parameters and box (min, max).
+    Own { shape: OwnShapeRef, parameters: Parameters, bounds: (DVec3, DVec3) },
 }
 
 /// The true answer for `ray` and `shape`.
@@ -52,6 +57,9 @@ pub fn intersect(shape: &RefShape, ray: &RefRay) -> Verdict {
         RefShape::Torus { major, minor } => torus(ray, major, minor),
         RefShape::Triangle { p } => triangle(ray, p),
         RefShape::Traced { shape, a } => traced(ray, shape, a),
+        RefShape::Own { shape, parameters, bounds: (min, max) } => {
+            own(ray, shape, &parameters, min.abs().max(max.abs()).length())
+        }
     }
 }
 
@@ -84,6 +92,7 @@ pub fn bounding_radius(shape: &RefShape) -> f64 {
         RefShape::Torus { major, minor } => major + minor,
         RefShape::Triangle { p } => p.iter().map(|v| v.length()).fold(0.0, f64::max),
         RefShape::Traced { shape, a } => (shape.half_extent)(a).length(),
+        RefShape::Own { bounds: (min, max), .. } => min.abs().max(max.abs()).length(),
     }
 }
 

@@ -45,6 +45,7 @@ pub fn bounding_box(shape: &RefShape) -> (DVec3, DVec3) {
         }
         RefShape::Torus { major, minor } => DVec3::new(major + minor, minor, major + minor),
         RefShape::Traced { shape, a } => (shape.half_extent)(a),
+        RefShape::Own { bounds, .. } => return bounds,
     };
     (-half, half)
 }
@@ -83,7 +84,7 @@ fn pieces(shape: &RefShape) -> Vec<(f64, Piece)> {
         RefShape::Torus { major, minor } => vec![(4.0 * PI * PI * major * minor, Piece::Whole)],
         RefShape::Triangle { p } => vec![(0.5 * (p[1] - p[0]).cross(p[2] - p[0]).length(), Piece::Whole)],
         // Known by its distance alone: no parametrisation to draw points from (area 0).
-        RefShape::Traced { .. } => Vec::new(),
+        RefShape::Traced { .. } | RefShape::Own { .. } => Vec::new(),
     }
 }
 

@@ -4,7 +4,9 @@
 //! hide in both this and the shaders.
 
 use super::ray::{first, Candidate, RefRay, Verdict};
+use crate::sets::own::OwnShapeRef;
 use glam::{DVec3, DVec4};
+use twinray_shared::custom::Parameters;
 
 /// A shape the reference knows by its signed distance. The three functions take a point in
 /// the shape's own space and `a`, its primitive's first vector (`Primitive::a`, read as the
@@ -49,6 +51,12 @@ pub(super) fn torus(ray: &RefRay, major: f64, minor: f64) -> Verdict {
 pub(super) fn traced(ray: &RefRay, shape: &TracedShape, a: DVec4) -> Verdict {
     let bound = (shape.half_extent)(a).length();
     trace(ray, |p| (shape.distance)(p, a), |p| (shape.normal)(p, a), bound)
+}
+
+/// A crate's own shape: its distance and normal as the crate defines them, in a sphere of
+/// radius `bound` about the origin.
+pub(super) fn own(ray: &RefRay, shape: OwnShapeRef, parameters: &Parameters, bound: f64) -> Verdict {
+    trace(ray, |p| shape.distance(parameters, p), |p| shape.normal(parameters, p), bound)
 }
 
 /// The first crossing of `distance`'s zero along the ray, with `normal` there; `bound` is the

@@ -44,7 +44,7 @@ pub fn uv(shape: &RefShape, p: DVec3) -> Option<(DVec2, DVec3)> {
             let ring = DVec3::new(p.x, 0.0, p.z) / rho;
             (DVec2::new(turn(p), 0.5 - psi / TAU), ring * psi.cos() + DVec3::Y * psi.sin())
         }
-        RefShape::Triangle { .. } | RefShape::Traced { .. } => return None,
+        RefShape::Triangle { .. } | RefShape::Traced { .. } | RefShape::Own { .. } => return None,
     })
 }
 

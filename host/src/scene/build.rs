@@ -11,7 +11,7 @@ use super::mesh::MeshData;
 use super::plan::{scene_features, Colour, HitGeometry, HitGroup, PipelinePlan};
 use super::pool::Pooled;
 use super::reach;
-use super::shape::{Formula, ShapeDesc};
+use super::shape::{Formula, OwnDesc, ShapeDesc};
 use super::texture::{SamplerDesc, TextureDesc, TextureImage};
 use glam::{Mat4, Vec3, Vec4};
 use std::collections::BTreeMap;
@@ -302,6 +302,9 @@ fn hit_group(scene: &SceneFile, shape: &ShapeDesc, material: &MaterialDesc) -> H
             naive: p.formula == Formula::Naive && p.shape.naive_module.is_some(),
             shape: SHAPES.iter().position(|s| s.name == p.shape.name).unwrap_or(0),
         },
+        ShapeDesc::Own(OwnDesc { resolved: Some((own, _)), .. }) => HitGeometry::Own(*own),
+        // Resolved before the scene is built (`Scene::from_file`); never drawn otherwise.
+        ShapeDesc::Own(_) => HitGeometry::Triangles,
         ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_) => HitGeometry::Triangles,
     };
     let flat = !matches!(material, MaterialDesc::Checker { .. });
@@ -317,6 +320,11 @@ fn hit_group(scene: &SceneFile, shape: &ShapeDesc, material: &MaterialDesc) -> H
 fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
     match shape {
         ShapeDesc::Procedural(p) => (p.kind.primitives)(&p.values).into_iter().unzip(),
+        // The crate's refusal was reported when the scene was checked (`check::check_shape`).
+        ShapeDesc::Own(OwnDesc { resolved: Some((own, values)), .. }) => {
+            own.primitives(values).unwrap_or_default().into_iter().unzip()
+        }
+        ShapeDesc::Own(_) => (Vec::new(), Vec::new()),
         ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_) => (Vec::new(), Vec::new()),
     }
 }

@@ -274,6 +274,10 @@ fn check_shape(shape: &ShapeDesc) -> Checked {
             }
             (p.kind.check)(&p.values)
         }
+        ShapeDesc::Own(own) => match &own.resolved {
+            Some((shape, values)) => shape.primitives(values).map(|_| ()),
+            None => Err(format!("kind {:?} is no kind of twinray's or of the sets'", own.kind)),
+        },
         ShapeDesc::Mesh(m) => match (&m.builtin, &m.file) {
             (Some(_), None) | (None, Some(_)) => Ok(()),
             _ => Err("a mesh needs exactly one of builtin and file".into()),

@@ -20,6 +20,7 @@ pub mod shape;
 pub mod texture;
 
 use crate::error::{Error, Result};
+use crate::sets::own::CrateShapes;
 use crate::util::input::{confined, read_text, MAX_TEXT_BYTES};
 pub use animation::Animation;
 pub use build::{frame_data, frame_uniform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
@@ -63,14 +64,20 @@ impl Scene {
     /// A panic while loading (a bug, here or in a crate, that a file reached) is an error that
     /// names the file, not a crash.
     pub fn load(arg: Option<&str>) -> Result<Scene> {
-        crate::util::crash::catching(|| Scene::load_unguarded(arg)).unwrap_or_else(|panic| {
+        Scene::load_with(arg, &[])
+    }
+
+    /// [`Scene::load`] with the kinds of the crates' `own` shapes (the sets' of a command) as
+    /// well as twinray's.
+    pub fn load_with(arg: Option<&str>, own: &[&'static CrateShapes]) -> Result<Scene> {
+        crate::util::crash::catching(|| Scene::load_unguarded(arg, own)).unwrap_or_else(|panic| {
             let path = arg.unwrap_or(DEFAULT_SCENE).to_string();
             let message = format!("twinray's loader failed on it (a bug; please report it with the file): {panic}");
             Err(Error::Scene { path, message })
         })
     }
 
-    fn load_unguarded(arg: Option<&str>) -> Result<Scene> {
+    fn load_unguarded(arg: Option<&str>, own: &[&'static CrateShapes]) -> Result<Scene> {
         if let Some(path) = arg.map(Path::new).filter(|p| gltf::is_gltf(p) && p.exists()) {
             return Scene::load_gltf(path);
         }
@@ -78,7 +85,7 @@ impl Scene {
             return Scene::load_obj(path);
         }
         let (text, source, mesh_files) = Scene::read(arg)?;
-        Scene::parse(&text, &source, mesh_files)
+        Scene::parse_with(&text, &source, mesh_files, own)
     }
 
     /// A glTF 2.0 model (`.gltf` or `.glb`) as a scene (see `gltf`); what twinray ignored
@@ -101,7 +108,7 @@ impl Scene {
 
     /// The scene of a glTF model read from `source`, checked as a scene file is.
     pub fn from_model(model: gltf::Model, source: &str) -> Result<Scene> {
-        Scene::from_file(model.file, source, MeshFiles::Given(model.meshes))
+        Scene::from_file(model.file, source, MeshFiles::Given(model.meshes), &[])
     }
 
     /// The text of the scene `load` would load, the name it goes by in errors, and where its
@@ -129,24 +136,40 @@ impl Scene {
 
     /// Parses and checks scene text and loads its meshes; `source` names it in errors.
     pub fn parse(text: &str, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
+        Scene::parse_with(text, source, mesh_files, &[])
+    }
+
+    /// [`Scene::parse`] with the kinds of the crates' `own` shapes as well as twinray's.
+    pub fn parse_with(text: &str, source: &str, mesh_files: MeshFiles, own: &[&'static CrateShapes]) -> Result<Scene> {
         let file: SceneFile = toml::from_str(text).map_err(|e| toml_error(source, text, &e))?;
-        Scene::from_file(file, source, mesh_files)
+        Scene::from_file(file, source, mesh_files, own)
     }
 
     /// Parses the scene written as the `[scene]` table of a larger TOML document (a probe
     /// case's inline scene): errors give the document's own lines and table names.
-    pub fn parse_embedded(document: &str, source: &str, mesh_files: MeshFiles) -> Result<Scene> {
+    pub fn parse_embedded(
+        document: &str,
+        source: &str,
+        mesh_files: MeshFiles,
+        own: &[&'static CrateShapes],
+    ) -> Result<Scene> {
         #[derive(serde::Deserialize)]
         struct Document {
             scene: SceneFile,
         }
         let doc: Document = toml::from_str(document).map_err(|e| toml_error(source, document, &e))?;
-        Scene::from_file(doc.scene, source, mesh_files)
+        Scene::from_file(doc.scene, source, mesh_files, own)
     }
 
     /// Checks a parsed scene, expands its grids and loads its meshes.
-    fn from_file(mut file: SceneFile, source: &str, mut mesh_files: MeshFiles) -> Result<Scene> {
+    fn from_file(
+        mut file: SceneFile,
+        source: &str,
+        mut mesh_files: MeshFiles,
+        own: &[&'static CrateShapes],
+    ) -> Result<Scene> {
         let scene_error = |message: String| Error::Scene { path: source.into(), message };
+        shape::resolve_own(file.shapes.iter_mut(), own).map_err(scene_error)?;
         if file.name.is_empty() {
             let stem = Path::new(source).file_stem().map(|s| s.to_string_lossy().into_owned());
             file.name = stem.unwrap_or_else(|| "scene".into());

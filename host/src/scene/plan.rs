@@ -1,20 +1,23 @@
 //! What the ray tracing pipeline of a scene contains: its hit groups, in the order of the
 //! shader binding table, whether it traces shadow rays, and its specialisation.
 
+use crate::sets::own::OwnShapeRef;
 use twinray_shared::bindings::{CUTOUT_NONE, LIGHT_RECT, MATERIAL_CHECKER, MATERIAL_CUTOUT, MATERIAL_EMISSIVE};
 use twinray_shared::features;
 use twinray_shared::layout::{Light, Material};
 use twinray_shared::shapes::{Shape, SHAPES, SHAPE_NAIVE};
 
-/// What a hit group intersects: triangles with the built-in test, or a registered shape with
-/// its intersection stage. Ordered as the SBT holds them: triangles, the robust shapes in
-/// registration order, then the naive variants.
+/// What a hit group intersects: triangles with the built-in test, or a registered shape or a
+/// crate's own with its intersection stage. Ordered as the SBT holds them: triangles, the
+/// robust shapes in registration order, then the naive variants, then a crate's by name.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, PartialOrd, Ord, Hash)]
 pub enum HitGeometry {
     /// Meshes: the built-in triangle test.
     Triangles,
     /// `SHAPES[shape]`, with its naive variant's intersection stage when `naive`.
     Procedural { naive: bool, shape: usize },
+    /// A crate's own shape.
+    Own(OwnShapeRef),
 }
 
 /// A hit group: its geometry, and whether its objects are cutouts (an any-hit stage that
@@ -60,6 +63,7 @@ impl HitGroup {
     /// group of flat-coloured materials and " (cutout)" for cutouts.
     pub fn name(self) -> String {
         let base = match (self.geometry, self.shape()) {
+            (HitGeometry::Own(own), _) => own.shape().name.to_string(),
             (HitGeometry::Procedural { naive: true, .. }, Some(s)) => format!("{} (naive)", s.name),
             (_, Some(s)) => s.name.to_string(),
             _ => "triangles".into(),
@@ -75,13 +79,16 @@ impl HitGroup {
     /// The registered shape of a procedural group.
     pub fn shape(self) -> Option<&'static Shape> {
         match self.geometry {
-            HitGeometry::Triangles => None,
+            HitGeometry::Triangles | HitGeometry::Own(_) => None,
             HitGeometry::Procedural { shape, .. } => SHAPES.get(shape),
         }
     }
 
     /// The intersection module, for procedural groups (triangles use the built-in test).
     pub fn intersection_module(self) -> Option<&'static str> {
+        if let HitGeometry::Own(own) = self.geometry {
+            return Some(own.shape().module);
+        }
         let naive = matches!(self.geometry, HitGeometry::Procedural { naive: true, .. });
         self.shape().and_then(|s| if naive { s.naive_module } else { Some(s.module) })
     }
@@ -102,6 +109,9 @@ impl HitGroup {
     /// `ObjectData::shape` of its objects: the shape's hit kind, plus `SHAPE_NAIVE` for a
     /// naive variant; 0 for triangles.
     pub fn shape_routine(self) -> u32 {
+        if let HitGeometry::Own(own) = self.geometry {
+            return own.shape().hit_kind;
+        }
         let naive = matches!(self.geometry, HitGeometry::Procedural { naive: true, .. });
         self.shape().map_or(0, |s| s.hit_kind + if naive { SHAPE_NAIVE } else { 0 })
     }

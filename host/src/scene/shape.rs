@@ -2,9 +2,10 @@
 //! with the keys its description lists, or a triangle mesh. The registry is the only list of
 //! kinds and keys; an unknown kind or key is an error with the file's line and column.
 
+use crate::sets::own::{CrateShapes, OwnShapeRef};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
-use twinray_shared::shapes::spec::{ParamType, ShapeKind, Value, Values};
+use twinray_shared::shapes::spec::{Param, ParamType, ShapeKind, Value, Values};
 use twinray_shared::shapes::{self, Shape, SHAPES};
 
 /// Which intersection formula a shape uses: the robust one, or the textbook one it replaced,
@@ -24,6 +25,8 @@ pub enum Formula {
 pub enum ShapeDesc {
     /// A kind drawn by a registered shape's intersection stage.
     Procedural(ProceduralDesc),
+    /// A kind of a shader crate's own, drawn by its intersection stage.
+    Own(OwnDesc),
     /// A triangle mesh: a generated one (`builtin`) or an OBJ file (`file`, relative to the
     /// scene file's folder), with flat or smooth normals.
     Mesh(MeshDesc),
@@ -55,6 +58,25 @@ pub struct ProceduralDesc {
 impl std::fmt::Debug for ProceduralDesc {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         write!(f, "{} {:?} {:?}", self.kind.name, self.values.0, self.formula)
+    }
+}
+
+/// A shape of a crate's own kind: its kind and keys as written, until the scene is loaded with
+/// the sets that know the kind ([`resolve_own`]); then the crate's shape and every key's value.
+#[derive(Clone)]
+pub struct OwnDesc {
+    pub kind: String,
+    keys: toml::Table,
+    pub resolved: Option<(OwnShapeRef, Values)>,
+}
+
+/// Written out by value, as [`ProceduralDesc`] is.
+impl std::fmt::Debug for OwnDesc {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.resolved {
+            Some((_, values)) => write!(f, "{} {:?}", self.kind, values.0),
+            None => write!(f, "{} {:?}", self.kind, self.keys),
+        }
     }
 }
 
@@ -115,11 +137,49 @@ impl<'de> Deserialize<'de> for ShapeDesc {
             return toml::Value::Table(table).try_into().map(ShapeDesc::Gltf).map_err(D::Error::custom);
         }
         let Some((shape, spec)) = shapes::kind(&kind) else {
+            // Perhaps a shader crate's own kind, known once the scene meets its set.
+            let well_formed = kind.starts_with(|c: char| c.is_ascii_lowercase())
+                && kind.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+            if well_formed {
+                return Ok(ShapeDesc::Own(OwnDesc { kind, keys: table, resolved: None }));
+            }
             let kinds = kind_names().join(", ");
             return Err(D::Error::custom(format!("unknown shape kind {kind:?} (kinds: {kinds})")));
         };
         procedural(shape, spec, table).map(ShapeDesc::Procedural).map_err(D::Error::custom)
     }
+}
+
+/// Gives every shape of a crate's own kind in `shapes` its crate's shape and values, from the
+/// kinds of `own` (the sets' crates'); an error names a kind none of them knows, or a key.
+pub fn resolve_own<'a>(
+    shapes: impl IntoIterator<Item = (&'a String, &'a mut ShapeDesc)>,
+    own: &[&'static CrateShapes],
+) -> Result<(), String> {
+    for (name, shape) in shapes {
+        let ShapeDesc::Own(desc) = shape else { continue };
+        if desc.resolved.is_some() {
+            continue;
+        }
+        let Some(found) = own.iter().find_map(|o| o.find(&desc.kind)) else {
+            let mut kinds = kind_names();
+            kinds.extend(own.iter().flat_map(|o| o.shapes.iter().map(|s| s.name)));
+            let hint = if own.is_empty() {
+                "; a shader crate's own kinds come with the set built from it (--shaders DIR)"
+            } else {
+                ""
+            };
+            return Err(format!(
+                "shape {name:?}: unknown shape kind {:?} (kinds: {}){hint}",
+                desc.kind,
+                kinds.join(", ")
+            ));
+        };
+        let values = keys(found.shape().name, found.shape().params, desc.keys.clone(), false)
+            .map_err(|e| format!("shape {name:?}: {e}"))?;
+        desc.resolved = Some((found, values));
+    }
+    Ok(())
 }
 
 /// The keys of a `kind` table, checked against the kind's description: each key known and of
@@ -129,14 +189,6 @@ fn procedural(
     kind: &'static ShapeKind,
     mut table: toml::Table,
 ) -> Result<ProceduralDesc, String> {
-    let mut values = Vec::new();
-    for param in kind.params {
-        let value = match table.remove(param.name) {
-            Some(v) => parse(&v, param.ty).map_err(|e| format!("{}: {e}", param.name))?,
-            None => param.default.ok_or_else(|| format!("missing key `{}` for a {}", param.name, kind.name))?,
-        };
-        values.push((param.name, value));
-    }
     let formula = match table.remove("formula") {
         Some(v) if shape.naive_module.is_some() => {
             v.try_into::<Formula>().map_err(|e| format!("formula: {}", e.to_string().trim()))?
@@ -144,14 +196,29 @@ fn procedural(
         Some(_) => return Err(format!("a {} has no naive variant, so no `formula` key", kind.name)),
         None => Formula::Robust,
     };
+    let values = keys(kind.name, kind.params, table, shape.naive_module.is_some())?;
+    Ok(ProceduralDesc { shape, kind, values, formula })
+}
+
+/// The values of `params` in `table` (defaults where left out); an unknown key is an error
+/// that lists the kind's keys (and `formula`, where the kind takes one).
+fn keys(kind: &str, params: &'static [Param], mut table: toml::Table, formula: bool) -> Result<Values, String> {
+    let mut values = Vec::new();
+    for param in params {
+        let value = match table.remove(param.name) {
+            Some(v) => parse(&v, param.ty).map_err(|e| format!("{}: {e}", param.name))?,
+            None => param.default.ok_or_else(|| format!("missing key `{}` for a {kind}", param.name))?,
+        };
+        values.push((param.name, value));
+    }
     if let Some(key) = table.keys().next() {
-        let mut known: Vec<&str> = kind.params.iter().map(|p| p.name).collect();
-        if shape.naive_module.is_some() {
+        let mut known: Vec<&str> = params.iter().map(|p| p.name).collect();
+        if formula {
             known.push("formula");
         }
-        return Err(format!("unknown key `{key}` for a {} (keys: kind, {})", kind.name, known.join(", ")));
+        return Err(format!("unknown key `{key}` for a {kind} (keys: kind, {})", known.join(", ")));
     }
-    Ok(ProceduralDesc { shape, kind, values: Values(values), formula })
+    Ok(Values(values))
 }
 
 fn parse(value: &toml::Value, ty: ParamType) -> Result<Value, String> {
@@ -204,7 +271,8 @@ impl ShapeDesc {
     pub fn primitive_count(&self) -> u64 {
         match self {
             ShapeDesc::Procedural(p) => (p.kind.count)(&p.values),
-            ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_) => 0,
+            // The crate's primitives are made, and counted, when the shape is checked.
+            ShapeDesc::Own(_) | ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_) => 0,
         }
     }
 }
@@ -234,7 +302,7 @@ mod tests {
     #[test]
     fn unknown_kinds_and_keys_wrong_types_and_missing_keys_are_named() {
         let cases = [
-            ("kind = \"capsul\"", "unknown shape kind \"capsul\" (kinds: sphere"),
+            ("kind = \"Capsule!\"", "unknown shape kind \"Capsule!\" (kinds: sphere"),
             (
                 "kind = \"sphere\"\nradius = 1.0\nradiuss = 2.0",
                 "unknown key `radiuss` for a sphere (keys: kind, radius, formula)",
@@ -249,5 +317,17 @@ mod tests {
             let e = shape(text).err().unwrap_or_else(|| panic!("{text:?} parsed"));
             assert!(e.contains(message), "{text:?}: {e}");
         }
+    }
+
+    /// A kind twinray lacks may be a crate's, so it is refused when the scene meets its sets,
+    /// naming the shape, the kinds there are, and where a crate's kinds come from.
+    #[test]
+    fn a_kind_of_no_set_is_refused_when_the_scene_is_resolved() {
+        let ShapeDesc::Own(own) = shape("kind = \"capsul\"\nradius = 1").unwrap() else { panic!("a crate's kind") };
+        assert_eq!((own.kind.as_str(), own.resolved.is_none()), ("capsul", true));
+        let mut shapes = std::collections::BTreeMap::from([("c".to_string(), ShapeDesc::Own(own))]);
+        let e = resolve_own(shapes.iter_mut(), &[]).unwrap_err();
+        assert!(e.starts_with("shape \"c\": unknown shape kind \"capsul\" (kinds: sphere"), "{e}");
+        assert!(e.ends_with("a shader crate's own kinds come with the set built from it (--shaders DIR)"), "{e}");
     }
 }

@@ -6,6 +6,7 @@
 //! built once.
 
 use super::module::{load, Origin};
+use super::own::{CrateShapes, OwnShapes};
 use super::set::ShaderSet;
 use super::spec::{Key, SetSpec, Source};
 use crate::error::{Error, Result};
@@ -46,6 +47,12 @@ impl Loader {
             Found::Folder(dir) => {
                 let mut set = ShaderSet::uniform(Language::Rust);
                 set.set_where(|_| true, |m| from_folder(m, &dir)).map_err(fail)?;
+                let library = dir.join(twinray_compile::cpu::LIBRARY);
+                let shapes = library.is_file().then(|| CrateShapes::load(&library)).transpose().map_err(fail)?;
+                let names = own_modules(&dir);
+                if shapes.is_some() || !names.is_empty() {
+                    set.set_own(OwnShapes::new(shapes, &names, |m| from_folder(m, &dir)).map_err(fail)?);
+                }
                 set
             }
             Found::File(file) => {
@@ -125,6 +132,18 @@ pub fn summary(dir: &Path, built: &folder::Built) -> String {
     let what = if built.rebuilt { "built" } else { "up to date" };
     let (modules, contract, seconds) = (built.modules, &built.contract, built.seconds);
     format!("{}: {what}, {modules} modules (twinray-shared {contract}), {seconds:.1} s", dir.display())
+}
+
+/// The intersection modules of `dir` that are no module of twinray's: those of a crate's own
+/// shapes (`SHAPE_intersection.spv`), by name.
+fn own_modules(dir: &Path) -> Vec<String> {
+    let files = std::fs::read_dir(dir).into_iter().flatten().flatten();
+    let mut names: Vec<String> = files
+        .filter_map(|e| e.file_name().to_str().and_then(|n| n.strip_suffix(".spv")).map(str::to_string))
+        .filter(|n| n.ends_with("_intersection") && !MODULES.iter().any(|m| m.name == n))
+        .collect();
+    names.sort();
+    names
 }
 
 /// Module `spec` of a folder set: `DIR/NAME.spv`, checked, or missing.

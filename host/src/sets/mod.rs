@@ -12,6 +12,7 @@ mod copies;
 pub mod inspect;
 pub mod load;
 mod module;
+pub mod own;
 mod set;
 pub mod spec;
 mod validate;

@@ -3,6 +3,7 @@
 //! `super::load::Loader`; a loaded set prints as the text that loads it back.
 
 use super::module::{Origin, StageModule};
+use super::own::{CrateShapes, OwnShapes};
 use super::spec::SetSpec;
 use crate::error::{Error, Result};
 use std::fmt;
@@ -17,11 +18,13 @@ pub struct ShaderSet {
     text: Option<String>,
     /// 0 for the set itself; N for its Nth salted copy (see `copy`).
     copy: u32,
+    /// The shapes of the crate the set was built from, when it lists any.
+    own: Option<&'static OwnShapes>,
 }
 
 impl PartialEq for ShaderSet {
     fn eq(&self, other: &Self) -> bool {
-        self.origins == other.origins && self.copy == other.copy
+        self.origins == other.origins && self.copy == other.copy && self.own == other.own
     }
 }
 
@@ -30,7 +33,7 @@ impl Eq for ShaderSet {}
 impl ShaderSet {
     /// Every module from the built-in set of `language`.
     pub fn uniform(language: Language) -> Self {
-        ShaderSet { origins: vec![Origin::Builtin(language); MODULES.len()], text: None, copy: 0 }
+        ShaderSet { origins: vec![Origin::Builtin(language); MODULES.len()], text: None, copy: 0, own: None }
     }
 
     /// Copy `n` of this set (n > 0): every module salted (`copies::salted`) so that the driver
@@ -73,14 +76,47 @@ impl ShaderSet {
 
     /// Whether this set takes the module called `name` from a folder that has no file for it.
     pub fn lacks(&self, name: &str) -> bool {
-        MODULES.iter().zip(&self.origins).any(|(m, o)| m.name == name && matches!(o, Origin::Missing(_)))
+        let own = self.own.iter().flat_map(|o| o.modules.iter().map(|(m, o)| (m, o)));
+        MODULES.iter().zip(&self.origins).chain(own).any(|(m, o)| m.name == name && matches!(o, Origin::Missing(_)))
     }
 
-    /// The module called `name` in this set.
+    /// The shapes of the crate this set was built from, when it lists any.
+    pub fn own_shapes(&self) -> Option<&'static OwnShapes> {
+        self.own
+    }
+
+    /// The crates' shapes of `sets`, each crate once: the kinds a scene rendered with them may
+    /// name beside twinray's.
+    pub fn own_kinds(sets: &[&ShaderSet]) -> Vec<&'static CrateShapes> {
+        let mut out: Vec<&'static CrateShapes> = Vec::new();
+        for own in sets.iter().filter_map(|s| s.own.and_then(|o| o.shapes.as_ref())) {
+            if !out.iter().any(|o| std::ptr::eq(*o, own)) {
+                out.push(own);
+            }
+        }
+        out
+    }
+
+    /// Gives the set its crate's shapes, kept for the rest of the run (a scene and the
+    /// reference refer to them as long as the set's pipelines may run).
+    pub(super) fn set_own(&mut self, own: OwnShapes) {
+        self.own = Some(Box::leak(Box::new(own)));
+    }
+
+    /// The module called `name` in this set: one of the catalog, or of the crate's own shapes.
     pub fn module(&self, name: &str) -> Result<StageModule> {
-        let spec = twinray_shared::catalog::module(name)
-            .ok_or_else(|| Error::Unsupported(format!("no module {name} in the catalog")))?;
-        self.resolve(&spec)
+        if let Some(spec) = twinray_shared::catalog::module(name) {
+            return self.resolve(&spec);
+        }
+        let own = self.own.iter().flat_map(|o| o.modules.iter()).find(|(m, _)| m.name == name);
+        match own {
+            Some((spec, origin)) => self.resolve_from(spec, origin),
+            None if name.ends_with("_intersection") => Err(Error::Input(format!(
+                "shader set {self}: no module {name}, the intersection stage of a crate's own shape: the set was \
+                 not built from a crate (or its GLSL twins) that has the shape"
+            ))),
+            None => Err(Error::Input(format!("shader set {self}: no module {name} in twinray's catalog"))),
+        }
     }
 
     /// The module for `spec` in this set.
@@ -89,6 +125,10 @@ impl ShaderSet {
         let origin = index.and_then(|i| self.origins.get(i)).ok_or_else(|| {
             Error::Unsupported(format!("module {} is not in the catalog this build knows", spec.name))
         })?;
+        self.resolve_from(spec, origin)
+    }
+
+    fn resolve_from(&self, spec: &ModuleSpec, origin: &Origin) -> Result<StageModule> {
         let module = origin.resolve(spec).map_err(|e| Error::Input(format!("shader set {self}: {e}")))?;
         if self.copy == 0 {
             return Ok(module);

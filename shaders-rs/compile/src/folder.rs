@@ -90,7 +90,18 @@ pub fn build(dir: &Path, options: Options) -> Result<Built> {
     lock.lock()?;
     let set = set_dir(dir);
     let stamp = dir.join("target/twinray/set.stamp");
-    let hash = format!("{:016x}", content_hash(dir, &version)?);
+    // The crate whose shared library is built for the CPU beside the modules: the folder's own,
+    // or, for GLSL twins inside a crate, the crate's, whose shapes the twins draw.
+    let cpu_crate = match kind {
+        Sources::Crate => Some(dir),
+        Sources::Glsl => dir.parent(),
+    }
+    .filter(|d| crate::cpu::has_shared(d));
+    let mut hash = content_hash(dir, &version)?;
+    if let Some(owner) = cpu_crate.filter(|d| *d != dir) {
+        hash ^= content_hash(&owner.join(crate::cpu::SHARED_DIR), &version)?.rotate_left(1);
+    }
+    let hash = format!("{hash:016x}");
     let unchanged = std::fs::read_to_string(&stamp).is_ok_and(|s| s.trim() == hash) && set.is_dir();
     if unchanged && !options.force {
         let modules = count_modules(&set);
@@ -106,9 +117,14 @@ pub fn build(dir: &Path, options: Options) -> Result<Built> {
         Sources::Crate => compile_crate(dir, &building, options.timeout)?,
         Sources::Glsl => {
             crate::build_glsl(dir, &building, Output::OnFailure, 0)?;
-            MODULES.iter().map(|m| m.name.to_string()).collect()
+            let mut names: Vec<String> = MODULES.iter().map(|m| m.name.to_string()).collect();
+            names.extend(crate::build_own_glsl(dir, &building, Output::OnFailure)?);
+            names
         }
     };
+    if let Some(owner) = cpu_crate {
+        crate::cpu::build(owner, &building, options.timeout)?;
+    }
     let language = if kind == Sources::Crate { Language::Rust } else { Language::Glsl };
     postprocess(&building, &names, language, &format!("{}{version}", contract::RECORD_PREFIX))?;
     if set.exists() {
@@ -129,7 +145,8 @@ fn require(tools: &[&str]) -> Result<()> {
 }
 
 fn count_modules(set: &Path) -> usize {
-    MODULES.iter().filter(|m| set.join(format!("{}.spv", m.name)).is_file()).count()
+    let files = std::fs::read_dir(set).into_iter().flatten().flatten();
+    files.filter(|e| e.path().extension().is_some_and(|x| x == "spv")).count()
 }
 
 /// Compiles the crate in `dir` into `out` under `timeout`, and returns its entry points, each
@@ -183,10 +200,23 @@ fn warnings(stderr: &str) -> String {
 fn entry_points(dir: &Path, out: &Path) -> Result<Vec<String>> {
     let mut names = Vec::new();
     for entry in std::fs::read_dir(out)? {
-        let path = entry?.path();
-        let Some(name) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else { continue };
+        let mut path = entry?.path();
+        let Some(mut name) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else { continue };
         if path.extension().is_some_and(|e| e == "spv") {
-            if !MODULES.iter().any(|m| m.name == name) {
+            // rust-gpu names the module of an entry point in a module by its path
+            // (`capsule::capsule_intersection`); twinray names modules by the function alone.
+            if let Some((_, last)) = name.rsplit_once("::") {
+                let plain = out.join(format!("{last}.spv"));
+                if plain.exists() {
+                    bail!("{}: two entry points are called `{last}` (one is {name})", dir.display());
+                }
+                std::fs::rename(&path, &plain)?;
+                (path, name) = (plain, last.to_string());
+            }
+            // A crate with a shared library may add shapes, whose intersection modules the
+            // host checks against the shapes the library lists.
+            let own_shape = crate::cpu::has_shared(dir) && name.ends_with("_intersection");
+            if !own_shape && !MODULES.iter().any(|m| m.name == name) {
                 bail!(
                     "{}: entry point `{name}` is no module of twinray's catalog (twinray_shared::catalog names them all)",
                     dir.display()
@@ -251,7 +281,7 @@ fn metadata(dir: &Path, no_deps: bool) -> Result<serde_json::Value> {
 }
 
 /// The package whose manifest is `dir/Cargo.toml`, as `cargo metadata --no-deps` lists it.
-fn package(dir: &Path) -> Result<serde_json::Value> {
+pub(crate) fn package(dir: &Path) -> Result<serde_json::Value> {
     let manifest = dir.join("Cargo.toml").canonicalize().with_context(|| format!("{}", dir.display()))?;
     let listed = metadata(dir, true)?;
     let packages = listed["packages"].as_array().cloned().unwrap_or_default();
@@ -288,13 +318,15 @@ fn content_hash(dir: &Path, version: &str) -> Result<u64> {
 
 /// The files of the sources in `dir` a build reads, relative to it, sorted: every file but
 /// those in `target/` folders and hidden ones, and for a crate none of its GLSL twins (a set
-/// of their own, whose edits do not rebuild the crate).
+/// of their own, whose edits do not rebuild the crate) and none of its `scenes/` and `probes/`
+/// (what it is rendered and probed on, not built from).
 pub fn source_files(dir: &Path) -> Result<Vec<PathBuf>> {
     let mut files = Vec::new();
     collect(dir, dir, &mut files)?;
     if sources_in(dir) == Some(Sources::Crate) {
         let twin = |a: &Path| !a.as_os_str().is_empty() && dir.join(a).join("raygen.rgen").is_file();
         files.retain(|f| !f.ancestors().skip(1).any(twin));
+        files.retain(|f| !f.starts_with("scenes") && !f.starts_with("probes"));
     }
     files.sort();
     Ok(files)

@@ -4,10 +4,12 @@
 //! shaders` and `watch` use it on this checkout; `twinray view` on any checkout it is given.
 
 pub mod builder;
+pub mod cpu;
 mod exact;
 mod exit;
 pub mod folder;
 mod process;
+pub mod scaffold;
 pub mod starter;
 pub mod uniformity;
 
@@ -18,7 +20,7 @@ pub use exit::exit_words;
 pub use process::{have, output, run};
 use std::path::Path;
 use std::process::Command;
-use twinray_shared::catalog::{GlslSource, Language, ModuleSpec, MODULES};
+use twinray_shared::catalog::{module, own_intersection, GlslSource, Language, ModuleSpec, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 
 /// The sources of each set, relative to a checkout's root: a change under them rebuilds it.
@@ -94,7 +96,12 @@ pub(crate) fn postprocess(dir: &Path, names: &[String], language: Language, reco
     if language == Language::Rust {
         strip_debug_info(dir, names)?;
     }
-    for spec in MODULES.iter().filter(|m| names.iter().any(|n| n == m.name)) {
+    // A crate's own shapes' modules (folder.rs lets in only `*_intersection` ones) are checked
+    // as intersection modules; their hit kinds are the host's to check, against the crate's list.
+    let own = names.iter().filter(|n| module(n).is_none()).filter_map(|n| n.strip_suffix("_intersection"));
+    let specs: Vec<_> = MODULES.iter().copied().filter(|m| names.iter().any(|n| n == m.name)).collect();
+    for spec in specs.into_iter().chain(own.map(|shape| own_intersection(shape, 0))) {
+        let spec = &spec;
         let path = dir.join(format!("{}.spv", spec.name));
         let label = format!("{} {}", language.name(), spec.name);
         record_contract(&path, record)?;
@@ -159,7 +166,12 @@ pub(crate) fn run_builder(builder: &Path, crate_dir: &Path, out: &Path, target: 
 /// `NonUniform`, which rust-gpu's inliner drops (`uniformity`), and the error-free arithmetic
 /// of `twinray_shared::exact` `NoContraction`, which rust-gpu cannot write (`exact`).
 fn strip_debug_info(dir: &Path, names: &[String]) -> Result<()> {
-    for spec in MODULES.iter().filter(|m| names.iter().any(|n| n == m.name)) {
+    // A crate's own shapes' modules (folder.rs lets in only `*_intersection` ones) are checked
+    // as intersection modules; their hit kinds are the host's to check, against the crate's list.
+    let own = names.iter().filter(|n| module(n).is_none()).filter_map(|n| n.strip_suffix("_intersection"));
+    let specs: Vec<_> = MODULES.iter().copied().filter(|m| names.iter().any(|n| n == m.name)).collect();
+    for spec in specs.into_iter().chain(own.map(|shape| own_intersection(shape, 0))) {
+        let spec = &spec;
         let path = dir.join(format!("{}.spv", spec.name));
         // Before the names go: they say which functions are exact.
         let (exact, _) =
@@ -207,6 +219,28 @@ pub(crate) fn build_glsl(include: &Path, out: &Path, output: Output, without: u3
             .with_context(|| format!("compiling {}", source.display()))?;
     }
     Ok(())
+}
+
+/// Compiles the intersection stages of a crate's own shapes among the GLSL twins in `dir`
+/// (`SHAPE_intersection.rint`, a stage file of its own) into `out`; returns their modules' names.
+pub(crate) fn build_own_glsl(dir: &Path, out: &Path, output: Output) -> Result<Vec<String>> {
+    let mut names = Vec::new();
+    for entry in std::fs::read_dir(dir).with_context(|| format!("listing {}", dir.display()))? {
+        let path = entry?.path();
+        let Some(stem) = path.file_name().and_then(|n| n.to_str()).and_then(|n| n.strip_suffix(".rint")) else {
+            continue;
+        };
+        if !stem.ends_with("_intersection") || module(stem).is_some() {
+            continue;
+        }
+        let mut command = Command::new("glslangValidator");
+        command.args(["-V", "--target-env", "spirv1.4", "-o"]).arg(out.join(format!("{stem}.spv")));
+        run_tool(output, command.arg(format!("-I{}", dir.display())).arg(&path))
+            .with_context(|| format!("compiling {}", path.display()))?;
+        names.push(stem.to_string());
+    }
+    names.sort();
+    Ok(names)
 }
 
 fn run_tool(output: Output, command: &mut Command) -> Result<()> {

@@ -71,7 +71,11 @@ pub fn write(dir: &Path, name: &str, glsl: bool) -> Result<Written> {
         }
         std::fs::write(&full, bytes).with_context(|| format!("writing {}", full.display()))?;
     }
-    Ok(Written { files: files.into_iter().map(|(p, _)| p).collect() })
+    // The crate's own shared library, where `twinray new --shape` puts shapes.
+    let shared = crate::scaffold::ensure_shared(dir, name)?;
+    let mut written: Vec<PathBuf> = files.into_iter().map(|(p, _)| p).collect();
+    written.extend(shared.into_iter().filter(|p| !written.contains(p)).collect::<Vec<_>>());
+    Ok(Written { files: written })
 }
 
 /// Replaces `from` by `to` in `text`, failing when `from` is not there: the embedded file
@@ -102,6 +106,11 @@ fn manifest(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
 /// name, then version), so that a build does not rewrite the file.
 fn lock(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
     let text = swap(&String::from_utf8_lossy(bytes), "name = \"twinray-stages\"", &format!("name = \"{name}\""))?;
+    Ok(sorted_lock(&text).into_bytes())
+}
+
+/// A lock file's packages in cargo's order (by name, then version), as cargo writes them.
+pub(crate) fn sorted_lock(text: &str) -> String {
     let mut parts: Vec<&str> = text.split("[[package]]\n").collect();
     let header = parts.remove(0);
     let key = |block: &&str| -> (String, String) {
@@ -117,7 +126,7 @@ fn lock(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
             out.push('\n');
         }
     }
-    Ok(out.trim_end().to_string().into_bytes().into_iter().chain(*b"\n").collect())
+    format!("{}\n", out.trim_end())
 }
 
 /// The embedded builder's sources (`shaders-rs/builder`), for a machine without a checkout.

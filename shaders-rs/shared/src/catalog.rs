@@ -241,6 +241,15 @@ pub fn module(name: &str) -> Option<ModuleSpec> {
     MODULES.iter().copied().find(|m| m.name == name)
 }
 
+/// The intersection module of a crate's own shape `shape` ([`crate::custom`]): `SHAPE_intersection`,
+/// whose GLSL twin is `shapes/SHAPE.glsl` with `SHAPE_intersect`, as a built-in shape's is. Its
+/// names are leaked: a run reads a crate's shapes once and keeps them.
+pub fn own_intersection(shape: &str, hit_kind: u32) -> ModuleSpec {
+    let name: &'static str = Box::leak(format!("{shape}_intersection").into_boxed_str());
+    let shape: &'static str = Box::leak(shape.to_string().into_boxed_str());
+    ModuleSpec { name, stage: Stage::Intersection, glsl: GlslSource::Shape { shape, hit_kind, naive: false } }
+}
+
 impl ModuleSpec {
     /// The entry point's name in this language's module.
     pub fn entry_point(&self, language: Language) -> &'static str {

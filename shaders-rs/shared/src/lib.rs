@@ -6,6 +6,8 @@
 pub mod bindings;
 pub mod camera;
 pub mod contract;
+#[cfg(not(target_arch = "spirv"))]
+pub mod custom;
 pub mod exact;
 pub mod features;
 pub mod layout;

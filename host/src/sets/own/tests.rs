@@ -1,0 +1,79 @@
+use super::*;
+use twinray_shared::custom::CustomShape;
+use twinray_shared::shapes::spec::single;
+
+/// A capsule about y of `radius`, its caps' centres `length` apart, as a crate would list it.
+const CAPSULE: CustomShape = CustomShape {
+    name: "capsule",
+    about: "a capsule about y",
+    hit_kind: 40,
+    params: &[Param::positive("radius"), Param::positive("length")],
+    check: |v| if v.number("radius") > v.number("length") { Err("radius must be below length".into()) } else { Ok(()) },
+    primitives: |v| {
+        let (r, l) = (v.number("radius"), v.number("length"));
+        single(Vec4::new(r, l / 2.0, 0.0, 0.0), Vec3::new(r, l / 2.0 + r, r))
+    },
+    distance: |p, q| (p - DVec3::new(0.0, p.y.clamp(-q.a.y, q.a.y), 0.0)).length() - q.a.x,
+    normal: |p, q| p - DVec3::new(0.0, p.y.clamp(-q.a.y, q.a.y), 0.0),
+};
+
+/// What the test's C functions read; `with_list` changes it, one test at a time.
+static LIST: std::sync::RwLock<&'static [CustomShape]> = std::sync::RwLock::new(&[CAPSULE]);
+
+fn list() -> &'static [CustomShape] {
+    *LIST.read().unwrap_or_else(|e| e.into_inner())
+}
+
+unsafe extern "C" fn describe(out: *mut u8, capacity: usize) -> usize {
+    unsafe { abi::describe(list(), out, capacity) }
+}
+unsafe extern "C" fn primitives(s: u32, v: *const f64, n: usize, o: *mut f32, c: usize, m: *mut u8, mc: usize) -> i64 {
+    unsafe { abi::primitives(list(), s, v, n, o, c, m, mc) }
+}
+unsafe extern "C" fn distance(s: u32, q: *const f64, p: *const f64) -> f64 {
+    unsafe { abi::distance(list(), s, q, p) }
+}
+unsafe extern "C" fn normal(s: u32, q: *const f64, p: *const f64, o: *mut f64) {
+    unsafe { abi::normal(list(), s, q, p, o) }
+}
+
+const FUNCTIONS: Functions = Functions { describe, primitives, distance, normal };
+
+static LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// The crate shapes of `shapes`, read through the C functions.
+fn with_list(shapes: &'static [CustomShape]) -> Result<CrateShapes, String> {
+    let _one = LOCK.lock().unwrap_or_else(|e| e.into_inner());
+    *LIST.write().unwrap_or_else(|e| e.into_inner()) = shapes;
+    let read = CrateShapes::from_functions("test".into(), FUNCTIONS);
+    *LIST.write().unwrap_or_else(|e| e.into_inner()) = &[CAPSULE];
+    read
+}
+
+#[test]
+fn a_crates_shape_is_read_with_its_keys_and_computes_through_its_functions() {
+    let shapes = with_list(&[CAPSULE]).unwrap();
+    let (index, capsule) = shapes.shape("capsule").unwrap();
+    assert_eq!((index, capsule.module, capsule.hit_kind), (0, "capsule_intersection", 40));
+    assert_eq!(capsule.params.iter().map(|p| p.name).collect::<Vec<_>>(), ["radius", "length"]);
+    let values = Values(vec![("radius", Value::Number(0.5)), ("length", Value::Number(2.0))]);
+    let made = shapes.primitives(0, &values).unwrap();
+    assert_eq!(made.len(), 1);
+    assert_eq!(made[0].0.a, Vec4::new(0.5, 1.0, 0.0, 0.0));
+    assert_eq!((made[0].1.min, made[0].1.max), (Vec3::new(-0.5, -1.5, -0.5), Vec3::new(0.5, 1.5, 0.5)));
+    let fat = Values(vec![("radius", Value::Number(3.0)), ("length", Value::Number(2.0))]);
+    assert_eq!(shapes.primitives(0, &fat).unwrap_err(), "radius must be below length");
+    let q = Parameters::of(&made[0].0);
+    assert_eq!(shapes.distance(0, &q, DVec3::new(2.0, 0.0, 0.0)), 1.5);
+    assert_eq!(shapes.normal(0, &q, DVec3::new(0.0, 3.0, 0.0)), DVec3::new(0.0, 2.0, 0.0));
+}
+
+#[test]
+fn a_list_twinray_cannot_use_is_refused_by_name() {
+    let mut sphere = CAPSULE;
+    sphere.name = "sphere";
+    let e = with_list(Box::leak(Box::new([sphere]))).unwrap_err();
+    assert!(e.contains("twinray has a shape kind of that name"), "{e}");
+    let e = with_list(Box::leak(Box::new([CAPSULE, CAPSULE]))).unwrap_err();
+    assert!(e.contains("listed twice"), "{e}");
+}
