@@ -15,7 +15,6 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     } else {
         args.scenes.clone()
     };
-    let scenes = names.iter().map(|n| Scene::load(Some(n))).collect::<Result<Vec<_>, _>>()?;
     let (spp, shadow_spp) = (sample_counts("--spp", &args.spp)?, sample_counts("--shadow-spp", &args.shadow_spp)?);
     if spp.is_empty() {
         return Err(Error::Input("--spp needs at least one sample count".into()).into());
@@ -29,6 +28,9 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
     }
     let sets = global.load_all("--sets", &twinray_host::sets::parse_specs(&args.sets)?)?;
     let reference_set = global.load("--reference-set", &args.reference_set)?;
+    // The sets first: a scene may name the kinds of the crates they were built from.
+    let own = twinray_host::ShaderSet::own_kinds(&sets.iter().chain([&reference_set]).collect::<Vec<_>>());
+    let scenes = names.iter().map(|n| Scene::load_with(Some(n), &own)).collect::<Result<Vec<_>, _>>()?;
     let probes = probes(args.probes.as_deref())?;
     let cache = args.cache.clone().unwrap_or_else(twinray_host::reference::image::default_cache);
     let isolation = (args.processes > 0).then(|| bench::Isolation {

@@ -12,7 +12,7 @@ use twinray_host::render::{render_frames, FrameRange};
 use twinray_host::util::apng::AnimatedPng;
 use twinray_host::util::output::{check_png_target, write_png};
 use twinray_host::util::stats::median;
-use twinray_host::{Error, Scene};
+use twinray_host::{Error, Scene, ShaderSet};
 
 /// `STEM-NNNN.png` beside `out`.
 fn numbered(out: &Path, frame: u32) -> PathBuf {
@@ -25,11 +25,11 @@ fn fps(scene: &Scene) -> f32 {
 }
 
 pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Result<ExitCode> {
-    let scene = Scene::load(args.scene.as_deref())?;
-    let frames = range.of(&scene)?;
-    let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     check_png_target(&args.out)?;
     let shaders = global.load("--shaders", &args.shaders)?;
+    let scene = Scene::load_with(args.scene.as_deref(), &ShaderSet::own_kinds(&[&shaders]))?;
+    let frames = range.of(&scene)?;
+    let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     let ctx = context(global)?;
     let mode = args.animation.mode();
     let mut movie = AnimatedPng::create(&args.out, (opts.width, opts.height), frames.len() as u32, fps(&scene))?;
@@ -109,14 +109,14 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
 }
 
 pub fn compare(global: &GlobalArgs, args: CompareArgs, range: FrameRange) -> Result<ExitCode> {
-    let scene = Scene::load(args.scene.as_deref())?;
-    let frames = range.of(&scene)?;
-    let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
     if args.out_dir.exists() && !args.out_dir.is_dir() {
         return Err(Error::Input(format!("--out-dir {}: exists and is not a directory", args.out_dir.display())).into());
     }
     let a = global.load("--a", &args.a)?;
     let b = global.load("--b", &args.b)?;
+    let scene = Scene::load_with(args.scene.as_deref(), &ShaderSet::own_kinds(&[&a, &b]))?;
+    let frames = range.of(&scene)?;
+    let opts = render_options(&scene, &args.frame, COMPARE_TRACES)?;
     let ctx = context(global)?;
     std::fs::create_dir_all(&args.out_dir).map_err(|source| Error::Io {
         what: "creating",

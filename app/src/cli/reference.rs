@@ -9,10 +9,12 @@ use std::process::ExitCode;
 use twinray_host::scene::check_size;
 use twinray_host::sets::SetSpec;
 use twinray_host::util::output::{check_image_target, write_image};
-use twinray_host::{Error, Scene};
+use twinray_host::{Error, Scene, ShaderSet};
 
 pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
-    let scene = Scene::load(args.scene.as_deref())?;
+    // The set first: a scene may name the kinds of the crate it was built from.
+    let shaders = global.load("--shaders", &args.shaders)?;
+    let scene = Scene::load_with(args.scene.as_deref(), &ShaderSet::own_kinds(&[&shaders]))?;
     let size = (args.width.unwrap_or(scene.file.image.width), args.height.unwrap_or(scene.file.image.height));
     check_size(size.0, size.1).map_err(Error::Input)?;
     twinray_host::reference::image::frames(args.spp)?;
@@ -20,7 +22,6 @@ pub fn reference(global: &GlobalArgs, args: ReferenceArgs) -> Result<ExitCode> {
         check_image_target(out)?;
     }
     let cache = args.cache.unwrap_or_else(twinray_host::reference::image::default_cache);
-    let shaders = global.load("--shaders", &args.shaders)?;
     let ctx = context(global)?;
     let start = std::time::Instant::now();
     let r = twinray_host::reference::image::reference(&ctx, &scene, &shaders, size, args.spp, &cache)?;

@@ -5,7 +5,7 @@
 //! library lands in the set's folder as [`LIBRARY`]; a crate without `shared/` has none.
 
 use crate::builder::nightly;
-use crate::folder::package;
+use crate::metadata::package;
 use crate::process::{output_within, Finished};
 use anyhow::{anyhow, bail, Context, Result};
 use std::path::{Path, PathBuf};

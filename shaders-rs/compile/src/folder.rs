@@ -4,7 +4,8 @@
 //! folder's `target/twinray/set/`, and nothing else of the folder is written; a folder whose
 //! files have not changed since its last build is not built again.
 
-use crate::builder::{self, nightly, NIGHTLY};
+use crate::builder::{self, NIGHTLY};
+use crate::metadata::{metadata, package};
 use crate::process::{output_within, Finished};
 use crate::{postprocess, process::have, run_builder, Output};
 use anyhow::{anyhow, bail, Context, Result};
@@ -263,31 +264,6 @@ fn crate_contract(dir: &Path) -> Result<String> {
         }
     };
     version.ok_or_else(|| anyhow!("{}: cargo names no version of twinray-shared", dir.display()))
-}
-
-/// `cargo metadata` of the package in `dir`, alone (`no_deps`) or with its resolved graph.
-fn metadata(dir: &Path, no_deps: bool) -> Result<serde_json::Value> {
-    let mut command = nightly("cargo");
-    command.args(["metadata", "--format-version", "1", "--manifest-path"]).arg(dir.join("Cargo.toml"));
-    if no_deps {
-        command.arg("--no-deps");
-    }
-    let Finished { status, stdout, stderr } = output_within(&mut command, Duration::from_secs(300))?;
-    if !status.is_some_and(|s| s.success()) {
-        eprint!("{stderr}");
-        bail!("{}: cargo cannot read the crate (cargo's errors are above)", dir.display());
-    }
-    serde_json::from_str(&stdout).context("reading cargo metadata")
-}
-
-/// The package whose manifest is `dir/Cargo.toml`, as `cargo metadata --no-deps` lists it.
-pub(crate) fn package(dir: &Path) -> Result<serde_json::Value> {
-    let manifest = dir.join("Cargo.toml").canonicalize().with_context(|| format!("{}", dir.display()))?;
-    let listed = metadata(dir, true)?;
-    let packages = listed["packages"].as_array().cloned().unwrap_or_default();
-    packages.into_iter().find(|p| p["manifest_path"].as_str().is_some_and(|m| Path::new(m) == manifest)).ok_or_else(
-        || anyhow!("{}: a workspace without a package of its own: give the shader crate's folder", dir.display()),
-    )
 }
 
 /// The contract a GLSL folder was written for: the version its generated layout include names.

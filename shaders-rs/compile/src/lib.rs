@@ -8,6 +8,7 @@ pub mod cpu;
 mod exact;
 mod exit;
 pub mod folder;
+mod metadata;
 mod process;
 pub mod scaffold;
 pub mod starter;

@@ -161,7 +161,27 @@ fn with_locked_shared(lock: &str, name: &str, shared: &str) -> Result<String> {
     text.push_str(&format!(
         "\n[[package]]\nname = \"{shared}\"\nversion = \"0.1.0\"\ndependencies = [\n \"spirv-std\",\n \"twinray-shared\",\n]\n"
     ));
-    Ok(crate::starter::sorted_lock(&text))
+    Ok(sorted_lock(&text))
+}
+
+/// A lock file's packages in cargo's order (by name, then version), as cargo writes them.
+pub(crate) fn sorted_lock(text: &str) -> String {
+    let mut parts: Vec<&str> = text.split("[[package]]\n").collect();
+    let header = parts.remove(0);
+    let key = |block: &&str| -> (String, String) {
+        let field = |f: &str| block.lines().find_map(|l| l.strip_prefix(f)).unwrap_or_default().to_string();
+        (field("name = "), field("version = "))
+    };
+    parts.sort_by_key(key);
+    let mut out = header.to_string();
+    for part in parts {
+        out.push_str("[[package]]\n");
+        out.push_str(part);
+        if !out.ends_with("\n\n") {
+            out.push('\n');
+        }
+    }
+    format!("{}\n", out.trim_end())
 }
 
 /// `lib` with the module of `shape` after [`MODULES_MARK`] and its `SHAPE` before [`LIST_MARK`].

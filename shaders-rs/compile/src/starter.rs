@@ -106,27 +106,7 @@ fn manifest(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
 /// name, then version), so that a build does not rewrite the file.
 fn lock(bytes: &[u8], name: &str) -> Result<Vec<u8>> {
     let text = swap(&String::from_utf8_lossy(bytes), "name = \"twinray-stages\"", &format!("name = \"{name}\""))?;
-    Ok(sorted_lock(&text).into_bytes())
-}
-
-/// A lock file's packages in cargo's order (by name, then version), as cargo writes them.
-pub(crate) fn sorted_lock(text: &str) -> String {
-    let mut parts: Vec<&str> = text.split("[[package]]\n").collect();
-    let header = parts.remove(0);
-    let key = |block: &&str| -> (String, String) {
-        let field = |f: &str| block.lines().find_map(|l| l.strip_prefix(f)).unwrap_or_default().to_string();
-        (field("name = "), field("version = "))
-    };
-    parts.sort_by_key(key);
-    let mut out = header.to_string();
-    for part in parts {
-        out.push_str("[[package]]\n");
-        out.push_str(part);
-        if !out.ends_with("\n\n") {
-            out.push('\n');
-        }
-    }
-    format!("{}\n", out.trim_end())
+    Ok(crate::scaffold::sorted_lock(&text).into_bytes())
 }
 
 /// The embedded builder's sources (`shaders-rs/builder`), for a machine without a checkout.

@@ -24,7 +24,7 @@ fn a_starter_crate_has_a_shared_library_in_its_manifest_and_lock() {
         "name = \"my-stages\"\nversion = \"0.1.0\"\ndependencies = [\n \"my-stages-shared\",\n \"spirv-std\",\n"
     ));
     assert!(lock.contains("[[package]]\nname = \"my-stages-shared\"\nversion = \"0.1.0\""));
-    assert_eq!(lock, crate::starter::sorted_lock(&lock), "packages in cargo's order");
+    assert_eq!(lock, sorted_lock(&lock), "packages in cargo's order");
     assert!(read(&dir, "shared/Cargo.toml").contains("name = \"my-stages-shared\""));
     assert!(read(&dir, "shared/src/lib.rs").contains("pub const SHAPES"));
     assert!(ensure_shared(&dir, "my-stages").unwrap().is_empty(), "a crate with one is left alone");
