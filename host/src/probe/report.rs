@@ -71,6 +71,19 @@ pub struct ProbeReport {
     pub failures: Vec<String>,
 }
 
+/// The failure of a report whose set answered decided rays otherwise than the reference (false
+/// hits, false misses, wrong objects); none when it answered every one as the reference does.
+pub fn wrong_answers(r: &ProbeReport) -> Option<String> {
+    let (hits, misses, objects) = (r.false_hits, r.false_misses, r.wrong_object);
+    (hits + misses + objects > 0).then(|| {
+        format!(
+            "{} decided rays answered otherwise than the f64 reference: {hits} false hits, {misses} false misses, \
+             {objects} wrong object",
+            hits + misses + objects
+        )
+    })
+}
+
 /// One hit named by a report: the ray's index in the case, its relative t error, the
 /// condition κ of its t and the error in units of κ u.
 #[derive(Clone, Copy, Debug, Serialize)]
@@ -217,14 +230,7 @@ pub fn evaluate(case: &ProbeCase, records: Records<'_>, set: &str, device: &str,
     let stages = judged.iter().zip(results).filter(|(_, r)| no_payload(r)).map(|(j, _)| &j.verdict);
     report.failures.extend(no_payload_lines(&case.scene, stages, set));
     // A verdict, not only figures: a ray decided otherwise than the reference fails the case.
-    let (hits, misses, objects) = (report.false_hits, report.false_misses, report.wrong_object);
-    if hits + misses + objects > 0 {
-        report.failures.push(format!(
-            "{} decided rays answered otherwise than the f64 reference: {hits} false hits, {misses} false misses, \
-             {objects} wrong object",
-            hits + misses + objects
-        ));
-    }
+    report.failures.extend(wrong_answers(&report));
     report.pass = report.failures.is_empty();
     let all = &judged;
     for (generated, judged) in report.generators.iter_mut().zip(generator_spans(case)) {
