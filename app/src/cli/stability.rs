@@ -94,7 +94,7 @@ impl Source {
     /// The case, its file first written to `write_to` where a random one is asked to be.
     fn load(&self, write_to: Option<&std::path::Path>) -> Result<ProbeCase> {
         Ok(match self {
-            Source::File(path) => ProbeCase::load(path)?,
+            Source::File(path) => twinray_host::probe::builtin::open(path, &[])?,
             Source::Random(seed) => {
                 let text = twinray_host::probe::random::origin_case(*seed);
                 if let Some(dir) = write_to {

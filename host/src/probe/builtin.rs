@@ -20,6 +20,22 @@ pub fn find(name: &str) -> Option<(&'static str, &'static str)> {
     BUILTIN_PROBES.iter().copied().find(|(n, _)| *n == name)
 }
 
+/// The built-in cases of the folder `dir` names (`probes/stability`, `stability`), each as the
+/// path `open` takes for it (`probes/stability/NAME.toml`); `None` where it names none.
+pub fn folder(dir: &Path) -> Option<Vec<std::path::PathBuf>> {
+    let dir = dir.to_str()?.replace('\\', "/");
+    let dir = dir.trim_end_matches('/');
+    let dir = dir.strip_prefix("./").unwrap_or(dir);
+    let dir = dir.strip_prefix("probes/").unwrap_or(dir);
+    let prefix = format!("{dir}/");
+    let cases: Vec<_> = BUILTIN_PROBES
+        .iter()
+        .filter_map(|(n, _)| n.strip_prefix(&prefix).filter(|rest| !rest.contains('/')).map(|_| n))
+        .map(|n| std::path::PathBuf::from(format!("probes/{n}.toml")))
+        .collect();
+    (!cases.is_empty()).then_some(cases)
+}
+
 /// The case in the file `arg`, or, where no such file is, the built-in case it names.
 /// Its scene may name the kinds of the crates' `own` shapes.
 pub fn open(arg: &Path, own: &[&'static CrateShapes]) -> Result<ProbeCase> {
@@ -55,6 +71,10 @@ mod tests {
             assert_eq!(find(arg).map(|(n, _)| n), Some("far-sphere"), "{arg}");
         }
         assert_eq!(find("stability/sphere-far-1e5").map(|(n, _)| n), Some("stability/sphere-far-1e5"));
+        let suite = folder(Path::new("probes/stability")).expect("the hard cases are built in");
+        assert_eq!(folder(Path::new("./stability/")), Some(suite.clone()));
+        assert!(suite.contains(&std::path::PathBuf::from("probes/stability/sphere-far-1e5.toml")));
+        assert!(folder(Path::new("probes/nothing")).is_none());
         assert!(find("far-sphere.tomlx").is_none() && find("sphere-far-1e5").is_none());
         // Parsed without a folder (see `open`): a file a case names must not be relative.
         for (name, text) in BUILTIN_PROBES {

@@ -48,8 +48,13 @@ pub struct Suite {
     pub skipped: Vec<Skipped>,
 }
 
-/// The case files of `dir`, sorted by name.
+/// The case files of `dir`, sorted by name; where there is no folder `dir`, the built-in cases
+/// of that name (`probes/stability`), each as the path `builtin::open` reads it by.
 pub fn case_files(dir: &Path) -> Result<Vec<PathBuf>> {
+    // Where no such folder is (an installed twinray), the built-in cases of that name.
+    if let Some(cases) = (!dir.exists()).then(|| super::builtin::folder(dir)).flatten() {
+        return Ok(cases);
+    }
     let entries =
         std::fs::read_dir(dir).map_err(|e| Error::Input(format!("probe case folder {}: {e}", dir.display())))?;
     let mut files: Vec<PathBuf> = entries
@@ -86,7 +91,7 @@ pub fn run(
 ) -> Result<Suite> {
     let mut suite = Suite::default();
     for file in files {
-        let mut case = ProbeCase::load(file)?;
+        let mut case = super::builtin::open(file, &[])?;
         match run_case(ctx, &mut case, sets, formulas, timing) {
             Ok(rows) => suite.rows.extend(rows),
             Err(e) if e.device_lacks() => {
@@ -295,4 +300,22 @@ fn results(rows: &[StabilityRow]) -> String {
         );
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Where no such folder is (an installed twinray, here a name no folder of the crate
+    /// has), the suite is the built-in hard cases, each of which opens.
+    #[test]
+    fn without_the_folder_the_suite_is_the_built_in_cases() {
+        assert!(!Path::new("stability").exists());
+        let files = case_files(Path::new("stability")).unwrap();
+        assert!(files.len() >= 24, "{files:?}");
+        let case = super::super::builtin::open(&files[0], &[]).unwrap();
+        assert!(!case.rays.is_empty());
+        let e = case_files(Path::new("no/such/folder")).unwrap_err().to_string();
+        assert!(e.contains("probe case folder no/such/folder"), "{e}");
+    }
 }

@@ -250,7 +250,7 @@ impl SetRender {
         let raygen = (scene.data.plan.render_raygen(), layout);
         let prepared = prepare_on(ctx, scene, (set, linking), raygen, image, &outputs.extra())?;
         Ok(SetRender {
-            label: format!("{} ({})", set, prepared.pipeline.modules.join(", ")),
+            label: format!("{} ({})", set, set.describe_modules(&prepared.pipeline.modules)),
             prepared,
             timestamps: Timestamps::new(ctx, opts.runs)?,
             image_readback: readback("image readback", pixels * PIXEL_BYTES)?,

@@ -166,6 +166,27 @@ impl ShaderSet {
         }
     }
 
+    /// Which of the modules called `names` differ from both built-in sets' module of the name
+    /// (a crate's own shapes' always do): where a stage that never returns can be, since the
+    /// built-in modules return, and a module built unchanged from them is the same bytes.
+    pub fn changed_modules<'a>(&self, names: &[&'a str]) -> Vec<&'a str> {
+        let builtin = [ShaderSet::uniform(Language::Rust), ShaderSet::uniform(Language::Glsl)];
+        let original = self.original();
+        let changed = |name: &&str| !builtin.iter().any(|b| original.same_module(b, name));
+        names.iter().copied().filter(changed).collect()
+    }
+
+    /// `names`, the modules of a pipeline of this set, as an error names them: each, or where
+    /// some are built-in code, the others first as the ones where a stage may not return.
+    pub fn describe_modules(&self, names: &[&str]) -> String {
+        let changed = self.changed_modules(names);
+        if changed.is_empty() || changed.len() == names.len() {
+            return names.join(", ");
+        }
+        let same: Vec<&str> = names.iter().copied().filter(|n| !changed.contains(n)).collect();
+        format!("changed from the built-in sets: {}; as built in: {}", changed.join(", "), same.join(", "))
+    }
+
     /// Whether any module comes from disk.
     pub fn from_disk(&self) -> bool {
         self.origins.iter().any(|o| !matches!(o, Origin::Builtin(_)))

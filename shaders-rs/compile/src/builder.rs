@@ -4,7 +4,7 @@
 //! and checkout on the machine.
 
 use crate::process::{output, run};
-use anyhow::{Context, Result};
+use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
@@ -69,9 +69,10 @@ pub fn compiled(manifest: &Path, shown: bool) -> Result<PathBuf> {
     ensure_toolchain()?;
     let target = builder_target();
     let binary = target.join("release/twinray-shader-builder");
-    if !binary.exists() {
+    let first = !binary.exists();
+    if first {
         eprintln!(
-            "build: compiling rust-gpu's backend (about 3 minutes on 2 cores, once; cached in {})",
+            "build: compiling rust-gpu's backend ({BACKEND_MINUTES} on 2 cores, once; cached in {})",
             target.display()
         );
     }
@@ -79,10 +80,79 @@ pub fn compiled(manifest: &Path, shown: bool) -> Result<PathBuf> {
     command.args(["build", "--release", "--manifest-path"]).arg(manifest).env("CARGO_TARGET_DIR", &target);
     if shown {
         run(&mut command)?;
+    } else if first {
+        with_progress(&mut command, lock_packages(manifest)).context("compiling the rust-gpu builder")?;
     } else {
         output(command.arg("--quiet")).context("compiling the rust-gpu builder")?;
     }
     Ok(binary)
+}
+
+/// What the backend's first build took on 2 cores where it was measured: 197 s on an idle
+/// machine, 562 s beside CI's other steps on a slower one (bench/reports/tools and
+/// bench/reports/build-time).
+const BACKEND_MINUTES: &str = "3 to 10 minutes";
+
+/// How often a first build of the backend says how far it got.
+const PROGRESS_EVERY: std::time::Duration = std::time::Duration::from_secs(20);
+
+/// The packages of the lock file beside `manifest`: about as many crates as a first build
+/// compiles (a few are for other platforms).
+fn lock_packages(manifest: &Path) -> usize {
+    let lock = std::fs::read_to_string(manifest.with_file_name("Cargo.lock")).unwrap_or_default();
+    lock.matches("[[package]]").count()
+}
+
+/// Runs cargo's `command`, saying every [`PROGRESS_EVERY`] how many of about `total` crates it
+/// has compiled and for how long; its output is shown only when it fails.
+fn with_progress(command: &mut Command, total: usize) -> Result<()> {
+    use std::io::BufRead;
+    let mut child = command
+        .stdout(std::process::Stdio::null())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .context("starting cargo")?;
+    let stderr = child.stderr.take().context("cargo's output")?;
+    let (lines, said) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        for line in std::io::BufReader::new(stderr).lines().map_while(Result::ok) {
+            if lines.send(line).is_err() {
+                break;
+            }
+        }
+    });
+    let start = std::time::Instant::now();
+    let (mut kept, mut compiled, mut last) = (Vec::new(), 0, start);
+    let status = loop {
+        while let Ok(line) = said.try_recv() {
+            compiled += usize::from(line.trim_start().starts_with("Compiling "));
+            kept.push(line);
+        }
+        if let Some(status) = child.try_wait()? {
+            kept.extend(said.try_iter());
+            break status;
+        }
+        if last.elapsed() >= PROGRESS_EVERY {
+            last = std::time::Instant::now();
+            eprintln!("build: {}", progress(compiled, total, start.elapsed()));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(100));
+    };
+    if !status.success() {
+        bail!("cargo failed with {status}:\n{}", kept.join("\n"));
+    }
+    Ok(())
+}
+
+/// A first build's progress in words.
+fn progress(compiled: usize, total: usize, elapsed: std::time::Duration) -> String {
+    let s = elapsed.as_secs();
+    format!(
+        "rust-gpu's backend: {compiled} of about {total} crates compiled in {}:{:02} (the largest, rustc_codegen_spirv, \
+         comes last; {BACKEND_MINUTES} in all)",
+        s / 60,
+        s % 60
+    )
 }
 
 /// The builder this binary carries, written to the cache (only files that changed, so cargo
@@ -118,6 +188,14 @@ mod tests {
         std::fs::write(&path, script).unwrap();
         std::process::Command::new("chmod").arg("+x").arg(&path).status().unwrap();
         path
+    }
+
+    #[test]
+    fn a_first_build_says_how_far_it_got() {
+        let said = progress(57, 143, std::time::Duration::from_secs(130));
+        assert!(said.starts_with("rust-gpu's backend: 57 of about 143 crates compiled in 2:10"), "{said}");
+        let manifest = Path::new(env!("CARGO_MANIFEST_DIR")).join("../builder/Cargo.toml");
+        assert!(lock_packages(&manifest) > 50, "the builder's lock lists its crates");
     }
 
     /// The nightly is installed where a component is missing (a toolchain installed by hand),

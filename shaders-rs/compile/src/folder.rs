@@ -170,29 +170,30 @@ fn compile_crate(dir: &Path, out: &Path, timeout: Duration) -> Result<Vec<String
         ),
         Some(s) if !s.success() => {
             // The compiler's words, as cargo printed them, then the one line of the error.
-            eprint!("{stderr}");
+            eprint!("{}", compiler_words(&stderr));
             bail!("{}: the crate does not build (the compiler's errors are above)", dir.display())
         }
-        Some(_) if stderr.contains("warning") => eprint!("{}", warnings(&stderr)),
+        Some(_) if stderr.contains("warning") => eprint!("{}", compiler_words(&stderr)),
         Some(_) => {}
     }
     entry_points(dir, out)
 }
 
-/// The compiler's warnings in cargo's output, each block as cargo printed it, without cargo's
-/// progress and summary lines and without two notes of rust-gpu that are no fault of the
-/// crate: that spirv-opt is off (twinray's builder turns it off), and that a slice should
+/// The compiler's errors and warnings in cargo's output, each block as cargo printed it,
+/// without cargo's progress and summary lines and without two notes of rust-gpu that are no
+/// fault of the crate (so that an error does not come after screens of them): that spirv-opt is off (twinray's builder turns it off), and that a slice should
 /// replace `&RuntimeArray<T>`, which rust-gpu says of any unsized parameter, also of a struct
 /// with a header that no slice can hold (the built-in stages' lights).
-fn warnings(stderr: &str) -> String {
+fn compiler_words(stderr: &str) -> String {
     const NOT_THE_CRATES: [&str; 2] = ["but was disabled by `--no-spirv-opt`", "use &[T] instead of &RuntimeArray<T>"];
     let progress = ["Compiling ", "Finished ", "Blocking ", "Updating ", "Locking ", "Downloaded ", "Downloading "];
-    let kept: Vec<&str> = stderr.lines().filter(|l| !progress.iter().any(|p| l.trim_start().starts_with(p))).collect();
+    let summary = |l: &str| l.starts_with("warning: `") && l.contains(" generated ");
+    let kept: Vec<&str> =
+        stderr.lines().filter(|l| !progress.iter().any(|p| l.trim_start().starts_with(p)) && !summary(l)).collect();
     let text = kept.join("\n");
     let blocks = text.split("\n\n").filter(|block| {
         let first = block.trim_start().lines().next().unwrap_or_default();
-        let summary = first.starts_with("warning: `") && first.contains(" generated ");
-        !block.trim().is_empty() && !summary && !NOT_THE_CRATES.iter().any(|n| first.contains(n))
+        !block.trim().is_empty() && !NOT_THE_CRATES.iter().any(|n| first.contains(n))
     });
     blocks.map(|b| format!("{}\n\n", b.trim_end())).collect()
 }
@@ -324,4 +325,39 @@ fn collect(root: &Path, dir: &Path, files: &mut Vec<PathBuf>) -> Result<()> {
         }
     }
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    /// What `twinray build` printed of a crate whose shared routine iterated an array by value:
+    /// rust-gpu's notes on `&RuntimeArray<T>` about the starter's lights came first.
+    const FAILED: &str = "   Compiling m2-shared v0.1.0 (/tmp/m2/shared)
+   Compiling m2 v0.1.0 (/tmp/m2)
+warning: use &[T] instead of &RuntimeArray<T>
+   --> src/lib.rs:71:71
+    |
+ 71 |     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &RuntimeArray<Lights>,
+    |                                                                       ^^^^^^^^^^^^^^^^^^^^
+
+error: cannot cast between pointer types
+   --> <shared/src/capsule.rs>:52:9
+    |
+
+warning: `m2` (lib) generated 3 warnings
+error: could not compile `m2` (lib) due to 1 previous error; 3 warnings emitted
+";
+
+    #[test]
+    fn a_failed_build_shows_the_crates_error_without_notes_that_are_not_its_fault() {
+        let shown = super::compiler_words(FAILED);
+        assert!(
+            shown.starts_with("error: cannot cast between pointer types\n   --> <shared/src/capsule.rs>:52:9"),
+            "{shown}"
+        );
+        assert!(
+            !shown.contains("RuntimeArray") && !shown.contains("Compiling") && !shown.contains("generated 3"),
+            "{shown}"
+        );
+        assert!(shown.contains("error: could not compile `m2`"), "{shown}");
+    }
 }

@@ -225,7 +225,7 @@ unsafe fn inputs(parameters: *const f64, p: *const f64) -> (DVec3, Parameters) {
 /// ([`PARAMETER_FLOATS`] f64s); NaN for an unknown shape or a panic.
 ///
 /// # Safety
-/// As [`inputs`].
+/// `parameters` must be valid for [`PARAMETER_FLOATS`] reads and `p` for 3.
 pub unsafe fn distance(shapes: &[CustomShape], index: u32, parameters: *const f64, p: *const f64) -> f64 {
     let Some(shape) = shapes.get(index as usize) else { return f64::NAN };
     // SAFETY: passed on from the caller.
@@ -237,7 +237,8 @@ pub unsafe fn distance(shapes: &[CustomShape], index: u32, parameters: *const f6
 /// shape or a panic.
 ///
 /// # Safety
-/// As [`inputs`], and `out` must be valid for 3 writes.
+/// `parameters` must be valid for [`PARAMETER_FLOATS`] reads, `p` for 3 and `out` for 3
+/// writes.
 pub unsafe fn normal(shapes: &[CustomShape], index: u32, parameters: *const f64, p: *const f64, out: *mut f64) {
     let n = match shapes.get(index as usize) {
         Some(shape) => {
