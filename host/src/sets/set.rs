@@ -80,11 +80,6 @@ impl ShaderSet {
         MODULES.iter().zip(&self.origins).chain(own).any(|(m, o)| m.name == name && matches!(o, Origin::Missing(_)))
     }
 
-    /// The shapes of the crate this set was built from, when it lists any.
-    pub fn own_shapes(&self) -> Option<&'static OwnShapes> {
-        self.own
-    }
-
     /// The crates' shapes of `sets`, each crate once: the kinds a scene rendered with them may
     /// name beside twinray's.
     pub fn own_kinds(sets: &[&ShaderSet]) -> Vec<&'static CrateShapes> {
