@@ -29,7 +29,8 @@ pub struct Loader {
 /// What a path of a set turned out to be.
 enum Found {
     Language(Language),
-    Folder(PathBuf),
+    /// A folder of modules, and whether this loader built it from sources.
+    Folder(PathBuf, bool),
     File(PathBuf),
 }
 
@@ -44,11 +45,14 @@ impl Loader {
         let fail = |message: String| Error::Input(format!("shader set {:?}: {message}", spec.to_string()));
         let mut set = match self.find(&spec.base).map_err(fail)? {
             Found::Language(language) => ShaderSet::uniform(language),
-            Found::Folder(dir) => {
+            Found::Folder(dir, built) => {
                 let mut set = ShaderSet::uniform(Language::Rust);
                 set.set_where(|_| true, |m| from_folder(m, &dir)).map_err(fail)?;
+                // Native code is loaded only from a crate's build: a folder of modules from
+                // elsewhere is data, whatever library lies in it.
                 let library = dir.join(twinray_compile::cpu::LIBRARY);
-                let shapes = library.is_file().then(|| CrateShapes::load(&library)).transpose().map_err(fail)?;
+                let ours = built && library.is_file();
+                let shapes = ours.then(|| CrateShapes::load(&library)).transpose().map_err(fail)?;
                 let names = own_modules(&dir);
                 if shapes.is_some() || !names.is_empty() {
                     set.set_own(OwnShapes::new(shapes, &names, |m| from_folder(m, &dir)).map_err(fail)?);
@@ -108,9 +112,9 @@ impl Loader {
         };
         let word = path.display().to_string();
         if path.is_dir() && folder::sources_in(path).is_some() {
-            Ok(Found::Folder(self.build(path)?))
+            Ok(Found::Folder(self.build(path)?, true))
         } else if path.is_dir() && MODULES.iter().any(|m| path.join(format!("{}.spv", m.name)).exists()) {
-            Ok(Found::Folder(path.clone()))
+            Ok(Found::Folder(path.clone(), false))
         } else if path.is_dir() {
             Err(format!(
                 "{word}: neither a set nor a shader crate (no NAME.spv of the catalog, no Cargo.toml, no raygen.rgen)"
@@ -160,7 +164,7 @@ fn from_folder(spec: &ModuleSpec, dir: &Path) -> Result<Origin, String> {
 fn apply(set: &mut ShaderSet, key: Key, found: &Found) -> Result<(), String> {
     let origin = |m: &ModuleSpec| match found {
         Found::Language(language) => Ok(Origin::Builtin(*language)),
-        Found::Folder(dir) => from_folder(m, dir),
+        Found::Folder(dir, _) => from_folder(m, dir),
         Found::File(file) => Ok(Origin::Disk(Arc::new(load(m, file)?))),
     };
     match (key, found) {
