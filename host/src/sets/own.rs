@@ -182,10 +182,14 @@ pub struct OwnShapes {
     pub(super) modules: Vec<(ModuleSpec, Origin)>,
 }
 
-/// Two sets' own shapes are the same when they are one load's.
+/// Two sets' own shapes are the same when they come from the same library and modules: a
+/// crate named twice in one command is one set (`ShaderSet::distinct` then times a salted
+/// copy of it, never the same pipeline twice), however many times it was loaded.
 impl PartialEq for OwnShapes {
     fn eq(&self, other: &Self) -> bool {
-        std::ptr::eq(self, other)
+        let modules = |o: &OwnShapes| o.modules.iter().map(|(m, o)| (m.name, o.clone())).collect::<Vec<_>>();
+        let source = |o: &OwnShapes| o.shapes.as_ref().map(|c| c.source.clone());
+        source(self) == source(other) && modules(self) == modules(other)
     }
 }
 

@@ -77,3 +77,21 @@ fn a_list_twinray_cannot_use_is_refused_by_name() {
     let e = with_list(Box::leak(Box::new([CAPSULE, CAPSULE]))).unwrap_err();
     assert!(e.contains("listed twice"), "{e}");
 }
+
+/// A crate loaded twice is one set: repeated in a list, its repeat becomes a salted copy.
+#[test]
+fn a_crate_loaded_twice_is_one_set_and_its_repeat_a_copy() {
+    use crate::sets::{Language, ShaderSet};
+    let set = || {
+        let shapes = with_list(&[CAPSULE]).unwrap();
+        let own = OwnShapes::new(Some(shapes), &[], |m| Ok(Origin::Missing(format!("{}.spv", m.name).into()))).unwrap();
+        let mut set = ShaderSet::uniform(Language::Rust);
+        set.set_own(own);
+        set
+    };
+    let (a, b) = (set(), set());
+    assert!(a == b, "two loads of one crate");
+    assert!(a != ShaderSet::uniform(Language::Rust), "the crate's shapes make it another set");
+    let distinct = ShaderSet::distinct(&[a.clone(), b]);
+    assert!(distinct[0] == a && distinct[1] == a.copy(1), "the repeat is timed as a copy");
+}
