@@ -13,6 +13,8 @@ vec3 call_material(Material material, vec3 object_point, vec3 object_normal) {
     material_call.material = material;
     material_call.point = vec4(object_point, 1.0);
     material_call.normal = vec4(object_normal, 0.0);
+    // Poisoned, so that a callable that writes no colour leaves a NaN in the image.
+    material_call.color = vec4(uintBitsToFloat(UNWRITTEN));
     executeCallableEXT(material.kind, 0);
     return material_call.color.xyz;
 }

@@ -236,22 +236,33 @@ fn probe(case: &str, set: &str, dir: &Path) -> (serde_json::Value, Option<i32>) 
 }
 
 #[test]
-fn a_crates_own_shape_renders_in_both_languages_and_is_judged_by_its_own_definition() {
+fn a_crates_own_shape_and_material_render_in_both_languages_and_the_shape_is_judged_by_its_definition() {
     let scratch = tempfile::tempdir().unwrap();
     let dir = scratch.path();
-    let said = ok(&["new", "shapes", "--glsl", "--shape", "capsule"], dir);
-    assert!(said.contains("the shape capsule (hit kind 32)"), "{said}");
+    let said = ok(&["new", "shapes", "--glsl", "--shape", "capsule", "--material", "waves"], dir);
+    assert!(said.contains("the shape capsule (hit kind 32)") && said.contains("the material waves"), "{said}");
     let krate = dir.join("shapes");
     seed_crate_target(&krate);
+    // The material edited as a user would, in both languages: waves of the opposite phase.
+    for (file, from, to) in [
+        ("shared/src/waves.rs", "let s = 0.5 + 0.5 *", "let s = 0.5 - 0.5 *"),
+        ("glsl/waves_material.rcall", "float s = 0.5 + 0.5 *", "float s = 0.5 - 0.5 *"),
+    ] {
+        let source = std::fs::read_to_string(krate.join(file)).unwrap();
+        assert!(source.contains(from), "{file}: the template moved: this test must follow");
+        std::fs::write(krate.join(file), source.replacen(from, to, 1)).unwrap();
+    }
     let written = files(&krate);
     let small = ["--width", "96", "--height", "72", "--runs", "1", "--warmup", "0", "--placements", "1"];
-    let compare = |a: &str, b: &str| {
-        let args = [&["--validate", "compare", "shapes/scenes/capsule.toml", "--a", a, "--b", b][..], &small].concat();
+    let compare = |scene: &str, a: &str, b: &str| {
+        let args = [&["--validate", "compare", scene, "--a", a, "--b", b][..], &small].concat();
         twinray(&args, dir)
     };
-    let both = compare("shapes", "shapes/glsl");
-    assert!(both.status.success(), "Rust against its GLSL twin: {}", text(&both));
-    assert!(text(&both).contains("PASS"), "{}", text(&both));
+    for scene in ["shapes/scenes/capsule.toml", "shapes/scenes/waves.toml"] {
+        let both = compare(scene, "shapes", "shapes/glsl");
+        assert!(both.status.success(), "{scene}, Rust against its GLSL twin: {}", text(&both));
+        assert!(text(&both).contains("PASS"), "{}", text(&both));
+    }
     assert!(files(&krate) == written, "building wrote in the crate outside target/ (its Cargo.lock?)");
     for set in ["shapes", "shapes/glsl"] {
         let (report, code) = probe("shapes/probes/capsule.toml", set, dir);
@@ -267,10 +278,19 @@ fn a_crates_own_shape_renders_in_both_languages_and_is_judged_by_its_own_definit
     let exact = "if q.y.abs() <= half {";
     assert!(source.contains(exact), "the template's side test moved: this test must follow");
     std::fs::write(&routine, source.replacen(exact, "if q.y.abs() <= half * 1.2 {", 1)).unwrap();
+    // In the same build, a material callable that forgets its colour: the poison it leaves is
+    // a pixel that is not finite, which fails the comparison.
+    let callable = krate.join("src/waves.rs");
+    let stage = std::fs::read_to_string(&callable).unwrap();
+    std::fs::write(&callable, stage.replacen("call.color = color(", "let _ = color(", 1)).unwrap();
     let (report, code) = probe("shapes/probes/capsule.toml", "shapes", dir);
     assert_eq!(code, Some(1), "{report}");
     assert!(report["false_hits"].as_u64() > Some(10), "the planted slip: {report}");
+    let forgot = compare("shapes/scenes/waves.toml", "shapes", "shapes/glsl");
+    assert_eq!(forgot.status.code(), Some(1), "{}", text(&forgot));
+    assert!(text(&forgot).contains("pixels non-finite in set a"), "{}", text(&forgot));
     std::fs::write(&routine, source).unwrap();
+    std::fs::write(&callable, stage).unwrap();
     ok(&["build", "shapes"], dir);
     // A set that lacks the shape: one line, exit 2.
     let lacks = |args: &[&str], needle: &str| {
@@ -281,12 +301,16 @@ fn a_crates_own_shape_renders_in_both_languages_and_is_judged_by_its_own_definit
     };
     let render = ["render", "shapes/scenes/capsule.toml", "--shaders", "rust", "--out", "x.png"];
     lacks(&render, "unknown shape kind \"capsule\"");
+    let render = ["render", "shapes/scenes/waves.toml", "--shaders", "rust", "--out", "x.png"];
+    lacks(&render, "unknown material kind \"waves\"");
     // The crate's built folder named as a folder of modules is data: its CPU library, native
     // code, is not loaded from there, so the kinds it lists are not known.
     let modules = ["render", "shapes/scenes/capsule.toml", "--shaders", "shapes/target/twinray/set", "--out", "x.png"];
     lacks(&modules, "unknown shape kind \"capsule\"");
     let mixed = ["compare", "shapes/scenes/capsule.toml", "--a", "shapes", "--b", "rust"];
     lacks(&mixed, "no module capsule_intersection");
+    let mixed = ["compare", "shapes/scenes/waves.toml", "--a", "shapes", "--b", "rust"];
+    lacks(&mixed, "no module waves_material");
     refused(&["new", "shapes", "--shape", "capsule"], dir, &krate, &["has a shape \"capsule\" already"]);
 }
 

@@ -155,6 +155,10 @@ fn albedo(scene: &Scene, material: &str) -> Result<Vec3> {
             "{}: material {material:?} is a checker or cutout, which has no Mitsuba equivalent here (docs/shading-model.md)",
             scene.source
         ))),
+        Some(MaterialDesc::Own(own)) => Err(Error::Input(format!(
+            "{}: material {material:?} is of a crate's own kind {:?}, which has no Mitsuba equivalent",
+            scene.source, own.kind
+        ))),
         None => Err(Error::Input(format!("{}: no material {material:?}", scene.source))),
     }
 }

@@ -4,7 +4,7 @@
 
 use super::case::ProbeCase;
 use crate::error::{Error, Result};
-use crate::sets::own::CrateShapes;
+use crate::sets::own::CrateKinds;
 use std::path::Path;
 
 include!(concat!(env!("OUT_DIR"), "/builtin_probes.rs"));
@@ -38,7 +38,7 @@ pub fn folder(dir: &Path) -> Option<Vec<std::path::PathBuf>> {
 
 /// The case in the file `arg`, or, where no such file is, the built-in case it names.
 /// Its scene may name the kinds of the crates' `own` shapes.
-pub fn open(arg: &Path, own: &[&'static CrateShapes]) -> Result<ProbeCase> {
+pub fn open(arg: &Path, own: &[&'static CrateKinds]) -> Result<ProbeCase> {
     if arg.exists() {
         return ProbeCase::load_with(arg, own);
     }

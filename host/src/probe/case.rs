@@ -6,7 +6,7 @@ use crate::error::{Error, Result};
 use crate::reference::scene::SceneReference;
 use crate::scene::shape::Formula;
 use crate::scene::{MeshFiles, Scene};
-use crate::sets::own::CrateShapes;
+use crate::sets::own::CrateKinds;
 use crate::util::input::{read_text, MAX_TEXT_BYTES};
 use serde::Deserialize;
 use std::path::Path;
@@ -166,7 +166,7 @@ impl ProbeCase {
     }
 
     /// [`ProbeCase::load`] with the kinds of the crates' `own` shapes as well as twinray's.
-    pub fn load_with(path: &Path, own: &[&'static CrateShapes]) -> Result<ProbeCase> {
+    pub fn load_with(path: &Path, own: &[&'static CrateKinds]) -> Result<ProbeCase> {
         let source = path.display().to_string();
         let text = read_text(path, MAX_TEXT_BYTES)
             .map_err(|e| Error::Case { path: source.clone(), message: format!("cannot read: {e}") })?;
@@ -184,7 +184,7 @@ impl ProbeCase {
         text: &str,
         source: &str,
         folder: std::path::PathBuf,
-        own: &[&'static CrateShapes],
+        own: &[&'static CrateKinds],
     ) -> Result<ProbeCase> {
         let case_error = |message: String| Error::Case { path: source.into(), message };
         let text = text.to_string();

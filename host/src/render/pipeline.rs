@@ -313,8 +313,9 @@ fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8])
 
 /// The group of each SBT record, by region: raygen, the misses, the hit groups (an instance's
 /// SBT offset is its group's index in the plan), and for callable materials one record per
-/// material kind (the kind is the index `executeCallable` is given), each the group of its
-/// kind's callable, or of the first callable for a kind no material uses.
+/// material kind, twinray's and the scene's own (the kind is the index `executeCallable` is
+/// given), each the group of its kind's callable, or of the first callable for a kind no
+/// material uses.
 fn sbt_records(plan: &PipelinePlan) -> [Vec<u32>; 4] {
     let misses = if plan.shadow_miss() { 2 } else { 1 };
     let hits = 1 + misses;
@@ -323,9 +324,9 @@ fn sbt_records(plan: &PipelinePlan) -> [Vec<u32>; 4] {
     let callable_records = if callables.is_empty() {
         Vec::new()
     } else {
-        (0..b::MATERIAL_KINDS)
+        (0..b::MATERIAL_KINDS + plan.own_callables.len() as u32)
             .map(|kind| {
-                let name = crate::scene::material_callable(kind);
+                let name = crate::scene::material_callable(kind, &plan.own_callables);
                 first_callable + callables.iter().position(|c| *c == name).unwrap_or(0) as u32
             })
             .collect()

@@ -162,7 +162,10 @@ pub fn build(
     }
     let lights = lights(scene);
     let mut textures = Vec::new();
-    let materials: Vec<Material> = scene.materials.values().map(|m| material(m, &mut textures)).collect();
+    let own = scene.materials.values().filter_map(|m| if let MaterialDesc::Own(o) = m { Some(o) } else { None });
+    let own_callables = super::material::own_callables(own);
+    let materials: Vec<Material> =
+        scene.materials.values().map(|m| material(m, &own_callables, &mut textures)).collect();
     let plan = PipelinePlan {
         hit_groups: groups,
         shadows: lights.iter().any(|l| l.shadows != 0),
@@ -173,7 +176,8 @@ pub fn build(
         },
         shadow_query: scene.shadow_method == ShadowMethod::Query,
         compute: scene.renderer == Renderer::Compute,
-        callable_kinds: if callable { material_kinds(&materials) } else { Vec::new() },
+        callable_kinds: material_kinds(&materials, callable),
+        own_callables,
         features: match &scene.features {
             Some(names) => names.iter().filter_map(|n| features::by_name(n)).fold(0, |bits, f| bits | f.bit),
             None => scene_features(&materials, &lights),
@@ -195,9 +199,11 @@ fn local(mut m: Mat4, origin: Vec3) -> Mat4 {
     m
 }
 
-/// The kinds of `materials`, each once, in kind order.
-fn material_kinds(materials: &[Material]) -> Vec<u32> {
-    let mut kinds: Vec<u32> = materials.iter().map(|m| m.kind).collect();
+/// The kinds of `materials` that callables colour, each once, in kind order: all, where
+/// `callable`, else those of a crate's own.
+fn material_kinds(materials: &[Material], callable: bool) -> Vec<u32> {
+    let called = materials.iter().map(|m| m.kind).filter(|&k| callable || k >= b::MATERIAL_KINDS);
+    let mut kinds: Vec<u32> = called.collect();
     kinds.sort_unstable();
     kinds.dedup();
     kinds
@@ -309,6 +315,7 @@ fn hit_group(scene: &SceneFile, shape: &ShapeDesc, material: &MaterialDesc) -> H
     };
     let flat = !matches!(material, MaterialDesc::Checker { .. });
     let colour = match (scene.material_shading, scene.hit_groups) {
+        _ if matches!(material, MaterialDesc::Own(_)) => Colour::Callable,
         (MaterialShading::Callable, _) => Colour::Callable,
         (MaterialShading::Inline, HitGroups::PerMaterial) if flat => Colour::Flat,
         (MaterialShading::Inline, _) => Colour::Inline,
@@ -329,9 +336,14 @@ fn shape_primitives(shape: &ShapeDesc) -> (Vec<Primitive>, Vec<Aabb>) {
     }
 }
 
-/// The GPU material of `m`; each of its textures takes a slot of `textures` (shared with
-/// every material of the same image and sampler).
-fn material(m: &MaterialDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>) -> Material {
+/// The GPU material of `m`, a crate's own kind being `MATERIAL_KINDS` plus its callable's place
+/// in `own_callables`; each of its textures takes a slot of `textures` (shared with every
+/// material of the same image and sampler).
+fn material(
+    m: &MaterialDesc,
+    own_callables: &[&'static str],
+    textures: &mut Vec<(Arc<TextureImage>, SamplerDesc)>,
+) -> Material {
     let mut cutout = (b::CUTOUT_NONE, 0.0, 0.0);
     let mut gpu = Material::default();
     let (kind, a, b) = match *m {
@@ -355,6 +367,15 @@ fn material(m: &MaterialDesc, textures: &mut Vec<(Arc<TextureImage>, SamplerDesc
             cutout = (pattern, scale, threshold);
             (b::MATERIAL_CUTOUT, Vec3::from(color).extend(opacity), Vec4::ZERO)
         }
+        MaterialDesc::Own(ref own) => match own.resolved {
+            Some((found, _, [a, b])) => {
+                let module = found.material().module;
+                let place = own_callables.iter().position(|c| *c == module).unwrap_or(0) as u32;
+                (b::MATERIAL_KINDS + place, a, b)
+            }
+            // Resolved before the scene is built (`Scene::from_file`); never drawn otherwise.
+            None => (b::MATERIAL_DIFFUSE, Vec4::ONE, Vec4::ZERO),
+        },
     };
     let (cutout_pattern, cutout_scale, cutout_threshold) = cutout;
     Material { kind, cutout_pattern, cutout_scale, cutout_threshold, color_a: a, color_b: b, ..gpu }

@@ -149,6 +149,14 @@ fn check_renderer(scene: &SceneFile) -> Checked {
                     (material_shading = \"callable\" needs renderer = \"pipeline\")"
             .into());
     }
+    if let Some(own) = scene.materials.values().find_map(|m| if let MaterialDesc::Own(o) = m { Some(o) } else { None })
+    {
+        return Err(format!(
+            "renderer = \"compute\" has no callables, which colour a crate's own material kinds \
+             ({:?} needs renderer = \"pipeline\")",
+            own.kind
+        ));
+    }
     if scene.hit_groups == HitGroups::PerMaterial {
         return Err("renderer = \"compute\" has no hit groups (hit_groups = \"per-material\" needs \
                     renderer = \"pipeline\")"
@@ -176,6 +184,8 @@ pub(super) fn check_camera(c: &CameraDesc) -> Checked {
 
 fn check_material(m: &MaterialDesc) -> Checked {
     match m {
+        // Its keys were checked by their rules and the crate's `check` when resolved.
+        MaterialDesc::Own(_) => Ok(()),
         MaterialDesc::Diffuse { color: c, texture, emission } => {
             color("color", *c)?;
             check_texture("texture", texture.as_deref())?;

@@ -2,9 +2,12 @@
 //! field; `check.rs` rejects impossible values; `build.rs` turns a scene into GPU data.
 
 use super::animation::format::AnimationDesc;
+use super::material::OwnMaterialDesc;
 use super::shape::ShapeDesc;
-use serde::Deserialize;
+use serde::de::Error as _;
+use serde::{Deserialize, Deserializer};
 use std::collections::BTreeMap;
+use twinray_shared::custom::BUILTIN_MATERIALS;
 
 /// Every `kind` a scene file can name, by section (shapes from the registry); a test checks each
 /// parses and is documented.
@@ -12,7 +15,7 @@ pub fn kinds() -> [(&'static str, Vec<&'static str>); 4] {
     [
         ("shapes", super::shape::kind_names()),
         ("meshes", vec!["box", "pyramid", "prism", "icosahedron", "(file = OBJ)", "(kind = gltf)"]),
-        ("materials", vec!["diffuse", "emissive", "checker", "cutout"]),
+        ("materials", BUILTIN_MATERIALS.to_vec()),
         ("lights", vec!["directional", "point", "rect"]),
     ]
 }
@@ -58,7 +61,7 @@ pub struct SceneFile {
     /// code costs, measured.
     #[serde(default)]
     pub features: Option<Vec<String>>,
-    #[serde(default)]
+    #[serde(default, deserialize_with = "materials")]
     pub materials: BTreeMap<String, MaterialDesc>,
     #[serde(default)]
     pub lights: Vec<LightDesc>,
@@ -166,6 +169,37 @@ pub enum MaterialDesc {
         #[serde(default)]
         emission: Option<Box<EmissionDesc>>,
     },
+    /// A kind of a shader crate's own, coloured by its callable stage.
+    #[serde(skip)]
+    Own(OwnMaterialDesc),
+}
+
+/// A scene's `[materials]`: each table of a kind of twinray's read as serde reads it, one of
+/// another well-formed kind kept for the crate that may know it.
+fn materials<'de, D: Deserializer<'de>>(deserializer: D) -> Result<BTreeMap<String, MaterialDesc>, D::Error> {
+    let entries = BTreeMap::<String, Entry>::deserialize(deserializer)?;
+    Ok(entries.into_iter().map(|(name, Entry(m))| (name, m)).collect())
+}
+
+struct Entry(MaterialDesc);
+
+impl<'de> Deserialize<'de> for Entry {
+    fn deserialize<D: Deserializer<'de>>(deserializer: D) -> Result<Self, D::Error> {
+        let mut table = toml::Table::deserialize(deserializer)?;
+        let own = match table.get("kind") {
+            Some(toml::Value::String(kind)) => {
+                let well_formed = kind.starts_with(|c: char| c.is_ascii_lowercase())
+                    && kind.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_');
+                (well_formed && !BUILTIN_MATERIALS.contains(&kind.as_str())).then(|| kind.clone())
+            }
+            _ => None,
+        };
+        if let Some(kind) = own {
+            table.remove("kind");
+            return Ok(Entry(MaterialDesc::Own(OwnMaterialDesc::written(kind, table))));
+        }
+        toml::Value::Table(table).try_into().map(Entry).map_err(D::Error::custom)
+    }
 }
 
 /// Radiance a diffuse or cutout surface emits on top of the light it reflects (glTF's emissive
@@ -190,7 +224,7 @@ impl MaterialDesc {
             MaterialDesc::Diffuse { texture, emission, .. } | MaterialDesc::Cutout { texture, emission, .. } => {
                 [texture.as_deref_mut(), emission.as_deref_mut().and_then(|e| e.texture.as_deref_mut())]
             }
-            MaterialDesc::Emissive { .. } | MaterialDesc::Checker { .. } => [None, None],
+            MaterialDesc::Emissive { .. } | MaterialDesc::Checker { .. } | MaterialDesc::Own(_) => [None, None],
         }
     }
 }

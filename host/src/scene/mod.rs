@@ -9,6 +9,7 @@ pub mod file;
 mod framing;
 pub mod gltf;
 pub mod launches;
+pub mod material;
 pub mod mesh;
 mod models;
 pub mod obj;
@@ -20,7 +21,7 @@ pub mod shape;
 pub mod texture;
 
 use crate::error::{Error, Result};
-use crate::sets::own::CrateShapes;
+use crate::sets::own::CrateKinds;
 use crate::util::input::{confined, read_text, MAX_TEXT_BYTES};
 pub use animation::Animation;
 pub use build::{frame_data, frame_uniform, Aabb, BlasDesc, FrameData, InstanceDesc, SceneData};
@@ -69,7 +70,7 @@ impl Scene {
 
     /// [`Scene::load`] with the kinds of the crates' `own` shapes (the sets' of a command) as
     /// well as twinray's.
-    pub fn load_with(arg: Option<&str>, own: &[&'static CrateShapes]) -> Result<Scene> {
+    pub fn load_with(arg: Option<&str>, own: &[&'static CrateKinds]) -> Result<Scene> {
         crate::util::crash::catching(|| Scene::load_unguarded(arg, own)).unwrap_or_else(|panic| {
             let path = arg.unwrap_or(DEFAULT_SCENE).to_string();
             let message = format!("twinray's loader failed on it (a bug; please report it with the file): {panic}");
@@ -77,7 +78,7 @@ impl Scene {
         })
     }
 
-    fn load_unguarded(arg: Option<&str>, own: &[&'static CrateShapes]) -> Result<Scene> {
+    fn load_unguarded(arg: Option<&str>, own: &[&'static CrateKinds]) -> Result<Scene> {
         if let Some(path) = arg.map(Path::new).filter(|p| gltf::is_gltf(p) && p.exists()) {
             return Scene::load_gltf(path);
         }
@@ -140,7 +141,7 @@ impl Scene {
     }
 
     /// [`Scene::parse`] with the kinds of the crates' `own` shapes as well as twinray's.
-    pub fn parse_with(text: &str, source: &str, mesh_files: MeshFiles, own: &[&'static CrateShapes]) -> Result<Scene> {
+    pub fn parse_with(text: &str, source: &str, mesh_files: MeshFiles, own: &[&'static CrateKinds]) -> Result<Scene> {
         let file: SceneFile = toml::from_str(text).map_err(|e| toml_error(source, text, &e))?;
         Scene::from_file(file, source, mesh_files, own)
     }
@@ -151,7 +152,7 @@ impl Scene {
         document: &str,
         source: &str,
         mesh_files: MeshFiles,
-        own: &[&'static CrateShapes],
+        own: &[&'static CrateKinds],
     ) -> Result<Scene> {
         #[derive(serde::Deserialize)]
         struct Document {
@@ -166,10 +167,15 @@ impl Scene {
         mut file: SceneFile,
         source: &str,
         mut mesh_files: MeshFiles,
-        own: &[&'static CrateShapes],
+        own: &[&'static CrateKinds],
     ) -> Result<Scene> {
         let scene_error = |message: String| Error::Scene { path: source.into(), message };
         shape::resolve_own(file.shapes.iter_mut(), own).map_err(scene_error)?;
+        let own_materials = file.materials.iter_mut().filter_map(|(name, m)| match m {
+            file::MaterialDesc::Own(desc) => Some((name, desc)),
+            _ => None,
+        });
+        material::resolve_own(own_materials, own).map_err(scene_error)?;
         if file.name.is_empty() {
             let stem = Path::new(source).file_stem().map(|s| s.to_string_lossy().into_owned());
             file.name = stem.unwrap_or_else(|| "scene".into());

@@ -2,7 +2,9 @@
 //! shader binding table, whether it traces shadow rays, and its specialisation.
 
 use crate::sets::own::OwnShapeRef;
-use twinray_shared::bindings::{CUTOUT_NONE, LIGHT_RECT, MATERIAL_CHECKER, MATERIAL_CUTOUT, MATERIAL_EMISSIVE};
+use twinray_shared::bindings::{
+    CUTOUT_NONE, LIGHT_RECT, MATERIAL_CHECKER, MATERIAL_CUTOUT, MATERIAL_EMISSIVE, MATERIAL_KINDS,
+};
 use twinray_shared::features;
 use twinray_shared::layout::{Light, Material};
 use twinray_shared::shapes::{Shape, SHAPES, SHAPE_NAIVE};
@@ -35,7 +37,8 @@ pub struct HitGroup {
 pub enum Colour {
     /// Computed for any material kind (a branch on the kind).
     Inline,
-    /// From the material callable its kind selects (`material_shading = "callable"`).
+    /// From the material callable its kind selects (`material_shading = "callable"`, and
+    /// every material of a crate's own).
     Callable,
     /// The material's one colour, with no branch: the group serves only diffuse, emissive and
     /// cutout materials (`hit_groups = "per-material"`; checkers keep `Inline`).
@@ -139,9 +142,13 @@ pub struct PipelinePlan {
     /// Rendered by the compute stage `render_compute` with ray queries (`renderer =
     /// "compute"`): the hit groups are then what its queries decide as their stages would.
     pub compute: bool,
-    /// Material kinds the scene's materials use, when material callables compute colours
-    /// (`material_shading = "callable"`); empty when closest-hit stages compute them.
+    /// Material kinds whose colours material callables compute: every kind the scene's
+    /// materials use with `material_shading = "callable"`, else those of a crate's own alone
+    /// (closest-hit stages compute the others').
     pub callable_kinds: Vec<u32>,
+    /// The callable modules of the crate's own material kinds the scene uses, kind
+    /// `MATERIAL_KINDS + i` being the `i`th.
+    pub own_callables: Vec<&'static str>,
     /// The features the scene uses (`twinray_shared::features`), which every stage is
     /// specialised on (`SPEC_FEATURES`): the code of the others is dropped.
     pub features: u32,
@@ -172,10 +179,13 @@ pub fn each_once(names: impl IntoIterator<Item = &'static str>) -> Vec<&'static 
     out
 }
 
-/// The callable module that computes the colour of material kind `kind`.
-pub fn material_callable(kind: u32) -> &'static str {
+/// The callable module that computes the colour of material kind `kind`: twinray's, or for a
+/// kind from `MATERIAL_KINDS` on, the `own` module of a crate's material.
+pub fn material_callable(kind: u32, own: &[&'static str]) -> &'static str {
     if kind == MATERIAL_CHECKER {
         "checker_material"
+    } else if kind >= MATERIAL_KINDS {
+        own.get((kind - MATERIAL_KINDS) as usize).copied().unwrap_or("flat_material")
     } else {
         "flat_material"
     }
@@ -197,7 +207,7 @@ impl PipelinePlan {
 
     /// The callable modules of the scene's material kinds, each once, in kind order.
     pub fn callables(&self) -> Vec<&'static str> {
-        each_once(self.callable_kinds.iter().map(|&k| material_callable(k)))
+        each_once(self.callable_kinds.iter().map(|&k| material_callable(k, &self.own_callables)))
     }
 
     /// Whether the shadow miss stage is in the pipeline: shadow rays traced by `traceRay`.

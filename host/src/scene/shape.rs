@@ -2,7 +2,7 @@
 //! with the keys its description lists, or a triangle mesh. The registry is the only list of
 //! kinds and keys; an unknown kind or key is an error with the file's line and column.
 
-use crate::sets::own::{CrateShapes, OwnShapeRef};
+use crate::sets::own::{CrateKinds, OwnShapeRef};
 use serde::de::Error as _;
 use serde::{Deserialize, Deserializer};
 use twinray_shared::shapes::spec::{Param, ParamType, ShapeKind, Value, Values};
@@ -154,7 +154,7 @@ impl<'de> Deserialize<'de> for ShapeDesc {
 /// kinds of `own` (the sets' crates'); an error names a kind none of them knows, or a key.
 pub fn resolve_own<'a>(
     shapes: impl IntoIterator<Item = (&'a String, &'a mut ShapeDesc)>,
-    own: &[&'static CrateShapes],
+    own: &[&'static CrateKinds],
 ) -> Result<(), String> {
     for (name, shape) in shapes {
         let ShapeDesc::Own(desc) = shape else { continue };
@@ -202,7 +202,12 @@ fn procedural(
 
 /// The values of `params` in `table` (defaults where left out); an unknown key is an error
 /// that lists the kind's keys (and `formula`, where the kind takes one).
-fn keys(kind: &str, params: &'static [Param], mut table: toml::Table, formula: bool) -> Result<Values, String> {
+pub(super) fn keys(
+    kind: &str,
+    params: &'static [Param],
+    mut table: toml::Table,
+    formula: bool,
+) -> Result<Values, String> {
     let mut values = Vec::new();
     for param in params {
         let value = match table.remove(param.name) {

@@ -6,7 +6,7 @@
 //! built once.
 
 use super::module::{load, Origin};
-use super::own::{CrateShapes, OwnShapes};
+use super::own::{CrateKinds, OwnKinds};
 use super::set::ShaderSet;
 use super::spec::{Key, SetSpec, Source};
 use crate::error::{Error, Result};
@@ -52,10 +52,10 @@ impl Loader {
                 // elsewhere is data, whatever library lies in it.
                 let library = dir.join(twinray_compile::cpu::LIBRARY);
                 let ours = built && library.is_file();
-                let shapes = ours.then(|| CrateShapes::load(&library)).transpose().map_err(fail)?;
+                let shapes = ours.then(|| CrateKinds::load(&library)).transpose().map_err(fail)?;
                 let names = own_modules(&dir);
                 if shapes.is_some() || !names.is_empty() {
-                    set.set_own(OwnShapes::new(shapes, &names, |m| from_folder(m, &dir)).map_err(fail)?);
+                    set.set_own(OwnKinds::new(shapes, &names, |m| from_folder(m, &dir)).map_err(fail)?);
                 }
                 set
             }
@@ -138,13 +138,13 @@ pub fn summary(dir: &Path, built: &folder::Built) -> String {
     format!("{}: {what}, {modules} modules (twinray-shared {contract}), {seconds:.1} s", dir.display())
 }
 
-/// The intersection modules of `dir` that are no module of twinray's: those of a crate's own
-/// shapes (`SHAPE_intersection.spv`), by name.
+/// The intersection and callable modules of `dir` that are no module of twinray's: those of a
+/// crate's own shapes (`SHAPE_intersection.spv`) and materials (`MATERIAL_material.spv`).
 fn own_modules(dir: &Path) -> Vec<String> {
     let files = std::fs::read_dir(dir).into_iter().flatten().flatten();
     let mut names: Vec<String> = files
         .filter_map(|e| e.file_name().to_str().and_then(|n| n.strip_suffix(".spv")).map(str::to_string))
-        .filter(|n| n.ends_with("_intersection") && !MODULES.iter().any(|m| m.name == n))
+        .filter(|n| (n.ends_with("_intersection") || n.ends_with("_material")) && !MODULES.iter().any(|m| m.name == n))
         .collect();
     names.sort();
     names

@@ -1,23 +1,25 @@
-//! A shader crate's own shapes, read from the CPU library twinray builds of the crate
-//! (`twinray_compile::cpu`): their scene keys, the primitives a shape of each becomes, and the
-//! f64 definition the reference judges their GPU intersection by. Only C values cross into the
+//! A shader crate's own shapes and materials, read from the CPU library twinray builds of the
+//! crate (`twinray_compile::cpu`): their scene keys, the primitives a shape of each becomes, the
+//! f64 definition the reference judges their GPU intersection by, and the parameters a
+//! material's callable reads. Only C values cross into the
 //! library (`twinray_shared::custom::abi`); a run loads a library once and keeps it.
 
 use super::module::Origin;
+use described::{own_material, own_shape, Described};
+pub use described::{OwnMaterial, OwnShape};
 use glam::{DVec3, Vec3, Vec4};
-use serde::Deserialize;
 use std::path::{Path, PathBuf};
 use twinray_shared::catalog::ModuleSpec;
-use twinray_shared::custom::abi::{self, PARAMETER_FLOATS, PRIMITIVE_FLOATS};
-use twinray_shared::custom::{Parameters, FIRST_HIT_KIND, LAST_HIT_KIND};
+use twinray_shared::custom::abi::{self, MATERIAL_FLOATS, PARAMETER_FLOATS, PRIMITIVE_FLOATS};
+use twinray_shared::custom::Parameters;
 use twinray_shared::layout::Primitive;
-use twinray_shared::shapes::spec::{Aabb, Param, ParamType, Rule, Value, Values};
-use twinray_shared::shapes::SHAPES;
+use twinray_shared::shapes::spec::{Aabb, Values};
 
 type Describe = unsafe extern "C" fn(*mut u8, usize) -> usize;
 type Primitives = unsafe extern "C" fn(u32, *const f64, usize, *mut f32, usize, *mut u8, usize) -> i64;
 type Distance = unsafe extern "C" fn(u32, *const f64, *const f64) -> f64;
 type Normal = unsafe extern "C" fn(u32, *const f64, *const f64, *mut f64);
+type MaterialFn = unsafe extern "C" fn(u32, *const f64, usize, *mut f32, *mut u8, usize) -> i64;
 
 /// The C functions of a crate's CPU library.
 #[derive(Clone, Copy)]
@@ -26,40 +28,30 @@ pub struct Functions {
     pub primitives: Primitives,
     pub distance: Distance,
     pub normal: Normal,
+    pub material: MaterialFn,
 }
 
-/// One shape of a crate, as its library describes it.
-#[derive(Clone, Debug)]
-pub struct OwnShape {
-    /// The scene kind, and its module's name less `_intersection`.
-    pub name: &'static str,
-    /// Its module: `NAME_intersection`.
-    pub module: &'static str,
-    pub about: String,
-    pub hit_kind: u32,
-    /// Its keys, with their rules and defaults.
-    pub params: &'static [Param],
-}
-
-/// A crate's shapes, and the library that computes their primitives and definitions.
-pub struct CrateShapes {
+/// A crate's shapes and materials, and the library that computes their primitives,
+/// definitions and parameters.
+pub struct CrateKinds {
     /// The library's file (or what stands for it).
     pub source: PathBuf,
     pub shapes: Vec<OwnShape>,
+    pub materials: Vec<OwnMaterial>,
     functions: Functions,
     _library: Option<libloading::Library>,
 }
 
-impl std::fmt::Debug for CrateShapes {
+impl std::fmt::Debug for CrateKinds {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        let names: Vec<_> = self.shapes.iter().map(|s| s.name).collect();
+        let names: Vec<_> = self.shapes.iter().map(|s| s.name).chain(self.materials.iter().map(|m| m.name)).collect();
         write!(f, "{} {names:?}", self.source.display())
     }
 }
 
-impl CrateShapes {
+impl CrateKinds {
     /// Loads the CPU library at `path` and reads its shapes.
-    pub fn load(path: &Path) -> Result<CrateShapes, String> {
+    pub fn load(path: &Path) -> Result<CrateKinds, String> {
         let fail = |e: String| format!("{}: {e}", path.display());
         // SAFETY: the library is the CPU side of a shader crate, built by twinray from the
         // crate's `shared/` library around twinray's own wrapper (`twinray_compile::cpu`), whose
@@ -85,16 +77,17 @@ impl CrateShapes {
                 primitives: std::mem::transmute::<*const (), Primitives>(get(b"twinray_primitives\0")?),
                 distance: std::mem::transmute::<*const (), Distance>(get(b"twinray_distance\0")?),
                 normal: std::mem::transmute::<*const (), Normal>(get(b"twinray_normal\0")?),
+                material: std::mem::transmute::<*const (), MaterialFn>(get(b"twinray_material\0")?),
             }
         };
-        let mut shapes = CrateShapes::from_functions(path.to_path_buf(), functions).map_err(fail)?;
+        let mut shapes = CrateKinds::from_functions(path.to_path_buf(), functions).map_err(fail)?;
         shapes._library = Some(library);
         Ok(shapes)
     }
 
     /// The shapes `functions` describe (a library's, or a test's own), checked: names and hit
     /// kinds unique and apart from the built-in shapes', each key's type and rule known.
-    pub fn from_functions(source: PathBuf, functions: Functions) -> Result<CrateShapes, String> {
+    pub fn from_functions(source: PathBuf, functions: Functions) -> Result<CrateKinds, String> {
         // SAFETY: a null buffer of capacity 0 asks for the length alone.
         let length = unsafe { (functions.describe)(std::ptr::null_mut(), 0) };
         let mut text = vec![0u8; length];
@@ -108,7 +101,8 @@ impl CrateShapes {
             return Err(refusal);
         }
         let shapes = described.shapes.into_iter().map(own_shape).collect::<Result<Vec<_>, _>>()?;
-        Ok(CrateShapes { source, shapes, functions, _library: None })
+        let materials = described.materials.into_iter().map(own_material).collect::<Result<Vec<_>, _>>()?;
+        Ok(CrateKinds { source, shapes, materials, functions, _library: None })
     }
 
     /// The shape called `name`.
@@ -118,7 +112,37 @@ impl CrateShapes {
 
     /// The shape called `name`, as scenes and hit groups name it.
     pub fn find(&'static self, name: &str) -> Option<OwnShapeRef> {
-        self.shape(name).map(|(index, _)| OwnShapeRef { crate_shapes: self, index })
+        self.shape(name).map(|(index, _)| OwnShapeRef { crate_kinds: self, index })
+    }
+
+    /// The material called `name`, as scenes name it.
+    pub fn find_material(&'static self, name: &str) -> Option<OwnMaterialRef> {
+        let index = self.materials.iter().position(|m| m.name == name)?;
+        Some(OwnMaterialRef { crate_kinds: self, index })
+    }
+
+    /// What the callable of material `index` reads for `values` (each key's, in its order):
+    /// `Material::color_a` and `color_b`; or why the crate refuses them.
+    pub fn material(&self, index: usize, values: &Values) -> Result<[Vec4; 2], String> {
+        let flat = abi::flatten(&values.0.iter().map(|(_, v)| *v).collect::<Vec<_>>());
+        let mut out = [f32::NAN; MATERIAL_FLOATS];
+        let mut message = vec![0u8; 1024];
+        // SAFETY: every buffer is as long as the count passed with it.
+        let n = unsafe {
+            (self.functions.material)(
+                index as u32,
+                flat.as_ptr(),
+                flat.len(),
+                out.as_mut_ptr(),
+                message.as_mut_ptr(),
+                message.len(),
+            )
+        };
+        if n < 0 {
+            message.truncate(n.unsigned_abs() as usize);
+            return Err(String::from_utf8_lossy(&message).into_owned());
+        }
+        Ok([Vec4::from_slice(&out[..4]), Vec4::from_slice(&out[4..])])
     }
 
     /// The primitives of shape `index` with `values` (each key's, in its order), each with
@@ -173,77 +197,104 @@ impl CrateShapes {
     }
 }
 
-/// The modules of shapes of a user's own in a folder set, and, where the set was built from a
-/// crate, what the crate says of its shapes: what such a set adds to twinray's catalog. A folder
+/// The modules of shapes and materials of a user's own in a folder set, and, where the set was
+/// built from a crate, what the crate says of them: what such a set adds to twinray's catalog. A folder
 /// of GLSL twins has the modules alone; its scenes' kinds come from the crate's set beside it.
 #[derive(Debug)]
-pub struct OwnShapes {
-    pub shapes: Option<CrateShapes>,
+pub struct OwnKinds {
+    pub kinds: Option<CrateKinds>,
     pub(super) modules: Vec<(ModuleSpec, Origin)>,
 }
 
 /// Two sets' own shapes are the same when they come from the same library and modules: a
 /// crate named twice in one command is one set (`ShaderSet::distinct` then times a salted
 /// copy of it, never the same pipeline twice), however many times it was loaded.
-impl PartialEq for OwnShapes {
+impl PartialEq for OwnKinds {
     fn eq(&self, other: &Self) -> bool {
-        let modules = |o: &OwnShapes| o.modules.iter().map(|(m, o)| (m.name, o.clone())).collect::<Vec<_>>();
-        let source = |o: &OwnShapes| o.shapes.as_ref().map(|c| c.source.clone());
+        let modules = |o: &OwnKinds| o.modules.iter().map(|(m, o)| (m.name, o.clone())).collect::<Vec<_>>();
+        let source = |o: &OwnKinds| o.kinds.as_ref().map(|c| c.source.clone());
         source(self) == source(other) && modules(self) == modules(other)
     }
 }
 
-impl OwnShapes {
+impl OwnKinds {
     /// The modules of `names` (intersection modules no shape of twinray's has) and of every
     /// shape of `shapes`, each from `origin` (a folder's file, or missing).
     pub(super) fn new(
-        shapes: Option<CrateShapes>,
+        kinds: Option<CrateKinds>,
         names: &[String],
         origin: impl Fn(&ModuleSpec) -> Result<Origin, String>,
-    ) -> Result<OwnShapes, String> {
-        let listed = shapes.iter().flat_map(|c| c.shapes.iter().map(|s| (s.name.to_string(), s.hit_kind)));
-        let mut wanted: Vec<(String, u32)> = listed.collect();
-        for name in names.iter().filter_map(|n| n.strip_suffix("_intersection")) {
-            if !wanted.iter().any(|(w, _)| w == name) {
-                wanted.push((name.to_string(), 0));
+    ) -> Result<OwnKinds, String> {
+        let listed = kinds.iter().flat_map(|c| c.shapes.iter().map(|s| (s.name.to_string(), s.hit_kind)));
+        let mut shapes: Vec<(String, u32)> = listed.collect();
+        let mut materials: Vec<String> = kinds.iter().flat_map(|c| c.materials.iter().map(|m| m.name.into())).collect();
+        for name in names {
+            if let Some(shape) = name.strip_suffix("_intersection") {
+                if !shapes.iter().any(|(w, _)| w == shape) {
+                    shapes.push((shape.to_string(), 0));
+                }
+            } else if let Some(material) = name.strip_suffix("_material") {
+                if !materials.iter().any(|m| m == material) {
+                    materials.push(material.to_string());
+                }
             }
         }
-        let specs = wanted.iter().map(|(name, kind)| twinray_shared::catalog::own_intersection(name, *kind));
+        let specs = shapes.iter().map(|(name, kind)| twinray_shared::catalog::own_intersection(name, *kind));
+        let specs = specs.chain(materials.iter().map(|m| twinray_shared::catalog::own_material(m)));
         let modules = specs.map(|spec| origin(&spec).map(|o| (spec, o))).collect::<Result<_, _>>()?;
-        Ok(OwnShapes { shapes, modules })
+        Ok(OwnKinds { kinds, modules })
+    }
+}
+
+/// One material of a crate's, as scenes and pipeline plans name it.
+#[derive(Clone, Copy, Debug)]
+pub struct OwnMaterialRef {
+    pub crate_kinds: &'static CrateKinds,
+    pub index: usize,
+}
+
+impl OwnMaterialRef {
+    /// What the crate says of it.
+    pub fn material(self) -> &'static OwnMaterial {
+        &self.crate_kinds.materials[self.index]
+    }
+
+    /// What its callable reads for `values`, or why the crate refuses them.
+    pub fn parameters(self, values: &Values) -> Result<[Vec4; 2], String> {
+        self.crate_kinds.material(self.index, values)
     }
 }
 
 /// One shape of a crate's, as scenes, hit groups and the reference name it.
 #[derive(Clone, Copy, Debug)]
 pub struct OwnShapeRef {
-    pub crate_shapes: &'static CrateShapes,
+    pub crate_kinds: &'static CrateKinds,
     pub index: usize,
 }
 
 impl OwnShapeRef {
     /// What the crate says of it.
     pub fn shape(self) -> &'static OwnShape {
-        &self.crate_shapes.shapes[self.index]
+        &self.crate_kinds.shapes[self.index]
     }
 
     /// Its primitives for `values`, or why the crate refuses them.
     pub fn primitives(self, values: &Values) -> Result<Vec<(Primitive, Aabb)>, String> {
-        self.crate_shapes.primitives(self.index, values)
+        self.crate_kinds.primitives(self.index, values)
     }
 
     /// Its signed distance at `p` for a primitive's parameters, by the crate's definition.
     pub fn distance(self, parameters: &Parameters, p: DVec3) -> f64 {
-        self.crate_shapes.distance(self.index, parameters, p)
+        self.crate_kinds.distance(self.index, parameters, p)
     }
 
     /// Its outward normal at `p`, by the crate's definition.
     pub fn normal(self, parameters: &Parameters, p: DVec3) -> DVec3 {
-        self.crate_shapes.normal(self.index, parameters, p)
+        self.crate_kinds.normal(self.index, parameters, p)
     }
 
     fn key(self) -> (&'static str, usize, usize) {
-        (self.shape().name, self.crate_shapes as *const CrateShapes as usize, self.index)
+        (self.shape().name, self.crate_kinds as *const CrateKinds as usize, self.index)
     }
 }
 
@@ -302,90 +353,6 @@ fn primitive(f: &[f32]) -> (Primitive, Aabb) {
     (primitive, Aabb { min: Vec3::new(f[12], f[13], f[14]), max: Vec3::new(f[15], f[16], f[17]) })
 }
 
-#[derive(Deserialize)]
-struct Described {
-    contract: String,
-    error: Option<String>,
-    shapes: Vec<DescribedShape>,
-}
-
-#[derive(Deserialize)]
-struct DescribedShape {
-    name: String,
-    about: String,
-    hit_kind: u32,
-    params: Vec<DescribedParam>,
-}
-
-#[derive(Deserialize)]
-struct DescribedParam {
-    name: String,
-    #[serde(rename = "type")]
-    ty: String,
-    rule: String,
-    max: Option<u32>,
-    default: Option<Vec<f64>>,
-}
-
-fn leak(text: String) -> &'static str {
-    Box::leak(text.into_boxed_str())
-}
-
-/// A described shape as the host keeps it, or why it cannot be one of a scene's kinds.
-fn own_shape(s: DescribedShape) -> Result<OwnShape, String> {
-    let builtin = SHAPES.iter().flat_map(|b| b.spec.kinds.iter().map(|k| k.name)).chain(["mesh", "gltf"]);
-    if builtin.clone().any(|k| k == s.name) {
-        return Err(format!("shape {:?}: twinray has a shape kind of that name", s.name));
-    }
-    if !(FIRST_HIT_KIND..=LAST_HIT_KIND).contains(&s.hit_kind) {
-        return Err(format!(
-            "shape {:?}: hit kind {} is not in {FIRST_HIT_KIND}..={LAST_HIT_KIND}",
-            s.name, s.hit_kind
-        ));
-    }
-    let params = s.params.into_iter().map(|p| own_param(&s.name, p)).collect::<Result<Vec<_>, _>>()?;
-    Ok(OwnShape {
-        module: leak(format!("{}_intersection", s.name)),
-        name: leak(s.name),
-        about: s.about,
-        hit_kind: s.hit_kind,
-        params: Box::leak(params.into_boxed_slice()),
-    })
-}
-
-fn own_param(shape: &str, p: DescribedParam) -> Result<Param, String> {
-    let unknown = |what: &str, word: &str| format!("shape {shape:?}: key {:?}: unknown {what} {word:?}", p.name);
-    let ty = match p.ty.as_str() {
-        "number" => ParamType::Number,
-        "pair" => ParamType::Pair,
-        "triple" => ParamType::Triple,
-        "count" => ParamType::Count,
-        other => return Err(unknown("type", other)),
-    };
-    let rule = match (p.rule.as_str(), p.max) {
-        ("finite", _) => Rule::Finite,
-        ("positive", _) => Rule::Positive,
-        ("any", _) => Rule::Any,
-        ("count_up_to", Some(max)) => Rule::CountUpTo(max),
-        (other, _) => return Err(unknown("rule", other)),
-    };
-    let default = match (ty, p.default.as_deref()) {
-        (_, None) => None,
-        (ParamType::Count, Some([x])) => Some(Value::Count(*x as u32)),
-        (ParamType::Number, Some([x])) => Some(Value::Number(*x as f32)),
-        (ParamType::Pair, Some([x, y])) => Some(Value::Pair([*x as f32, *y as f32])),
-        (ParamType::Triple, Some([x, y, z])) => Some(Value::Triple([*x as f32, *y as f32, *z as f32])),
-        (_, Some(other)) => {
-            return Err(format!(
-                "shape {shape:?}: key {:?}: a default of {} values for a {}",
-                p.name,
-                other.len(),
-                p.ty
-            ))
-        }
-    };
-    Ok(Param { name: leak(p.name), ty, rule, default })
-}
-
+mod described;
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -3,7 +3,7 @@
 //! `super::load::Loader`; a loaded set prints as the text that loads it back.
 
 use super::module::{Origin, StageModule};
-use super::own::{CrateShapes, OwnShapes};
+use super::own::{CrateKinds, OwnKinds};
 use super::spec::SetSpec;
 use crate::error::{Error, Result};
 use std::fmt;
@@ -18,8 +18,8 @@ pub struct ShaderSet {
     text: Option<String>,
     /// 0 for the set itself; N for its Nth salted copy (see `copy`).
     copy: u32,
-    /// The shapes of the crate the set was built from, when it lists any.
-    own: Option<&'static OwnShapes>,
+    /// The shapes and materials of the crate the set was built from, when it has any.
+    own: Option<&'static OwnKinds>,
 }
 
 impl PartialEq for ShaderSet {
@@ -80,11 +80,11 @@ impl ShaderSet {
         MODULES.iter().zip(&self.origins).chain(own).any(|(m, o)| m.name == name && matches!(o, Origin::Missing(_)))
     }
 
-    /// The crates' shapes of `sets`, each crate once: the kinds a scene rendered with them may
+    /// The crates of `sets`, each once: the shape and material kinds a scene rendered with them may
     /// name beside twinray's.
-    pub fn own_kinds(sets: &[&ShaderSet]) -> Vec<&'static CrateShapes> {
-        let mut out: Vec<&'static CrateShapes> = Vec::new();
-        for own in sets.iter().filter_map(|s| s.own.and_then(|o| o.shapes.as_ref())) {
+    pub fn own_kinds(sets: &[&ShaderSet]) -> Vec<&'static CrateKinds> {
+        let mut out: Vec<&'static CrateKinds> = Vec::new();
+        for own in sets.iter().filter_map(|s| s.own.and_then(|o| o.kinds.as_ref())) {
             if !out.iter().any(|o| std::ptr::eq(*o, own)) {
                 out.push(own);
             }
@@ -92,13 +92,14 @@ impl ShaderSet {
         out
     }
 
-    /// Gives the set its crate's shapes, kept for the rest of the run (a scene and the
+    /// Gives the set its crate's kinds, kept for the rest of the run (a scene and the
     /// reference refer to them as long as the set's pipelines may run).
-    pub(super) fn set_own(&mut self, own: OwnShapes) {
+    pub(super) fn set_own(&mut self, own: OwnKinds) {
         self.own = Some(Box::leak(Box::new(own)));
     }
 
-    /// The module called `name` in this set: one of the catalog, or of the crate's own shapes.
+    /// The module called `name` in this set: one of the catalog, or of the crate's own shapes and
+    /// materials.
     pub fn module(&self, name: &str) -> Result<StageModule> {
         if let Some(spec) = twinray_shared::catalog::module(name) {
             return self.resolve(&spec);
@@ -109,6 +110,10 @@ impl ShaderSet {
             None if name.ends_with("_intersection") => Err(Error::Input(format!(
                 "shader set {self}: no module {name}, the intersection stage of a crate's own shape: the set was \
                  not built from a crate (or its GLSL twins) that has the shape"
+            ))),
+            None if name.ends_with("_material") => Err(Error::Input(format!(
+                "shader set {self}: no module {name}, the callable of a crate's own material: the set was \
+                 not built from a crate (or its GLSL twins) that has the material"
             ))),
             None => Err(Error::Input(format!("shader set {self}: no module {name} in twinray's catalog"))),
         }

@@ -1,5 +1,5 @@
 //! Written by twinray, rebuilt when the crate changes: the CPU side of a shader crate, which
-//! twinray loads to read the crate's shapes (twinray_shared::custom::abi says how).
+//! twinray loads to read the crate's shapes and materials (twinray_shared::custom::abi says how).
 #![allow(clippy::missing_safety_doc)]
 
 use twinray_shared::custom::abi;
@@ -11,7 +11,7 @@ pub extern "C" fn twinray_abi() -> u32 {
 
 #[no_mangle]
 pub unsafe extern "C" fn twinray_describe(out: *mut u8, capacity: usize) -> usize {
-    unsafe { abi::describe(own::SHAPES, out, capacity) }
+    unsafe { abi::describe(own::SHAPES, own::MATERIALS, out, capacity) }
 }
 
 #[no_mangle]
@@ -35,4 +35,16 @@ pub unsafe extern "C" fn twinray_distance(shape: u32, parameters: *const f64, p:
 #[no_mangle]
 pub unsafe extern "C" fn twinray_normal(shape: u32, parameters: *const f64, p: *const f64, out: *mut f64) {
     unsafe { abi::normal(own::SHAPES, shape, parameters, p, out) }
+}
+
+#[no_mangle]
+pub unsafe extern "C" fn twinray_material(
+    material: u32,
+    values: *const f64,
+    count: usize,
+    out: *mut f32,
+    message: *mut u8,
+    message_capacity: usize,
+) -> i64 {
+    unsafe { abi::material(own::MATERIALS, material, (values, count), out, (message, message_capacity)) }
 }

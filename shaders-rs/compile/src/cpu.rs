@@ -1,8 +1,9 @@
 //! The CPU side of a shader crate: its `shared/` library (the code its stages and the CPU
-//! share, where its own shapes are listed) built for the CPU inside a small library twinray
-//! writes around it (`cpu/lib.rs`: the C functions of `twinray_shared::custom::abi`), so that
-//! the host learns the crate's shapes and their f64 definitions from the crate itself. The
-//! library lands in the set's folder as [`LIBRARY`]; a crate without `shared/` has none.
+//! share, where its own shapes and materials are listed) built for the CPU inside a small
+//! library twinray writes around it (`cpu/lib.rs`: the C functions of
+//! `twinray_shared::custom::abi`), so that the host learns the crate's shapes, their f64
+//! definitions and its materials from the crate itself. The library lands in the set's folder
+//! as [`LIBRARY`]; a crate without `shared/` has none.
 
 use crate::builder::nightly;
 use crate::metadata::package;
@@ -43,7 +44,7 @@ pub fn build(dir: &Path, out: &Path, timeout: Duration) -> Result<PathBuf> {
         shared.display().to_string(),
     );
     write_if_changed(&wrapper.join("Cargo.toml"), manifest.as_bytes())?;
-    write_if_changed(&wrapper.join("src/lib.rs"), WRAPPER.as_bytes())?;
+    write_if_changed(&wrapper.join("src/lib.rs"), wrapper_source(&shared).as_bytes())?;
     // The crate's own lock, so that the same versions are used without the network.
     let lock = wrapper.join("Cargo.lock");
     if !lock.exists() {
@@ -71,6 +72,17 @@ pub fn build(dir: &Path, out: &Path, timeout: Duration) -> Result<PathBuf> {
     let to = out.join(LIBRARY);
     std::fs::copy(&built, &to).with_context(|| format!("copying {}", built.display()))?;
     Ok(to)
+}
+
+/// The wrapper around the library in `shared`: a crate made before materials could be added
+/// lists none (no `MATERIALS`), which the wrapper then reads as an empty list.
+fn wrapper_source(shared: &Path) -> String {
+    let lib = std::fs::read_to_string(shared.join("src/lib.rs")).unwrap_or_default();
+    if lib.contains("pub const MATERIALS") {
+        WRAPPER.to_string()
+    } else {
+        WRAPPER.replace("own::MATERIALS", "&[]")
+    }
 }
 
 fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<()> {

@@ -215,10 +215,11 @@ fn entry_points(dir: &Path, out: &Path) -> Result<Vec<String>> {
                 std::fs::rename(&path, &plain)?;
                 (path, name) = (plain, last.to_string());
             }
-            // A crate with a shared library may add shapes, whose intersection modules the
-            // host checks against the shapes the library lists.
-            let own_shape = crate::cpu::has_shared(dir) && name.ends_with("_intersection");
-            if !own_shape && !MODULES.iter().any(|m| m.name == name) {
+            // A crate with a shared library may add shapes and materials, whose intersection
+            // and callable modules the host checks against what the library lists.
+            let own = name.ends_with("_intersection") || name.ends_with("_material");
+            let own = own && crate::cpu::has_shared(dir);
+            if !own && !MODULES.iter().any(|m| m.name == name) {
                 bail!(
                     "{}: entry point `{name}` is no module of twinray's catalog (twinray_shared::catalog names them all)",
                     dir.display()

@@ -21,7 +21,7 @@ pub use exit::exit_words;
 pub use process::{have, output, run};
 use std::path::Path;
 use std::process::Command;
-use twinray_shared::catalog::{module, own_intersection, GlslSource, Language, ModuleSpec, MODULES};
+use twinray_shared::catalog::{module, own_intersection, own_material, GlslSource, Language, ModuleSpec, MODULES};
 use twinray_shared::spirv_info::{self, ModuleInfo};
 
 /// The sources of each set, relative to a checkout's root: a change under them rebuilds it.
@@ -97,11 +97,7 @@ pub(crate) fn postprocess(dir: &Path, names: &[String], language: Language, reco
     if language == Language::Rust {
         strip_debug_info(dir, names)?;
     }
-    // A crate's own shapes' modules (folder.rs lets in only `*_intersection` ones) are checked
-    // as intersection modules; their hit kinds are the host's to check, against the crate's list.
-    let own = names.iter().filter(|n| module(n).is_none()).filter_map(|n| n.strip_suffix("_intersection"));
-    let specs: Vec<_> = MODULES.iter().copied().filter(|m| names.iter().any(|n| n == m.name)).collect();
-    for spec in specs.into_iter().chain(own.map(|shape| own_intersection(shape, 0))) {
+    for spec in specs_of(names) {
         let spec = &spec;
         let path = dir.join(format!("{}.spv", spec.name));
         let label = format!("{} {}", language.name(), spec.name);
@@ -161,17 +157,24 @@ pub(crate) fn run_builder(builder: &Path, crate_dir: &Path, out: &Path, target: 
     command
 }
 
+/// The specs of the modules `names`: the catalog's, and a crate's own shapes' and materials'
+/// (folder.rs lets in only `*_intersection` and `*_material` ones) as intersection and callable
+/// modules, whose hit kinds and names are the host's to check against the crate's lists.
+fn specs_of(names: &[String]) -> Vec<ModuleSpec> {
+    let own = names.iter().filter(|n| module(n).is_none());
+    let shapes = own.clone().filter_map(|n| n.strip_suffix("_intersection")).map(|shape| own_intersection(shape, 0));
+    let materials = own.filter_map(|n| n.strip_suffix("_material")).map(own_material);
+    let catalog = MODULES.iter().copied().filter(|m| names.iter().any(|n| n == m.name));
+    catalog.chain(shapes).chain(materials).collect()
+}
+
 /// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
 /// is off, so that the committed modules depend only on the code, and the ray query capability
 /// from modules that trace no ray query; decorates non-uniform descriptor accesses
 /// `NonUniform`, which rust-gpu's inliner drops (`uniformity`), and the error-free arithmetic
 /// of `twinray_shared::exact` `NoContraction`, which rust-gpu cannot write (`exact`).
 fn strip_debug_info(dir: &Path, names: &[String]) -> Result<()> {
-    // A crate's own shapes' modules (folder.rs lets in only `*_intersection` ones) are checked
-    // as intersection modules; their hit kinds are the host's to check, against the crate's list.
-    let own = names.iter().filter(|n| module(n).is_none()).filter_map(|n| n.strip_suffix("_intersection"));
-    let specs: Vec<_> = MODULES.iter().copied().filter(|m| names.iter().any(|n| n == m.name)).collect();
-    for spec in specs.into_iter().chain(own.map(|shape| own_intersection(shape, 0))) {
+    for spec in specs_of(names) {
         let spec = &spec;
         let path = dir.join(format!("{}.spv", spec.name));
         // Before the names go: they say which functions are exact.
@@ -222,18 +225,17 @@ pub(crate) fn build_glsl(include: &Path, out: &Path, output: Output, without: u3
     Ok(())
 }
 
-/// Compiles the intersection stages of a crate's own shapes among the GLSL twins in `dir`
-/// (`SHAPE_intersection.rint`, a stage file of its own) into `out`; returns their modules' names.
+/// Compiles the intersection stages of a crate's own shapes and the callables of its own
+/// materials among the GLSL twins in `dir` (`SHAPE_intersection.rint`,
+/// `MATERIAL_material.rcall`, stage files of their own) into `out`; returns their modules' names.
 pub(crate) fn build_own_glsl(dir: &Path, out: &Path, output: Output) -> Result<Vec<String>> {
     let mut names = Vec::new();
     for entry in std::fs::read_dir(dir).with_context(|| format!("listing {}", dir.display()))? {
         let path = entry?.path();
-        let Some(stem) = path.file_name().and_then(|n| n.to_str()).and_then(|n| n.strip_suffix(".rint")) else {
-            continue;
-        };
-        if !stem.ends_with("_intersection") || module(stem).is_some() {
-            continue;
-        }
+        let Some(name) = path.file_name().and_then(|n| n.to_str()) else { continue };
+        let shape = name.strip_suffix(".rint").filter(|s| s.ends_with("_intersection"));
+        let material = name.strip_suffix(".rcall").filter(|s| s.ends_with("_material"));
+        let Some(stem) = shape.or(material).filter(|s| module(s).is_none()) else { continue };
         let mut command = Command::new("glslangValidator");
         command.args(["-V", "--target-env", "spirv1.4", "-o"]).arg(out.join(format!("{stem}.spv")));
         run_tool(output, command.arg(format!("-I{}", dir.display())).arg(&path))

@@ -1,9 +1,12 @@
-//! `twinray new DIR --shape NAME`: a shape of the crate's own, added to a starter crate or any
-//! shader crate: its module in the crate's shared library (`shared/`: the GPU routine and, on
-//! the CPU, its keys, primitives and f64 definition), its intersection stage in `src/`, its
-//! GLSL twin where the crate has `glsl/`, and a scene and a probe case that render and probe it
-//! as written. Every file is checked before any is written, and none of a user's is
-//! overwritten; the crate's `lib.rs` files gain one line each, at the lines the starter marks.
+//! `twinray new DIR --shape NAME` and `--material NAME`: a shape or material of the crate's
+//! own, added to a starter crate or any shader crate. A shape: its module in the crate's shared
+//! library (`shared/`: the GPU routine and, on the CPU, its keys, primitives and f64
+//! definition), its intersection stage in `src/`, its GLSL twin where the crate has `glsl/`,
+//! and a scene and a probe case that render and probe it as written. A material: its module in
+//! `shared/` (the GPU colour and, on the CPU, its keys and parameters), its callable stage in
+//! `src/`, its GLSL twin, and a scene. Every file is checked before any is written, and none
+//! of a user's is overwritten; the crate's `lib.rs` files gain a line each, at the lines the
+//! starter marks.
 
 use anyhow::{bail, Context, Result};
 use std::path::{Path, PathBuf};
@@ -15,11 +18,25 @@ const SHAPE_STAGE: &str = include_str!("../starter/shape/stage.rs");
 const SHAPE_TWIN: &str = include_str!("../starter/shape/twin.rint");
 const SHAPE_SCENE: &str = include_str!("../starter/shape/scene.toml");
 const SHAPE_PROBE: &str = include_str!("../starter/shape/probe.toml");
+const MATERIAL_SHARED: &str = include_str!("../starter/material/shared.rs");
+const MATERIAL_STAGE: &str = include_str!("../starter/material/stage.rs");
+const MATERIAL_TWIN: &str = include_str!("../starter/material/twin.rcall");
+const MATERIAL_SCENE: &str = include_str!("../starter/material/scene.toml");
 
-/// The line of `shared/src/lib.rs` after which a shape's `pub mod` goes.
-const MODULES_MARK: &str = "// The shapes' modules";
+/// The line of `shared/src/lib.rs` after which a shape's or material's `pub mod` goes.
+const MODULES_MARK: &str = "// The shapes' ";
 /// The line of `shared/src/lib.rs` before which a shape's `SHAPE` joins the list.
 const LIST_MARK: &str = "    // The shapes (";
+/// The line of `shared/src/lib.rs` before which a material's `MATERIAL` joins the list.
+const MATERIALS_MARK: &str = "    // The materials (";
+/// The list of materials, for a crate made before materials could be added.
+const MATERIALS_LIST: &str = "
+/// The materials scenes may name (`kind = \"NAME\"`), which twinray reads from the CPU build.
+#[cfg(not(target_arch = \"spirv\"))]
+pub const MATERIALS: &[twinray_shared::custom::CustomMaterial] = &[
+    // The materials (`twinray new . --material NAME` adds each before this line).
+];
+";
 
 /// Hit kinds a crate's shapes report (`twinray_shared::custom`).
 const HIT_KINDS: std::ops::RangeInclusive<u32> =
@@ -51,7 +68,7 @@ pub fn ensure_shared(dir: &Path, name: &str) -> Result<Vec<PathBuf>> {
 /// Adds the shape `shape` to the shader crate in `dir` (see the module comment). Returns the
 /// files written or changed, relative to `dir`, and the hit kind the shape reports.
 pub fn add_shape(dir: &Path, shape: &str) -> Result<(Vec<PathBuf>, u32)> {
-    check_shape_name(shape)?;
+    check_name("shape", shape)?;
     let name = package_name(dir)?;
     let mut changed = ensure_shared(dir, &name)?;
     let shared_package = package_name(&dir.join("shared"))?;
@@ -69,39 +86,81 @@ pub fn add_shape(dir: &Path, shape: &str) -> Result<(Vec<PathBuf>, u32)> {
     if dir.join("glsl/raygen.rgen").is_file() {
         files.push((PathBuf::from(format!("glsl/{shape}_intersection.rint")), fill(SHAPE_TWIN)));
     }
+    let item = Item { what: "shape", name: shape, list: LIST_MARK, constant: "SHAPE", stage: "intersection stage" };
+    changed.extend(add_item(dir, files, &item)?);
+    Ok((changed, hit_kind))
+}
+
+/// Adds the material `material` to the shader crate in `dir` (see the module comment).
+/// Returns the files written or changed, relative to `dir`.
+pub fn add_material(dir: &Path, material: &str) -> Result<Vec<PathBuf>> {
+    check_name("material", material)?;
+    let name = package_name(dir)?;
+    let mut changed = ensure_shared(dir, &name)?;
+    let shared_crate = package_name(&dir.join("shared"))?.replace('-', "_");
+    let fill = |text: &str| text.replace("{material}", material).replace("{shared}", &shared_crate);
+    let mut files = vec![
+        (PathBuf::from(format!("shared/src/{material}.rs")), fill(MATERIAL_SHARED)),
+        (PathBuf::from(format!("src/{material}.rs")), fill(MATERIAL_STAGE)),
+        (PathBuf::from(format!("scenes/{material}.toml")), fill(MATERIAL_SCENE)),
+    ];
+    if dir.join("glsl/raygen.rgen").is_file() {
+        files.push((PathBuf::from(format!("glsl/{material}_material.rcall")), fill(MATERIAL_TWIN)));
+    }
+    let item = Item { what: "material", name: material, list: MATERIALS_MARK, constant: "MATERIAL", stage: "callable" };
+    changed.extend(add_item(dir, files, &item)?);
+    Ok(changed)
+}
+
+/// A shape or material being added: what it is, its name, the marked line of its list in
+/// `shared/src/lib.rs`, the constant of its module that joins the list, and its stage kind.
+struct Item<'a> {
+    what: &'static str,
+    name: &'a str,
+    list: &'static str,
+    constant: &'static str,
+    stage: &'static str,
+}
+
+/// Writes `files` of `item` and lists it in both `lib.rs` files of the crate in `dir`, once
+/// every file is known to be new and every marked line found; returns the paths written.
+fn add_item(dir: &Path, mut files: Vec<(PathBuf, String)>, item: &Item) -> Result<Vec<PathBuf>> {
+    let Item { what, name, .. } = *item;
     for (path, _) in &files {
         if dir.join(path).exists() {
-            bail!("{} exists: the crate has a shape {shape:?} already (nothing was written)", dir.join(path).display());
+            bail!("{} exists: the crate has a {what} {name:?} already (nothing was written)", dir.join(path).display());
         }
     }
     let lib_path = dir.join("shared/src/lib.rs");
     let lib = std::fs::read_to_string(&lib_path).with_context(|| format!("reading {}", lib_path.display()))?;
-    let lib = with_listed_shape(&lib, shape).with_context(|| lib_path.display().to_string())?;
+    let lib = with_listed(&lib, item).with_context(|| lib_path.display().to_string())?;
     let stages_path = dir.join("src/lib.rs");
     let stages = std::fs::read_to_string(&stages_path).with_context(|| format!("reading {}", stages_path.display()))?;
-    let stages = format!(
-        "{}\n/// The intersection stage of the crate's own shape `{shape}`.\npub mod {shape};\n",
-        stages.trim_end()
-    );
+    let stages =
+        format!("{}\n/// The {} of the crate's own {what} `{name}`.\npub mod {name};\n", stages.trim_end(), item.stage);
     files.push(("shared/src/lib.rs".into(), lib));
     files.push(("src/lib.rs".into(), stages));
-    changed.extend(write_all(dir, &files)?);
-    Ok((changed, hit_kind))
+    write_all(dir, &files)
 }
 
-/// A shape's name: a Rust identifier and a scene kind, none of twinray's own.
-fn check_shape_name(shape: &str) -> Result<()> {
-    let well_formed = shape.starts_with(|c: char| c.is_ascii_lowercase())
-        && shape.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
-        && shape.len() <= 48;
+/// A shape's or material's (`what`) name: a Rust identifier and a scene kind, none of
+/// twinray's own.
+fn check_name(what: &str, name: &str) -> Result<()> {
+    let well_formed = name.starts_with(|c: char| c.is_ascii_lowercase())
+        && name.chars().all(|c| c.is_ascii_lowercase() || c.is_ascii_digit() || c == '_')
+        && name.len() <= 48;
     if !well_formed {
-        bail!("{shape:?} cannot name a shape: lower-case letters, digits and _, a letter first");
+        bail!("{name:?} cannot name a {what}: lower-case letters, digits and _, a letter first");
     }
     const RUST_WORDS: [&str; 12] =
         ["as", "crate", "fn", "impl", "in", "loop", "mod", "move", "ref", "self", "type", "use"];
-    let builtin = twinray_shared::shapes::SHAPES.iter().flat_map(|s| s.spec.kinds.iter().map(|k| k.name));
-    if builtin.chain(["mesh", "gltf", "shared", "lib"]).any(|k| k == shape) || RUST_WORDS.contains(&shape) {
-        bail!("{shape:?} is taken (a shape kind of twinray's, a file of the crate or a word of Rust): choose another name");
+    let shapes = twinray_shared::shapes::SHAPES.iter().flat_map(|s| s.spec.kinds.iter().map(|k| k.name));
+    let mut builtin = shapes.chain(["mesh", "gltf"]).chain(twinray_shared::custom::BUILTIN_MATERIALS);
+    if builtin.any(|k| k == name) || ["shared", "lib"].contains(&name) || RUST_WORDS.contains(&name) {
+        bail!(
+            "{name:?} is taken (a shape or material kind of twinray's, a file of the crate or a word of Rust): \
+             choose another name"
+        );
     }
     Ok(())
 }
@@ -184,20 +243,25 @@ pub(crate) fn sorted_lock(text: &str) -> String {
     format!("{}\n", out.trim_end())
 }
 
-/// `lib` with the module of `shape` after [`MODULES_MARK`] and its `SHAPE` before [`LIST_MARK`].
-fn with_listed_shape(lib: &str, shape: &str) -> Result<String> {
+/// `lib` with the module of `item` after [`MODULES_MARK`] and its constant before its list's
+/// marked line (a list of materials added first where the crate has none).
+fn with_listed(lib: &str, item: &Item) -> Result<String> {
+    let Item { name, constant, .. } = *item;
     let line_after = |text: &str, mark: &str| {
         let at = text.find(mark)?;
         Some(at + text[at..].find('\n')? + 1)
     };
     let Some(modules) = line_after(lib, MODULES_MARK) else {
-        bail!("no line `{MODULES_MARK} ...` to add `pub mod {shape};` after: add it and `{shape}::SHAPE` to SHAPES by hand");
+        bail!("no line `{MODULES_MARK}...` to add `pub mod {name};` after: add it and `{name}::{constant}` to its list by hand");
     };
-    let text = format!("{}pub mod {shape};\n{}", &lib[..modules], &lib[modules..]);
-    let Some(list) = text.find(LIST_MARK) else {
-        bail!("no line `{}...` in SHAPES to add `{shape}::SHAPE,` before", LIST_MARK.trim());
+    let mut text = format!("{}pub mod {name};\n{}", &lib[..modules], &lib[modules..]);
+    if item.list == MATERIALS_MARK && !text.contains("pub const MATERIALS") {
+        text = format!("{}\n{MATERIALS_LIST}", text.trim_end());
+    }
+    let Some(list) = text.find(item.list) else {
+        bail!("no line `{}...` to add `{name}::{constant},` before", item.list.trim());
     };
-    Ok(format!("{}    {shape}::SHAPE,\n{}", &text[..list], &text[list..]))
+    Ok(format!("{}    {name}::{constant},\n{}", &text[..list], &text[list..]))
 }
 
 /// Writes each (path under `dir`, text), making folders; returns the paths.

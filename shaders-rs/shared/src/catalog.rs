@@ -250,6 +250,15 @@ pub fn own_intersection(shape: &str, hit_kind: u32) -> ModuleSpec {
     ModuleSpec { name, stage: Stage::Intersection, glsl: GlslSource::Shape { shape, hit_kind, naive: false } }
 }
 
+/// The callable module of a crate's own material `material` ([`crate::custom`]):
+/// `MATERIAL_material`, whose GLSL twin is the stage file `MATERIAL_material.rcall`. Its
+/// names are leaked, as [`own_intersection`]'s are.
+pub fn own_material(material: &str) -> ModuleSpec {
+    let name: &'static str = Box::leak(format!("{material}_material").into_boxed_str());
+    let file: &'static str = Box::leak(format!("{name}.rcall").into_boxed_str());
+    ModuleSpec { name, stage: Stage::Callable, glsl: GlslSource::File(file) }
+}
+
 impl ModuleSpec {
     /// The entry point's name in this language's module.
     pub fn entry_point(&self, language: Language) -> &'static str {

@@ -132,6 +132,8 @@ pub fn call_material(call: &mut MaterialCall, material: &Material, point: Vec3, 
     call.material = *material;
     call.point = point.extend(1.0);
     call.normal = normal.extend(0.0);
+    // Poisoned, so that a callable that writes no colour leaves a NaN in the image.
+    call.color = Vec4::splat(f32::from_bits(twinray_shared::bindings::UNWRITTEN));
     // SAFETY: `call` is this stage's callable data; the host gives the callable region a record
     // for every material kind. `spirv_std::arch::execute_callable` takes only a constant index.
     unsafe {

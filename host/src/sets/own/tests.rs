@@ -1,6 +1,6 @@
 use super::*;
-use twinray_shared::custom::CustomShape;
-use twinray_shared::shapes::spec::single;
+use twinray_shared::custom::{CustomMaterial, CustomShape};
+use twinray_shared::shapes::spec::{single, Param, ParamType, Value};
 
 /// A capsule about y of `radius`, its caps' centres `length` apart, as a crate would list it.
 const CAPSULE: CustomShape = CustomShape {
@@ -17,6 +17,15 @@ const CAPSULE: CustomShape = CustomShape {
     normal: |p, q| p - DVec3::new(0.0, p.y.clamp(-q.a.y, q.a.y), 0.0),
 };
 
+/// Two colours in waves along y, `period` apart.
+const WAVES: CustomMaterial = CustomMaterial {
+    name: "waves",
+    about: "waves of a colour",
+    params: &[Param::finite("color", ParamType::Triple), Param::positive("period")],
+    check: |_| Ok(()),
+    parameters: |v| [Vec3::from(v.triple("color")).extend(1.0), Vec4::new(0.0, 0.0, 0.0, v.number("period"))],
+};
+
 /// What the test's C functions read; `with_list` changes it, one test at a time.
 static LIST: std::sync::RwLock<&'static [CustomShape]> = std::sync::RwLock::new(&[CAPSULE]);
 
@@ -25,7 +34,7 @@ fn list() -> &'static [CustomShape] {
 }
 
 unsafe extern "C" fn describe(out: *mut u8, capacity: usize) -> usize {
-    unsafe { abi::describe(list(), out, capacity) }
+    unsafe { abi::describe(list(), &[WAVES], out, capacity) }
 }
 unsafe extern "C" fn primitives(s: u32, v: *const f64, n: usize, o: *mut f32, c: usize, m: *mut u8, mc: usize) -> i64 {
     unsafe { abi::primitives(list(), s, v, n, o, c, m, mc) }
@@ -37,15 +46,25 @@ unsafe extern "C" fn normal(s: u32, q: *const f64, p: *const f64, o: *mut f64) {
     unsafe { abi::normal(list(), s, q, p, o) }
 }
 
-const FUNCTIONS: Functions = Functions { describe, primitives, distance, normal };
+unsafe extern "C" fn material(i: u32, v: *const f64, n: usize, o: *mut f32, m: *mut u8, mc: usize) -> i64 {
+    unsafe { abi::material(&[WAVES], i, (v, n), o, (m, mc)) }
+}
+
+const FUNCTIONS: Functions = Functions { describe, primitives, distance, normal, material };
 
 static LOCK: std::sync::Mutex<()> = std::sync::Mutex::new(());
 
+/// A crate of one shape (`capsule`) and one material (`waves`: keys `color` and `period`),
+/// read through its C functions, for tests of other layers.
+pub(crate) fn test_kinds() -> &'static CrateKinds {
+    Box::leak(Box::new(with_list(&[CAPSULE]).unwrap()))
+}
+
 /// The crate shapes of `shapes`, read through the C functions.
-fn with_list(shapes: &'static [CustomShape]) -> Result<CrateShapes, String> {
+fn with_list(shapes: &'static [CustomShape]) -> Result<CrateKinds, String> {
     let _one = LOCK.lock().unwrap_or_else(|e| e.into_inner());
     *LIST.write().unwrap_or_else(|e| e.into_inner()) = shapes;
-    let read = CrateShapes::from_functions("test".into(), FUNCTIONS);
+    let read = CrateKinds::from_functions("test".into(), FUNCTIONS);
     *LIST.write().unwrap_or_else(|e| e.into_inner()) = &[CAPSULE];
     read
 }
@@ -69,6 +88,19 @@ fn a_crates_shape_is_read_with_its_keys_and_computes_through_its_functions() {
 }
 
 #[test]
+fn a_crates_material_is_read_with_its_keys_and_its_parameters_come_from_its_function() {
+    let kinds: &'static CrateKinds = Box::leak(Box::new(with_list(&[CAPSULE]).unwrap()));
+    let waves = kinds.find_material("waves").unwrap();
+    assert_eq!((waves.index, waves.material().module), (0, "waves_material"));
+    assert_eq!(waves.material().params.iter().map(|p| p.name).collect::<Vec<_>>(), ["color", "period"]);
+    let values = Values(vec![("color", Value::Triple([0.5, 0.25, 1.0])), ("period", Value::Number(2.0))]);
+    assert_eq!(waves.parameters(&values).unwrap(), [Vec4::new(0.5, 0.25, 1.0, 1.0), Vec4::new(0.0, 0.0, 0.0, 2.0)]);
+    let negative = Values(vec![("color", Value::Triple([0.5, 0.25, 1.0])), ("period", Value::Number(-2.0))]);
+    assert_eq!(waves.parameters(&negative).unwrap_err(), "period must be > 0 (got -2)");
+    assert!(kinds.find_material("capsule").is_none() && kinds.find("waves").is_none());
+}
+
+#[test]
 fn a_list_twinray_cannot_use_is_refused_by_name() {
     let mut sphere = CAPSULE;
     sphere.name = "sphere";
@@ -84,7 +116,7 @@ fn a_crate_loaded_twice_is_one_set_and_its_repeat_a_copy() {
     use crate::sets::{Language, ShaderSet};
     let set = || {
         let shapes = with_list(&[CAPSULE]).unwrap();
-        let own = OwnShapes::new(Some(shapes), &[], |m| Ok(Origin::Missing(format!("{}.spv", m.name).into()))).unwrap();
+        let own = OwnKinds::new(Some(shapes), &[], |m| Ok(Origin::Missing(format!("{}.spv", m.name).into()))).unwrap();
         let mut set = ShaderSet::uniform(Language::Rust);
         set.set_own(own);
         set

@@ -71,10 +71,45 @@ fn names_twinray_or_rust_take_are_refused() {
         ("mesh", "is taken"),
         ("type", "is taken"),
         ("shared", "is taken"),
+        ("checker", "is taken"),
     ] {
-        let e = check_shape_name(name).unwrap_err().to_string();
+        let e = check_name("shape", name).unwrap_err().to_string();
         assert!(e.contains(why), "{name}: {e}");
     }
     let e = add_shape(Path::new("/nonexistent/crate"), "capsule").unwrap_err().to_string();
     assert!(e.contains("no shader crate here"), "{e}");
+}
+
+#[test]
+fn a_material_is_added_in_every_place_it_needs() {
+    let dir = starter("material", true);
+    let written = add_material(&dir, "waves").unwrap();
+    for file in ["shared/src/waves.rs", "src/waves.rs", "scenes/waves.toml", "glsl/waves_material.rcall"] {
+        assert!(written.contains(&PathBuf::from(file)), "{file} not written");
+        assert!(!read(&dir, file).contains("{material}") && !read(&dir, file).contains("{shared}"), "{file}");
+    }
+    assert!(read(&dir, "src/waves.rs").contains("pub fn waves_material("));
+    let lib = read(&dir, "shared/src/lib.rs");
+    assert!(lib.contains("pub mod waves;\n") && lib.contains("    waves::MATERIAL,\n    // The materials ("), "{lib}");
+    assert!(
+        read(&dir, "src/lib.rs").ends_with("/// The callable of the crate's own material `waves`.\npub mod waves;\n")
+    );
+    let e = add_material(&dir, "waves").unwrap_err().to_string();
+    assert!(e.contains("has a material \"waves\" already (nothing was written)"), "{e}");
+    let e = add_shape(&dir, "waves").unwrap_err().to_string();
+    assert!(e.contains("shared/src/waves.rs exists"), "a shape cannot take a material's name: {e}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn a_crate_made_before_materials_gains_their_list_with_its_first() {
+    let dir = starter("old-lib", false);
+    let lib = read(&dir, "shared/src/lib.rs");
+    let at = lib.find("\n/// The materials scenes may name").unwrap();
+    std::fs::write(dir.join("shared/src/lib.rs"), &lib[..at]).unwrap();
+    add_material(&dir, "waves").unwrap();
+    let lib = read(&dir, "shared/src/lib.rs");
+    assert!(lib.contains("pub const MATERIALS: &[twinray_shared::custom::CustomMaterial] = &[\n    waves::MATERIAL,\n"));
+    assert!(!dir.join("glsl").exists(), "no GLSL twin where the crate has none");
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -1,43 +1,61 @@
-//! The C functions through which twinray reads a crate's [`CustomShape`]s. twinray writes a
-//! small library around the crate's `shared` library (`twinray_describe`, `twinray_primitives`,
-//! `twinray_distance`, `twinray_normal`, each one line calling the function of the same name
-//! here), builds it for the CPU with the crate's toolchain and loads it: across that line only
+//! The C functions through which twinray reads a crate's [`CustomShape`]s and
+//! [`CustomMaterial`]s. twinray writes a small library around the crate's `shared` library
+//! (`twinray_describe`, `twinray_primitives`, `twinray_distance`, `twinray_normal`,
+//! `twinray_material`, each one line calling the function of the same name here), builds it for the CPU with the crate's toolchain and loads it: across that line only
 //! C types pass, since the host and the crate may be built by different compilers.
 //!
 //! A panic in a crate's function is caught here: `primitives` reports it as an error, and
-//! `distance` and `normal` return NaN, which the host reports as the definition's fault.
+//! `distance` and `normal` return NaN, which the host reports as the definition's fault;
+//! `material` reports it as an error.
 
-use super::{check_list, CustomShape, Parameters};
-use crate::shapes::spec::{ParamType, Rule, Value, Values};
+use super::{check_list, check_materials, CustomMaterial, CustomShape, Parameters};
+use crate::shapes::spec::{Param, ParamType, Rule, Value, Values};
 use glam::{DVec3, DVec4};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
 /// The version of these functions; the host refuses a library of another.
-pub const VERSION: u32 = 1;
+pub const VERSION: u32 = 2;
 /// f32s per primitive that `primitives` writes: `a`, `b`, `tint`, then its box's `min` and `max`.
 pub const PRIMITIVE_FLOATS: usize = 18;
 /// f64s of a primitive's parameters as `distance` and `normal` take them: `a`, then `b`.
 pub const PARAMETER_FLOATS: usize = 8;
+/// f32s that `material` writes: `Material::color_a`, then `color_b`.
+pub const MATERIAL_FLOATS: usize = 8;
 
-/// The crate's shapes as JSON: `{"abi", "contract", "error", "shapes": [{"name", "about",
-/// "hit_kind", "params": [{"name", "type", "rule", "max", "default"}]}]}`. `error` is null, or
-/// why the list cannot be used ([`check_list`]).
-pub fn description(shapes: &[CustomShape]) -> String {
-    let error = match check_list(shapes) {
+/// The crate's shapes and materials as JSON: `{"abi", "contract", "error", "shapes": [{"name",
+/// "about", "hit_kind", "params": [{"name", "type", "rule", "max", "default"}]}], "materials":
+/// [{"name", "about", "params"}]}`. `error` is null, or why a list cannot be used
+/// ([`check_list`], [`check_materials`]).
+pub fn description(shapes: &[CustomShape], materials: &[CustomMaterial]) -> String {
+    let error = match check_list(shapes).and_then(|()| check_materials(materials)) {
         Ok(()) => "null".to_string(),
         Err(e) => json_string(&e),
     };
-    let shapes: Vec<String> = shapes.iter().map(describe_shape).collect();
+    let shapes: Vec<String> = shapes
+        .iter()
+        .map(|s| {
+            let (name, about) = (json_string(s.name), json_string(s.about));
+            format!("{{\"name\":{name},\"about\":{about},\"hit_kind\":{},\"params\":{}}}", s.hit_kind, keys(s.params))
+        })
+        .collect();
+    let materials: Vec<String> = materials
+        .iter()
+        .map(|m| {
+            let (name, about) = (json_string(m.name), json_string(m.about));
+            format!("{{\"name\":{name},\"about\":{about},\"params\":{}}}", keys(m.params))
+        })
+        .collect();
     format!(
-        "{{\"abi\":{VERSION},\"contract\":{},\"error\":{error},\"shapes\":[{}]}}",
+        "{{\"abi\":{VERSION},\"contract\":{},\"error\":{error},\"shapes\":[{}],\"materials\":[{}]}}",
         json_string(crate::contract::CONTRACT_VERSION),
-        shapes.join(",")
+        shapes.join(","),
+        materials.join(",")
     )
 }
 
-fn describe_shape(s: &CustomShape) -> String {
-    let params: Vec<String> = s
-        .params
+/// Scene keys as a JSON list.
+fn keys(params: &[Param]) -> String {
+    let params: Vec<String> = params
         .iter()
         .map(|p| {
             let ty = match p.ty {
@@ -63,13 +81,7 @@ fn describe_shape(s: &CustomShape) -> String {
             )
         })
         .collect();
-    format!(
-        "{{\"name\":{},\"about\":{},\"hit_kind\":{},\"params\":[{}]}}",
-        json_string(s.name),
-        json_string(s.about),
-        s.hit_kind,
-        params.join(",")
-    )
+    format!("[{}]", params.join(","))
 }
 
 /// `text` as a JSON string.
@@ -103,18 +115,19 @@ pub fn flatten(values: &[Value]) -> Vec<f64> {
     out
 }
 
-/// The keys of `shape` from `flat` ([`flatten`]'s order), or why they do not fit its keys.
-pub fn unflatten(shape: &CustomShape, flat: &[f64]) -> Result<Values, String> {
+/// The values of the keys `params` of the shape or material `name` from `flat` ([`flatten`]'s
+/// order), or why they do not fit its keys.
+pub fn unflatten(name: &str, params: &[Param], flat: &[f64]) -> Result<Values, String> {
     let mut rest = flat;
     let mut values = Vec::new();
-    for p in shape.params {
+    for p in params {
         let n = match p.ty {
             ParamType::Pair => 2,
             ParamType::Triple => 3,
             _ => 1,
         };
         if rest.len() < n {
-            return Err(format!("{}: {} values given for its keys, fewer than they take", shape.name, flat.len()));
+            return Err(format!("{name}: {} values given for its keys, fewer than they take", flat.len()));
         }
         let (v, tail) = rest.split_at(n);
         rest = tail;
@@ -129,7 +142,7 @@ pub fn unflatten(shape: &CustomShape, flat: &[f64]) -> Result<Values, String> {
         values.push((p.name, value));
     }
     if !rest.is_empty() {
-        return Err(format!("{}: {} values given for its keys, more than they take", shape.name, flat.len()));
+        return Err(format!("{name}: {} values given for its keys, more than they take", flat.len()));
     }
     Ok(Values(values))
 }
@@ -139,9 +152,9 @@ pub fn unflatten(shape: &CustomShape, flat: &[f64]) -> Result<Values, String> {
 ///
 /// # Safety
 /// `out` must be valid for `capacity` bytes of writes (or `capacity` 0).
-pub unsafe fn describe(shapes: &[CustomShape], out: *mut u8, capacity: usize) -> usize {
+pub unsafe fn describe(shapes: &[CustomShape], materials: &[CustomMaterial], out: *mut u8, capacity: usize) -> usize {
     // SAFETY: passed on from the caller.
-    unsafe { write_text(&description(shapes), out, capacity) }
+    unsafe { write_text(&description(shapes, materials), out, capacity) }
 }
 
 /// The primitives of shape `index` with the keys `values` (`count` f64s, [`flatten`]'s order):
@@ -167,7 +180,7 @@ pub unsafe fn primitives(
     // SAFETY: the caller gives `count` readable f64s at `values`.
     let flat = if count == 0 { &[][..] } else { unsafe { core::slice::from_raw_parts(values, count) } };
     let made = shapes.get(index as usize).ok_or_else(|| format!("no shape {index}")).and_then(|shape| {
-        let values = unflatten(shape, flat)?;
+        let values = unflatten(shape.name, shape.params, flat)?;
         let shape = *shape;
         catch_unwind(AssertUnwindSafe(|| (shape.check)(&values).map(|()| (shape.primitives)(&values))))
             .unwrap_or_else(|_| Err(format!("{}: its `check` or `primitives` panicked", shape.name)))
@@ -187,6 +200,44 @@ pub unsafe fn primitives(
                 }
             }
             list.len() as i64
+        }
+        Err(why) => {
+            // SAFETY: the caller gives `message_capacity` writable bytes at `message`.
+            let whole = unsafe { write_text(&why, message, message_capacity) };
+            -(whole.max(1) as i64)
+        }
+    }
+}
+
+/// The parameters of material `index` with the keys `values` (`count` f64s, [`flatten`]'s
+/// order): 0, with [`MATERIAL_FLOATS`] f32s written to `out`; or below zero when the keys are
+/// refused or the material's function panicked, with why written to `message` (at most
+/// `message_capacity` bytes) and the negated length of the whole message returned.
+///
+/// # Safety
+/// `values` must be valid for `count` reads, `out` for [`MATERIAL_FLOATS`] writes and
+/// `message` for `message_capacity` writes (a capacity may be 0).
+pub unsafe fn material(
+    materials: &[CustomMaterial],
+    index: u32,
+    (values, count): (*const f64, usize),
+    out: *mut f32,
+    (message, message_capacity): (*mut u8, usize),
+) -> i64 {
+    // SAFETY: the caller gives `count` readable f64s at `values`.
+    let flat = if count == 0 { &[][..] } else { unsafe { core::slice::from_raw_parts(values, count) } };
+    let made = materials.get(index as usize).ok_or_else(|| format!("no material {index}")).and_then(|m| {
+        let values = unflatten(m.name, m.params, flat)?;
+        let m = *m;
+        catch_unwind(AssertUnwindSafe(|| (m.check)(&values).map(|()| (m.parameters)(&values))))
+            .unwrap_or_else(|_| Err(format!("{}: its `check` or `parameters` panicked", m.name)))
+    });
+    match made {
+        Ok([a, b]) => {
+            let floats: [f32; MATERIAL_FLOATS] = [a.x, a.y, a.z, a.w, b.x, b.y, b.z, b.w];
+            // SAFETY: the caller gives MATERIAL_FLOATS writable f32s at `out`.
+            unsafe { core::ptr::copy_nonoverlapping(floats.as_ptr(), out, MATERIAL_FLOATS) };
+            0
         }
         Err(why) => {
             // SAFETY: the caller gives `message_capacity` writable bytes at `message`.

@@ -32,6 +32,61 @@ const PANICS: CustomShape = CustomShape {
     normal: |_, _| panic!("no normal"),
 };
 
+/// Two colours in waves along y: `color` and black, `period` apart.
+const WAVES: CustomMaterial = CustomMaterial {
+    name: "waves",
+    about: "two colours in waves",
+    params: &[Param::finite("color", ParamType::Triple), Param::positive("period")],
+    check: |v| if v.number("period") > 100.0 { Err("period is too long".into()) } else { Ok(()) },
+    parameters: |v| [Vec3::from(v.triple("color")).extend(1.0), Vec4::new(0.0, 0.0, 0.0, v.number("period"))],
+};
+
+#[test]
+fn a_material_list_is_checked_by_name_and_keys() {
+    assert_eq!(check_materials(&[WAVES]), Ok(()));
+    assert!(check_materials(&[WAVES, WAVES]).unwrap_err().contains("material \"waves\" is listed twice"));
+    let mut bad = WAVES;
+    bad.name = "checker";
+    assert!(check_materials(&[bad]).unwrap_err().contains("twinray has a material kind of that name"));
+    bad.name = "Waves";
+    assert!(check_materials(&[bad]).unwrap_err().contains("lower-case"));
+    const KIND: &[Param] = &[Param::positive("kind")];
+    bad = WAVES;
+    bad.params = KIND;
+    assert!(check_materials(&[bad]).unwrap_err().contains("material \"waves\": key \"kind\" is taken"));
+}
+
+/// `material` through the C function.
+fn material(materials: &[CustomMaterial], index: u32, flat: &[f64]) -> Result<Vec<f32>, String> {
+    let mut out = vec![f32::NAN; abi::MATERIAL_FLOATS];
+    let mut message = [0u8; 200];
+    // SAFETY: the buffers are as long as the counts given.
+    let n = unsafe {
+        abi::material(materials, index, (flat.as_ptr(), flat.len()), out.as_mut_ptr(), (message.as_mut_ptr(), 200))
+    };
+    if n < 0 {
+        let len = (-n as usize).min(200);
+        return Err(String::from_utf8_lossy(&message[..len]).into_owned());
+    }
+    Ok(out)
+}
+
+#[test]
+fn a_material_s_parameters_come_from_its_keys_and_its_refusals_as_errors() {
+    assert_eq!(material(&[WAVES], 0, &[0.5, 0.25, 1.0, 2.0]).unwrap(), [0.5, 0.25, 1.0, 1.0, 0.0, 0.0, 0.0, 2.0]);
+    assert!(material(&[WAVES], 0, &[0.5, 0.25, 1.0, -2.0]).unwrap_err().contains("period must be > 0"));
+    assert!(material(&[WAVES], 0, &[0.5, 0.25, 1.0, 200.0]).unwrap_err().contains("period is too long"));
+    assert!(material(&[WAVES], 0, &[0.5]).unwrap_err().contains("waves: 1 values given for its keys, fewer"));
+    assert!(material(&[WAVES], 1, &[]).unwrap_err().contains("no material 1"));
+    let mut panics = WAVES;
+    panics.parameters = |_| panic!("no parameters");
+    let hook = std::panic::take_hook();
+    std::panic::set_hook(Box::new(|_| {}));
+    let e = material(&[panics], 0, &[0.5, 0.25, 1.0, 2.0]);
+    std::panic::set_hook(hook);
+    assert!(e.unwrap_err().contains("waves: its `check` or `parameters` panicked"));
+}
+
 #[test]
 fn a_list_is_checked_by_name_hit_kind_and_keys() {
     assert_eq!(check_list(&[CAPSULE, PANICS]), Ok(()));
@@ -64,8 +119,8 @@ fn the_description_names_every_key_with_its_rule_and_default_and_escapes_text() 
     const PAIR: &[Param] =
         &[Param { name: "radius", ty: ParamType::Pair, rule: Rule::Positive, default: Some(Value::Pair([1.0, 2.5])) }];
     with_default.params = PAIR;
-    let text = abi::description(&[with_default]);
-    assert!(text.starts_with("{\"abi\":1,\"contract\":\""), "{text}");
+    let text = abi::description(&[with_default], &[WAVES]);
+    assert!(text.starts_with("{\"abi\":2,\"contract\":\""), "{text}");
     assert!(text.contains("\"error\":null"), "{text}");
     assert!(text.contains("\"about\":\"a capsule \\\"about\\\" y\""), "{text}");
     assert!(
@@ -74,15 +129,23 @@ fn the_description_names_every_key_with_its_rule_and_default_and_escapes_text() 
         ),
         "{text}"
     );
-    assert!(abi::description(&[CAPSULE, CAPSULE]).contains("\"error\":\"shape \\\"capsule\\\" is listed twice\""));
+    assert!(text.ends_with(
+        "\"materials\":[{\"name\":\"waves\",\"about\":\"two colours in waves\",\"params\":[{\"name\":\"color\",\
+         \"type\":\"triple\",\"rule\":\"finite\",\"max\":null,\"default\":null},{\"name\":\"period\",\"type\":\"number\",\
+         \"rule\":\"positive\",\"max\":null,\"default\":null}]}]}"
+    ), "{text}");
+    assert!(abi::description(&[CAPSULE, CAPSULE], &[]).contains("\"error\":\"shape \\\"capsule\\\" is listed twice\""));
+    let mut diffuse = WAVES;
+    diffuse.name = "diffuse";
+    assert!(abi::description(&[], &[diffuse]).contains("twinray has a material kind of that name"));
 }
 
 #[test]
 fn describe_reports_the_whole_length_and_writes_what_fits() {
-    let whole = abi::description(&[CAPSULE]);
+    let whole = abi::description(&[CAPSULE], &[WAVES]);
     let mut short = [0u8; 10];
     // SAFETY: 10 writable bytes.
-    let n = unsafe { abi::describe(&[CAPSULE], short.as_mut_ptr(), short.len()) };
+    let n = unsafe { abi::describe(&[CAPSULE], &[WAVES], short.as_mut_ptr(), short.len()) };
     assert_eq!((n, &short[..]), (whole.len(), &whole.as_bytes()[..10]));
 }
 
