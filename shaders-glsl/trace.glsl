@@ -35,7 +35,8 @@ bool visible(vec3 origin, vec3 direction, float distance) {
 // shadow samples one per cell of an N x N grid, else independent. Adds the shadow rays it
 // traces to shadow_rays.
 vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout uint shadow_rays) {
-    if (payload.ids.w == NO_HIT || (HAS_FEATURE_EMISSION && payload.ids.z == MATERIAL_EMISSIVE)) {
+    // A miss, an emitter, or a surface its closest hit shaded: the colour is the radiance.
+    if (payload.ids.w == NO_HIT || payload.ids.z == MATERIAL_SHADED || (HAS_FEATURE_EMISSION && payload.ids.z == MATERIAL_EMISSIVE)) {
         return payload.color.xyz;
     }
     vec3 point = payload.position.xyz;

@@ -53,6 +53,7 @@ fn a_small_bench_writes_every_report_file() {
         serde_json::from_slice(&std::fs::read(report.join("results.json")).unwrap()).expect("results.json parses");
     let rows = json["rows"].as_array().unwrap();
     assert_eq!(rows.len(), 2 * 3, "spp x sets (rust, glsl and the null control's copy of rust)");
+    assert_eq!(json["reference_set"], "glsl", "by default the pair's other set renders the reference");
     for row in rows {
         for key in ["image", "error_map"] {
             // --images last: only the 4-spp renders are kept.

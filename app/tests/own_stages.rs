@@ -235,8 +235,55 @@ fn probe(case: &str, set: &str, dir: &Path) -> (serde_json::Value, Option<i32>) 
     (json, out.status.code())
 }
 
+/// Shading where the crate puts it: every procedural closest hit of the crate in `krate`, in
+/// Rust and in its GLSL twin, lights the surface with twinray's lights and shadow rays and
+/// leaves radiance (`MATERIAL_SHADED`) through a soft ramp; the crate declares recursion depth
+/// 2. Each edit is (file, a line of the starter, what follows it).
+const SHADING: [(&str, &str, &str); 6] = [
+    (
+        "src/hit.rs",
+        "    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,\n",
+        "    #[spirv(descriptor_set = 0, binding = 0)] tlas: &spirv_std::ray_tracing::AccelerationStructure,
+    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &crate::trace::Lights,
+    #[spirv(ray_payload)] shadow: &mut twinray_shared::layout::ShadowPayload,\n",
+    ),
+    (
+        "src/hit.rs",
+        "    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));\n",
+        "    let mut rays = 0;
+    let lit = crate::trace::shade(tlas, frame, lights, true, true, Features::new(features), payload, shadow, 0, 0, &mut rays);
+    payload.color = (lit / (lit + Vec3::ONE)).extend(payload.color.w);
+    payload.ids.z = twinray_shared::bindings::MATERIAL_SHADED;\n",
+    ),
+    ("shared/src/lib.rs", "#![cfg_attr(target_arch = \"spirv\", no_std)]\n", "pub const RECURSION_DEPTH: u32 = 2;\n"),
+    (
+        "glsl/procedural.rchit",
+        "hitAttributeEXT vec3 normal;\n",
+        "layout(set = DESCRIPTOR_SET, binding = BINDING_TLAS) uniform accelerationStructureEXT tlas;
+layout(set = DESCRIPTOR_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights { Light lights[]; };
+layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;\n",
+    ),
+    ("glsl/procedural.rchit", "#include \"procedural_hit.glsl\"\n", "#include \"trace.glsl\"\n"),
+    (
+        "glsl/procedural.rchit",
+        "gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal, frame.cone.x);\n",
+        "    uint rays = 0u;
+    vec3 lit = shade(true, true, 0u, 0u, rays);
+    payload.color.xyz = lit / (lit + vec3(1.0));
+    payload.ids.z = MATERIAL_SHADED;\n",
+    ),
+];
+
+fn shade_in_closest_hits(krate: &Path) {
+    for (file, line, after) in SHADING {
+        let source = std::fs::read_to_string(krate.join(file)).unwrap();
+        assert!(source.contains(line), "{file}: the starter moved ({line}): this test must follow");
+        std::fs::write(krate.join(file), source.replacen(line, &format!("{line}{after}"), 1)).unwrap();
+    }
+}
+
 #[test]
-fn a_crates_own_shape_and_material_render_in_both_languages_and_the_shape_is_judged_by_its_definition() {
+fn a_crates_own_shape_material_and_shading_agree_in_both_languages_and_the_shape_is_judged_by_its_definition() {
     let scratch = tempfile::tempdir().unwrap();
     let dir = scratch.path();
     let said = ok(&["new", "shapes", "--glsl", "--shape", "capsule", "--material", "waves"], dir);
@@ -252,6 +299,7 @@ fn a_crates_own_shape_and_material_render_in_both_languages_and_the_shape_is_jud
         assert!(source.contains(from), "{file}: the template moved: this test must follow");
         std::fs::write(krate.join(file), source.replacen(from, to, 1)).unwrap();
     }
+    shade_in_closest_hits(&krate);
     let written = files(&krate);
     let small = ["--width", "96", "--height", "72", "--runs", "1", "--warmup", "0", "--placements", "1"];
     let compare = |scene: &str, a: &str, b: &str| {
@@ -264,6 +312,11 @@ fn a_crates_own_shape_and_material_render_in_both_languages_and_the_shape_is_jud
         assert!(text(&both).contains("PASS"), "{}", text(&both));
     }
     assert!(files(&krate) == written, "building wrote in the crate outside target/ (its Cargo.lock?)");
+    // explain reports what the closest hits computed, and claims no lighting of its own.
+    let args = ["explain", "shapes/scenes/waves.toml", "--pixel", "29,31", "--a", "shapes", "--b", "shapes/glsl"];
+    let said = ok(&[&args[..], &["--width", "96", "--height", "72"]].concat(), dir);
+    assert!(said.contains("radiance its closest hit shaded") && !said.contains("light 0 sample"), "{said}");
+    assert!(said.contains("all rays agree, and the pixels are identical"), "{said}");
     for set in ["shapes", "shapes/glsl"] {
         let (report, code) = probe("shapes/probes/capsule.toml", set, dir);
         assert_eq!(code, Some(0), "{set}: {report}");
@@ -304,9 +357,10 @@ fn a_crates_own_shape_and_material_render_in_both_languages_and_the_shape_is_jud
     let render = ["render", "shapes/scenes/waves.toml", "--shaders", "rust", "--out", "x.png"];
     lacks(&render, "unknown material kind \"waves\"");
     // The crate's built folder named as a folder of modules is data: its CPU library, native
-    // code, is not loaded from there, so the kinds it lists are not known.
+    // code, is not loaded from there, so neither the kinds it lists nor the recursion depth it
+    // declares are known, and its closest hits, which trace, are refused.
     let modules = ["render", "shapes/scenes/capsule.toml", "--shaders", "shapes/target/twinray/set", "--out", "x.png"];
-    lacks(&modules, "unknown shape kind \"capsule\"");
+    lacks(&modules, "procedural_closest_hit.spv: it calls traceRay, but its set's pipelines have recursion depth 1");
     let mixed = ["compare", "shapes/scenes/capsule.toml", "--a", "shapes", "--b", "rust"];
     lacks(&mixed, "no module capsule_intersection");
     let mixed = ["compare", "shapes/scenes/waves.toml", "--a", "shapes", "--b", "rust"];

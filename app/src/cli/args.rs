@@ -288,9 +288,10 @@ pub struct BenchArgs {
     /// Samples per pixel of the references.
     #[arg(long, default_value_t = 1024)]
     pub reference_spp: u32,
-    /// Shader set that renders the references.
-    #[arg(long, default_value = "glsl")]
-    pub reference_set: SetSpec,
+    /// Shader set that renders the references [default: the second of --sets, the other of a
+    /// pair; the first where --sets has one].
+    #[arg(long)]
+    pub reference_set: Option<SetSpec>,
     /// Reference cache folder [default: as for `twinray reference`].
     #[arg(long)]
     pub cache: Option<PathBuf>,

@@ -27,7 +27,12 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         check_size(w, h).map_err(Error::Input)?;
     }
     let sets = global.load_all("--sets", &twinray_host::sets::parse_specs(&args.sets)?)?;
-    let reference_set = global.load("--reference-set", &args.reference_set)?;
+    // The pair's other set by default: the error of a crate against its own twin, not against
+    // a built-in set that may not even know the scene's kinds.
+    let reference_set = match &args.reference_set {
+        Some(spec) => global.load("--reference-set", spec)?,
+        None => sets.get(1).or(sets.first()).cloned().ok_or_else(|| Error::Input("--sets names no set".into()))?,
+    };
     // The sets first: a scene may name the kinds of the crates they were built from.
     let own = twinray_host::ShaderSet::own_kinds(&sets.iter().chain([&reference_set]).collect::<Vec<_>>());
     let scenes = names.iter().map(|n| Scene::load_with(Some(n), &own)).collect::<Result<Vec<_>, _>>()?;
@@ -40,7 +45,7 @@ pub fn bench(global: &GlobalArgs, args: BenchArgs) -> Result<ExitCode> {
         alone_in: args.alone.alone_in,
         time_alone: crate::timed_alone::time_alone(
             global,
-            crate::timed_alone::ChildSettings::of_bench(&args, cache.clone()),
+            crate::timed_alone::ChildSettings::of_bench(&args, &reference_set, cache.clone()),
             names.clone(),
             args.alone.alone_in,
         ),

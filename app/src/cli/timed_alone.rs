@@ -32,14 +32,14 @@ pub struct ChildSettings {
 }
 
 impl ChildSettings {
-    pub fn of_bench(args: &BenchArgs, cache: PathBuf) -> Self {
+    pub fn of_bench(args: &BenchArgs, reference_set: &ShaderSet, cache: PathBuf) -> Self {
         ChildSettings {
             runs: args.runs,
             warmup: args.warmup,
             placements: args.placements,
             size: args.width.zip(args.height),
             reference_spp: args.reference_spp,
-            reference_set: args.reference_set.to_string(),
+            reference_set: reference_set.to_string(),
             cache,
         }
     }

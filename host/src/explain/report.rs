@@ -215,9 +215,13 @@ fn sample_lines(px: &PixelRays) -> String {
                     xyz(h.shading_normal.xyz())
                 )
             };
+            // A closest hit that shades leaves radiance, not an albedo for ray generation to light.
+            let shaded =
+                h.ids.w != twinray_shared::bindings::NO_HIT && h.ids.z == twinray_shared::bindings::MATERIAL_SHADED;
+            let colour = if shaded { "radiance its closest hit shaded" } else { "colour" };
             let _ = writeln!(
                 s,
-                "  {}{normals}, colour {} ({}); adds {}",
+                "  {}{normals}, {colour} {} ({}); adds {}",
                 hit_words(data, &set.label, h),
                 rgb(h.color.xyz()),
                 ss.outcome.name(),

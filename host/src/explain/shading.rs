@@ -5,7 +5,7 @@
 
 use crate::scene::PipelinePlan;
 use glam::{Vec3, Vec4Swizzles};
-use twinray_shared::bindings::{EXPLAIN_SHADOW, MATERIAL_EMISSIVE, NO_HIT, SHADOW_SAMPLER_STRATIFIED};
+use twinray_shared::bindings::{EXPLAIN_SHADOW, MATERIAL_EMISSIVE, MATERIAL_SHADED, NO_HIT, SHADOW_SAMPLER_STRATIFIED};
 use twinray_shared::layout::{ExplainRay, FrameUniform, HitPayload, Light};
 use twinray_shared::{lighting, offset};
 
@@ -42,10 +42,10 @@ impl LightSample {
     }
 }
 
-/// Whether the stage shades `hit` with lights: it is a hit, and not an emitter (whose colour
-/// is its radiance).
+/// Whether the stage shades `hit` with lights: it is a hit, and neither an emitter nor a
+/// surface its closest hit shaded (whose colour is its radiance).
 pub fn lit_by_lights(hit: &HitPayload) -> bool {
-    hit.ids.w != NO_HIT && hit.ids.z != MATERIAL_EMISSIVE
+    hit.ids.w != NO_HIT && hit.ids.z != MATERIAL_EMISSIVE && hit.ids.z != MATERIAL_SHADED
 }
 
 /// Every light sample the ray generation stage takes at `hit` (primary sample `sample` of

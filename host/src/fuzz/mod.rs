@@ -49,7 +49,12 @@ pub fn module(bytes: &[u8]) {
     let Ok(info) = twinray_shared::spirv_info::parse(bytes) else { return };
     for spec in crate::sets::MODULES {
         let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
-        let _ = twinray_shared::module_check::check_module(spec, &info, &entry);
+        let _ = twinray_shared::module_check::check_module(
+            spec,
+            &info,
+            &entry,
+            twinray_shared::interface::MAX_DECLARED_DEPTH,
+        );
     }
     let _ = twinray_shared::spirv_info::without_unused_ray_query(bytes);
 }

@@ -15,15 +15,21 @@ use std::cell::{Cell, RefCell};
 use std::collections::HashMap;
 use std::rc::Rc;
 use std::sync::Arc;
-use twinray_shared::interface;
+use twinray_shared::interface as contract;
 
-/// What every library and linked pipeline agree on: the payloads' and hit attributes' largest
-/// sizes (the primary payload; a procedural hit's object-space normal) and recursion depth 1.
+/// What every library and linked pipeline of twinray's agree on: the payloads' and hit
+/// attributes' largest sizes (the primary payload; a procedural hit's object-space normal) and
+/// recursion depth 1. A crate that declares a deeper recursion gets its own ([`interface`]).
 pub const INTERFACE: Interface = Interface {
-    max_payload_bytes: interface::HIT_PAYLOAD_BYTES,
-    max_hit_attribute_bytes: interface::PROCEDURAL_ATTRIBUTE_BYTES,
-    max_recursion_depth: interface::MAX_RECURSION_DEPTH,
+    max_payload_bytes: contract::HIT_PAYLOAD_BYTES,
+    max_hit_attribute_bytes: contract::PROCEDURAL_ATTRIBUTE_BYTES,
+    max_recursion_depth: contract::MAX_RECURSION_DEPTH,
 };
+
+/// [`INTERFACE`] with recursion `depth`.
+pub fn interface(depth: u32) -> Interface {
+    Interface { max_recursion_depth: depth, ..INTERFACE }
+}
 
 /// One library: its stages and its one group, indices into those stages.
 pub(crate) struct LibraryDesc<'a> {
@@ -31,6 +37,8 @@ pub(crate) struct LibraryDesc<'a> {
     pub group: GroupDesc,
     /// The specialisation data of its stages (part of its identity).
     pub spec_bytes: &'a [u8],
+    /// The recursion depth of the pipelines it is linked into (part of its identity).
+    pub depth: u32,
 }
 
 /// A linked pipeline and the libraries it was linked from.
@@ -71,6 +79,7 @@ impl Libraries {
         ctx: &Arc<Context>,
         bindings: &[crate::vk::pipeline::Binding],
         libraries: &[LibraryDesc],
+        depth: u32,
     ) -> Result<Linked> {
         let (mut raw, mut held) = (Vec::new(), Vec::new());
         for desc in libraries {
@@ -78,7 +87,7 @@ impl Libraries {
             raw.push(library);
             held.extend(own);
         }
-        Ok(Linked { pipeline: RtPipeline::link(ctx, bindings, &raw, INTERFACE)?, libraries: raw, held })
+        Ok(Linked { pipeline: RtPipeline::link(ctx, bindings, &raw, interface(depth))?, libraries: raw, held })
     }
 
     /// The library `desc` describes, made unless this or the context has it; with the
@@ -97,9 +106,9 @@ impl Libraries {
             bindings,
             stages: &desc.stages,
             groups: std::slice::from_ref(&desc.group),
-            max_recursion_depth: INTERFACE.max_recursion_depth,
+            max_recursion_depth: desc.depth,
         };
-        let make = || RtPipeline::library(ctx, &pipeline, INTERFACE);
+        let make = || RtPipeline::library(ctx, &pipeline, interface(desc.depth));
         if self.in_context {
             let (kept, made) = ctx.kept.get_or_make(key, || make().map(RtPipeline::into_kept))?;
             self.compiled.set(self.compiled.get() + usize::from(made));
@@ -126,5 +135,6 @@ fn key(desc: &LibraryDesc) -> u64 {
         hash.eat(&[u8::from(s.specialization.is_some())]);
     }
     hash.eat(desc.spec_bytes);
+    hash.eat(&desc.depth.to_le_bytes());
     hash.value()
 }

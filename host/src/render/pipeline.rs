@@ -149,9 +149,16 @@ impl ScenePipeline {
         let origins: Vec<String> = modules.iter().map(|m| format!("{}={}", m.spec.name, m.origin)).collect();
         let doing = format!("creating the pipeline of {set} ({})", origins.join(", "));
         let _doing = activity::doing(doing.clone());
+        let depth = set.recursion_depth();
+        if depth > ctx.info.max_ray_recursion_depth {
+            return Err(Error::Unsupported(format!(
+                "shader set {set} declares recursion depth {depth}, more than {} allows ({})",
+                ctx.info.name, ctx.info.max_ray_recursion_depth
+            )));
+        }
         // What the validation layer said of the modules fails here, before a trace can crash
         // on them (a module declaring a capability the device lacks crashed lavapipe).
-        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), (witness, libraries, layout))
+        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), (witness, libraries, layout), depth)
             .and_then(|made| ctx.check_validation().map(|()| made));
         made.map_err(|e| if e.is_stalled() { e } else { e.during(doing) })
     }
@@ -161,6 +168,7 @@ impl ScenePipeline {
         plan: &PipelinePlan,
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
         (witness, libraries, draw): (Vec<&'static str>, Option<&Libraries>, LayoutDraw),
+        depth: u32,
     ) -> Result<Self> {
         let specialised = Specialisation::of_plan(plan);
         let (spec, spec_bytes) = (specialised.info(), specialised.bytes());
@@ -176,11 +184,10 @@ impl ScenePipeline {
             // One stage, no groups, no SBT, nothing to link.
             (RtPipeline::compute(ctx, &bindings, &stages[0])?, Vec::new(), Vec::new())
         } else if let Some(libraries) = libraries {
-            let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, spec_bytes)).collect();
-            let linked = libraries.link(ctx, &bindings, &descs)?;
+            let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, (spec_bytes, depth))).collect();
+            let linked = libraries.link(ctx, &bindings, &descs, depth)?;
             (linked.pipeline, linked.libraries, linked.held)
         } else {
-            let depth = twinray_shared::interface::MAX_RECURSION_DEPTH;
             let (stages, groups) = stages_in_group_order(&stages, &groups);
             let desc =
                 PipelineDesc { bindings: &bindings, stages: &stages, groups: &groups, max_recursion_depth: depth };
@@ -285,8 +292,9 @@ fn require_device_features(ctx: &Context, modules: &[StageModule]) -> Result<()>
     Ok(())
 }
 
-/// The library of one group: its stages, renumbered from 0 within it.
-fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8]) -> LibraryDesc<'a> {
+/// The library of one group, for pipelines of recursion `depth`: its stages, renumbered from
+/// 0 within it.
+fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, (spec_bytes, depth): (&'a [u8], u32)) -> LibraryDesc<'a> {
     // Each used stage in turn; the group's indices become positions in that list.
     let mut own = Vec::new();
     let mut renumber = |i: u32| {
@@ -308,7 +316,7 @@ fn library<'a>(stages: &[StageDesc<'a>], group: GroupDesc, spec_bytes: &'a [u8])
         },
     };
     let stages: Vec<StageDesc> = own.iter().map(|&i| stages[i as usize]).collect();
-    LibraryDesc { stages, group, spec_bytes }
+    LibraryDesc { stages, group, spec_bytes, depth }
 }
 
 /// The group of each SBT record, by region: raygen, the misses, the hit groups (an instance's

@@ -55,7 +55,7 @@ pub fn stage_stacks(
         modules.iter().enumerate().map(|(i, m)| group(m.spec.stage, i as u32)).collect();
     let descs: Vec<GroupDesc> = groups.iter().map(|g| g.0).collect();
     let bindings = descriptor_bindings();
-    let depth = twinray_shared::interface::MAX_RECURSION_DEPTH;
+    let depth = set.recursion_depth();
     let desc = PipelineDesc { bindings: &bindings, stages: &stages, groups: &descs, max_recursion_depth: depth };
     let pipeline = RtPipeline::new(ctx, &desc)?;
     ctx.check_validation()?;

@@ -16,6 +16,7 @@ use std::sync::{Arc, Mutex};
 use std::time::Duration;
 use twinray_compile::folder::{self, Options};
 use twinray_shared::catalog::{Language, ModuleSpec, MODULES};
+use twinray_shared::interface::MAX_RECURSION_DEPTH;
 
 /// Builds and reads the sets of one command. Its clones share what it built.
 #[derive(Clone, Debug, Default)]
@@ -46,16 +47,18 @@ impl Loader {
         let mut set = match self.find(&spec.base).map_err(fail)? {
             Found::Language(language) => ShaderSet::uniform(language),
             Found::Folder(dir, built) => {
-                let mut set = ShaderSet::uniform(Language::Rust);
-                set.set_where(|_| true, |m| from_folder(m, &dir)).map_err(fail)?;
                 // Native code is loaded only from a crate's build: a folder of modules from
-                // elsewhere is data, whatever library lies in it.
+                // elsewhere is data, whatever library lies in it. Read first: the depth it
+                // declares is the one the folder's modules are checked for.
                 let library = dir.join(twinray_compile::cpu::LIBRARY);
                 let ours = built && library.is_file();
-                let shapes = ours.then(|| CrateKinds::load(&library)).transpose().map_err(fail)?;
+                let kinds = ours.then(|| CrateKinds::load(&library)).transpose().map_err(fail)?;
+                let depth = kinds.as_ref().map_or(MAX_RECURSION_DEPTH, |k| k.recursion_depth);
+                let mut set = ShaderSet::uniform(Language::Rust);
+                set.set_where(|_| true, |m| from_folder(m, &dir, depth)).map_err(fail)?;
                 let names = own_modules(&dir);
-                if shapes.is_some() || !names.is_empty() {
-                    set.set_own(OwnKinds::new(shapes, &names, |m| from_folder(m, &dir)).map_err(fail)?);
+                if kinds.is_some() || !names.is_empty() {
+                    set.set_own(OwnKinds::new(kinds, &names, |m| from_folder(m, &dir, depth)).map_err(fail)?);
                 }
                 set
             }
@@ -150,22 +153,25 @@ fn own_modules(dir: &Path) -> Vec<String> {
     names
 }
 
-/// Module `spec` of a folder set: `DIR/NAME.spv`, checked, or missing.
-fn from_folder(spec: &ModuleSpec, dir: &Path) -> Result<Origin, String> {
+/// Module `spec` of a folder set: `DIR/NAME.spv`, checked for pipelines of recursion `depth`,
+/// or missing.
+fn from_folder(spec: &ModuleSpec, dir: &Path, depth: u32) -> Result<Origin, String> {
     let path = dir.join(format!("{}.spv", spec.name));
     if path.exists() {
-        Ok(Origin::Disk(Arc::new(load(spec, &path)?)))
+        Ok(Origin::Disk(Arc::new(load(spec, &path, depth)?)))
     } else {
         Ok(Origin::Missing(path))
     }
 }
 
-/// The modules `key` names in `set`, taken from what `found` is.
+/// The modules `key` names in `set`, taken from what `found` is, checked for the recursion
+/// depth of `set`'s pipelines.
 fn apply(set: &mut ShaderSet, key: Key, found: &Found) -> Result<(), String> {
+    let depth = set.recursion_depth();
     let origin = |m: &ModuleSpec| match found {
         Found::Language(language) => Ok(Origin::Builtin(*language)),
-        Found::Folder(dir, _) => from_folder(m, dir),
-        Found::File(file) => Ok(Origin::Disk(Arc::new(load(m, file)?))),
+        Found::Folder(dir, _) => from_folder(m, dir, depth),
+        Found::File(file) => Ok(Origin::Disk(Arc::new(load(m, file, depth)?))),
     };
     match (key, found) {
         // A file is one module: a stage key names the module called as the stage.

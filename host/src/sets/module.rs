@@ -40,8 +40,9 @@ pub(crate) struct DiskModule {
     pub non_uniform: Vec<String>,
 }
 
-/// Reads `path` as the module `spec` and checks it; the error names the file and what is wrong.
-pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String> {
+/// Reads `path` as the module `spec` and checks it, for pipelines of recursion `depth`; the
+/// error names the file and what is wrong.
+pub(crate) fn load(spec: &ModuleSpec, path: &Path, depth: u32) -> Result<DiskModule, String> {
     let file = path.display();
     let bytes = std::fs::read(path).map_err(|e| format!("{file}: cannot read: {e}"))?;
     // twinray's own checks first, whose words say what a module for this stage must be; the
@@ -53,7 +54,7 @@ pub(crate) fn load(spec: &ModuleSpec, path: &Path) -> Result<DiskModule, String>
         return Err(format!("{file}: {refusal}"));
     }
     let entry = spec.find_entry(&info).unwrap_or_else(|| spec.name.to_string());
-    twinray_shared::module_check::check_module(spec, &info, &entry)
+    twinray_shared::module_check::check_module(spec, &info, &entry, depth)
         .map_err(|e| format!("{file}: {e}, so it cannot be the {} module", spec.name))?;
     super::validate::validate(&bytes).map_err(|e| format!("{file}: {e}"))?;
     let faults = twinray_compile::uniformity::check(&bytes).map_err(|e| format!("{file}: {e}"))?;

@@ -38,6 +38,8 @@ pub struct CrateKinds {
     pub source: PathBuf,
     pub shapes: Vec<OwnShape>,
     pub materials: Vec<OwnMaterial>,
+    /// The recursion depth its set's pipelines need (1 unless its hit stages trace).
+    pub recursion_depth: u32,
     functions: Functions,
     _library: Option<libloading::Library>,
 }
@@ -102,7 +104,8 @@ impl CrateKinds {
         }
         let shapes = described.shapes.into_iter().map(own_shape).collect::<Result<Vec<_>, _>>()?;
         let materials = described.materials.into_iter().map(own_material).collect::<Result<Vec<_>, _>>()?;
-        Ok(CrateKinds { source, shapes, materials, functions, _library: None })
+        let recursion_depth = described.recursion_depth;
+        Ok(CrateKinds { source, shapes, materials, recursion_depth, functions, _library: None })
     }
 
     /// The shape called `name`.

@@ -92,6 +92,12 @@ impl ShaderSet {
         out
     }
 
+    /// The recursion depth of the set's pipelines: twinray's 1, or what its crate declares.
+    pub fn recursion_depth(&self) -> u32 {
+        let depth = self.own.and_then(|o| o.kinds.as_ref()).map(|k| k.recursion_depth);
+        depth.unwrap_or(twinray_shared::interface::MAX_RECURSION_DEPTH)
+    }
+
     /// Gives the set its crate's kinds, kept for the rest of the run (a scene and the
     /// reference refer to them as long as the set's pipelines may run).
     pub(super) fn set_own(&mut self, own: OwnKinds) {

@@ -11,7 +11,12 @@ pub extern "C" fn twinray_abi() -> u32 {
 
 #[no_mangle]
 pub unsafe extern "C" fn twinray_describe(out: *mut u8, capacity: usize) -> usize {
-    unsafe { abi::describe(own::SHAPES, own::MATERIALS, out, capacity) }
+    let described = abi::Described {
+        shapes: own::SHAPES,
+        materials: own::MATERIALS,
+        recursion_depth: own::RECURSION_DEPTH,
+    };
+    unsafe { abi::describe(described, out, capacity) }
 }
 
 #[no_mangle]

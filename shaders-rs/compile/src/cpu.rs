@@ -74,15 +74,18 @@ pub fn build(dir: &Path, out: &Path, timeout: Duration) -> Result<PathBuf> {
     Ok(to)
 }
 
-/// The wrapper around the library in `shared`: a crate made before materials could be added
-/// lists none (no `MATERIALS`), which the wrapper then reads as an empty list.
+/// The wrapper around the library in `shared`: what a crate leaves out it does not need, so
+/// a crate made before materials could be added lists none (no `MATERIALS`), and one whose hit
+/// stages do not trace declares no `RECURSION_DEPTH` (1, twinray's own).
 fn wrapper_source(shared: &Path) -> String {
     let lib = std::fs::read_to_string(shared.join("src/lib.rs")).unwrap_or_default();
-    if lib.contains("pub const MATERIALS") {
-        WRAPPER.to_string()
-    } else {
-        WRAPPER.replace("own::MATERIALS", "&[]")
+    let mut source = WRAPPER.to_string();
+    for (item, absent) in [("MATERIALS", "&[]"), ("RECURSION_DEPTH", "1")] {
+        if !lib.contains(&format!("pub const {item}")) {
+            source = source.replace(&format!("own::{item}"), absent);
+        }
     }
+    source
 }
 
 fn write_if_changed(path: &Path, bytes: &[u8]) -> Result<()> {

@@ -127,7 +127,9 @@ pub fn build(dir: &Path, options: Options) -> Result<Built> {
         crate::cpu::build(owner, &building, options.timeout)?;
     }
     let language = if kind == Sources::Crate { Language::Rust } else { Language::Glsl };
-    postprocess(&building, &names, language, &format!("{}{version}", contract::RECORD_PREFIX))?;
+    // Any depth a crate may declare: the host checks the modules again for the one it declares.
+    let depth = twinray_shared::interface::MAX_DECLARED_DEPTH;
+    postprocess(&building, &names, language, (&format!("{}{version}", contract::RECORD_PREFIX), depth))?;
     if set.exists() {
         std::fs::remove_dir_all(&set)?;
     }

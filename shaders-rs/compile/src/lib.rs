@@ -22,6 +22,7 @@ pub use process::{have, output, run};
 use std::path::Path;
 use std::process::Command;
 use twinray_shared::catalog::{module, own_intersection, own_material, GlslSource, Language, ModuleSpec, MODULES};
+use twinray_shared::interface::MAX_RECURSION_DEPTH;
 use twinray_shared::spirv_info::{self, ModuleInfo};
 
 /// The sources of each set, relative to a checkout's root: a change under them rebuilds it.
@@ -88,12 +89,17 @@ pub fn build_set_without(root: &Path, language: Language, dir: &Path, output: Ou
         Language::Glsl => build_glsl(&root.join("shaders-glsl"), dir, output, without)?,
     }
     let names: Vec<String> = MODULES.iter().map(|m| m.name.to_string()).collect();
-    postprocess(dir, &names, language, &twinray_shared::contract::record())
+    postprocess(dir, &names, language, (&twinray_shared::contract::record(), MAX_RECURSION_DEPTH))
 }
 
 /// Stamps each module `names` of `dir` with the contract `record` (rust-gpu's first stripped of
 /// their debug info), validates it with spirv-val and checks what it declares for its stage.
-pub(crate) fn postprocess(dir: &Path, names: &[String], language: Language, record: &str) -> Result<()> {
+pub(crate) fn postprocess(
+    dir: &Path,
+    names: &[String],
+    language: Language,
+    (record, depth): (&str, u32),
+) -> Result<()> {
     if language == Language::Rust {
         strip_debug_info(dir, names)?;
     }
@@ -106,7 +112,8 @@ pub(crate) fn postprocess(dir: &Path, names: &[String], language: Language, reco
             .with_context(|| format!("spirv-val rejected {label}"))?;
         let (info, _) = read_module(dir, spec)?;
         let entry = spec.find_entry(&info).unwrap_or_else(|| spec.entry_point(language).to_string());
-        twinray_shared::module_check::check_module(spec, &info, &entry).map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
+        twinray_shared::module_check::check_module(spec, &info, &entry, depth)
+            .map_err(|e| anyhow::anyhow!("{label}: {e}"))?;
     }
     Ok(())
 }

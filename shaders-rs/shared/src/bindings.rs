@@ -119,6 +119,10 @@ pub const MATERIAL_CHECKER: u32 = 2;
 /// Diffuse with holes: hits where its alpha pattern is transparent are ignored by the any-hit
 /// stage, for primary and shadow rays alike.
 pub const MATERIAL_CUTOUT: u32 = 3;
+/// What a closest-hit stage that shades the surface itself writes as the hit's material kind
+/// (`HitPayload::ids.z`): its `color` is then the radiance ray generation shows, not an albedo
+/// it lights again. No material kind a scene reaches.
+pub const MATERIAL_SHADED: u32 = 0xffff_fff0;
 /// How many material kinds there are: the SBT's callable region has a record for each
 /// (`material_shading = "callable"`), the kind being the record's index.
 pub const MATERIAL_KINDS: u32 = 4;

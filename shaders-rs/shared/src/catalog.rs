@@ -343,9 +343,17 @@ pub const LAYOUT: [BindingSpec; 13] = {
     use DescriptorKind::*;
     use Stage::*;
     [
-        BindingSpec { binding: b::BINDING_TLAS, kind: AccelerationStructure, stages: &[Raygen, Compute] },
+        BindingSpec {
+            binding: b::BINDING_TLAS,
+            kind: AccelerationStructure,
+            stages: &[Raygen, Miss, ClosestHit, Compute],
+        },
         BindingSpec { binding: b::BINDING_IMAGE, kind: StorageImage, stages: &[Raygen, Compute] },
-        BindingSpec { binding: b::BINDING_FRAME, kind: UniformBuffer, stages: &[Raygen, Miss, ClosestHit, Compute] },
+        BindingSpec {
+            binding: b::BINDING_FRAME,
+            kind: UniformBuffer,
+            stages: &[Raygen, Miss, ClosestHit, Callable, Compute],
+        },
         BindingSpec {
             binding: b::BINDING_OBJECTS,
             kind: StorageBuffer,
@@ -361,7 +369,11 @@ pub const LAYOUT: [BindingSpec; 13] = {
             kind: StorageBuffer,
             stages: &[Raygen, ClosestHit, AnyHit, Compute],
         },
-        BindingSpec { binding: b::BINDING_LIGHTS, kind: StorageBuffer, stages: &[Raygen, Compute] },
+        BindingSpec {
+            binding: b::BINDING_LIGHTS,
+            kind: StorageBuffer,
+            stages: &[Raygen, ClosestHit, Callable, Compute],
+        },
         BindingSpec { binding: b::BINDING_HIT_IDS, kind: StorageBuffer, stages: &[Raygen, Compute] },
         BindingSpec {
             binding: b::BINDING_VERTICES,

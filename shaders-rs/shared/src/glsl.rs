@@ -192,6 +192,7 @@ pub fn layout_include() -> Result<String, String> {
         ("MATERIAL_EMISSIVE", MATERIAL_EMISSIVE),
         ("MATERIAL_CHECKER", MATERIAL_CHECKER),
         ("MATERIAL_CUTOUT", MATERIAL_CUTOUT),
+        ("MATERIAL_SHADED", crate::bindings::MATERIAL_SHADED),
         ("CUTOUT_NONE", CUTOUT_NONE),
         ("CUTOUT_CHECKER", CUTOUT_CHECKER),
         ("CUTOUT_DISCS", CUTOUT_DISCS),

@@ -24,9 +24,13 @@ pub const MATERIAL_CALL_BYTES: u32 = size_of::<MaterialCall>() as u32;
 pub const PROCEDURAL_ATTRIBUTE_BYTES: u32 = 12;
 /// Bytes of a triangle hit's attribute: two barycentrics.
 pub const TRIANGLE_ATTRIBUTE_BYTES: u32 = 8;
-/// Recursion depth of every twinray pipeline: ray generation traces, and nothing it calls
-/// may trace again.
+/// Recursion depth of twinray's pipelines: ray generation traces, and nothing it calls may
+/// trace again. A crate that traces from its hit stages declares more
+/// ([`crate::custom::abi`]'s `recursion_depth`), up to [`MAX_DECLARED_DEPTH`].
 pub const MAX_RECURSION_DEPTH: u32 = 1;
+/// The deepest recursion a crate may declare: Vulkan's `maxRayRecursionDepth` is at least 1
+/// and at most 31 on the drivers twinray knows; a device with less refuses the set by name.
+pub const MAX_DECLARED_DEPTH: u32 = 31;
 
 /// What a module of `spec` must pass: the bytes of its incoming payload, hit attribute,
 /// incoming and outgoing callable data (`None`: it must declare none of that class), and
@@ -60,9 +64,10 @@ fn contract(spec: &ModuleSpec) -> Option<Contract> {
     })
 }
 
-/// Checks what `info` passes against the contract of `spec`'s stage: the error says what it
-/// passes and what the stages around it pass.
-pub fn check(spec: &ModuleSpec, info: &ModuleInfo) -> Result<(), String> {
+/// Checks what `info` passes against the contract of `spec`'s stage, in pipelines of recursion
+/// `depth`: the error says what it passes and what the stages around it pass. From depth 2,
+/// closest-hit and miss stages may trace too (Vulkan lets no other stage trace).
+pub fn check(spec: &ModuleSpec, info: &ModuleInfo, depth: u32) -> Result<(), String> {
     let stage = spec.stage.name();
     if let Some(c) = contract(spec) {
         let expected = [
@@ -82,11 +87,17 @@ pub fn check(spec: &ModuleSpec, info: &ModuleInfo) -> Result<(), String> {
                 }
             }
         }
-        if !c.traces && !info.interface.traces.is_empty() {
-            return Err(format!(
-                "it calls traceRay, but twinray's pipelines have recursion depth {MAX_RECURSION_DEPTH}: only ray \
-                 generation may trace (a trace from a {stage} stage is undefined behaviour)"
-            ));
+        let may_trace = c.traces || (depth > 1 && matches!(spec.stage, Stage::ClosestHit | Stage::Miss));
+        if !may_trace && !info.interface.traces.is_empty() {
+            let why = if depth > 1 {
+                format!("a {stage} stage may not trace")
+            } else {
+                format!(
+                    "only ray generation may trace (a trace from a {stage} stage is undefined behaviour; a crate \
+                     whose hit stages trace declares its depth: `pub const RECURSION_DEPTH: u32 = 2;` in shared/src/lib.rs)"
+                )
+            };
+            return Err(format!("it calls traceRay, but its set's pipelines have recursion depth {depth}: {why}"));
         }
     }
     for &(miss, payload) in &info.interface.traces {
@@ -140,12 +151,18 @@ mod tests {
             variables: vec![(STORAGE_INCOMING_RAY_PAYLOAD, Some(80)), (STORAGE_HIT_ATTRIBUTE, Some(12))],
             ..Default::default()
         };
-        assert_eq!(check(&chit, &info(good)), Ok(()));
+        assert_eq!(check(&chit, &info(good), 1), Ok(()));
         let shadow = Interface { variables: vec![(STORAGE_INCOMING_RAY_PAYLOAD, Some(4))], ..Default::default() };
-        let e = check(&chit, &info(shadow)).unwrap_err();
+        let e = check(&chit, &info(shadow), 1).unwrap_err();
         assert!(e.contains("incoming payload is 4 bytes") && e.contains("80 bytes"), "{e}");
         let traces = Interface { traces: vec![(Some(MISS_SHADOW), Some(4))], ..Default::default() };
-        assert!(check(&chit, &info(traces)).unwrap_err().contains("recursion depth 1"));
+        assert!(check(&chit, &info(traces.clone()), 1).unwrap_err().contains("recursion depth 1"));
+        assert_eq!(check(&chit, &info(traces.clone()), 2), Ok(()), "a crate of depth 2 shades in its closest hit");
+        let wrong = Interface { traces: vec![(Some(MISS_SHADOW), Some(80))], ..Default::default() };
+        assert!(check(&chit, &info(wrong), 2).unwrap_err().contains("traces a shadow ray"), "payloads still checked");
+        let callable = module("flat_material").unwrap();
+        let calls = Interface { variables: vec![(STORAGE_INCOMING_CALLABLE_DATA, Some(160))], ..traces };
+        assert!(check(&callable, &info(calls), 2).unwrap_err().contains("a callable stage may not trace"));
     }
 
     #[test]
@@ -156,13 +173,13 @@ mod tests {
             traces: vec![(Some(MISS_PRIMARY), Some(80)), (Some(MISS_SHADOW), Some(4))],
             calls: vec![],
         };
-        assert_eq!(check(&raygen, &info(good)), Ok(()));
+        assert_eq!(check(&raygen, &info(good), 1), Ok(()));
         // A primary ray traced with the shadow payload: the closest-hit stage writes past it.
         let swapped = Interface { traces: vec![(Some(MISS_PRIMARY), Some(4))], ..Default::default() };
-        let e = check(&raygen, &info(swapped)).unwrap_err();
+        let e = check(&raygen, &info(swapped), 1).unwrap_err();
         assert!(e.contains("primary ray (miss index 0) with a payload of 4 bytes"), "{e}");
         let miss = module("shadow_miss").unwrap();
         let wrong = Interface { variables: vec![(STORAGE_INCOMING_RAY_PAYLOAD, Some(80))], ..Default::default() };
-        assert!(check(&miss, &info(wrong)).is_err());
+        assert!(check(&miss, &info(wrong), 1).is_err());
     }
 }

@@ -9,13 +9,14 @@ use crate::spirv_info::ModuleInfo;
 /// Checks what a compiled module of `spec` in `language` declares: SPIR-V 1.4 to 1.6, the
 /// language's entry point with the stage's execution model, only bindings of [`LAYOUT`]
 /// that the stage can see, and the payloads, attributes and callable data of
-/// [`crate::interface`].
+/// [`crate::interface`], in twinray's pipelines (recursion depth 1).
 pub fn check_declarations(spec: &ModuleSpec, info: &ModuleInfo, language: Language) -> Result<(), String> {
-    check_module(spec, info, spec.entry_point(language))
+    check_module(spec, info, spec.entry_point(language), crate::interface::MAX_RECURSION_DEPTH)
 }
 
-/// As [`check_declarations`], for an entry point called `entry`.
-pub fn check_module(spec: &ModuleSpec, info: &ModuleInfo, entry: &str) -> Result<(), String> {
+/// As [`check_declarations`], for an entry point called `entry`, in pipelines of recursion
+/// `depth`.
+pub fn check_module(spec: &ModuleSpec, info: &ModuleInfo, entry: &str, depth: u32) -> Result<(), String> {
     if spirv_version(info.version).is_none() {
         return Err(format!("SPIR-V {}.{}, where twinray reads 1.4 to 1.6", info.version.0, info.version.1));
     }
@@ -25,7 +26,7 @@ pub fn check_module(spec: &ModuleSpec, info: &ModuleInfo, entry: &str) -> Result
     }
     // What the stage passes first: a stage that traces also binds the TLAS, and the
     // recursion depth is the cause to name.
-    crate::interface::check(spec, info)?;
+    crate::interface::check(spec, info, depth)?;
     for &(set, binding) in &info.bindings {
         let layout = LAYOUT.iter().find(|l| set == b::DESCRIPTOR_SET && l.binding == binding);
         match layout {

@@ -56,7 +56,7 @@ const INTERFACE_STORAGE: [u32; 5] = [
 
 /// What a module passes between stages. Sizes are the bytes of a type's scalars (no padding:
 /// these storage classes have no explicit layout), `None` where the reader cannot tell.
-#[derive(Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Debug, Default, PartialEq, Eq)]
 pub struct Interface {
     /// (storage class, bytes) of every variable in a payload, attribute or callable class.
     pub variables: Vec<(u32, Option<u32>)>,

@@ -10,7 +10,7 @@ use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
 use spirv_std::RuntimeArray;
 use twinray_shared::bindings::{
-    LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MAX_LIGHTS, MISS_PRIMARY, MISS_SHADOW, NO_HIT,
+    LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MATERIAL_SHADED, MAX_LIGHTS, MISS_PRIMARY, MISS_SHADOW, NO_HIT,
 };
 use twinray_shared::camera::Ray;
 use twinray_shared::features::{Features, AREA_LIGHTS, EMISSION};
@@ -79,7 +79,8 @@ pub fn $name(
     shadow_rays: &mut u32,
 ) -> Vec3 {
     let emission = features.has::<EMISSION>();
-    if hit.ids.w == NO_HIT || (emission & (hit.ids.z == MATERIAL_EMISSIVE)) {
+    // A miss, an emitter, or a surface its closest hit shaded: the colour is the radiance.
+    if hit.ids.w == NO_HIT || ((hit.ids.z == MATERIAL_SHADED) | (emission & (hit.ids.z == MATERIAL_EMISSIVE))) {
         return hit.color.xyz();
     }
     // Without area lights every light takes one sample at a fixed place.

@@ -38,6 +38,12 @@ pub(super) struct Described {
     pub error: Option<String>,
     pub shapes: Vec<DescribedShape>,
     pub materials: Vec<DescribedMaterial>,
+    #[serde(default = "twinray_depth")]
+    pub recursion_depth: u32,
+}
+
+fn twinray_depth() -> u32 {
+    twinray_shared::interface::MAX_RECURSION_DEPTH
 }
 
 #[derive(Deserialize)]

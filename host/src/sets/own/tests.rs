@@ -34,7 +34,7 @@ fn list() -> &'static [CustomShape] {
 }
 
 unsafe extern "C" fn describe(out: *mut u8, capacity: usize) -> usize {
-    unsafe { abi::describe(list(), &[WAVES], out, capacity) }
+    unsafe { abi::describe(abi::Described { shapes: list(), materials: &[WAVES], recursion_depth: 1 }, out, capacity) }
 }
 unsafe extern "C" fn primitives(s: u32, v: *const f64, n: usize, o: *mut f32, c: usize, m: *mut u8, mc: usize) -> i64 {
     unsafe { abi::primitives(list(), s, v, n, o, c, m, mc) }

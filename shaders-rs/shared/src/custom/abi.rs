@@ -22,12 +22,31 @@ pub const PARAMETER_FLOATS: usize = 8;
 /// f32s that `material` writes: `Material::color_a`, then `color_b`.
 pub const MATERIAL_FLOATS: usize = 8;
 
-/// The crate's shapes and materials as JSON: `{"abi", "contract", "error", "shapes": [{"name",
-/// "about", "hit_kind", "params": [{"name", "type", "rule", "max", "default"}]}], "materials":
-/// [{"name", "about", "params"}]}`. `error` is null, or why a list cannot be used
-/// ([`check_list`], [`check_materials`]).
-pub fn description(shapes: &[CustomShape], materials: &[CustomMaterial]) -> String {
-    let error = match check_list(shapes).and_then(|()| check_materials(materials)) {
+/// What a crate's CPU library describes: its shapes, its materials, and the recursion depth
+/// of the pipelines its stages need (1 unless its hit stages trace; its `RECURSION_DEPTH`).
+#[derive(Clone, Copy)]
+pub struct Described<'a> {
+    /// Its `SHAPES`.
+    pub shapes: &'a [CustomShape],
+    /// Its `MATERIALS`.
+    pub materials: &'a [CustomMaterial],
+    /// Its `RECURSION_DEPTH`.
+    pub recursion_depth: u32,
+}
+
+/// The crate's shapes and materials as JSON: `{"abi", "contract", "error", "recursion_depth",
+/// "shapes": [{"name", "about", "hit_kind", "params": [{"name", "type", "rule", "max",
+/// "default"}]}], "materials": [{"name", "about", "params"}]}`. `error` is null, or why a list
+/// or the depth cannot be used ([`check_list`], [`check_materials`]).
+pub fn description(crate_: Described) -> String {
+    let Described { shapes, materials, recursion_depth } = crate_;
+    let max = crate::interface::MAX_DECLARED_DEPTH;
+    let depth = if (1..=max).contains(&recursion_depth) {
+        Ok(())
+    } else {
+        Err(format!("RECURSION_DEPTH is {recursion_depth}, not in 1..={max}"))
+    };
+    let error = match check_list(shapes).and_then(|()| check_materials(materials)).and(depth) {
         Ok(()) => "null".to_string(),
         Err(e) => json_string(&e),
     };
@@ -46,7 +65,8 @@ pub fn description(shapes: &[CustomShape], materials: &[CustomMaterial]) -> Stri
         })
         .collect();
     format!(
-        "{{\"abi\":{VERSION},\"contract\":{},\"error\":{error},\"shapes\":[{}],\"materials\":[{}]}}",
+        "{{\"abi\":{VERSION},\"contract\":{},\"error\":{error},\"recursion_depth\":{recursion_depth},\
+         \"shapes\":[{}],\"materials\":[{}]}}",
         json_string(crate::contract::CONTRACT_VERSION),
         shapes.join(","),
         materials.join(",")
@@ -152,9 +172,9 @@ pub fn unflatten(name: &str, params: &[Param], flat: &[f64]) -> Result<Values, S
 ///
 /// # Safety
 /// `out` must be valid for `capacity` bytes of writes (or `capacity` 0).
-pub unsafe fn describe(shapes: &[CustomShape], materials: &[CustomMaterial], out: *mut u8, capacity: usize) -> usize {
+pub unsafe fn describe(crate_: Described, out: *mut u8, capacity: usize) -> usize {
     // SAFETY: passed on from the caller.
-    unsafe { write_text(&description(shapes, materials), out, capacity) }
+    unsafe { write_text(&description(crate_), out, capacity) }
 }
 
 /// The primitives of shape `index` with the keys `values` (`count` f64s, [`flatten`]'s order):

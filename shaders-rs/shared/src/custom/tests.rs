@@ -113,13 +113,25 @@ fn a_list_is_checked_by_name_hit_kind_and_keys() {
     assert!(check_list(&[keys]).unwrap_err().contains("the default of r must be > 0"));
 }
 
+fn described(shapes: &[CustomShape], materials: &[CustomMaterial]) -> String {
+    abi::description(abi::Described { shapes, materials, recursion_depth: 1 })
+}
+
+#[test]
+fn the_description_names_the_recursion_depth_and_refuses_one_no_driver_has() {
+    let depth = |recursion_depth| abi::description(abi::Described { shapes: &[], materials: &[], recursion_depth });
+    assert!(depth(2).contains("\"error\":null,\"recursion_depth\":2,"), "{}", depth(2));
+    assert!(depth(0).contains("RECURSION_DEPTH is 0, not in 1..=31"), "{}", depth(0));
+    assert!(depth(32).contains("RECURSION_DEPTH is 32, not in 1..=31"), "{}", depth(32));
+}
+
 #[test]
 fn the_description_names_every_key_with_its_rule_and_default_and_escapes_text() {
     let mut with_default = CAPSULE;
     const PAIR: &[Param] =
         &[Param { name: "radius", ty: ParamType::Pair, rule: Rule::Positive, default: Some(Value::Pair([1.0, 2.5])) }];
     with_default.params = PAIR;
-    let text = abi::description(&[with_default], &[WAVES]);
+    let text = abi::description(abi::Described { shapes: &[with_default], materials: &[WAVES], recursion_depth: 1 });
     assert!(text.starts_with("{\"abi\":2,\"contract\":\""), "{text}");
     assert!(text.contains("\"error\":null"), "{text}");
     assert!(text.contains("\"about\":\"a capsule \\\"about\\\" y\""), "{text}");
@@ -134,18 +146,19 @@ fn the_description_names_every_key_with_its_rule_and_default_and_escapes_text() 
          \"type\":\"triple\",\"rule\":\"finite\",\"max\":null,\"default\":null},{\"name\":\"period\",\"type\":\"number\",\
          \"rule\":\"positive\",\"max\":null,\"default\":null}]}]}"
     ), "{text}");
-    assert!(abi::description(&[CAPSULE, CAPSULE], &[]).contains("\"error\":\"shape \\\"capsule\\\" is listed twice\""));
+    assert!(described(&[CAPSULE, CAPSULE], &[]).contains("\"error\":\"shape \\\"capsule\\\" is listed twice\""));
     let mut diffuse = WAVES;
     diffuse.name = "diffuse";
-    assert!(abi::description(&[], &[diffuse]).contains("twinray has a material kind of that name"));
+    assert!(described(&[], &[diffuse]).contains("twinray has a material kind of that name"));
 }
 
 #[test]
 fn describe_reports_the_whole_length_and_writes_what_fits() {
-    let whole = abi::description(&[CAPSULE], &[WAVES]);
+    let crate_ = abi::Described { shapes: &[CAPSULE], materials: &[WAVES], recursion_depth: 1 };
+    let whole = abi::description(crate_);
     let mut short = [0u8; 10];
     // SAFETY: 10 writable bytes.
-    let n = unsafe { abi::describe(&[CAPSULE], &[WAVES], short.as_mut_ptr(), short.len()) };
+    let n = unsafe { abi::describe(crate_, short.as_mut_ptr(), short.len()) };
     assert_eq!((n, &short[..]), (whole.len(), &whole.as_bytes()[..10]));
 }
 
