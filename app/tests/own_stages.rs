@@ -10,6 +10,9 @@ use twinray_tests::cli::twinray;
 use twinray_tests::repo_root as repo;
 use twinray_tests::scratch::seed_crate_target;
 
+mod shading;
+use shading::shade_in_closest_hits;
+
 fn text(out: &Output) -> String {
     format!("{}{}", String::from_utf8_lossy(&out.stdout), String::from_utf8_lossy(&out.stderr))
 }
@@ -235,53 +238,6 @@ fn probe(case: &str, set: &str, dir: &Path) -> (serde_json::Value, Option<i32>) 
     (json, out.status.code())
 }
 
-/// Shading where the crate puts it: every procedural closest hit of the crate in `krate`, in
-/// Rust and in its GLSL twin, lights the surface with twinray's lights and shadow rays and
-/// leaves radiance (`MATERIAL_SHADED`) through a soft ramp; the crate declares recursion depth
-/// 2. Each edit is (file, a line of the starter, what follows it).
-const SHADING: [(&str, &str, &str); 6] = [
-    (
-        "src/hit.rs",
-        "    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,\n",
-        "    #[spirv(descriptor_set = 0, binding = 0)] tlas: &spirv_std::ray_tracing::AccelerationStructure,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &crate::trace::Lights,
-    #[spirv(ray_payload)] shadow: &mut twinray_shared::layout::ShadowPayload,\n",
-    ),
-    (
-        "src/hit.rs",
-        "    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));\n",
-        "    let mut rays = 0;
-    let lit = crate::trace::shade(tlas, frame, lights, true, true, Features::new(features), payload, shadow, 0, 0, &mut rays);
-    payload.color = (lit / (lit + Vec3::ONE)).extend(payload.color.w);
-    payload.ids.z = twinray_shared::bindings::MATERIAL_SHADED;\n",
-    ),
-    ("shared/src/lib.rs", "#![cfg_attr(target_arch = \"spirv\", no_std)]\n", "pub const RECURSION_DEPTH: u32 = 2;\n"),
-    (
-        "glsl/procedural.rchit",
-        "hitAttributeEXT vec3 normal;\n",
-        "layout(set = DESCRIPTOR_SET, binding = BINDING_TLAS) uniform accelerationStructureEXT tlas;
-layout(set = DESCRIPTOR_SET, binding = BINDING_LIGHTS, std430) readonly buffer Lights { Light lights[]; };
-layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;\n",
-    ),
-    ("glsl/procedural.rchit", "#include \"procedural_hit.glsl\"\n", "#include \"trace.glsl\"\n"),
-    (
-        "glsl/procedural.rchit",
-        "gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT), normal, frame.cone.x);\n",
-        "    uint rays = 0u;
-    vec3 lit = shade(true, true, 0u, 0u, rays);
-    payload.color.xyz = lit / (lit + vec3(1.0));
-    payload.ids.z = MATERIAL_SHADED;\n",
-    ),
-];
-
-fn shade_in_closest_hits(krate: &Path) {
-    for (file, line, after) in SHADING {
-        let source = std::fs::read_to_string(krate.join(file)).unwrap();
-        assert!(source.contains(line), "{file}: the starter moved ({line}): this test must follow");
-        std::fs::write(krate.join(file), source.replacen(line, &format!("{line}{after}"), 1)).unwrap();
-    }
-}
-
 #[test]
 fn a_crates_own_shape_material_and_shading_agree_in_both_languages_and_the_shape_is_judged_by_its_definition() {
     let scratch = tempfile::tempdir().unwrap();
@@ -312,6 +268,21 @@ fn a_crates_own_shape_material_and_shading_agree_in_both_languages_and_the_shape
         assert!(text(&both).contains("PASS"), "{}", text(&both));
     }
     assert!(files(&krate) == written, "building wrote in the crate outside target/ (its Cargo.lock?)");
+    // view reads the scene with the kinds of its sets' crates: it serves the page.
+    let mut view = std::process::Command::new(env!("CARGO_BIN_EXE_twinray"))
+        .args(["view", "shapes/scenes/capsule.toml", "--a", "shapes", "--b", "shapes/glsl", "--port", "0"])
+        .current_dir(dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    let mut first = String::new();
+    std::io::BufRead::read_line(&mut std::io::BufReader::new(view.stdout.take().unwrap()), &mut first).unwrap();
+    // Ctrl-C, as a user stops it: it removes its work folder and exits.
+    let _ = std::process::Command::new("kill").args(["-INT", &view.id().to_string()]).status();
+    let ended = view.wait_with_output().unwrap();
+    let said = String::from_utf8_lossy(&ended.stderr);
+    assert!(first.starts_with("twinray view: serving http://"), "view of a crate's own kinds: {first:?} {said}");
     // explain reports what the closest hits computed, and claims no lighting of its own.
     let args = ["explain", "shapes/scenes/waves.toml", "--pixel", "29,31", "--a", "shapes", "--b", "shapes/glsl"];
     let said = ok(&[&args[..], &["--width", "96", "--height", "72"]].concat(), dir);

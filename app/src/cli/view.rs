@@ -10,9 +10,11 @@ use twinray_host::Error;
 
 pub fn view(global: &GlobalArgs, args: ViewArgs) -> Result<ExitCode> {
     // Refuse bad sets now, with exit 2: later, a set that stops loading is a message in the page.
-    for (flag, spec) in [("--a", &args.a), ("--b", &args.b)] {
-        global.load(flag, &spec.parse()?)?;
-    }
+    let a = global.load("--a", &args.a.parse()?)?;
+    let b = global.load("--b", &args.b.parse()?)?;
+    // The kinds of the sets' crates, which the page's scene may name: read from them as first
+    // built (a kind added later is known to the renders, not to the page's size and camera).
+    let own = twinray_host::ShaderSet::own_kinds(&[&a, &b]);
     let sources = match &args.sources {
         Some(dir) if !dir.is_dir() => {
             return Err(Error::Input(format!("--sources {}: no such folder", dir.display())).into());
@@ -30,6 +32,7 @@ pub fn view(global: &GlobalArgs, args: ViewArgs) -> Result<ExitCode> {
     let work_dir = std::env::temp_dir().join(format!("twinray-view-{}", std::process::id()));
     let config = ViewConfig {
         scene: args.scene,
+        own,
         sets: [args.a, args.b],
         sources,
         bind: args.bind,

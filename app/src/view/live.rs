@@ -13,6 +13,7 @@ use std::time::{Instant, SystemTime};
 use tokio::sync::mpsc::UnboundedReceiver;
 use twinray_compile::{build_set, has_sources, sets_for, Output, GENERATORS};
 use twinray_host::scene::Scene;
+use twinray_host::sets::own::CrateKinds;
 use twinray_shared::catalog::Language;
 
 /// How long a save's events settle before the turn they start.
@@ -58,6 +59,8 @@ impl Work {
 pub struct Live {
     /// The scene as given (a file or a built-in name; `None`: the default scene).
     pub scene: Option<String>,
+    /// The kinds of the sets' crates, as first built.
+    pub own: Vec<&'static CrateKinds>,
     /// The scene's file, when it is one: a save to it re-renders.
     pub scene_file: Option<PathBuf>,
     pub sets: [String; 2],
@@ -284,7 +287,7 @@ impl Live {
 
     /// Reads the scene file again; the page's frame and camera start afresh from it.
     fn reload_scene(&self) -> Result<(), String> {
-        let scene = Scene::load(self.scene.as_deref()).map_err(|e| e.to_string())?;
+        let scene = Scene::load_with(self.scene.as_deref(), &self.own).map_err(|e| e.to_string())?;
         let info = SceneInfo::of(&scene, self.size);
         self.store.update(|s| {
             s.wanted = Shot { width: info.width, height: info.height, frame: 0, eye: None, look_at: None };

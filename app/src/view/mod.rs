@@ -22,10 +22,13 @@ use std::time::Duration;
 use twinray_compile::sources;
 use twinray_host::error::{Error, Result};
 use twinray_host::scene::Scene;
+use twinray_host::sets::own::CrateKinds;
 
 /// What `twinray view` was asked for.
 pub struct ViewConfig {
     pub scene: Option<String>,
+    /// The kinds of the sets' crates, which the scene may name beside twinray's.
+    pub own: Vec<&'static CrateKinds>,
     pub sets: [String; 2],
     /// A checkout whose sources rebuild the built-in sets (`None`: their embedded modules).
     pub sources: Option<PathBuf>,
@@ -44,7 +47,7 @@ pub struct ViewConfig {
 
 /// Serves the page until Ctrl-C; `ready` gets the address once it listens.
 pub fn serve(config: ViewConfig, ready: impl FnOnce(SocketAddr)) -> Result<()> {
-    let scene = Scene::load(config.scene.as_deref())?;
+    let scene = Scene::load_with(config.scene.as_deref(), &config.own)?;
     let info = SceneInfo::of(&scene, config.size);
     twinray_host::scene::check_size(info.width, info.height).map_err(Error::Input)?;
     let runtime = tokio::runtime::Runtime::new().map_err(|e| Error::Input(format!("starting the server: {e}")))?;
@@ -56,6 +59,7 @@ async fn run(config: ViewConfig, info: SceneInfo, ready: impl FnOnce(SocketAddr)
         config.scene.as_ref().map(PathBuf::from).filter(|p| p.is_file()).and_then(|p| p.canonicalize().ok());
     let live = Arc::new(Live {
         scene: config.scene.clone(),
+        own: config.own.clone(),
         scene_file: scene_file.clone(),
         sets: config.sets.clone(),
         sources: config.sources.clone(),
