@@ -31,12 +31,18 @@ bool visible(vec3 origin, vec3 direction, float distance) {
 #endif
 
 #ifndef TRACE_ONLY
+// 1 where a closest hit may shade the surface itself (a set with a stage from disk), 0 for
+// twinray's own sets: twin of the Rust renderer's `shaded_hits`.
+layout(constant_id = SPEC_SHADED_HITS) const uint SHADED_HITS = 0u;
+
 // shadows: whether any light casts shadows (a specialisation constant); stratified: rect lights'
 // shadow samples one per cell of an N x N grid, else independent. Adds the shadow rays it
 // traces to shadow_rays.
 vec3 shade(bool shadows, bool stratified, uint pixel, uint sample_index, inout uint shadow_rays) {
-    // A miss, an emitter, or a surface its closest hit shaded: the colour is the radiance.
-    if (payload.ids.w == NO_HIT || payload.ids.z == MATERIAL_SHADED || (HAS_FEATURE_EMISSION && payload.ids.z == MATERIAL_EMISSIVE)) {
+    // A miss, an emitter, or a surface its closest hit shaded (only where the set's may): the
+    // colour is the radiance.
+    bool shaded = SHADED_HITS != 0u && payload.ids.z == MATERIAL_SHADED;
+    if (payload.ids.w == NO_HIT || shaded || (HAS_FEATURE_EMISSION && payload.ids.z == MATERIAL_EMISSIVE)) {
         return payload.color.xyz;
     }
     vec3 point = payload.position.xyz;

@@ -18,7 +18,7 @@ const SHADING: [(&str, &str, &str); 6] = [
         "src/hit.rs",
         "    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));\n",
         "    let mut rays = 0;
-    let lit = crate::trace::shade(tlas, frame, lights, true, true, Features::new(features), payload, shadow, 0, 0, &mut rays);
+    let lit = crate::trace::shade(tlas, frame, lights, true, true, false, Features::new(features), payload, shadow, 0, 0, &mut rays);
     payload.color = (lit / (lit + Vec3::ONE)).extend(payload.color.w);
     payload.ids.z = twinray_shared::bindings::MATERIAL_SHADED;\n",
     ),

@@ -158,8 +158,16 @@ impl ScenePipeline {
         }
         // What the validation layer said of the modules fails here, before a trace can crash
         // on them (a module declaring a capability the device lacks crashed lavapipe).
-        let made = Self::from_modules(ctx, plan, (raygen, names, &modules), (witness, libraries, layout), depth)
-            .and_then(|made| ctx.check_validation().map(|()| made));
+        // Only a set with a stage from disk may have closest hits that shade.
+        let shaded_hits = !set.all_builtin();
+        let made = Self::from_modules(
+            ctx,
+            plan,
+            (raygen, names, &modules),
+            (witness, libraries, layout),
+            (depth, shaded_hits),
+        )
+        .and_then(|made| ctx.check_validation().map(|()| made));
         made.map_err(|e| if e.is_stalled() { e } else { e.during(doing) })
     }
 
@@ -168,9 +176,9 @@ impl ScenePipeline {
         plan: &PipelinePlan,
         (raygen, names, modules): (&'static str, Vec<&'static str>, &[StageModule]),
         (witness, libraries, draw): (Vec<&'static str>, Option<&Libraries>, LayoutDraw),
-        depth: u32,
+        (depth, shaded_hits): (u32, bool),
     ) -> Result<Self> {
-        let specialised = Specialisation::of_plan(plan);
+        let specialised = Specialisation::of_plan(plan, shaded_hits);
         let (spec, spec_bytes) = (specialised.info(), specialised.bytes());
         // A compute pipeline has no groups and no SBT.
         let compute = workgroup(raygen).is_some();
@@ -239,23 +247,34 @@ pub fn stage_descs<'a>(modules: &'a [StageModule], spec: &'a vk::SpecializationI
 /// samples per pixel, the shadow sampler (read by ray generation and compute stages), and the
 /// features the scene uses (read by every stage that has code for one).
 pub struct Specialisation {
-    data: [u32; 4],
-    entries: [vk::SpecializationMapEntry; 4],
+    data: [u32; 5],
+    entries: [vk::SpecializationMapEntry; 5],
 }
 
 impl Specialisation {
+    /// Shadows, samples, the shadow sampler and the features as given; no closest hit that
+    /// shades ([`Specialisation::shading_in_hits`] says otherwise).
     pub fn new(shadows: bool, samples_per_side: u32, shadow_sampler: u32, features: u32) -> Specialisation {
-        let ids = [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER, b::SPEC_FEATURES];
+        let ids =
+            [b::SPEC_SHADOWS, b::SPEC_SAMPLES_PER_SIDE, b::SPEC_SHADOW_SAMPLER, b::SPEC_FEATURES, b::SPEC_SHADED_HITS];
         let entry = |i: usize| vk::SpecializationMapEntry { constant_id: ids[i], offset: 4 * i as u32, size: 4 };
         Specialisation {
-            data: [u32::from(shadows), samples_per_side, shadow_sampler, features],
-            entries: [entry(0), entry(1), entry(2), entry(3)],
+            data: [u32::from(shadows), samples_per_side, shadow_sampler, features, 0],
+            entries: [entry(0), entry(1), entry(2), entry(3), entry(4)],
         }
     }
 
-    /// What `plan` specialises.
-    pub fn of_plan(plan: &PipelinePlan) -> Specialisation {
+    /// What `plan` specialises, for a set whose closest hits may shade (`shaded_hits`).
+    pub fn of_plan(plan: &PipelinePlan, shaded_hits: bool) -> Specialisation {
         Specialisation::new(plan.shadows, plan.samples_per_side, plan.shadow_sampler, plan.features)
+            .shading_in_hits(shaded_hits)
+    }
+
+    /// This, with ray generation showing the colour of a hit its closest hit shaded
+    /// (`bindings::MATERIAL_SHADED`) as it is where `shaded_hits`.
+    pub fn shading_in_hits(mut self, shaded_hits: bool) -> Specialisation {
+        self.data[4] = u32::from(shaded_hits);
+        self
     }
 
     /// Each constant's id and value.

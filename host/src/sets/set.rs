@@ -92,6 +92,12 @@ impl ShaderSet {
         out
     }
 
+    /// Whether every module of the set is one of twinray's built-in ones (a built-in set, or a
+    /// per-stage mix of them): nothing from disk.
+    pub fn all_builtin(&self) -> bool {
+        self.own.is_none() && self.origins.iter().all(|o| matches!(o, Origin::Builtin(_)))
+    }
+
     /// The recursion depth of the set's pipelines: twinray's 1, or what its crate declares.
     pub fn recursion_depth(&self) -> u32 {
         let depth = self.own.and_then(|o| o.kinds.as_ref()).map(|k| k.recursion_depth);

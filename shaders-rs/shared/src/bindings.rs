@@ -105,6 +105,10 @@ pub const SPEC_SHADOW_SAMPLER: u32 = 2;
 /// Specialisation constant of every stage: the features the scene uses (`crate::features`),
 /// whose code a stage skips where their bit is clear.
 pub const SPEC_FEATURES: u32 = 3;
+/// Specialisation constant of ray generation: 1 where a closest hit may shade the surface
+/// itself ([`MATERIAL_SHADED`]; the host sets it for any set with a stage from disk), 0 for
+/// twinray's own sets, whose closest hits never do, so that the check costs them nothing.
+pub const SPEC_SHADED_HITS: u32 = 4;
 /// One jittered sample in each cell of an N x N grid over the light (the default).
 pub const SHADOW_SAMPLER_STRATIFIED: u32 = 0;
 /// N x N independent samples, each anywhere on the light.

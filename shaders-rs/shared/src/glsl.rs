@@ -185,6 +185,7 @@ pub fn layout_include() -> Result<String, String> {
         ("SPEC_SAMPLES_PER_SIDE", SPEC_SAMPLES_PER_SIDE),
         ("SPEC_SHADOW_SAMPLER", SPEC_SHADOW_SAMPLER),
         ("SPEC_FEATURES", SPEC_FEATURES),
+        ("SPEC_SHADED_HITS", crate::bindings::SPEC_SHADED_HITS),
         ("FEATURES_ALL", crate::features::ALL),
         ("SHADOW_SAMPLER_STRATIFIED", SHADOW_SAMPLER_STRATIFIED),
         ("SHADOW_SAMPLER_RANDOM", SHADOW_SAMPLER_RANDOM),

@@ -75,6 +75,7 @@ pub fn $name(
     #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
     // The scene's features (twinray_shared::features; 31 is `ALL`, for a host that sets none).
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 4, default = 0))] shaded_hits: u32,
     $($params)*
 ) {
     $($setup)*
@@ -126,6 +127,7 @@ pub fn $name(
                     lights,
                     shadows != 0,
                     shadow_sampler == SHADOW_SAMPLER_STRATIFIED,
+                    shaded_hits != 0,
                     features,
                     $payload,
                     $($sres,)*

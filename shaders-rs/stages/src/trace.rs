@@ -71,6 +71,7 @@ pub fn $name(
     lights: &Lights,
     shadows: bool,
     stratified: bool,
+    shaded_hits: bool,
     features: Features,
     hit: &HitPayload,
     $($res: $ty,)*
@@ -79,8 +80,10 @@ pub fn $name(
     shadow_rays: &mut u32,
 ) -> Vec3 {
     let emission = features.has::<EMISSION>();
-    // A miss, an emitter, or a surface its closest hit shaded: the colour is the radiance.
-    if hit.ids.w == NO_HIT || ((hit.ids.z == MATERIAL_SHADED) | (emission & (hit.ids.z == MATERIAL_EMISSIVE))) {
+    // A miss, an emitter, or a surface its closest hit shaded (only where the set's may:
+    // `shaded_hits`, a specialisation constant): the colour is the radiance.
+    let shaded = shaded_hits & (hit.ids.z == MATERIAL_SHADED);
+    if hit.ids.w == NO_HIT || (shaded | (emission & (hit.ids.z == MATERIAL_EMISSIVE))) {
         return hit.color.xyz();
     }
     // Without area lights every light takes one sample at a fixed place.
