@@ -134,9 +134,9 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     // crate with its GLSL twins: the crate is rebuilt and the verdict, now a fail, comes with
     // the time from the save; then a save of a twin, which lies in the crate's folder but is
     // a set of its own, is seen too.
-    let lib = krate.join("src/lib.rs");
+    let lib = krate.join("src/hit.rs");
     let source = std::fs::read_to_string(&lib).unwrap();
-    let old = "procedural_closest_hit, [], |m, p, n| shading::material_color(m, p, n)";
+    let old = "        shading::material_color(material, point, normal)\n";
     assert!(source.contains(old), "the starter's closest hit moved: this test must follow");
     let log = dir.join("watch.log");
     let mut watch = std::process::Command::new(twinray_tests::cli::exe())
@@ -152,7 +152,7 @@ fn a_new_crate_is_the_rust_set_until_edited() {
         assert!(start.elapsed().as_secs() < 300, "watch gave no first verdict:\n{}", watched());
         std::thread::sleep(std::time::Duration::from_millis(100));
     }
-    std::fs::write(&lib, source.replacen(old, &format!("{old} * 0.5"), 1)).unwrap();
+    std::fs::write(&lib, source.replacen(old, &format!("{} * 0.5\n", old.trim_end()), 1)).unwrap();
     while !watched().contains("watch: save to verdict") {
         assert!(start.elapsed().as_secs() < 600, "watch gave no verdict on the crate's save:\n{}", watched());
         std::thread::sleep(std::time::Duration::from_millis(100));
@@ -162,7 +162,7 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     let ended = twinray_tests::cli::wait_within(&mut watch, std::time::Duration::from_secs(300));
     let said = watched();
     assert!(ended.is_ok_and(|s| s.success()), "watch: {said}");
-    assert!(said.contains("watch: changed src/lib.rs") && said.contains("FAIL"), "{said}");
+    assert!(said.contains("watch: changed src/hit.rs") && said.contains("FAIL"), "{said}");
     assert!(said.contains("watch: changed ./mine/glsl/raygen.rgen"), "the twin's save was not seen: {said}");
     assert_eq!(said.matches("watch: save to verdict").count(), 2, "{said}");
     let out = compare("./mine", "rust");

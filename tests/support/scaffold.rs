@@ -63,10 +63,11 @@ pub fn check_new_shape(dir: &Path, name: &str, before: &BTreeMap<String, Vec<u8>
             "docs/scene-format.md",
             "shaders-glsl/shape_dispatch.glsl",
             "shaders-glsl/twinray_layout.glsl",
-            "shaders-rs/shared/src/shapes/mod.rs"
+            "shaders-rs/shared/src/shapes/mod.rs",
+            "shaders-rs/stages/src/intersection.rs"
         ],
-        "files changed: the registry by hand; the docs' table, the GLSL shape dispatch (ray queries) and the GLSL \
-         include by cargo xtask shaders"
+        "files changed: the registry and the Rust stages by hand; the docs' table, the GLSL shape dispatch (ray \
+         queries) and the GLSL include by cargo xtask shaders"
     );
     let registry = String::from_utf8_lossy(&after["shaders-rs/shared/src/shapes/mod.rs"]).into_owned();
     let kind = twinray_shared::shapes::SHAPES.iter().map(|s| s.hit_kind).max().unwrap_or(0) + 1;

@@ -1,6 +1,7 @@
 //! `cargo xtask new-shape NAME`: scaffolds a procedural shape in both languages — its module
 //! in `twinray-shared` (a placeholder robust intersection, its scene kind and CPU tests), its
-//! line in the registry, its GLSL twin and a built-in scene — then builds the shaders and
+//! line in the registry, its Rust intersection stage, its GLSL twin and a built-in scene —
+//! then builds the shaders and
 //! compares the scene's renders with both sets. The placeholder is a sphere, so everything
 //! passes from the start; the user then writes the shape's own math in both languages.
 
@@ -12,6 +13,9 @@ const REGISTRY: &str = "shaders-rs/shared/src/shapes/mod.rs";
 const SHAPE_TEMPLATE: &str = include_str!("../templates/shape.rs.in");
 const GLSL_TEMPLATE: &str = include_str!("../templates/shape.glsl.in");
 const SCENE_TEMPLATE: &str = include_str!("../templates/scene.toml.in");
+/// Where the shapes' Rust intersection stages are, each written out.
+const STAGES: &str = "shaders-rs/stages/src/intersection.rs";
+const STAGE_TEMPLATE: &str = include_str!("../templates/intersection.rs.in");
 
 /// Words a shape cannot be called: Rust keywords (its module), the registry's own modules and
 /// the host's own kind.
@@ -37,6 +41,9 @@ pub fn run(name: &str) -> Result<()> {
     let registry_path = root.join(REGISTRY);
     let registry = std::fs::read_to_string(&registry_path).with_context(|| format!("reading {REGISTRY}"))?;
     let (registry, hit_kind) = register(&registry, name)?;
+    let stages_path = root.join(STAGES);
+    let stages = std::fs::read_to_string(&stages_path).with_context(|| format!("reading {STAGES}"))?;
+    let stages = with_stage(&stages, name)?;
     let [rust, glsl, scene] = added_files(name);
     let fill = |template: &str| {
         let capital = name[..1].to_uppercase() + &name[1..];
@@ -48,6 +55,8 @@ pub fn run(name: &str) -> Result<()> {
     }
     std::fs::write(&registry_path, registry).with_context(|| format!("writing {REGISTRY}"))?;
     println!("new-shape: registered {name} in {REGISTRY} (hit kind {hit_kind})");
+    std::fs::write(&stages_path, stages).with_context(|| format!("writing {STAGES}"))?;
+    println!("new-shape: wrote its stage {name}_intersection in {STAGES}");
     // A fresh cargo for each: this xtask was compiled before the registry had the shape.
     cargo(&["xtask", "shaders"], &[]).context("building the shaders with the new shape")?;
     let out = root.join("target/new-shape").join(name);
@@ -90,6 +99,15 @@ fn check_name(name: &str, root: &Path) -> Result<()> {
         }
     }
     Ok(())
+}
+
+/// The intersection stages of `stages` with NAME's appended: its routine, bound and hit kind
+/// reported as every built-in shape's are.
+fn with_stage(stages: &str, name: &str) -> Result<String> {
+    if stages.contains(&format!("pub fn {name}_intersection(")) {
+        bail!("{STAGES} already has a stage {name}_intersection; remove it or pick another name");
+    }
+    Ok(format!("{}\n{}", stages.trim_end(), STAGE_TEMPLATE.replace("__NAME__", name)))
 }
 
 /// The registry with `pub mod NAME;` and NAME's line added, and the hit kind it gets (one more
@@ -136,6 +154,18 @@ mod tests {
         let (out, _) = register(&wrapped, "capsule").unwrap();
         let at = |needle: &str| out.find(needle).unwrap();
         assert!(at("\"capsule\" =>") < at("fn f()"), "{out}");
+    }
+
+    #[test]
+    fn a_new_shapes_stage_is_written_as_the_built_in_ones_are() {
+        let stages = std::fs::read_to_string(repo_root().join(STAGES)).unwrap();
+        // The template is the sphere's stage, with the sphere's name: no drift between them.
+        let sphere = STAGE_TEMPLATE.replace("__NAME__", "sphere");
+        assert!(stages.contains(sphere.trim()), "{STAGES} no longer holds its template's form:\n{sphere}");
+        let out = with_stage(&stages, "capsule").unwrap();
+        assert!(out.starts_with(stages.trim_end()) && out.contains("pub fn capsule_intersection("));
+        assert!(out.contains("(shapes::capsule::intersect, shapes::capsule::bound, hit_kind::capsule)"));
+        assert!(with_stage(&stages, "sphere").is_err(), "the sphere's stage is there already");
     }
 
     #[test]

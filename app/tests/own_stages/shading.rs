@@ -5,20 +5,22 @@ use std::path::Path;
 /// Shading where the crate puts it: every procedural closest hit of the crate in `krate`, in
 /// Rust and in its GLSL twin, lights the surface with twinray's lights and shadow rays and
 /// leaves radiance (`MATERIAL_SHADED`) through a soft ramp; the crate declares recursion depth
-/// 2. Each edit is (file, a line of the starter, what follows it).
+/// 2. Each edit is (file, lines of the starter, what follows them wherever they are: in Rust,
+/// every procedural closest hit).
 const SHADING: [(&str, &str, &str); 6] = [
     (
-        "src/hit.rs",
-        "    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,\n",
+        "src/closest_hit.rs",
+        "    #[spirv(hit_attribute)] normal: &Vec3,\n",
         "    #[spirv(descriptor_set = 0, binding = 0)] tlas: &spirv_std::ray_tracing::AccelerationStructure,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &crate::trace::Lights,
     #[spirv(ray_payload)] shadow: &mut twinray_shared::layout::ShadowPayload,\n",
     ),
     (
-        "src/hit.rs",
-        "    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));\n",
-        "    let mut rays = 0;
-    let lit = crate::trace::shade(tlas, frame, lights, true, true, false, Features::new(features), payload, shadow, 0, 0, &mut rays);
+        "src/closest_hit.rs",
+        "\n        payload,\n    );\n",
+        "    let options = crate::render::Options { shadows: true, stratified: true, features, shaded_hits: false };
+    let mut rays = 0;
+    let lit = crate::trace::shade(tlas, (frame, lights), options, payload, shadow, (0, 0), &mut rays);
     payload.color = (lit / (lit + Vec3::ONE)).extend(payload.color.w);
     payload.ids.z = twinray_shared::bindings::MATERIAL_SHADED;\n",
     ),
@@ -45,6 +47,9 @@ pub fn shade_in_closest_hits(krate: &Path) {
     for (file, line, after) in SHADING {
         let source = std::fs::read_to_string(krate.join(file)).unwrap();
         assert!(source.contains(line), "{file}: the starter moved ({line}): this test must follow");
-        std::fs::write(krate.join(file), source.replacen(line, &format!("{line}{after}"), 1)).unwrap();
+        if file == "src/closest_hit.rs" {
+            assert_eq!(source.matches(line).count(), 3, "{file}: the procedural closest hits moved ({line})");
+        }
+        std::fs::write(krate.join(file), source.replace(line, &format!("{line}{after}"))).unwrap();
     }
 }

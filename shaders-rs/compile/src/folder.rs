@@ -202,21 +202,12 @@ fn compiler_words(stderr: &str) -> String {
 
 /// The modules rust-gpu wrote to `out`, each checked to be a module of the catalog.
 fn entry_points(dir: &Path, out: &Path) -> Result<Vec<String>> {
+    crate::name_modules_plainly(out).with_context(|| dir.display().to_string())?;
     let mut names = Vec::new();
     for entry in std::fs::read_dir(out)? {
-        let mut path = entry?.path();
-        let Some(mut name) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else { continue };
+        let path = entry?.path();
+        let Some(name) = path.file_stem().map(|s| s.to_string_lossy().into_owned()) else { continue };
         if path.extension().is_some_and(|e| e == "spv") {
-            // rust-gpu names the module of an entry point in a module by its path
-            // (`capsule::capsule_intersection`); twinray names modules by the function alone.
-            if let Some((_, last)) = name.rsplit_once("::") {
-                let plain = out.join(format!("{last}.spv"));
-                if plain.exists() {
-                    bail!("{}: two entry points are called `{last}` (one is {name})", dir.display());
-                }
-                std::fs::rename(&path, &plain)?;
-                (path, name) = (plain, last.to_string());
-            }
             // A crate with a shared library may add shapes and materials, whose intersection
             // and callable modules the host checks against what the library lists.
             let own = name.ends_with("_intersection") || name.ends_with("_material");

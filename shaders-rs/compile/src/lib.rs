@@ -151,7 +151,24 @@ fn build_rust(root: &Path, out: &Path, output: Output, without: u32) -> Result<(
     // A target folder of its own for other features, so that switching does not rebuild both.
     let shader_target = cache_dir().join(if without == 0 { "shader-target" } else { "shader-target-without" });
     run_tool(output, &mut run_builder(&builder, &root.join("shaders-rs/stages"), out, &shader_target, &features))
-        .context("building the Rust shaders")
+        .context("building the Rust shaders")?;
+    name_modules_plainly(out)
+}
+
+/// Renames each module rust-gpu wrote to `out` by its entry point's function alone: rust-gpu
+/// names the module of an entry point in a module by its path (`closest_hit::triangle_closest_hit`).
+pub(crate) fn name_modules_plainly(out: &Path) -> Result<()> {
+    for entry in std::fs::read_dir(out)? {
+        let path = entry?.path();
+        let Some(name) = path.file_name().map(|s| s.to_string_lossy().into_owned()) else { continue };
+        let Some((_, plain)) = name.strip_suffix(".spv").and_then(|n| n.rsplit_once("::")) else { continue };
+        let renamed = out.join(format!("{plain}.spv"));
+        if renamed.exists() {
+            bail!("two entry points are called `{plain}` (one is {})", name.trim_end_matches(".spv"));
+        }
+        std::fs::rename(&path, &renamed)?;
+    }
+    Ok(())
 }
 
 /// The builder's command that compiles the shader crate `crate_dir` (with its cargo
@@ -176,7 +193,8 @@ fn specs_of(names: &[String]) -> Vec<ModuleSpec> {
 }
 
 /// Strips the debug info (source paths, lines) that rust-gpu leaves in when its spirv-opt pass
-/// is off, so that the committed modules depend only on the code, and the ray query capability
+/// is off, so that the committed modules depend only on the code; names each entry point by
+/// its function alone, not its path in the crate (as the module is named); strips the ray query capability
 /// from modules that trace no ray query; decorates non-uniform descriptor accesses
 /// `NonUniform`, which rust-gpu's inliner drops (`uniformity`), and the error-free arithmetic
 /// of `twinray_shared::exact` `NoContraction`, which rust-gpu cannot write (`exact`).
@@ -194,8 +212,10 @@ fn strip_debug_info(dir: &Path, names: &[String]) -> Result<()> {
         // rust-gpu declares every capability the builder names in every module: one that
         // declares ray queries without using them would need VK_KHR_ray_query for nothing.
         let bytes = std::fs::read(&stripped)?;
+        let named =
+            spirv_info::with_plain_entry_names(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         let trimmed =
-            spirv_info::without_unused_ray_query(&bytes).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
+            spirv_info::without_unused_ray_query(&named).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         let decorated = uniformity::decorate(&trimmed).map_err(|e| anyhow::anyhow!("{}: {e}", path.display()))?;
         std::fs::write(&path, decorated)?;
         std::fs::remove_file(&stripped)?;

@@ -126,6 +126,48 @@ mod tests {
         assert!(package_name(Path::new("/"), None).is_err());
     }
 
+    /// The Rust source files of the starter: (path under the crate, text).
+    fn sources() -> Vec<(&'static str, String)> {
+        let rust = STAGES.iter().filter(|(p, _)| p.starts_with("src/") && p.ends_with(".rs"));
+        rust.map(|(p, b)| (*p, String::from_utf8_lossy(b).into_owned())).collect()
+    }
+
+    /// Every entry point of the starter written out, each in the file named by its stage kind,
+    /// as the README's table lists it; no macro makes one.
+    #[test]
+    fn each_entry_point_is_plain_in_its_stage_kinds_file_as_the_readme_says() {
+        let mut entries = Vec::new();
+        for (path, text) in sources() {
+            let in_macros = text.split("macro_rules!").skip(1);
+            assert!(!in_macros.clone().any(|m| m.contains("#[spirv(")), "{path}: a macro makes entry points");
+            let lines: Vec<&str> = text.lines().collect();
+            for (i, line) in lines.iter().enumerate() {
+                let Some(kind) = line.strip_prefix("#[spirv(") else { continue };
+                let kind = kind.split(['(', ')']).next().unwrap();
+                let name = lines[i + 1..].iter().find_map(|l| l.strip_prefix("pub fn ")).unwrap();
+                let name = name.split('(').next().unwrap().to_string();
+                assert_eq!(path, format!("src/{kind}.rs"), "{name} is a {kind} stage");
+                entries.push((name, path));
+            }
+        }
+        let catalog: Vec<&str> = twinray_shared::catalog::MODULES.iter().map(|m| m.name).collect();
+        let mut names: Vec<&str> = entries.iter().map(|(n, _)| n.as_str()).collect();
+        names.sort();
+        let mut expected = catalog.clone();
+        expected.sort();
+        assert_eq!(names, expected, "the starter's entry points are the catalog's modules");
+        for row in README.lines().filter(|l| l.starts_with("| ") && l.contains("`src/")) {
+            let cells: Vec<&str> = row.split('|').map(str::trim).collect();
+            let file = cells[3].trim_matches('`');
+            for listed in cells[2].split('`').skip(1).step_by(2) {
+                assert!(entries.contains(&(listed.to_string(), file)), "README: {listed} is not an entry point of {file}");
+            }
+        }
+        for (name, _) in &entries {
+            assert!(README.contains(&format!("`{name}`")), "README's table does not list {name}");
+        }
+    }
+
     #[test]
     fn a_starter_crate_holds_the_stages_the_contract_and_the_twins() {
         let dir = std::env::temp_dir().join(format!("twinray-starter-{}", std::process::id()));
@@ -135,7 +177,7 @@ mod tests {
         assert!(manifest.contains("name = \"my-stages\"") && manifest.contains("path = \"twinray-shared\""));
         assert!(manifest.contains("crate-type = [\"dylib\"]"));
         assert!(std::fs::read_to_string(dir.join("Cargo.lock")).unwrap().contains("name = \"my-stages\""));
-        for file in ["src/lib.rs", "src/hit.rs", "twinray-shared/src/contract.rs", "glsl/raygen.rgen", "README.md"] {
+        for file in ["src/lib.rs", "src/closest_hit.rs", "twinray-shared/src/contract.rs", "glsl/raygen.rgen", "README.md"] {
             assert!(dir.join(file).is_file(), "{file} missing");
         }
         assert!(written.files.len() > 40);

@@ -23,7 +23,7 @@ pub const BINDING_MATERIALS: u32 = 5;
 pub const BINDING_LIGHTS: u32 = 6;
 /// Most lights in a scene, and the lights buffer's fixed length. A fixed length leaves the
 /// stages no buffer length to read: rust-gpu reads a slice's at the entry point, and every
-/// thread waits for it before its first trace (twinray's nvidia-code bench report).
+/// thread waits for it before its first trace.
 pub const MAX_LIGHTS: u32 = 1024;
 /// `[u32]`, [`HIT_IDS_PER_PIXEL`] per pixel: object and primitive hit by the first primary ray
 /// (or [`NO_HIT`]), how many shadow rays the pixel traced (so that rays/s count the rays

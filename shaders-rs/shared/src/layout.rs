@@ -237,8 +237,7 @@ impl HitPayload {
     /// what ray generation does before each trace, so that a hit or miss stage that writes
     /// nothing is seen, instead of the last ray's payload, or whatever the driver's memory
     /// held, being judged. Only those six words: filling all twenty cost the GLSL set 3.7% on
-    /// showcase on an H100 (1920x1080, 12 placements), the six at most 0.5% on any scene
-    /// (twinray's stage-costs bench report).
+    /// showcase on an H100 (1920x1080, 12 placements), the six at most 0.5% on any scene.
     pub fn poison(&mut self) {
         let f = f32::from_bits(crate::bindings::UNWRITTEN);
         self.ids.w = crate::bindings::UNWRITTEN;

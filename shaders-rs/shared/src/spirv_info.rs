@@ -285,6 +285,21 @@ pub fn without_unused_ray_query(bytes: &[u8]) -> Result<Vec<u8>, String> {
     Ok(assemble(&header, &instructions))
 }
 
+/// `bytes` with each entry point named by its function alone: rust-gpu names an entry point
+/// in a module by its path (`closest_hit::triangle_closest_hit`), twinray by the module's name.
+pub fn with_plain_entry_names(bytes: &[u8]) -> Result<Vec<u8>, String> {
+    let (header, mut instructions) = instructions(bytes)?;
+    for instruction in instructions.iter_mut().filter(|i| opcode(i) == OP_ENTRY_POINT && i.len() > 3) {
+        let name = literal_string(&instruction[3..]);
+        let Some((_, plain)) = name.rsplit_once("::") else { continue };
+        let name_words = string_words(&name).len();
+        let rest = instruction[3 + name_words..].to_vec();
+        let words = [&instruction[1..3], &string_words(plain)[..], &rest[..]].concat();
+        *instruction = [vec![((words.len() as u32 + 1) << 16) | OP_ENTRY_POINT], words].concat();
+    }
+    Ok(assemble(&header, &instructions))
+}
+
 /// `bytes` recording `record` (`contract::record()`) in an `OpModuleProcessed` where the
 /// logical layout puts it, any contract record it had before dropped.
 pub fn with_record(bytes: &[u8], record: &str) -> Result<Vec<u8>, String> {
@@ -320,6 +335,21 @@ mod tests {
 
     fn words_to_bytes(words: &[u32]) -> Vec<u8> {
         words.iter().flat_map(|w| w.to_le_bytes()).collect()
+    }
+
+    #[test]
+    fn entry_points_are_named_by_their_function() {
+        let entry = |name: &str| {
+            let words = string_words(name);
+            [vec![((words.len() as u32 + 4) << 16) | OP_ENTRY_POINT, 5313, 7], words, vec![9]].concat()
+        };
+        let header = [MAGIC, 0x0001_0400, 0, 10, 0];
+        let module = |name: &str| words_to_bytes(&[&header[..], &entry(name)].concat());
+        let renamed = with_plain_entry_names(&module("closest_hit::triangle_closest_hit")).unwrap();
+        assert_eq!(renamed, module("triangle_closest_hit"));
+        assert_eq!(parse(&renamed).unwrap().entry_points[0].1, "triangle_closest_hit");
+        // A plain name is kept as it is.
+        assert_eq!(with_plain_entry_names(&module("miss")).unwrap(), module("miss"));
     }
 
     #[test]

@@ -15,9 +15,8 @@ pub struct SurfaceHit {
 /// weighs several candidates (a cylinder's side and caps). What [`closer`] does with an
 /// `Option` threaded through each candidate, this does in place: rust-gpu writes every
 /// `Option<SurfaceHit>` passed along as a struct with phis at each branch, and the cylinder's
-/// intersection stage so written ran 1.5% slower at 16 spp on the H100 than with this
-/// (twinray's nvidia-code bench report). A candidate at the same t as the nearest replaces it,
-/// as with `closer` and GLSL's twin.
+/// intersection stage so written ran 1.5% slower at 16 spp on the H100 than with this. A
+/// candidate at the same t as the nearest replaces it, as with `closer` and GLSL's twin.
 #[derive(Clone, Copy)]
 pub struct Nearest {
     hit: SurfaceHit,

@@ -1,129 +1,117 @@
-//! The closest-hit stages, as macros the crate root invokes (an entry point's name is its path,
-//! and the module names are the catalog's). They only describe the surface in the payload; each
-//! comes in two forms: with the material's colour computed inline, and (`_callable`) computed
-//! by the callable its kind selects in the SBT's callable region (`material_shading =
-//! "callable"`).
+//! What the closest-hit stages (closest_hit.rs) and the compute renderer's ray queries
+//! (query.rs) share: the surface a ray met, described in the payload for ray generation to
+//! shade. Each closest hit gets the material's colour in one of three ways (`MaterialColor`).
 
-use crate::texture::Texture;
+use crate::texture::{self, Texture};
 use core::arch::asm;
 use spirv_std::glam::{Mat3, UVec4, Vec2, Vec3, Vec4, Vec4Swizzles};
+use spirv_std::matrix::Matrix4x3;
 use spirv_std::RuntimeArray;
 use twinray_shared::features::{Features, EMISSION, TEXTURES};
-use twinray_shared::layout::{HitPayload, Material, MaterialCall, ObjectData, Primitive, Vertex};
+use twinray_shared::layout::{FrameUniform, HitPayload, Material, MaterialCall, ObjectData, Primitive, Vertex};
 use twinray_shared::texture::{self as shared_texture, TriangleHit};
 use twinray_shared::{shading, shapes, transform};
 
-/// Defines a closest-hit entry point for every procedural shape, `$name`: the surface from the
-/// reported object-space normal, its colour `$color` of the material `$m`, object-space point
-/// `$p` and normal `$n` (the entry also declares `$params`).
-///
-/// Expands to one `#[spirv(closest_hit)] pub fn $name(..)` taking the hit's built-ins, the
-/// object, primitive and material buffers and the payload; twinray's guide, *Rust stages* shows
-/// `procedural_closest_hit_flat` expanded.
-macro_rules! procedural_closest_hit {
-    ($(#[$doc:meta])* $name:ident, [$($params:tt)*], |$m:ident, $p:ident, $n:ident| $color:expr) => {
-$(#[$doc])*
-#[spirv(closest_hit)]
-#[allow(clippy::too_many_arguments)]
-pub fn $name(
-    #[spirv(instance_id)] object: u32,
-    #[spirv(instance_custom_index)] primitive_base: u32,
-    #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(hit_kind)] hit_kind: u32,
-    #[spirv(world_ray_origin)] origin: Vec3,
-    #[spirv(world_ray_direction)] direction: Vec3,
-    #[spirv(object_ray_origin)] object_origin: Vec3,
-    #[spirv(object_ray_direction)] object_direction: Vec3,
-    #[spirv(ray_tmax)] t: f32,
-    #[spirv(world_to_object)] world_to_object: Matrix4x3,
-    #[spirv(hit_attribute)] normal: &Vec3,
-    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
-    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
-    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    // The scene's features (twinray_shared::features; 31 is `ALL`, for a host that sets none).
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
-    $($params)*
-) {
-    let rays = ((origin, direction), (object_origin, object_direction));
-    let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
-    // Copies, as GLSL's twin makes: the driver issues their loads at once, where through
-    // references each load waited for the branch that used it. On the H200 at 16 spp, Rust/GLSL
-    // went from 1.011 to 0.994 on cylinder, 1.005 to 0.995 on box and 1.004 to 0.999 on cutout,
-    // and from 0.993 to 0.998 on sphere (twinray's nvidia-code bench report). References had been
-    // faster before the features were specialisation constants, when every field was live.
-    // Not bounds-checked, as GLSL's twin is not (nor the intersection stages' primitive read,
-    // twinray's guide, *Rust stages*): the instance id, the object's material and the custom index are
-    // the host's, made from the lists it uploads. The three checks cost Rust 1.7% to 3.6% at
-    // 1 spp on the H100 (twinray's nvidia-code bench report).
-    // SAFETY: see above; robust access reads zeros where a stage from disk strays.
-    let material = &unsafe { *materials.get_unchecked(objects.get_unchecked(object as usize).material as usize) };
-    let primitive = &unsafe { *primitives.get_unchecked((primitive_base + primitive_id) as usize) };
-    let cone = (frame.cone.x, Features::new(features));
-    let (tint, emission) = hit::procedural_tint(textures, (material, primitive), &surface, *normal, cone);
-    let ($m, $p, $n) = (material, surface.object_point(), *normal);
-    let color = $color * tint;
-    hit::describe_surface(payload, &surface, material.kind, *normal, *normal, (color, emission));
-}
-    };
+/// How a closest hit gets the colour of a material at an object-space point and normal.
+pub trait MaterialColor {
+    /// The colour of `material` at the object-space `point` and `normal`.
+    fn of(self, material: &Material, point: Vec3, normal: Vec3) -> Vec3;
 }
 
-/// Defines a closest-hit entry point for triangle meshes, `$name`: normals from the triangle's
-/// vertices (interpolated with the barycentrics), the colour as for `procedural_closest_hit!`.
-///
-/// Expands to one `#[spirv(closest_hit)] pub fn $name(..)` like `procedural_closest_hit!`'s,
-/// with the barycentrics as hit attribute and the vertex and index buffers in place of the
-/// primitives.
-macro_rules! triangle_closest_hit {
-    ($(#[$doc:meta])* $name:ident, [$($params:tt)*], |$m:ident, $p:ident, $n:ident| $color:expr) => {
-$(#[$doc])*
-#[spirv(closest_hit)]
+/// Computed in the closest hit, whatever the material's kind (`twinray_shared::shading`).
+pub struct Computed;
+
+impl MaterialColor for Computed {
+    fn of(self, material: &Material, point: Vec3, normal: Vec3) -> Vec3 {
+        shading::material_color(material, point, normal)
+    }
+}
+
+/// The material's one colour, with no branch on its kind: for hit groups of diffuse, emissive
+/// and cutout materials only (`hit_groups = "per-material"`).
+pub struct Flat;
+
+impl MaterialColor for Flat {
+    fn of(self, material: &Material, _point: Vec3, _normal: Vec3) -> Vec3 {
+        material.color_a.xyz()
+    }
+}
+
+/// From the callable its kind selects (`material_shading = "callable"`), through the stage's
+/// callable data.
+impl MaterialColor for &mut MaterialCall {
+    fn of(self, material: &Material, point: Vec3, normal: Vec3) -> Vec3 {
+        call_material(self, material, point, normal)
+    }
+}
+
+/// What every procedural closest hit writes: the surface at `hit`, whose intersection stage
+/// reported the object-space `normal`, of the object's material (its colour by
+/// `material_color`, times its primitive's tint and texture) with the radiance it emits. The
+/// primitive is `primitive_base + hit.primitive_id`.
 #[allow(clippy::too_many_arguments)]
-pub fn $name(
-    #[spirv(instance_id)] object: u32,
-    #[spirv(primitive_id)] primitive_id: u32,
-    #[spirv(hit_kind)] hit_kind: u32,
-    #[spirv(world_ray_origin)] origin: Vec3,
-    #[spirv(world_ray_direction)] direction: Vec3,
-    #[spirv(object_ray_origin)] object_origin: Vec3,
-    #[spirv(object_ray_direction)] object_direction: Vec3,
-    #[spirv(ray_tmax)] t: f32,
-    #[spirv(world_to_object)] world_to_object: Matrix4x3,
-    #[spirv(object_to_world)] object_to_world: Matrix4x3,
-    #[spirv(hit_attribute)] barycentrics: &Vec2,
-    #[spirv(uniform, descriptor_set = 0, binding = 2)] frame: &FrameUniform,
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
-    #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
-    #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
-    #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
-    $($params)*
+pub fn procedural_surface(
+    hit: &SurfaceHit,
+    primitive_base: u32,
+    normal: Vec3,
+    frame: &FrameUniform,
+    objects: &[ObjectData],
+    primitives: &[Primitive],
+    materials: &[Material],
+    textures: &RuntimeArray<Texture>,
+    features: Features,
+    material_color: impl MaterialColor,
+    payload: &mut HitPayload,
 ) {
-    let features = Features::new(features);
+    // Each buffer a parameter of its own, not in a tuple: rust-gpu may build a tuple of
+    // references as a struct of pointers, with which NVIDIA's driver 580 crashes (the upstream
+    // note *nvidia-pointer-struct* of twinray's guide).
+    // Copies, as GLSL's twin makes: the driver issues their loads at once, where through
+    // references each load waited for the branch that used it (up to 1.1% on the H200).
+    // Not bounds-checked, as GLSL's twin is not: the instance id, the object's material and the
+    // custom index are the host's, made from the lists it uploads. The three checks cost Rust
+    // 1.7% to 3.6% at 1 spp on the H100.
+    // SAFETY: see above; robust access reads zeros where a stage from disk strays.
+    let material = &unsafe { *materials.get_unchecked(objects.get_unchecked(hit.object as usize).material as usize) };
+    let primitive = &unsafe { *primitives.get_unchecked((primitive_base + hit.primitive_id) as usize) };
+    let (tint, emission) = procedural_tint(textures, (material, primitive), hit, normal, (frame.cone.x, features));
+    let color = material_color.of(material, hit.object_point(), normal) * tint;
+    describe_surface(payload, hit, material.kind, normal, normal, (color, emission));
+}
+
+/// What every triangle closest hit writes: the surface at `hit` (t measured again where the
+/// scene has far instances), its normals interpolated from the triangle's vertices at
+/// `barycentrics`, of the object's material (its colour by `material_color`, times the vertex
+/// colours and texture) with the radiance it emits.
+#[allow(clippy::too_many_arguments)]
+pub fn triangle_surface(
+    mut hit: SurfaceHit,
+    (barycentrics, object_to_world): (Vec2, Matrix4x3),
+    frame: &FrameUniform,
+    objects: &[ObjectData],
+    materials: &[Material],
+    vertices: &[Vertex],
+    indices: &[u32],
+    textures: &RuntimeArray<Texture>,
+    features: Features,
+    material_color: impl MaterialColor,
+    payload: &mut HitPayload,
+) {
     // Not bounds-checked, as the procedural closest hit and GLSL's twin are not: the eight
-    // checks cost Rust 2.5% to 5.1% on a textured model at 1 spp on the H200
-    // (twinray's nvidia-code bench report).
+    // checks cost Rust 2.5% to 5.1% on a textured model at 1 spp on the H200.
     // SAFETY: the instance id and the object's material are the host's, from the lists it
     // uploads; robust access reads zeros where a stage from disk strays.
-    let data = unsafe { *objects.get_unchecked(object as usize) };
+    let data = unsafe { *objects.get_unchecked(hit.object as usize) };
     let material = unsafe { *materials.get_unchecked(data.material as usize) };
-    let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
-    let rays = ((origin, direction), (object_origin, object_direction));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    let t = hit::triangle_t(features, rays.0, placed, &v, t);
-    let surface = hit::SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
-    let (geometric, shading_normal) = hit::triangle_normals(&v, *barycentrics);
-    let ($m, $p, $n) = (&material, surface.object_point(), geometric);
-    let cone = hit::cone(&surface, object_to_world.to_mat3(), &v, *barycentrics, frame.cone.x);
-    let color = $color * texture::surface_tint(textures, (&material, features), &v, &cone);
+    let v = triangle_vertices(&data, hit.primitive_id, vertices, indices);
+    let placed = (object_to_world.w_axis, hit.world_to_object);
+    hit.t = triangle_t(features, (hit.origin, hit.direction), placed, &v, hit.t);
+    let (geometric, shading_normal) = triangle_normals(&v, barycentrics);
+    let cone = cone(&hit, object_to_world.to_mat3(), &v, barycentrics, frame.cone.x);
+    let tint = texture::surface_tint(textures, (&material, features), &v, &cone);
+    let color = material_color.of(&material, hit.object_point(), geometric) * tint;
     let emission = texture::surface_emission(textures, (&material, features), &v, &cone);
-    hit::describe_surface(payload, &surface, material.kind, geometric, shading_normal, (color, emission));
-}
-    };
+    describe_surface(payload, &hit, material.kind, geometric, shading_normal, (color, emission));
 }
 
 /// The colour of `material` at an object-space point and normal, from the callable of the
@@ -274,7 +262,7 @@ pub fn procedural_tint(
     let uv = shapes::shape_uv(hit.hit_kind, primitive, hit.object_point(), normal);
     let at =
         shared_texture::shape_footprint(material, &uv, (normal, hit.world_to_object), hit.direction, spread * hit.t);
-    let (color, light) = crate::texture::shape_textures(textures, material, at);
+    let (color, light) = texture::shape_textures(textures, material, at);
     (tint * color, emission * light)
 }
 

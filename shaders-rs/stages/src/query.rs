@@ -98,6 +98,10 @@ unsafe fn candidate_hit(
 /// tuple: a struct may not hold images in Vulkan's SPIR-V.)
 pub type Mesh<'a> = (&'a [Vertex], &'a [u32]);
 
+/// The buffers a ray query reads to decide what the pipeline's stages would: the objects,
+/// primitives and materials, and the meshes'.
+pub type Scene<'a> = ((&'a [ObjectData], &'a [Primitive], &'a [Material]), Mesh<'a>);
+
 /// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`
 /// (as `trace::visible`), traced inline: any hit `candidate_hit` takes ends the query.
 #[allow(clippy::too_many_arguments)]
@@ -107,8 +111,7 @@ pub fn visible_query(
     direction: Vec3,
     distance: f32,
     features: Features,
-    hit_buffers: (&[ObjectData], &[Primitive], &[Material]),
-    mesh: Mesh,
+    (hit_buffers, mesh): Scene,
     textures: &RuntimeArray<Texture>,
 ) -> bool {
     spirv_std::ray_query!(let mut query);

@@ -4,7 +4,8 @@
 //! struct (logical SPIR-V has no pointers to pointers).
 
 use crate::flags::PRIMARY_RAY_FLAGS;
-use crate::query::{visible_query, Mesh};
+use crate::query::{visible_query, Scene};
+use crate::render::Options;
 use crate::texture::Texture;
 use spirv_std::glam::{Vec3, Vec4Swizzles};
 use spirv_std::ray_tracing::{AccelerationStructure, RayFlags};
@@ -14,7 +15,7 @@ use twinray_shared::bindings::{
 };
 use twinray_shared::camera::Ray;
 use twinray_shared::features::{Features, AREA_LIGHTS, EMISSION};
-use twinray_shared::layout::{FrameUniform, HitPayload, Light, Material, ObjectData, Primitive, ShadowPayload};
+use twinray_shared::layout::{FrameUniform, HitPayload, Light, ShadowPayload};
 use twinray_shared::{lighting, offset, random};
 
 /// The lights buffer, which the host fills to `MAX_LIGHTS`: a runtime array, not a slice,
@@ -67,18 +68,14 @@ $(#[$doc])*
 #[allow(clippy::too_many_arguments)]
 pub fn $name(
     tlas: &AccelerationStructure,
-    frame: &FrameUniform,
-    lights: &Lights,
-    shadows: bool,
-    stratified: bool,
-    shaded_hits: bool,
-    features: Features,
+    (frame, lights): (&FrameUniform, &Lights),
+    options: Options,
     hit: &HitPayload,
     $($res: $ty,)*
-    pixel: u32,
-    sample: u32,
+    (pixel, sample): (u32, u32),
     shadow_rays: &mut u32,
 ) -> Vec3 {
+    let Options { shadows, stratified, shaded_hits, features, .. } = options;
     let emission = features.has::<EMISSION>();
     // A miss, an emitter, or a surface its closest hit shaded (only where the set's may:
     // `shaded_hits`, a specialisation constant): the colour is the radiance.
@@ -112,10 +109,9 @@ pub fn $name(
         let casts = shadows && light.shadows != 0;
         // One loop over the n x n cells, stepping i and then j, where the GLSL twin nests a j
         // and an i loop: same samples in the same order. Each loop rust-gpu emits is a loop
-        // and a selection construct with phis of undefined values on the way out; with one
-        // loop fewer, Rust/GLSL at 16 spp on the H200 went from 1.068 to 1.054 (geometric mean
-        // of lights, showcase, cone, cylinder and meshes, two rounds). A single index split by
-        // % and / kept 32 bytes less stack across each trace call, but was slower (1.067).
+        // and a selection construct with phis of undefined values on the way out: one loop
+        // fewer made this stage about 1.3% faster at 16 spp on an H200. A single index split
+        // by % and / kept 32 bytes less stack across each trace call, but was slower.
         let (mut i, mut j) = (0, 0);
         while j < n {
             let dimension = 2 + 2 * (l * 64 + j * n + i);
@@ -167,9 +163,9 @@ shading!(
     shade, visible, shadow: &mut ShadowPayload
 );
 shading!(
-    /// Shading with shadows traced inline by ray queries (`shadow_method = "query"`).
-    shade_query, visible_query, hit_buffers: (&[ObjectData], &[Primitive], &[Material]), mesh: Mesh,
-    textures: &RuntimeArray<Texture>
+    /// Shading with shadows traced inline by ray queries (`shadow_method = "query"`), which
+    /// read the scene's buffers and textures.
+    shade_query, visible_query, scene: Scene, textures: &RuntimeArray<Texture>
 );
 
 /// Whether nothing that casts shadows lies between `origin` and `distance` along `direction`.

@@ -1,7 +1,8 @@
 //! The procedural shapes. Each is a module of this folder (its f32 intersection routines, its
 //! scene kinds and CPU tests) and one line of [`procedural_shapes!`](crate::procedural_shapes).
-//! The Rust entry points, the module catalog, the GLSL include, the host's scene format and hit
-//! groups and the docs' shape table all follow from that line.
+//! The module catalog, the GLSL include, the host's scene format and hit groups and the docs'
+//! shape table follow from that line; its Rust intersection stages are written out in the
+//! shaders crate (`cargo xtask new-shape` writes them).
 
 pub mod boxes;
 pub mod cone;
@@ -27,9 +28,10 @@ pub use uv::ShapeUv;
 /// - `MODULE` is the module of this folder holding `intersect` (and `naive_intersect`), `uv`
 ///   (its texture coordinates, by the conventions of [`uv`]) and, on the CPU, `SHAPE`, the
 ///   [`spec::ShapeSpec`] with its scene kinds.
-/// - `HIT_KIND` is what its intersection stage reports: unique, from 1.
-/// - `NAME_intersection` is the Rust entry point and the name of the compiled module in both
-///   sets; `naive` adds the textbook variant kept on purpose, for shapes that have one.
+/// - `HIT_KIND` is what its intersection stage reports (`hit_kind::MODULE`): unique, from 1.
+/// - `NAME_intersection` is the name of the compiled module in both sets, and of its Rust
+///   entry point (in the shaders crate's `intersection.rs`, written out by hand); `naive`
+///   adds the textbook variant kept on purpose, for shapes that have one.
 ///
 /// Call it with the name of a macro that takes the lines (see `catalog.rs` and the shaders
 /// crate): `procedural_shapes!(m)` expands to `m! { LINES }`, the lines below, so each user
@@ -51,9 +53,19 @@ macro_rules! procedural_shapes {
 /// Added to a shape's hit kind in [`crate::layout::ObjectData::shape`] for its naive variant.
 pub const SHAPE_NAIVE: u32 = 0x80;
 
-/// Expands the registry's lines to `intersect_shape`, one `if` per shape (and its naive variant).
+/// Expands the registry's lines to `hit_kind`, and to `intersect_shape`, one `if` per shape
+/// (and its naive variant).
 macro_rules! dispatch {
     ($($name:literal => $module:ident ($kind:literal): $entry:ident $(, naive $naive:ident)?;)*) => {
+        /// Each shape's hit kind, named by its module: what its intersection stages report.
+        #[allow(non_upper_case_globals)]
+        pub mod hit_kind {
+            $(
+                #[doc = concat!("The hit kind of ", $name, ".")]
+                pub const $module: u32 = $kind;
+            )*
+        }
+
         /// The first hit of `shape`'s routine (its hit kind, plus [`SHAPE_NAIVE`] for the naive
         /// variant) with the primitive, as its intersection stage finds it; for stages that
         /// meet procedural primitives themselves (ray queries). `None` for an unknown shape.
