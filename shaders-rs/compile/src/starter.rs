@@ -160,7 +160,10 @@ mod tests {
             let cells: Vec<&str> = row.split('|').map(str::trim).collect();
             let file = cells[3].trim_matches('`');
             for listed in cells[2].split('`').skip(1).step_by(2) {
-                assert!(entries.contains(&(listed.to_string(), file)), "README: {listed} is not an entry point of {file}");
+                assert!(
+                    entries.contains(&(listed.to_string(), file)),
+                    "README: {listed} is not an entry point of {file}"
+                );
             }
         }
         for (name, _) in &entries {
@@ -177,7 +180,9 @@ mod tests {
         assert!(manifest.contains("name = \"my-stages\"") && manifest.contains("path = \"twinray-shared\""));
         assert!(manifest.contains("crate-type = [\"dylib\"]"));
         assert!(std::fs::read_to_string(dir.join("Cargo.lock")).unwrap().contains("name = \"my-stages\""));
-        for file in ["src/lib.rs", "src/closest_hit.rs", "twinray-shared/src/contract.rs", "glsl/raygen.rgen", "README.md"] {
+        for file in
+            ["src/lib.rs", "src/closest_hit.rs", "twinray-shared/src/contract.rs", "glsl/raygen.rgen", "README.md"]
+        {
             assert!(dir.join(file).is_file(), "{file} missing");
         }
         assert!(written.files.len() > 40);
