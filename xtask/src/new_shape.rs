@@ -164,7 +164,8 @@ mod tests {
         assert!(stages.contains(sphere.trim()), "{STAGES} no longer holds its template's form:\n{sphere}");
         let out = with_stage(&stages, "capsule").unwrap();
         assert!(out.starts_with(stages.trim_end()) && out.contains("pub fn capsule_intersection("));
-        assert!(out.contains("(shapes::capsule::intersect, shapes::capsule::bound, hit_kind::capsule)"));
+        assert!(out.contains("shapes::capsule::bound(&p)") && out.contains("shapes::capsule::intersect(ray.origin"));
+        assert!(out.contains("report(hit, &ray, t_max, hit_kind::capsule, normal);"));
         assert!(with_stage(&stages, "sphere").is_err(), "the sphere's stage is there already");
     }
 

@@ -163,9 +163,20 @@ pub fn triangle_closest_hit(
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
-    let (features, placed) = (Features::new(features), (*barycentrics, object_to_world));
+    let features = Features::new(features);
     hit::triangle_surface(
-        hit, placed, frame, objects, materials, vertices, indices, textures, features, Computed, payload,
+        hit,
+        *barycentrics,
+        object_to_world,
+        frame,
+        objects,
+        materials,
+        vertices,
+        indices,
+        textures,
+        features,
+        Computed,
+        payload,
     );
 }
 
@@ -196,8 +207,21 @@ pub fn triangle_closest_hit_flat(
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
-    let (features, placed) = (Features::new(features), (*barycentrics, object_to_world));
-    hit::triangle_surface(hit, placed, frame, objects, materials, vertices, indices, textures, features, Flat, payload);
+    let features = Features::new(features);
+    hit::triangle_surface(
+        hit,
+        *barycentrics,
+        object_to_world,
+        frame,
+        objects,
+        materials,
+        vertices,
+        indices,
+        textures,
+        features,
+        Flat,
+        payload,
+    );
 }
 
 /// Triangle meshes, the material's colour from its callable.
@@ -227,8 +251,21 @@ pub fn triangle_closest_hit_callable(
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
-    let (features, placed) = (Features::new(features), (*barycentrics, object_to_world));
-    hit::triangle_surface(hit, placed, frame, objects, materials, vertices, indices, textures, features, call, payload);
+    let features = Features::new(features);
+    hit::triangle_surface(
+        hit,
+        *barycentrics,
+        object_to_world,
+        frame,
+        objects,
+        materials,
+        vertices,
+        indices,
+        textures,
+        features,
+        call,
+        payload,
+    );
 }
 
 /// The probe's witness: a closest-hit stage twinray puts in place of a hit group's own (same

@@ -22,6 +22,7 @@ pub trait MaterialColor {
 pub struct Computed;
 
 impl MaterialColor for Computed {
+    #[inline(always)]
     fn of(self, material: &Material, point: Vec3, normal: Vec3) -> Vec3 {
         shading::material_color(material, point, normal)
     }
@@ -32,6 +33,7 @@ impl MaterialColor for Computed {
 pub struct Flat;
 
 impl MaterialColor for Flat {
+    #[inline(always)]
     fn of(self, material: &Material, _point: Vec3, _normal: Vec3) -> Vec3 {
         material.color_a.xyz()
     }
@@ -40,6 +42,7 @@ impl MaterialColor for Flat {
 /// From the callable its kind selects (`material_shading = "callable"`), through the stage's
 /// callable data.
 impl MaterialColor for &mut MaterialCall {
+    #[inline(always)]
     fn of(self, material: &Material, point: Vec3, normal: Vec3) -> Vec3 {
         call_material(self, material, point, normal)
     }
@@ -86,7 +89,8 @@ pub fn procedural_surface(
 #[allow(clippy::too_many_arguments)]
 pub fn triangle_surface(
     mut hit: SurfaceHit,
-    (barycentrics, object_to_world): (Vec2, Matrix4x3),
+    barycentrics: Vec2,
+    object_to_world: Matrix4x3,
     frame: &FrameUniform,
     objects: &[ObjectData],
     materials: &[Material],

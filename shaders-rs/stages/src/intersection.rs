@@ -4,7 +4,7 @@
 //! attribute, which the closest-hit stages read. The routines are shared with the CPU, and
 //! with the ray queries that meet procedural primitives themselves (query.rs).
 
-use spirv_std::glam::{Mat3, Vec3, Vec4};
+use spirv_std::glam::{Vec3, Vec4};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::spirv;
 use twinray_shared::features::Features;
@@ -13,40 +13,22 @@ use twinray_shared::shapes::{self, hit_kind};
 use twinray_shared::surface::SurfaceHit;
 use twinray_shared::transform::{self, StageRay};
 
-/// What every intersection stage does with its shape's `routine` (the first hit of an
-/// object-space ray's origin and direction on a primitive, between two t): finds the hit on
-/// the ray brought near the primitive's bounding sphere (`bound`; zero leaves the driver's
-/// object-space ray as it is) and reports it with `hit_kind` and the normal in `normal`. The
-/// ray is the world ray, the object-space ray and t_min and t_max; `placed` is the instance's
-/// translation and world-to-object 3x3 part; the primitive is at `index`
-/// (an object's first primitive is its instance's custom index, and the AABB's `primitive_id`
-/// more).
-#[allow(clippy::too_many_arguments)]
-fn report(
-    (routine, bound, hit_kind): (
-        impl Fn(Vec3, Vec3, &Primitive, f32, f32) -> Option<SurfaceHit>,
-        impl Fn(&Primitive) -> Vec4,
-        u32,
-    ),
-    (world, object, (t_min, t_max)): ((Vec3, Vec3), (Vec3, Vec3), (f32, f32)),
-    placed: (Vec3, Mat3),
-    primitives: &[Primitive],
-    index: u32,
-    normal: &mut Vec3,
-    features: u32,
-) {
-    // Not bounds-checked, as GLSL's twin is not: the index is the instance's custom index (its
-    // object's first primitive) plus the AABB's index in its BLAS, both made by the host from
-    // one primitive list. Timed over placements on the H100, the check cost 0.4% on `cylinder`
-    // at 16 spp.
+/// The primitive at `index` of the primitive buffer (an object's first primitive is its
+/// instance's custom index, and the AABB's `primitive_id` more).
+#[inline(always)]
+fn primitive(primitives: &[Primitive], index: u32) -> Primitive {
+    // Not bounds-checked, as GLSL's twin is not: both parts of the index are the host's, made
+    // from one primitive list. Timed over placements on the H100, the check cost 0.4% on
+    // `cylinder` at 16 spp.
     // SAFETY: see above; every AABB of a BLAS has its primitive at that index.
-    let p = unsafe { *primitives.get_unchecked(index as usize) };
-    // Where the scene has far instances, the object-space ray from the world ray, brought near
-    // the primitive first, not the driver's, which loses precision there
-    // (twinray_shared::transform).
-    let ray: StageRay = transform::stage_ray(Features::new(features), object, world, placed, bound(&p));
-    let (near, far) = ray.range(t_min, t_max);
-    if let Some(hit) = routine(ray.origin, ray.direction, &p, near, far) {
+    unsafe { *primitives.get_unchecked(index as usize) }
+}
+
+/// Reports `hit`, a shape's first hit on `ray` (whose t it is measured in), with `hit_kind`
+/// and the object-space normal as the hit attribute `normal`.
+#[inline(always)]
+fn report(hit: Option<SurfaceHit>, ray: &StageRay, t_max: f32, hit_kind: u32, normal: &mut Vec3) {
+    if let Some(hit) = hit {
         // Put back what was there if the hit is not taken (a cutout's any-hit stage ignored
         // it): lavapipe 25.0.7 hands closest-hit the attribute last written, not the one
         // reported with the committed hit (Vulkan-Docs #2681), so a hole in front of a shape
@@ -58,11 +40,6 @@ fn report(
             *normal = before;
         }
     }
-}
-
-/// The textbook routines keep the textbook transform: no bound, the ray not moved.
-fn no_bound(_: &Primitive) -> Vec4 {
-    Vec4::ZERO
 }
 
 /// The sphere.
@@ -83,10 +60,19 @@ pub fn sphere_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::sphere::intersect, shapes::sphere::bound, hit_kind::sphere);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        shapes::sphere::bound(&p),
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::sphere::intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::sphere, normal);
 }
 
 /// The sphere's textbook routine, kept as the probes' baseline.
@@ -107,10 +93,19 @@ pub fn sphere_naive_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::sphere::naive_intersect, no_bound, hit_kind::sphere);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        Vec4::ZERO,
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::sphere::naive_intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::sphere, normal);
 }
 
 /// The plane.
@@ -131,10 +126,19 @@ pub fn plane_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::plane::intersect, shapes::plane::bound, hit_kind::plane);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        shapes::plane::bound(&p),
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::plane::intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::plane, normal);
 }
 
 /// The box.
@@ -155,10 +159,19 @@ pub fn box_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::boxes::intersect, shapes::boxes::bound, hit_kind::boxes);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        shapes::boxes::bound(&p),
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::boxes::intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::boxes, normal);
 }
 
 /// The cylinder.
@@ -179,10 +192,19 @@ pub fn cylinder_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::cylinder::intersect, shapes::cylinder::bound, hit_kind::cylinder);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        shapes::cylinder::bound(&p),
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::cylinder::intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::cylinder, normal);
 }
 
 /// The cylinder's textbook routine, kept as the probes' baseline.
@@ -203,10 +225,19 @@ pub fn cylinder_naive_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::cylinder::naive_intersect, no_bound, hit_kind::cylinder);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        Vec4::ZERO,
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::cylinder::naive_intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::cylinder, normal);
 }
 
 /// The cone.
@@ -227,10 +258,19 @@ pub fn cone_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::cone::intersect, shapes::cone::bound, hit_kind::cone);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        shapes::cone::bound(&p),
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::cone::intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::cone, normal);
 }
 
 /// The torus.
@@ -251,10 +291,19 @@ pub fn torus_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::torus::intersect, shapes::torus::bound, hit_kind::torus);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        shapes::torus::bound(&p),
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::torus::intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::torus, normal);
 }
 
 /// The torus's textbook routine, kept as the probes' baseline.
@@ -275,8 +324,17 @@ pub fn torus_naive_intersection(
     #[spirv(hit_attribute)] normal: &mut Vec3,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
-    let shape = (shapes::torus::naive_intersect, no_bound, hit_kind::torus);
-    let ray = ((world_origin, world_direction), (object_origin, object_direction), (t_min, t_max));
-    let placed = (object_to_world.w_axis, world_to_object.to_mat3());
-    report(shape, ray, placed, primitives, primitive_base + primitive_id, normal, features);
+    let p = primitive(primitives, primitive_base + primitive_id);
+    // Where the scene has far instances, the object-space ray from the world ray, brought near
+    // the primitive first, not the driver's, which loses precision there.
+    let ray = transform::stage_ray(
+        Features::new(features),
+        (object_origin, object_direction),
+        (world_origin, world_direction),
+        (object_to_world.w_axis, world_to_object.to_mat3()),
+        Vec4::ZERO,
+    );
+    let (near, far) = ray.range(t_min, t_max);
+    let hit = shapes::torus::naive_intersect(ray.origin, ray.direction, &p, near, far);
+    report(hit, &ray, t_max, hit_kind::torus, normal);
 }

@@ -1,6 +1,6 @@
 //! What the image renderers (`raygen`, `raygen_query` and `render_compute`) keep for one pixel
-//! while they trace and shade its samples, and write when they are done. Each renderer writes its own loop: a primary ray per sample, traced,
-//! checked, shaded, added.
+//! while they trace and shade its samples, and write when they are done. Each renderer writes
+//! its own loop: a primary ray per sample, traced, checked, shaded, added.
 
 use spirv_std::glam::{UVec2, Vec3};
 use spirv_std::Image;
