@@ -6,23 +6,14 @@ use std::path::Path;
 /// Rust and in its GLSL twin, lights the surface with twinray's lights and shadow rays and
 /// leaves radiance (`MATERIAL_SHADED`) through a soft ramp; the crate declares recursion depth
 /// 2. Each edit is (file, lines of the starter, what follows them wherever they are: in Rust,
-/// every procedural closest hit).
-const SHADING: [(&str, &str, &str); 6] = [
+/// every procedural closest hit); `SHADE` follows each procedural closest hit's body.
+const SHADING: [(&str, &str, &str); 5] = [
     (
         "src/closest_hit.rs",
         "    #[spirv(hit_attribute)] normal: &Vec3,\n",
         "    #[spirv(descriptor_set = 0, binding = 0)] tlas: &spirv_std::ray_tracing::AccelerationStructure,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 6)] lights: &crate::trace::Lights,
     #[spirv(ray_payload)] shadow: &mut twinray_shared::layout::ShadowPayload,\n",
-    ),
-    (
-        "src/closest_hit.rs",
-        "\n        payload,\n    );\n",
-        "    let options = crate::render::Options { shadows: true, stratified: true, features, shaded_hits: false };
-    let mut rays = 0;
-    let lit = crate::trace::shade(tlas, (frame, lights), options, payload, shadow, (0, 0), &mut rays);
-    payload.color = (lit / (lit + Vec3::ONE)).extend(payload.color.w);
-    payload.ids.z = twinray_shared::bindings::MATERIAL_SHADED;\n",
     ),
     ("shared/src/lib.rs", "#![cfg_attr(target_arch = \"spirv\", no_std)]\n", "pub const RECURSION_DEPTH: u32 = 2;\n"),
     (
@@ -43,7 +34,31 @@ layout(location = 1) rayPayloadEXT ShadowPayload shadow_payload;\n",
     ),
 ];
 
+/// What the Rust procedural closest hits do once their body has described the surface.
+const SHADE: &str =
+    "    let options = crate::render::Options { shadows: true, stratified: true, features, shaded_hits: false };
+    let mut rays = 0;
+    let lit = crate::trace::shade(tlas, (frame, lights), options, payload, shadow, (0, 0), &mut rays);
+    payload.color = (lit / (lit + Vec3::ONE)).extend(payload.color.w);
+    payload.ids.z = twinray_shared::bindings::MATERIAL_SHADED;\n";
+
+/// `source` with `SHADE` after each call of the procedural closest hits' body.
+fn shade_after_each_body(source: &str) -> String {
+    let (call, end) = ("hit::procedural_surface(", "\n    );\n");
+    assert_eq!(source.matches(call).count(), 3, "the procedural closest hits moved: this test must follow");
+    let (mut out, mut rest) = (String::new(), source);
+    while let Some(at) = rest.find(call) {
+        let after = at + rest[at..].find(end).expect("the call ends") + end.len();
+        out.push_str(&rest[..after]);
+        out.push_str(SHADE);
+        rest = &rest[after..];
+    }
+    out + rest
+}
+
 pub fn shade_in_closest_hits(krate: &Path) {
+    let hits = krate.join("src/closest_hit.rs");
+    std::fs::write(&hits, shade_after_each_body(&std::fs::read_to_string(&hits).unwrap())).unwrap();
     for (file, line, after) in SHADING {
         let source = std::fs::read_to_string(krate.join(file)).unwrap();
         assert!(source.contains(line), "{file}: the starter moved ({line}): this test must follow");
