@@ -5,7 +5,8 @@ use std::path::{Path, PathBuf};
 
 /// A quad's corners (0, 0, 0), (1, 0, 0), (1, 1, 0), (0, 1, 0) and what each carries.
 pub struct Quad<'a> {
-    /// The material's JSON members besides its base colour texture (`doubleSided` is added).
+    /// The material's JSON members, the last `pbrMetallicRoughness` left open for the base
+    /// colour texture (`doubleSided` is added).
     pub material: &'a str,
     /// Each corner's COLOR_0.
     pub colors: [[f32; 4]; 4],
@@ -16,8 +17,15 @@ pub struct Quad<'a> {
 }
 
 impl Quad<'_> {
-    /// Writes the model (`quad.gltf`, `quad.bin`, `texture.png`) into `dir`; its path.
+    /// Writes the model (`quad.gltf`, `quad.bin`, `texture.png`) into `dir`, the quad
+    /// double-sided in one node at the origin; its path.
     pub fn write(&self, dir: &Path) -> PathBuf {
+        self.write_placed(dir, true, &[""])
+    }
+
+    /// The same with the material `double_sided` or not, in one node per entry of `nodes`: each
+    /// the node's JSON members besides its mesh (`"scale": [-1, 1, 1]`).
+    pub fn write_placed(&self, dir: &Path, double_sided: bool, nodes: &[&str]) -> PathBuf {
         let positions = [0.0f32, 0.0, 0.0, 1.0, 0.0, 0.0, 1.0, 1.0, 0.0, 0.0, 1.0, 0.0];
         let mut bytes: Vec<u8> = positions.iter().flat_map(|v| v.to_le_bytes()).collect();
         bytes.extend([0, 1, 2, 0, 2, 3, 0, 0]);
@@ -40,11 +48,17 @@ impl Quad<'_> {
                           {{"bufferView": 2, "componentType": 5126, "count": 4, "type": "VEC2"}},
                           {{"bufferView": 3, "componentType": 5126, "count": 4, "type": "VEC4"}}],
             "images": [{{"uri": "texture.png"}}], "samplers": [{{{sampler}}}], "textures": [{{"source": 0, "sampler": 0}}],
-            "materials": [{{"doubleSided": true, {}{texture}}}}}],
+            "materials": [{{"doubleSided": {double_sided}, {}{texture}}}}}],
             "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0, "TEXCOORD_0": 2, "COLOR_0": 3}}, "indices": 1, "material": 0}}]}}],
-            "nodes": [{{"mesh": 0}}], "scenes": [{{"nodes": [0]}}], "scene": 0}}"#,
+            "nodes": [{nodes}], "scenes": [{{"nodes": [{roots}]}}], "scene": 0}}"#,
             bytes.len(),
-            self.material
+            self.material,
+            nodes = nodes
+                .iter()
+                .map(|n| format!(r#"{{"mesh": 0{}{n}}}"#, if n.is_empty() { "" } else { ", " }))
+                .collect::<Vec<_>>()
+                .join(", "),
+            roots = (0..nodes.len()).map(|i| i.to_string()).collect::<Vec<_>>().join(", "),
         );
         let path = dir.join("quad.gltf");
         std::fs::write(&path, gltf).unwrap();

@@ -156,12 +156,12 @@ impl RefObject {
 
     /// Whether `ray` (in object space) meets triangle `shape` of this object from behind where
     /// the object is single-sided. glTF's front is where the corners run counterclockwise in
-    /// world space; the world normal of the corners' winding is det(M) M^-T n, so the ray sees
-    /// the back where det(M) (n . d) > 0 in object space.
+    /// object space: in world space, under a node whose determinant is negative, they run
+    /// clockwise, which is how glTF words it. So the ray sees the back where n . d > 0.
     fn seen_from_behind(&self, shape: &RefShape, ray: &RefRay) -> bool {
         let RefShape::Triangle { p } = shape else { return false };
         let winding = (p[1] - p[0]).cross(p[2] - p[0]);
-        self.single_sided && self.object_to_world.determinant() * winding.dot(ray.direction) > 0.0
+        self.single_sided && winding.dot(ray.direction) > 0.0
     }
 
     /// Whether every triangle of `unsure` lies beyond `t` along `ray` by more than noise.

@@ -46,8 +46,9 @@ pub struct InstanceRecord {
     /// stage runs for every candidate hit), whatever its BLAS's geometry says.
     pub opaque: bool,
     /// Triangles seen from behind are culled for rays that ask for it (primary rays): a glTF
-    /// material that is not `doubleSided`. The front is counterclockwise in world space, as
-    /// glTF has it (a mirroring transform flips it); see [`facing_flags`].
+    /// material that is not `doubleSided`. The front is counterclockwise in object space, as
+    /// glTF has it (a mirroring node fronts its clockwise faces in world space); see
+    /// [`facing_flags`].
     pub single_sided: bool,
     pub blas_address: vk::DeviceAddress,
 }
@@ -358,20 +359,18 @@ fn aabb_bytes(b: &vk::AabbPositionsKHR) -> Vec<u8> {
     [b.min_x, b.min_y, b.min_z, b.max_x, b.max_y, b.max_z].iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
-/// The facing flags of an instance: culling off where it is double-sided; else Vulkan's own
-/// front where its transform keeps orientation (a positive determinant), flipped where it
-/// mirrors. Vulkan decides facing in object space, whatever the instance transform, and its
-/// front is the side from which a triangle's corners run counterclockwise in a right-handed
-/// frame (the spec says clockwise, in DXR's left-handed one), glTF's front; glTF decides in
-/// world space, where a mirroring transform turns the winding over: the determinant's sign
-/// joins the two. `app/tests/single_sided.rs` checks both sides and a mirrored node.
-pub fn facing_flags(single_sided: bool, object_to_world: &Mat4) -> vk::GeometryInstanceFlagsKHR {
-    if !single_sided {
-        vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE
-    } else if object_to_world.determinant() > 0.0 {
+/// The facing flags of an instance: culling off where it is double-sided, else none. Vulkan
+/// decides facing in object space, whatever the instance transform, and its front is the side
+/// from which a triangle's corners run counterclockwise in a right-handed frame (the spec says
+/// clockwise, in DXR's left-handed one): glTF's front. glTF states its rule in world space (a
+/// node whose determinant is negative fronts its clockwise faces), and a mirroring transform
+/// turns counterclockwise corners clockwise there: the same faces, so a mirrored instance
+/// needs no flip. `tests/single_sided.rs` checks both sides and mirrored nodes.
+pub fn facing_flags(single_sided: bool) -> vk::GeometryInstanceFlagsKHR {
+    if single_sided {
         vk::GeometryInstanceFlagsKHR::empty()
     } else {
-        vk::GeometryInstanceFlagsKHR::TRIANGLE_FLIP_FACING
+        vk::GeometryInstanceFlagsKHR::TRIANGLE_FACING_CULL_DISABLE
     }
 }
 
@@ -388,7 +387,7 @@ fn instance_bytes(r: &InstanceRecord) -> Vec<u8> {
     } else {
         vk::GeometryInstanceFlagsKHR::FORCE_NO_OPAQUE
     };
-    let flags = (facing_flags(r.single_sided, &r.object_to_world) | opacity).as_raw();
+    let flags = (facing_flags(r.single_sided) | opacity).as_raw();
     let sbt_offset_and_flags = (r.sbt_offset & 0x00ff_ffff) | (flags << 24);
     bytes.extend_from_slice(&custom_index_and_mask.to_le_bytes());
     bytes.extend_from_slice(&sbt_offset_and_flags.to_le_bytes());
