@@ -57,6 +57,17 @@ pub fn primitive(
     if let Some(i) = order.iter().find(|&&i| i as usize >= positions.len()) {
         return Err(format!("{what} indexes vertex {i}, past its {} vertices", positions.len()));
     }
+    // The largest value of the index type restarts a strip in other APIs: glTF forbids it.
+    if let Some(indices) = primitive.indices() {
+        let bits = 8 * indices.data_type().size();
+        let restart = u32::MAX >> (32 - bits);
+        if order.contains(&restart) {
+            return Err(format!(
+                "{what}: indices (accessor {}) hold {restart}, the primitive restart value of {bits}-bit indices, which glTF forbids",
+                indices.index()
+            ));
+        }
+    }
     // Every attribute, modelled or not, has one element per vertex (the glTF validator's rule):
     // with fewer, which value would the others get?
     for (semantic, accessor) in primitive.attributes() {
@@ -168,7 +179,7 @@ fn triangles(mode: Mode, order: &[u32]) -> Vec<[u32; 3]> {
 /// components align to, whose view lies within its buffer, and whose sparse indices (if any)
 /// rise strictly within its count: all that the glTF spec asks of an accessor and the `gltf`
 /// crate's reader assumes (it panics on a stride shorter than the element).
-fn check(
+pub(super) fn check(
     a: &gltf::Accessor,
     buffers: &[Vec<u8>],
     what: &str,

@@ -16,6 +16,7 @@ pub use graph::check as check_graph;
 mod framing;
 mod geometry;
 mod graph;
+mod rules;
 
 use super::file::{CutoutPattern, EmissionDesc, MaterialDesc, ObjectDesc};
 use super::framing::{ignore_found, listed};
@@ -82,6 +83,8 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
         None => doc.default_scene().or_else(|| doc.scenes().next()).ok_or("it has no scene")?,
     };
     graph::check(doc.as_json())?;
+    rules::check(doc)?;
+    rules::check_data(doc, &buffers)?;
     let mut placed = Vec::new();
     for node in scene.nodes() {
         walk(node, Mat4::IDENTITY, 0, &mut placed)?;
