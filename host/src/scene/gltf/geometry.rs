@@ -4,6 +4,7 @@
 
 use super::super::mesh::{checked, with_attributes, with_normals, MeshData, Polyhedron};
 use super::super::shape::Normals;
+use super::shared::{kept, As, Decoded};
 use glam::{Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
@@ -22,10 +23,12 @@ pub enum Outcome {
 
 /// The triangles of `primitive` (`what` names it in errors), with the file's normals where it
 /// has usable ones and flat normals where it does not; `bad_normals` is set when it had
-/// normals that were not finite or had no length.
+/// normals that were not finite or had no length. Its vertex accessors are read through
+/// `decoded` (once per model), and only the vertices its indices name are kept.
 pub fn primitive(
     primitive: &gltf::Primitive,
     buffers: &[Vec<u8>],
+    decoded: &mut Decoded,
     what: &str,
     bad_normals: &mut bool,
 ) -> Result<Outcome, String> {
@@ -35,59 +38,42 @@ pub fn primitive(
     }
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
     let position = primitive.get(&gltf::Semantic::Positions).ok_or_else(|| format!("{what} has no POSITION"))?;
-    check(&position, buffers, what, "POSITION", &[Dimensions::Vec3], &[DataType::F32])?;
-    let positions: Vec<Vec3> = reader.read_positions().into_iter().flatten().map(Vec3::from).collect();
-    read_all(positions.len(), &position, what, "POSITION")?;
-    let order: Vec<u32> = match primitive.indices() {
-        Some(indices) => {
-            check(
-                &indices,
-                buffers,
-                what,
-                "indices",
-                &[Dimensions::Scalar],
-                &[DataType::U8, DataType::U16, DataType::U32],
-            )?;
-            let read: Vec<u32> = reader.read_indices().map(|i| i.into_u32().collect()).unwrap_or_default();
-            read_all(read.len(), &indices, what, "indices")?;
-            read
-        }
-        None => (0..positions.len() as u32).collect(),
-    };
-    if let Some(i) = order.iter().find(|&&i| i as usize >= positions.len()) {
-        return Err(format!("{what} indexes vertex {i}, past its {} vertices", positions.len()));
-    }
-    // The largest value of the index type restarts a strip in other APIs: glTF forbids it.
-    if let Some(indices) = primitive.indices() {
-        let bits = 8 * indices.data_type().size();
-        let restart = u32::MAX >> (32 - bits);
-        if order.contains(&restart) {
-            return Err(format!(
-                "{what}: indices (accessor {}) hold {restart}, the primitive restart value of {bits}-bit indices, which glTF forbids",
-                indices.index()
-            ));
-        }
-    }
+    let all = decoded.get(position.index(), As::Position, || {
+        check(&position, buffers, what, "POSITION", &[Dimensions::Vec3], &[DataType::F32])?;
+        let read: Vec<Vec4> =
+            reader.read_positions().into_iter().flatten().map(|p| Vec3::from(p).extend(0.0)).collect();
+        read_all(read.len(), &position, what, "POSITION")?;
+        Ok(read)
+    })?;
+    let count = all.len();
+    let mut order = indices(primitive, &reader, buffers, count, what)?;
     // Every attribute, modelled or not, has one element per vertex (the glTF validator's rule):
     // with fewer, which value would the others get?
     for (semantic, accessor) in primitive.attributes() {
-        same_count(accessor.count(), positions.len(), what, &semantic.to_string())?;
+        same_count(accessor.count(), count, what, &semantic.to_string())?;
     }
+    let used = decoded.compact(&mut order, count);
+    let used = used.as_deref();
+    let positions: Vec<Vec3> = kept(&all, used).into_iter().map(Vec4::truncate).collect();
     let p = Polyhedron { positions, triangles: triangles(mode, &order) };
     checked(&p, what)?;
     let normals = match primitive.get(&gltf::Semantic::Normals) {
         Some(n) => {
-            check(&n, buffers, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
-            let normals: Vec<Vec3> = reader.read_normals().into_iter().flatten().map(Vec3::from).collect();
-            read_all(normals.len(), &n, what, "NORMAL")?;
-            let usable =
-                normals.len() == p.positions.len() && normals.iter().all(|n| n.is_finite() && n.length() > 1e-6);
+            let all = decoded.get(n.index(), As::Normal, || {
+                check(&n, buffers, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
+                let read: Vec<Vec4> =
+                    reader.read_normals().into_iter().flatten().map(|n| Vec3::from(n).extend(0.0)).collect();
+                read_all(read.len(), &n, what, "NORMAL")?;
+                Ok(read)
+            })?;
+            let normals: Vec<Vec3> = kept(&all, used).into_iter().map(Vec4::truncate).collect();
+            let usable = normals.iter().all(|n| n.is_finite() && n.length() > 1e-6);
             *bad_normals |= !usable;
             usable.then_some(normals)
         }
         None => None,
     };
-    let attributes = attributes(primitive, buffers, p.positions.len(), what)?;
+    let attributes = attributes(primitive, buffers, decoded, (count, used), what)?;
     let flat = normals.is_none();
     let mesh = match normals {
         Some(normals) => MeshData {
@@ -104,36 +90,78 @@ pub fn primitive(
     Ok(Outcome::Mesh(with_attributes(mesh, &p, &attributes, flat)))
 }
 
-/// Each vertex's texture coordinates (TEXCOORD_0 in xy, TEXCOORD_1 in zw; 0 where absent) and
-/// colour (COLOR_0, alpha 1 for RGB; white where absent), normalized integers as floats.
-fn attributes(
+/// The vertex order of `primitive`: its indices (checked: in range, no restart value), or
+/// its `count` vertices in turn.
+fn indices<'a, 's, F>(
     primitive: &gltf::Primitive,
+    reader: &gltf::mesh::Reader<'a, 's, F>,
     buffers: &[Vec<u8>],
     count: usize,
     what: &str,
+) -> Result<Vec<u32>, String>
+where
+    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
+{
+    let Some(indices) = primitive.indices() else { return Ok((0..count as u32).collect()) };
+    check(&indices, buffers, what, "indices", &[Dimensions::Scalar], &[DataType::U8, DataType::U16, DataType::U32])?;
+    let order: Vec<u32> = reader.read_indices().map(|i| i.into_u32().collect()).unwrap_or_default();
+    read_all(order.len(), &indices, what, "indices")?;
+    if let Some(i) = order.iter().find(|&&i| i as usize >= count) {
+        return Err(format!("{what} indexes vertex {i}, past its {count} vertices"));
+    }
+    // The largest value of the index type restarts a strip in other APIs: glTF forbids it.
+    let bits = 8 * indices.data_type().size();
+    let restart = u32::MAX >> (32 - bits);
+    if order.contains(&restart) {
+        return Err(format!(
+            "{what}: indices (accessor {}) hold {restart}, the primitive restart value of {bits}-bit indices, which glTF forbids",
+            indices.index()
+        ));
+    }
+    Ok(order)
+}
+
+/// Each kept vertex's texture coordinates (TEXCOORD_0 in xy, TEXCOORD_1 in zw; 0 where
+/// absent) and colour (COLOR_0, alpha 1 for RGB; white where absent), normalized integers as
+/// floats; the accessors hold `count` vertices, of which `used` are kept.
+fn attributes(
+    primitive: &gltf::Primitive,
+    buffers: &[Vec<u8>],
+    decoded: &mut Decoded,
+    (count, used): (usize, Option<&[u32]>),
+    what: &str,
 ) -> Result<Vec<(Vec4, Vec4)>, String> {
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
-    let mut out = vec![(Vec4::ZERO, Vec4::ONE); count];
+    let mut out = vec![(Vec4::ZERO, Vec4::ONE); used.map_or(count, <[u32]>::len)];
     let normalized = [DataType::F32, DataType::U8, DataType::U16];
     for set in 0..2u32 {
         let semantic = format!("TEXCOORD_{set}");
         let Some(a) = primitive.get(&gltf::Semantic::TexCoords(set)) else { continue };
-        check(&a, buffers, what, &semantic, &[Dimensions::Vec2], &normalized)?;
-        let uv: Vec<[f32; 2]> = reader.read_tex_coords(set).map(|t| t.into_f32().collect()).unwrap_or_default();
-        read_all(uv.len(), &a, what, &semantic)?;
-        same_count(uv.len(), count, what, &semantic)?;
-        for (o, [u, v]) in out.iter_mut().zip(uv) {
-            let (u, v) = (finite(u), finite(v));
-            o.0 = if set == 0 { Vec4::new(u, v, o.0.z, o.0.w) } else { Vec4::new(o.0.x, o.0.y, u, v) };
+        let all = decoded.get(a.index(), As::TexCoord, || {
+            check(&a, buffers, what, &semantic, &[Dimensions::Vec2], &normalized)?;
+            let uv: Vec<Vec4> = reader
+                .read_tex_coords(set)
+                .map(|t| t.into_f32().map(|[u, v]| Vec4::new(finite(u), finite(v), 0.0, 0.0)).collect())
+                .unwrap_or_default();
+            read_all(uv.len(), &a, what, &semantic)?;
+            Ok(uv)
+        })?;
+        for (o, uv) in out.iter_mut().zip(kept(&all, used)) {
+            o.0 = if set == 0 { Vec4::new(uv.x, uv.y, o.0.z, o.0.w) } else { Vec4::new(o.0.x, o.0.y, uv.x, uv.y) };
         }
     }
     if let Some(a) = primitive.get(&gltf::Semantic::Colors(0)) {
-        check(&a, buffers, what, "COLOR_0", &[Dimensions::Vec3, Dimensions::Vec4], &normalized)?;
-        let colors: Vec<[f32; 4]> = reader.read_colors(0).map(|c| c.into_rgba_f32().collect()).unwrap_or_default();
-        read_all(colors.len(), &a, what, "COLOR_0")?;
-        same_count(colors.len(), count, what, "COLOR_0")?;
-        for (o, c) in out.iter_mut().zip(colors) {
-            o.1 = Vec4::from(c.map(|x| finite(x).clamp(0.0, 1.0)));
+        let all = decoded.get(a.index(), As::Color, || {
+            check(&a, buffers, what, "COLOR_0", &[Dimensions::Vec3, Dimensions::Vec4], &normalized)?;
+            let colors: Vec<Vec4> = reader
+                .read_colors(0)
+                .map(|c| c.into_rgba_f32().map(|c| Vec4::from(c.map(|x| finite(x).clamp(0.0, 1.0)))).collect())
+                .unwrap_or_default();
+            read_all(colors.len(), &a, what, "COLOR_0")?;
+            Ok(colors)
+        })?;
+        for (o, c) in out.iter_mut().zip(kept(&all, used)) {
+            o.1 = c;
         }
     }
     Ok(out)

@@ -17,6 +17,7 @@ mod framing;
 mod geometry;
 mod graph;
 mod rules;
+mod shared;
 
 use super::file::{CutoutPattern, EmissionDesc, MaterialDesc, ObjectDesc};
 use super::framing::{ignore_found, listed};
@@ -157,13 +158,14 @@ fn meshes(
 ) -> Result<BTreeMap<String, MeshData>, String> {
     let mut out = BTreeMap::new();
     let mut bad_normals = false;
+    let mut decoded = shared::Decoded::default();
     for mesh in doc.meshes() {
         if mesh.primitives().len() == 0 {
             return Err(format!("mesh {} has no primitives (glTF asks for at least one)", mesh.index()));
         }
         for primitive in mesh.primitives() {
             let name = shape_name(&mesh, primitive.index());
-            match geometry::primitive(&primitive, buffers, &name, &mut bad_normals)? {
+            match geometry::primitive(&primitive, buffers, &mut decoded, &name, &mut bad_normals)? {
                 geometry::Outcome::Mesh(data) => drop(out.insert(name, data)),
                 geometry::Outcome::NotTriangles(mode) => drop(ignored.insert(format!("{mode:?} primitives"))),
             }
