@@ -105,3 +105,36 @@ fn the_mutator_reaches_the_loaders_checks() {
         assert!(found, "no mutation was refused for {class:?}: {:?}", &errors[..errors.len().min(20)]);
     }
 }
+
+/// The same from assimp's skinned model and Khronos' morphed cube: their mutations include
+/// files refused for each rule on skins, morph targets and animations the mutator aims at
+/// (`twinray_host::fuzz::rig_faults`), and none panics.
+#[test]
+fn the_mutator_reaches_the_rules_on_skins_morphs_and_animations() {
+    use twinray_host::fuzz::mutate::{self, Rng};
+    let mut errors = Vec::new();
+    for name in
+        ["assimp-simple_skin-simple_skin.glb", "assimp-glTF-Sample-Models-AnimatedMorphCube-glTF-AnimatedMorphCube.glb"]
+    {
+        let original = std::fs::read(repo().join("fuzz/corpus/gltf").join(name)).unwrap();
+        for k in 0..3000 {
+            let bytes = mutate::gltf(&original, &mut Rng::new(k), &mut mutate::flip_bytes);
+            if let Err(e) = twinray_host::scene::gltf::parse(&bytes, std::path::Path::new("/nonexistent/fuzz")) {
+                errors.push(e);
+            }
+        }
+    }
+    let classes = [
+        "weights for its",
+        "morph targets, its primitive 0",
+        "inverse bind matrices",
+        "drives node",
+        "keys of",
+        "orthographic with an xmag of 0",
+        "is normalized but of",
+    ];
+    for class in classes {
+        let found = errors.iter().any(|e| e.contains(class));
+        assert!(found, "no mutation was refused for {class:?}: {:?}", &errors[..errors.len().min(20)]);
+    }
+}

@@ -2,7 +2,8 @@
 //! seldom hit: a buffer view's stride below the element of an accessor that reads through it,
 //! an accessor's offset that is not a multiple of its component, and an embedded PNG whose
 //! header claims a huge image (a decompression bomb), an embedded PNG given metadata chunks,
-//! and the node graph's rules (`super::graph_faults`). Part of the `gltf` fuzz target's mutator
+//! the node graph's rules (`super::graph_faults`) and the rules on morphs, skins, animations,
+//! cameras and accessors (`super::rig_faults`). Part of the `gltf` fuzz target's mutator
 //! (`super::mutate`).
 
 use super::rng::Rng;
@@ -34,12 +35,13 @@ fn components(kind: &str) -> u64 {
 /// Breaks one such rule in `doc` or in `bin` (a GLB's binary chunk); false where the file has
 /// nothing to break it on (no accessor with a view, no PNG).
 pub fn break_rule(doc: &mut Value, bin: Option<&mut Vec<u8>>, rng: &mut Rng) -> bool {
-    match rng.below(5) {
+    match rng.below(6) {
         0 => short_stride(doc, rng),
         1 => misaligned_offset(doc, rng),
         2 => bin.is_some_and(|b| huge_png(b, rng)),
         3 => bin.is_some_and(|b| metadata_chunk(b, rng)),
-        _ => super::graph_faults::break_rule(doc, rng),
+        4 => super::graph_faults::break_rule(doc, rng),
+        _ => super::rig_faults::break_rule(doc, rng),
     }
 }
 

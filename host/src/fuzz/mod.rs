@@ -7,6 +7,7 @@
 pub mod faults;
 pub mod graph_faults;
 pub mod mutate;
+pub mod rig_faults;
 pub mod rng;
 
 use crate::probe::case::ProbeCase;

@@ -295,4 +295,4 @@ fn emission(
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

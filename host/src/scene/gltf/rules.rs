@@ -13,6 +13,7 @@ use std::collections::BTreeSet;
 
 /// The first rule `doc` breaks that its JSON shows, said with the object named.
 pub fn check(doc: &gltf::Document) -> Result<(), String> {
+    channel_targets(doc.as_json())?;
     accessors(doc)?;
     cameras(doc)?;
     meshes(doc)?;
@@ -64,6 +65,26 @@ pub fn check_data(doc: &gltf::Document, buffers: &[Vec<u8>]) -> Result<(), Strin
                         node.index()
                     ));
                 }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Each animation channel's target is a node of the file and a path glTF defines: the `gltf`
+/// crate's validation leaves both unchecked, and its reader unwraps them.
+fn channel_targets(json: &gltf::json::Root) -> Result<(), String> {
+    for (a, animation) in json.animations.iter().enumerate() {
+        for (c, channel) in animation.channels.iter().enumerate() {
+            let node = channel.target.node.value();
+            if node >= json.nodes.len() {
+                return Err(format!(
+                    "animation {a} channel {c} targets node {node}, past its {} nodes",
+                    json.nodes.len()
+                ));
+            }
+            if !matches!(channel.target.path, gltf::json::validation::Checked::Valid(_)) {
+                return Err(format!("animation {a} channel {c} targets a path glTF does not define"));
             }
         }
     }

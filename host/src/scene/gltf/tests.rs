@@ -4,7 +4,7 @@
 use super::*;
 use base64::Engine as _;
 
-mod rules;
+pub(crate) mod rules;
 
 /// A square of two triangles in z = 0, four vertices.
 const SQUARE: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];

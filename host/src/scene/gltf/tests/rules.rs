@@ -51,6 +51,11 @@ fn valid() -> String {
     whole(MESHES, NODES, SKINS, ANIMATIONS)
 }
 
+/// The valid rigged model, whole: what the fuzz target's rig edits start from.
+pub(crate) fn rigged_model() -> String {
+    rigged(1, 2, &valid())
+}
+
 #[test]
 fn a_model_that_morphs_is_skinned_and_animated_loads() {
     let model = load_text(&rigged(1, 2, &valid())).expect("a valid rigged model");
@@ -89,6 +94,17 @@ fn each_rule_on_morphs_skins_and_animations_broken_alone_is_refused() {
             "animation 0 channel 1 drives the weights of node 2, which has no morph targets",
         ),
     ];
+    // What the `gltf` crate's validation does not check, and would panic on.
+    let astray = ANIMATIONS.replace(r#""node": 2, "path": "translation""#, r#""node": 7, "path": "translation""#);
+    refused(
+        &rigged(1, 2, &whole(MESHES, NODES, SKINS, &astray)),
+        "animation 0 channel 0 targets node 7, past its 3 nodes",
+    );
+    let pathless = ANIMATIONS.replace(r#""path": "translation""#, r#""path": "shear""#);
+    refused(
+        &rigged(1, 2, &whole(MESHES, NODES, SKINS, &pathless)),
+        "animation 0 channel 0 targets a path glTF does not define",
+    );
     for (text, why) in &cases {
         refused(text, why);
     }
