@@ -16,6 +16,7 @@ pub use graph::check as check_graph;
 mod framing;
 mod geometry;
 mod graph;
+mod instancing;
 mod rules;
 mod shared;
 
@@ -95,30 +96,12 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
     let mut objects = Vec::new();
     let mut materials = BTreeMap::new();
     let mut images = textures::Images::new();
+    let files = textures::Files { buffers: &buffers, folder: &folder, budget: &mut budget };
+    let mut read = Read { files, images: &mut images, source: name };
     for (node, world) in &placed {
-        let Some(mesh) = node.mesh() else { continue };
-        // A scale of zero on an axis is glTF's way to hide a node (and its children): its
-        // world matrix has no inverse, so no instance can stand for it, and it is not drawn.
-        if world.determinant() == 0.0 {
-            ignored.insert("nodes scaled to zero on an axis (not drawn)".into());
-            continue;
-        }
-        for primitive in mesh.primitives() {
-            let shape = shape_name(&mesh, primitive.index());
-            if !meshes.contains_key(&shape) {
-                continue; // not triangles
-            }
-            let files = textures::Files { buffers: &buffers, folder: &folder, budget: &mut budget };
-            let mut read = Read { files, images: &mut images, source: name };
-            let material = material(&primitive.material(), &mut materials, &mut read, &mut ignored)?;
-            let mut object = ObjectDesc::placed(shape, material, Some(world.to_cols_array()));
-            object.single_sided = !primitive.material().double_sided();
-            object.name = Some(match node.name() {
-                Some(name) => format!("node {} {name:?}", node.index()),
-                None => format!("node {}", node.index()),
-            });
-            objects.push(object);
-        }
+        let copies = instancing::copies(node, doc, &buffers, *world)?;
+        let placing = Placing { node, world: *world, copies: copies.as_deref(), meshes: &meshes };
+        objects.extend(placing.objects(&mut read, &mut materials, &mut ignored)?);
         ignored.extend(node.skin().map(|_| "skins".to_string()));
         ignored.extend(node.weights().map(|_| "morph target weights".to_string()));
     }
@@ -148,6 +131,55 @@ fn walk<'a>(
     }
     out.push((node, world));
     Ok(())
+}
+
+/// A node to place: its world matrix, its copies' (`EXT_mesh_gpu_instancing`) where it has
+/// them, and the model's meshes.
+struct Placing<'a, 'd> {
+    node: &'a gltf::Node<'d>,
+    world: Mat4,
+    copies: Option<&'a [Mat4]>,
+    meshes: &'a BTreeMap<String, MeshData>,
+}
+
+impl Placing<'_, '_> {
+    /// An object per triangle primitive of the node's mesh, per copy of the node.
+    fn objects(
+        &self,
+        read: &mut Read,
+        materials: &mut BTreeMap<String, MaterialDesc>,
+        ignored: &mut BTreeSet<String>,
+    ) -> Result<Vec<ObjectDesc>, String> {
+        let mut objects = Vec::new();
+        let Some(mesh) = self.node.mesh() else { return Ok(objects) };
+        let node_name = match self.node.name() {
+            Some(name) => format!("node {} {name:?}", self.node.index()),
+            None => format!("node {}", self.node.index()),
+        };
+        for (copy, world) in self.copies.unwrap_or(std::slice::from_ref(&self.world)).iter().enumerate() {
+            // A scale of zero on an axis is glTF's way to hide a node (and its children): its
+            // world matrix has no inverse, so no instance can stand for it, and it is not drawn.
+            if world.determinant() == 0.0 {
+                ignored.insert("nodes scaled to zero on an axis (not drawn)".into());
+                continue;
+            }
+            for primitive in mesh.primitives() {
+                let shape = shape_name(&mesh, primitive.index());
+                if !self.meshes.contains_key(&shape) {
+                    continue; // not triangles
+                }
+                let material = material(&primitive.material(), materials, read, ignored)?;
+                let mut object = ObjectDesc::placed(shape, material, Some(world.to_cols_array()));
+                object.single_sided = !primitive.material().double_sided();
+                object.name = Some(match self.copies {
+                    Some(_) => format!("{node_name} copy {copy}"),
+                    None => node_name.clone(),
+                });
+                objects.push(object);
+            }
+        }
+        Ok(objects)
+    }
 }
 
 /// The triangle primitives of every mesh, by shape name.
