@@ -7,19 +7,14 @@ use twinray_host::probe::{probe, ProbeRay};
 use twinray_host::reference::scene::{SceneReference, SceneVerdict};
 use twinray_host::scene::Scene;
 use twinray_shared::bindings::NO_HIT;
-use twinray_tests::gltf::{Quad, UNIT_UV};
+use twinray_tests::gltf::Quad;
 use twinray_tests::{set, validated_context};
 
 #[test]
 fn each_copy_of_an_instanced_node_is_hit_where_its_translation_puts_it() {
     let ctx = validated_context();
     let dir = tempfile::tempdir().unwrap();
-    let quad = Quad {
-        material: r#""pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]"#,
-        colors: [[1.0; 4]; 4],
-        uv: UNIT_UV,
-        texture: None,
-    };
+    let quad = Quad::white();
     // Accessor 0 is the quad's corners: (0, 0), (1, 0), (1, 1), (0, 1), the copies' places.
     let node = r#""extensions": {"EXT_mesh_gpu_instancing": {"attributes": {"TRANSLATION": 0}}}"#;
     let path = quad.write_placed(dir.path(), true, &[node]);

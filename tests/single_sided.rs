@@ -10,7 +10,7 @@ use twinray_host::probe::{probe, ProbeRay};
 use twinray_host::reference::scene::{SceneReference, SceneVerdict};
 use twinray_host::scene::{MeshFiles, Scene};
 use twinray_shared::bindings::{MASK_OCCLUDER, NO_HIT};
-use twinray_tests::gltf::{Quad, UNIT_UV};
+use twinray_tests::gltf::Quad;
 use twinray_tests::{set, validated_context, SCENE_HEAD};
 
 /// A closed box mesh, single-sided, scaled by `scale` (a negative axis mirrors it).
@@ -96,12 +96,7 @@ const NODES: [(&str, bool); 5] = [
 fn a_gltf_node_that_mirrors_keeps_the_faces_gltf_fronts() {
     let ctx = validated_context();
     let dir = tempfile::tempdir().unwrap();
-    let quad = Quad {
-        material: r#""pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]"#,
-        colors: [[1.0; 4]; 4],
-        uv: UNIT_UV,
-        texture: None,
-    };
+    let quad = Quad::white();
     let path = quad.write_placed(dir.path(), false, &NODES.map(|(node, _)| node));
     let scene = Scene::load(Some(path.to_str().unwrap())).expect("the model");
     // Near the quads' centres in the world (x of each node's placement, y 0.5, z 0): off the

@@ -16,6 +16,18 @@ pub struct Quad<'a> {
     pub texture: Option<(&'a image::RgbaImage, &'a str)>,
 }
 
+impl Quad<'static> {
+    /// A white quad, untextured, white at every corner.
+    pub fn white() -> Self {
+        Quad {
+            material: r#""pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]"#,
+            colors: [[1.0; 4]; 4],
+            uv: UNIT_UV,
+            texture: None,
+        }
+    }
+}
+
 impl Quad<'_> {
     /// Writes the model (`quad.gltf`, `quad.bin`, `texture.png`) into `dir`, the quad
     /// double-sided in one node at the origin; its path.
