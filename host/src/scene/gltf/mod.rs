@@ -17,6 +17,7 @@ mod framing;
 mod geometry;
 mod graph;
 mod instancing;
+mod keyframes;
 mod rules;
 mod shared;
 
@@ -87,9 +88,11 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
     graph::check(doc.as_json())?;
     rules::check(doc)?;
     rules::check_data(doc, &buffers)?;
+    // A still picture shows the first animation at 0 s, as viewers open a file.
+    let posed = keyframes::pose(doc, &buffers, 0, 0.0);
     let mut placed = Vec::new();
     for node in scene.nodes() {
-        walk(node, Mat4::IDENTITY, 0, &mut placed)?;
+        walk(node, (Mat4::IDENTITY, 0), &posed, &mut placed)?;
     }
 
     let meshes = meshes(doc, &buffers, &mut ignored)?;
@@ -108,26 +111,31 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
     if objects.is_empty() {
         return Err(format!("its scene places no triangles (ignored: {})", listed(&ignored)));
     }
-    ignored.extend((doc.animations().len() > 0).then(|| "animations".to_string()));
+    let clips = doc.animations().len();
+    ignored.extend((clips > 0).then(|| "animation over time (the first posed at 0 s)".to_string()));
+    ignored.extend((clips > 1).then(|| format!("animations after the first ({})", clips - 1)));
     let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
     let view = framing::view(doc, &placed, &objects, &meshes, &mut ignored)?;
     let file = super::framing::scene_file("a glTF 2.0 model", view, shapes, materials, objects);
     Ok(Model { file, meshes, ignored })
 }
 
-/// Every node under `node` (itself included) with its world matrix, depth first.
+/// Every node under `node` (itself included) with its world matrix, depth first: its parent's
+/// world matrix times its own local one, or the one `posed` gives it.
 fn walk<'a>(
     node: gltf::Node<'a>,
-    parent: Mat4,
-    depth: usize,
+    (parent, depth): (Mat4, usize),
+    posed: &BTreeMap<usize, Mat4>,
     out: &mut Vec<(gltf::Node<'a>, Mat4)>,
 ) -> Result<(), String> {
     if depth > MAX_DEPTH {
         return Err(format!("node {} is {MAX_DEPTH} levels deep: its hierarchy has a cycle", node.index()));
     }
-    let world = parent * Mat4::from_cols_array_2d(&node.transform().matrix());
+    let local =
+        posed.get(&node.index()).copied().unwrap_or_else(|| Mat4::from_cols_array_2d(&node.transform().matrix()));
+    let world = parent * local;
     for child in node.children() {
-        walk(child, world, depth + 1, out)?;
+        walk(child, (world, depth + 1), posed, out)?;
     }
     out.push((node, world));
     Ok(())

@@ -284,6 +284,12 @@ fn animations(doc: &gltf::Document) -> Result<(), String> {
             if !driven.insert((node.index(), property as u8)) {
                 return Err(format!("{what} drives node {}'s {property:?} again (one channel each)", node.index()));
             }
+            if matches!(node.transform(), gltf::scene::Transform::Matrix { .. }) {
+                return Err(format!(
+                    "{what} drives node {}, which has a matrix (an animated node gives TRS)",
+                    node.index()
+                ));
+            }
             let per_key = match property {
                 Property::MorphTargetWeights => {
                     let targets =

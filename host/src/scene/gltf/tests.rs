@@ -5,6 +5,7 @@ use super::*;
 use base64::Engine as _;
 
 mod instancing;
+mod posed;
 pub(crate) mod rules;
 
 /// A square of two triangles in z = 0, four vertices.

@@ -1,0 +1,153 @@
+//! glTF animations sampled at a time: each channel's translation, rotation or scale of its
+//! node, by the sampler's interpolation (`STEP`, `LINEAR` with rotations by spherical
+//! interpolation, `CUBICSPLINE` by Hermite splines of its tangents), integers normalized as
+//! glTF says. Before the first key a channel holds the first key's value, after the last the
+//! last's. The file's rules (keys rising, output counts and types) are `rules`'; every
+//! accessor is bounds-checked there before this reads it.
+
+use glam::{Mat4, Quat, Vec3};
+use gltf::animation::util::ReadOutputs;
+use gltf::animation::Interpolation;
+use std::collections::BTreeMap;
+
+/// A node's translation, rotation and scale.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Trs {
+    pub translation: Vec3,
+    pub rotation: Quat,
+    pub scale: Vec3,
+}
+
+impl Trs {
+    /// `node`'s own, as its file gives it.
+    pub fn rest(node: &gltf::Node) -> Trs {
+        let (t, r, s) = node.transform().decomposed();
+        Trs { translation: Vec3::from(t), rotation: Quat::from_array(r), scale: Vec3::from(s) }
+    }
+
+    pub fn matrix(&self) -> Mat4 {
+        Mat4::from_scale_rotation_translation(self.scale, self.rotation, self.translation)
+    }
+}
+
+/// The local matrix of every node animation `index` of `doc` moves, at `time` seconds: its
+/// rest transform with the channels' values in place of what they drive. Morph target
+/// weights are not posed (twinray does not morph yet).
+pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], index: usize, time: f32) -> BTreeMap<usize, Mat4> {
+    let mut posed: BTreeMap<usize, Trs> = BTreeMap::new();
+    let Some(animation) = doc.animations().nth(index) else { return BTreeMap::new() };
+    let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
+    for channel in animation.channels() {
+        let node = channel.target().node();
+        let reader = channel.reader(get);
+        let Some(times) = reader.read_inputs() else { continue };
+        let times: Vec<f32> = times.collect();
+        let interpolation = channel.sampler().interpolation();
+        let trs = posed.entry(node.index()).or_insert_with(|| Trs::rest(&node));
+        match reader.read_outputs() {
+            Some(ReadOutputs::Translations(v)) => {
+                let values: Vec<Vec3> = v.map(Vec3::from).collect();
+                trs.translation = sample(&times, &values, interpolation, time, |a, b, s| a.lerp(b, s));
+            }
+            Some(ReadOutputs::Scales(v)) => {
+                let values: Vec<Vec3> = v.map(Vec3::from).collect();
+                trs.scale = sample(&times, &values, interpolation, time, |a, b, s| a.lerp(b, s));
+            }
+            Some(ReadOutputs::Rotations(v)) => {
+                let values: Vec<Quat> = v.into_f32().map(Quat::from_array).collect();
+                let q = sample(&times, &values, interpolation, time, |a, b, s| a.slerp(b, s));
+                trs.rotation = q.normalize();
+            }
+            Some(ReadOutputs::MorphTargetWeights(_)) | None => {}
+        }
+    }
+    posed.into_iter().map(|(node, trs)| (node, trs.matrix())).collect()
+}
+
+/// What a value type needs for a cubic spline: sums and scaling.
+pub trait Spline: Copy + std::ops::Add<Output = Self> + std::ops::Mul<f32, Output = Self> {}
+impl Spline for Vec3 {}
+impl Spline for Quat {}
+
+/// The value at `time` of keys at `times` (rising) with `values` (one per key, three per key
+/// for a cubic spline: in-tangent, value, out-tangent), `linear` mixing two keys' values.
+pub fn sample<T: Spline>(
+    times: &[f32],
+    values: &[T],
+    interpolation: Interpolation,
+    time: f32,
+    linear: impl Fn(T, T, f32) -> T,
+) -> T {
+    let cubic = interpolation == Interpolation::CubicSpline;
+    let value = |k: usize| if cubic { values[3 * k + 1] } else { values[k] };
+    let last = times.len() - 1;
+    // The key at or before `time` (the first key before it, the last after it).
+    let k = times.partition_point(|&t| t <= time).saturating_sub(1);
+    if time <= times[0] || k >= last {
+        return value(if time <= times[0] { 0 } else { last });
+    }
+    let span = times[k + 1] - times[k];
+    let s = (time - times[k]) / span;
+    match interpolation {
+        Interpolation::Step => value(k),
+        Interpolation::Linear => linear(value(k), value(k + 1), s),
+        Interpolation::CubicSpline => {
+            let (s2, s3) = (s * s, s * s * s);
+            let out_tangent = values[3 * k + 2] * span;
+            let in_tangent = values[3 * (k + 1)] * span;
+            value(k) * (2.0 * s3 - 3.0 * s2 + 1.0)
+                + out_tangent * (s3 - 2.0 * s2 + s)
+                + value(k + 1) * (-2.0 * s3 + 3.0 * s2)
+                + in_tangent * (s3 - s2)
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    const TIMES: [f32; 3] = [1.0, 2.0, 4.0];
+
+    #[test]
+    fn each_interpolation_holds_before_the_first_key_and_after_the_last() {
+        let values = [Vec3::ZERO, Vec3::X, Vec3::Y];
+        let lerp = |a: Vec3, b: Vec3, s: f32| a.lerp(b, s);
+        for interpolation in [Interpolation::Step, Interpolation::Linear] {
+            assert_eq!(sample(&TIMES, &values, interpolation, 0.0, lerp), Vec3::ZERO);
+            assert_eq!(sample(&TIMES, &values, interpolation, 1.0, lerp), Vec3::ZERO);
+            assert_eq!(sample(&TIMES, &values, interpolation, 2.0, lerp), Vec3::X);
+            assert_eq!(sample(&TIMES, &values, interpolation, 9.0, lerp), Vec3::Y);
+        }
+        assert_eq!(sample(&TIMES, &values, Interpolation::Step, 1.5, lerp), Vec3::ZERO);
+        assert_eq!(sample(&TIMES, &values, Interpolation::Linear, 1.5, lerp), Vec3::X * 0.5);
+        assert_eq!(sample(&TIMES, &values, Interpolation::Linear, 3.0, lerp), Vec3::new(0.5, 0.5, 0.0));
+    }
+
+    /// A cubic spline passes through its keys, and with tangents of a straight line at unit
+    /// speed between keys one second apart it is that line; its tangents are per second, so a
+    /// span of two seconds doubles their reach.
+    #[test]
+    fn a_cubic_spline_is_hermite_with_tangents_per_second() {
+        let lerp = |a: Vec3, b: Vec3, s: f32| a.lerp(b, s);
+        let (t, v) = (Vec3::X, Vec3::ZERO);
+        let keys = [t, v, t, t, Vec3::X, t, t, Vec3::X * 3.0, t];
+        let at = |time: f32| sample(&TIMES, &keys, Interpolation::CubicSpline, time, lerp);
+        assert_eq!(at(1.0), Vec3::ZERO);
+        assert_eq!(at(2.0), Vec3::X);
+        assert!((at(1.25) - Vec3::X * 0.25).length() < 1e-6, "{}", at(1.25));
+        // From 1 at 2 s to 3 at 4 s with slopes 1: the Hermite curve's midpoint is 2.
+        assert!((at(3.0) - Vec3::X * 2.0).length() < 1e-6, "{}", at(3.0));
+        assert_eq!(at(5.0), Vec3::X * 3.0);
+    }
+
+    #[test]
+    fn rotations_turn_the_short_way_at_a_steady_rate() {
+        let (a, b) = (Quat::IDENTITY, Quat::from_rotation_y(std::f32::consts::FRAC_PI_2));
+        // The same rotation as b, written with its sign turned: the short way is still 90 degrees.
+        let keys = [a, -b];
+        let q = sample(&TIMES[..2], &keys, Interpolation::Linear, 1.5, |a, b, s| a.slerp(b, s));
+        let want = Quat::from_rotation_y(std::f32::consts::FRAC_PI_4);
+        assert!(q.normalize().angle_between(want) < 1e-4, "{q}");
+    }
+}

@@ -1,0 +1,46 @@
+//! A still picture of an animated model shows its first animation at 0 s: a node the
+//! animation moves is placed where its keys put it then, not at its rest transform, children
+//! included; a node with a matrix cannot be animated.
+
+use super::{document, floats, load_text, refused, SQUARE};
+use glam::{Mat4, Vec3};
+
+/// The square (accessor 0) in a node at rest at x = 5 with a child node (the square again,
+/// one unit up); one animation (accessors 1 and 2: keys at 0.5 s and 1.5 s) moving the
+/// parent's translation by `interpolation`, and with `node` the parent's extra members.
+fn animated(interpolation: &str, parent: &str) -> String {
+    let mut bytes = floats(&SQUARE);
+    bytes.extend([0.5f32, 1.5].iter().flat_map(|t| t.to_le_bytes()));
+    bytes.extend(floats(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]));
+    let rest = format!(
+        r#""bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 8}}, {{"buffer": 0, "byteOffset": 56, "byteLength": 24}}],
+        "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+                      {{"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0.5], "max": [1.5]}},
+                      {{"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC3"}}],
+        "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
+        "nodes": [{{"mesh": 0, "children": [1]{parent}}}, {{"mesh": 0, "translation": [0, 1, 0]}}],
+        "animations": [{{"samplers": [{{"input": 1, "output": 2, "interpolation": "{interpolation}"}}],
+                         "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "translation"}}}}]}}],
+        "scenes": [{{"nodes": [0]}}]"#
+    );
+    document(&bytes, &rest)
+}
+
+#[test]
+fn a_still_picture_poses_the_first_animation_at_zero_seconds() {
+    for interpolation in ["STEP", "LINEAR"] {
+        let model = load_text(&animated(interpolation, r#", "translation": [5, 0, 0]"#)).expect("an animated model");
+        let placed: Vec<Mat4> = model.file.objects.iter().map(|o| Mat4::from_cols_array(&o.matrix.unwrap())).collect();
+        // 0 s is before the first key: the first key's value holds.
+        let parent = Mat4::from_translation(Vec3::new(1.0, 2.0, 3.0));
+        let child = parent * Mat4::from_translation(Vec3::Y);
+        let names: Vec<_> = model.file.objects.iter().map(|o| o.name.clone().unwrap()).collect();
+        for (name, want) in [("node 0", parent), ("node 1", child)] {
+            let k = names.iter().position(|n| n == name).unwrap();
+            assert!(placed[k].abs_diff_eq(want, 1e-6), "{interpolation}, {name}: {} against {want}", placed[k]);
+        }
+        assert!(model.ignored.iter().any(|i| i.contains("posed at 0 s")), "{:?}", model.ignored);
+    }
+    let matrix = r#", "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,0,0,1]"#;
+    refused(&animated("LINEAR", matrix), "animation 0 channel 0 drives node 0, which has a matrix");
+}
