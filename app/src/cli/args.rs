@@ -67,6 +67,10 @@ pub struct GlobalArgs {
     /// names it]. A file elsewhere, by an absolute path, `..` or a symbolic link, is refused.
     #[arg(long, global = true, value_name = "DIR")]
     pub asset_root: Option<PathBuf>,
+    /// The time, in seconds, at which a glTF model shows its first animation: each node it
+    /// moves placed where its keys put it then [default: 0, the animation's start].
+    #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_time)]
+    pub time: Option<f32>,
     /// What PNGs of radiance do with values above 1 before the sRGB encoding: clip each
     /// channel, or map it by c / (1 + c) (reinhard). EXR output and every metric stay linear.
     #[arg(long, global = true, value_enum, value_name = "MAP", default_value_t = twinray_host::util::srgb::ToneMap::Clip)]
@@ -114,6 +118,7 @@ impl GlobalArgs {
         pair("--gpu-timeout", self.gpu_timeout.map(|t| t.as_secs_f64().to_string()));
         pair("--build-timeout", self.build_timeout.map(|t| t.as_secs_f64().to_string()));
         pair("--asset-root", self.asset_root.as_ref().map(|p| p.display().to_string()));
+        pair("--time", self.time.map(|t| t.to_string()));
         pair("--tone-map", clap::ValueEnum::to_possible_value(&self.tone_map).map(|v| v.get_name().to_string()));
         let switches = [(self.no_pipeline_cache, "--no-pipeline-cache"), (self.no_robust_access, "--no-robust-access")];
         args.extend(switches.into_iter().filter(|(on, _)| *on).map(|(_, flag)| flag.to_string()));
@@ -139,6 +144,14 @@ pub enum ValidateMode {
 }
 
 /// A GPU timeout: seconds, more than 0 and at most a day.
+fn parse_time(text: &str) -> Result<f32, String> {
+    let seconds: f32 = text.trim().parse().map_err(|_| format!("{text:?} is not a number of seconds"))?;
+    if !(seconds.is_finite() && seconds >= 0.0) {
+        return Err(format!("{seconds} is not a time in seconds (0 or more)"));
+    }
+    Ok(seconds)
+}
+
 fn parse_timeout(text: &str) -> Result<std::time::Duration, String> {
     let seconds: f64 = text.trim().parse().map_err(|_| format!("{text:?} is not a number of seconds"))?;
     if !(seconds > 0.0 && seconds <= 86_400.0) {

@@ -62,20 +62,38 @@ pub fn models_under(dir: &Path) -> Vec<std::path::PathBuf> {
     out
 }
 
-/// Reads the model at `path` (its scene `scene`, else its default one); the error says what in
-/// it is wrong.
+static POSE_TIME: std::sync::OnceLock<f32> = std::sync::OnceLock::new();
+
+/// Sets the time, in seconds, at which every model this process reads shows its first
+/// animation (the global `--time`); the first call wins.
+pub fn set_pose_time(seconds: f32) {
+    let _ = POSE_TIME.set(seconds);
+}
+
+/// The time set by [`set_pose_time`]; 0 s if none was.
+pub fn pose_time() -> f32 {
+    POSE_TIME.get().copied().unwrap_or(0.0)
+}
+
+/// Reads the model at `path` (its scene `scene`, else its default one), its first animation
+/// at [`pose_time`]; the error says what in it is wrong.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<Model, String> {
+    load_at(path, scene, pose_time())
+}
+
+/// [`load`] with the first animation at `time` seconds.
+pub fn load_at(path: &Path, scene: Option<usize>, time: f32) -> Result<Model, String> {
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
-    model(buffers::load(path)?, scene, &name)
+    model(buffers::load(path)?, (scene, time), &name)
 }
 
 /// The model of a glTF file's `bytes`, its buffer files (if any) relative to `folder`: what
 /// the fuzz target feeds.
 pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
-    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, None, "model")
+    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, (None, 0.0), "model")
 }
 
-fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Model, String> {
+fn model(loaded: buffers::Loaded, (scene, time): (Option<usize>, f32), name: &str) -> Result<Model, String> {
     let buffers::Loaded { gltf, buffers, folder, mut budget } = loaded;
     let doc = &gltf.document;
     let mut ignored = BTreeSet::new();
@@ -88,8 +106,9 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
     graph::check(doc.as_json())?;
     rules::check(doc)?;
     rules::check_data(doc, &buffers)?;
-    // A still picture shows the first animation at 0 s, as viewers open a file.
-    let posed = keyframes::pose(doc, &buffers, 0, 0.0);
+    // A still picture shows the first animation at `time` (0 s unless asked, as viewers open
+    // a file).
+    let posed = keyframes::pose(doc, &buffers, 0, time);
     let mut placed = Vec::new();
     for node in scene.nodes() {
         walk(node, (Mat4::IDENTITY, 0), &posed, &mut placed)?;
@@ -112,7 +131,7 @@ fn model(loaded: buffers::Loaded, scene: Option<usize>, name: &str) -> Result<Mo
         return Err(format!("its scene places no triangles (ignored: {})", listed(&ignored)));
     }
     let clips = doc.animations().len();
-    ignored.extend((clips > 0).then(|| "animation over time (the first posed at 0 s)".to_string()));
+    ignored.extend((clips > 0).then(|| format!("animation over time (the first posed at {time} s)")));
     ignored.extend((clips > 1).then(|| format!("animations after the first ({})", clips - 1)));
     let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
     let view = framing::view(doc, &placed, &objects, &meshes, &mut ignored)?;

@@ -24,7 +24,7 @@ pub fn check(doc: &gltf::Document) -> Result<(), String> {
 
 /// The rules only the buffers show: animation key times rise strictly from 0 or later, and a
 /// skinned mesh's joint indices name joints of its skin. Each accessor is bounds-checked
-/// before it is read.
+/// before it is read, and every animation output too, which `keyframes` reads.
 pub fn check_data(doc: &gltf::Document, buffers: &[Vec<u8>]) -> Result<(), String> {
     let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
     for animation in doc.animations() {
@@ -32,6 +32,9 @@ pub fn check_data(doc: &gltf::Document, buffers: &[Vec<u8>]) -> Result<(), Strin
             let sampler = channel.sampler();
             let what = format!("animation {} sampler {}", animation.index(), sampler.index());
             check_accessor(&sampler.input(), buffers, &what, "input", &[Dimensions::Scalar], &[DataType::F32])?;
+            // Its type is `animations`' to judge; here, that it lies within its view.
+            let output = sampler.output();
+            check_accessor(&output, buffers, &what, "output", &[output.dimensions()], &[output.data_type()])?;
             let times = channel.reader(get).read_inputs().into_iter().flatten();
             rising(times, &what, sampler.input().index())?;
         }

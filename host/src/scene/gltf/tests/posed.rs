@@ -3,6 +3,7 @@
 //! included; a node with a matrix cannot be animated.
 
 use super::{document, floats, load_text, refused, SQUARE};
+use crate::scene::gltf::load_at;
 use glam::{Mat4, Vec3};
 
 /// The square (accessor 0) in a node at rest at x = 5 with a child node (the square again,
@@ -43,4 +44,22 @@ fn a_still_picture_poses_the_first_animation_at_zero_seconds() {
     }
     let matrix = r#", "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,0,0,1]"#;
     refused(&animated("LINEAR", matrix), "animation 0 channel 0 drives node 0, which has a matrix");
+}
+
+/// At a later time each interpolation places the node as its keys say: halfway between the
+/// keys for LINEAR, on the earlier key for STEP, on the last key after it.
+#[test]
+fn a_later_time_poses_the_node_between_or_after_its_keys() {
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("model.gltf");
+    let cases = [("LINEAR", 1.0, [2.5, 3.5, 4.5]), ("STEP", 1.0, [1.0, 2.0, 3.0]), ("LINEAR", 7.0, [4.0, 5.0, 6.0])];
+    for (interpolation, time, want) in cases {
+        std::fs::write(&path, animated(interpolation, "")).unwrap();
+        let model = load_at(&path, None, time).expect("an animated model");
+        let parent = model.file.objects.iter().find(|o| o.name.as_deref() == Some("node 0")).unwrap();
+        let at = Mat4::from_cols_array(&parent.matrix.unwrap()).w_axis.truncate();
+        assert!(at.abs_diff_eq(Vec3::from(want), 1e-6), "{interpolation} at {time} s: {at}");
+        let notice = format!("posed at {time} s");
+        assert!(model.ignored.iter().any(|i| i.contains(&notice)), "{:?}", model.ignored);
+    }
 }
