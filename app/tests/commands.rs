@@ -16,6 +16,7 @@ mod features;
 mod frames_cli;
 mod fuzz_seeds;
 mod gltf_cli;
+mod gltf_time;
 mod history_words;
 mod hostile;
 mod inspect_cli;
