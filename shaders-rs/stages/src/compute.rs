@@ -5,13 +5,13 @@
 //! would, with the same shared code.
 
 use crate::query;
-use crate::render::{Options, Pixel, Target};
+use crate::render::{Options, Pixel, Target, Totals};
 use crate::texture::Texture;
 use crate::trace::{self, Lights};
-use spirv_std::glam::{UVec2, UVec3, UVec4, Vec3Swizzles, Vec4, Vec4Swizzles};
+use spirv_std::glam::{UVec2, UVec3, UVec4, Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
 use spirv_std::ray_tracing::AccelerationStructure;
 use spirv_std::{spirv, RuntimeArray};
-use twinray_shared::bindings::EXPLAIN_SHADOW;
+use twinray_shared::bindings::{no_payload_word, EXPLAIN_SHADOW};
 use twinray_shared::camera::Ray;
 use twinray_shared::features::Features;
 use twinray_shared::layout::{
@@ -47,11 +47,11 @@ pub fn render_compute(
         return;
     }
     let options = Options::new(shadows, shadow_sampler, features, shaded_hits);
-    let mut shadow_rays = 0;
-    let mut pixel = Pixel::new(id.xy(), UVec2::new(frame.width, frame.height));
+    let pixel = Pixel::new(id.xy(), UVec2::new(frame.width, frame.height));
+    let (mut sample, mut sum, mut no_payload, mut shadow_rays) = (0, Vec3::ZERO, 0, 0);
     let mut payload = HitPayload::NONE;
     loop {
-        let ray = pixel.ray(frame, samples_per_side);
+        let ray = pixel.ray(frame, sample, samples_per_side);
         payload.poison();
         let reach = (frame.reach.z, frame.reach.x);
         query::primary_query(
@@ -68,18 +68,23 @@ pub fn render_compute(
             indices,
             textures,
         );
-        if pixel.traced(&payload, hit_ids, samples_per_side) {
-            let scene = ((objects, primitives, materials), (vertices, indices));
-            let at = (pixel.index, pixel.sample(samples_per_side));
-            let color =
-                trace::shade_query(tlas, (frame, lights), options, &payload, scene, textures, at, &mut shadow_rays);
-            pixel.add(color);
+        let unwritten = payload.unwritten(true);
+        if sample == 0 {
+            pixel.first_hit(&payload, unwritten, hit_ids);
         }
-        if !pixel.next(samples_per_side) {
+        if unwritten {
+            no_payload = no_payload_word(no_payload, sample);
+        } else {
+            let scene = ((objects, primitives, materials), (vertices, indices));
+            let at = (pixel.index, sample);
+            sum += trace::shade_query(tlas, (frame, lights), options, &payload, scene, textures, at, &mut shadow_rays);
+        }
+        sample += 1;
+        if sample >= samples_per_side * samples_per_side {
             break;
         }
     }
-    pixel.write(image, hit_ids, shadow_rays, samples_per_side);
+    pixel.write(image, hit_ids, Totals { sum, no_payload, shadow_rays }, samples_per_side);
 }
 
 /// `twinray explain`'s stage for rays traced inline (`renderer = "compute"`, and the shadow

@@ -2,13 +2,13 @@
 //! `explain`, which trace rays read from a buffer as the renderers trace them. Ray generation
 //! shades; the hit stages only describe the surface they found (closest_hit.rs).
 
-use crate::render::{Options, Pixel, Target};
+use crate::render::{Options, Pixel, Target, Totals};
 use crate::texture::Texture;
 use crate::trace::{self, Lights};
-use spirv_std::glam::{UVec3, UVec4, Vec3Swizzles, Vec4, Vec4Swizzles};
+use spirv_std::glam::{UVec3, UVec4, Vec3, Vec3Swizzles, Vec4, Vec4Swizzles};
 use spirv_std::ray_tracing::AccelerationStructure;
 use spirv_std::{spirv, RuntimeArray};
-use twinray_shared::bindings::{EXPLAIN_SHADOW, MISS_PRIMARY, NO_HIT, PROBE_NO_PAYLOAD};
+use twinray_shared::bindings::{no_payload_word, EXPLAIN_SHADOW, MISS_PRIMARY, NO_HIT, PROBE_NO_PAYLOAD};
 use twinray_shared::camera;
 use twinray_shared::features::Features;
 use twinray_shared::layout::{
@@ -42,23 +42,31 @@ pub fn raygen(
     #[spirv(ray_payload)] shadow: &mut ShadowPayload,
 ) {
     let options = Options::new(shadows, shadow_sampler, features, shaded_hits);
-    let mut shadow_rays = 0;
-    let mut pixel = Pixel::new(launch_id.xy(), launch_size.xy());
-    // Tested at the bottom (`Pixel::next`): there is at least one sample.
+    let pixel = Pixel::new(launch_id.xy(), launch_size.xy());
+    // What changes from sample to sample, in locals (`Pixel` says why).
+    let (mut sample, mut sum, mut no_payload, mut shadow_rays) = (0, Vec3::ZERO, 0, 0);
+    // Tested at the bottom: there is at least one sample, and rust-gpu tests a `while`
+    // condition again after the body, which keeps it alive across the body's traces.
     loop {
-        let ray = pixel.ray(frame, samples_per_side);
+        let ray = pixel.ray(frame, sample, samples_per_side);
         payload.poison();
         trace::primary(tlas, ray, (frame.reach.z, frame.reach.x), options.features, payload);
-        if pixel.traced(payload, hit_ids, samples_per_side) {
-            let at = (pixel.index, pixel.sample(samples_per_side));
-            let color = trace::shade(tlas, (frame, lights), options, payload, shadow, at, &mut shadow_rays);
-            pixel.add(color);
+        let unwritten = payload.unwritten(true);
+        if sample == 0 {
+            pixel.first_hit(payload, unwritten, hit_ids);
         }
-        if !pixel.next(samples_per_side) {
+        if unwritten {
+            no_payload = no_payload_word(no_payload, sample);
+        } else {
+            let at = (pixel.index, sample);
+            sum += trace::shade(tlas, (frame, lights), options, payload, shadow, at, &mut shadow_rays);
+        }
+        sample += 1;
+        if sample >= samples_per_side * samples_per_side {
             break;
         }
     }
-    pixel.write(image, hit_ids, shadow_rays, samples_per_side);
+    pixel.write(image, hit_ids, Totals { sum, no_payload, shadow_rays }, samples_per_side);
 }
 
 /// The renderer with shadow rays traced inline by ray queries (`shadow_method = "query"`,
@@ -88,24 +96,29 @@ pub fn raygen_query(
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
 ) {
     let options = Options::new(shadows, shadow_sampler, features, shaded_hits);
-    let mut shadow_rays = 0;
-    let mut pixel = Pixel::new(launch_id.xy(), launch_size.xy());
+    let pixel = Pixel::new(launch_id.xy(), launch_size.xy());
+    let (mut sample, mut sum, mut no_payload, mut shadow_rays) = (0, Vec3::ZERO, 0, 0);
     loop {
-        let ray = pixel.ray(frame, samples_per_side);
+        let ray = pixel.ray(frame, sample, samples_per_side);
         payload.poison();
         trace::primary(tlas, ray, (frame.reach.z, frame.reach.x), options.features, payload);
-        if pixel.traced(payload, hit_ids, samples_per_side) {
-            let scene = ((objects, primitives, materials), (vertices, indices));
-            let at = (pixel.index, pixel.sample(samples_per_side));
-            let color =
-                trace::shade_query(tlas, (frame, lights), options, payload, scene, textures, at, &mut shadow_rays);
-            pixel.add(color);
+        let unwritten = payload.unwritten(true);
+        if sample == 0 {
+            pixel.first_hit(payload, unwritten, hit_ids);
         }
-        if !pixel.next(samples_per_side) {
+        if unwritten {
+            no_payload = no_payload_word(no_payload, sample);
+        } else {
+            let scene = ((objects, primitives, materials), (vertices, indices));
+            let at = (pixel.index, sample);
+            sum += trace::shade_query(tlas, (frame, lights), options, payload, scene, textures, at, &mut shadow_rays);
+        }
+        sample += 1;
+        if sample >= samples_per_side * samples_per_side {
             break;
         }
     }
-    pixel.write(image, hit_ids, shadow_rays, samples_per_side);
+    pixel.write(image, hit_ids, Totals { sum, no_payload, shadow_rays }, samples_per_side);
 }
 
 /// The probe: one ray per launch index from the ray buffer, traced through the same pipeline
