@@ -110,8 +110,7 @@ impl Pixel {
             *hit_ids.get_unchecked_mut(base + 2) = totals.shadow_rays;
             *hit_ids.get_unchecked_mut(base + 3) = totals.no_payload;
         }
-        let color =
-            if totals.no_payload == 0 { totals.sum / (side * side) as f32 } else { Vec3::splat(f32::NAN) };
+        let color = if totals.no_payload == 0 { totals.sum / (side * side) as f32 } else { Vec3::splat(f32::NAN) };
         // SAFETY: the pixel lies inside the image, which the host sizes to the launch.
         unsafe { image.write(self.pixel, color.extend(1.0)) };
     }
