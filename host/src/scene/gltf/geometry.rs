@@ -1,18 +1,17 @@
-//! A glTF primitive's triangles as a twinray mesh. Every accessor is checked against its
-//! buffer view before it is read (type, count, and the last element within the view), so a
-//! malformed file is refused with the accessor named, never read out of bounds.
+//! A glTF primitive's triangles as a twinray mesh. Every accessor is checked before it is
+//! read (`accessors`), so a malformed file is refused with the accessor named, never read out
+//! of bounds.
 
 use super::super::mesh::{checked, with_attributes, with_normals, MeshData, Polyhedron};
 use super::super::shape::Normals;
+use super::accessors::check;
+use super::deform::Pose;
 use super::shared::{kept, As, Decoded};
 use glam::{Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 use gltf::mesh::Mode;
+use std::rc::Rc;
 use twinray_shared::layout::Vertex;
-use twinray_shared::shapes::spec::MAX_PRIMITIVES;
-
-/// Most elements one accessor may have: three vertices per triangle of the largest mesh.
-const MAX_ELEMENTS: usize = 3 * MAX_PRIMITIVES as usize;
 
 /// What became of a primitive.
 pub enum Outcome {
@@ -21,14 +20,15 @@ pub enum Outcome {
     NotTriangles(Mode),
 }
 
-/// The triangles of `primitive` (`what` names it in errors), with the file's normals where it
-/// has usable ones and flat normals where it does not; `bad_normals` is set when it had
-/// normals that were not finite or had no length. Its vertex accessors are read through
-/// `decoded` (once per model), and only the vertices its indices name are kept.
+/// The triangles of `primitive` (`what` names it in errors), posed by `pose` where a node
+/// morphs or skins it, with the file's normals where it has usable ones and flat normals
+/// where it does not; `bad_normals` is set when it had normals that were not finite or had
+/// no length. Its vertex accessors are read through `decoded` (once per model), and only the
+/// vertices its indices name are kept.
 pub fn primitive(
     primitive: &gltf::Primitive,
     buffers: &[Vec<u8>],
-    decoded: &mut Decoded,
+    (decoded, pose): (&mut Decoded, Option<&Pose>),
     what: &str,
     bad_normals: &mut bool,
 ) -> Result<Outcome, String> {
@@ -52,27 +52,34 @@ pub fn primitive(
     for (semantic, accessor) in primitive.attributes() {
         same_count(accessor.count(), count, what, &semantic.to_string())?;
     }
+    let normals = match primitive.get(&gltf::Semantic::Normals) {
+        Some(n) => Some(decoded.get(n.index(), As::Normal, || {
+            check(&n, buffers, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
+            let read: Vec<Vec4> =
+                reader.read_normals().into_iter().flatten().map(|n| Vec3::from(n).extend(0.0)).collect();
+            read_all(read.len(), &n, what, "NORMAL")?;
+            Ok(read)
+        })?),
+        None => None,
+    };
+    let (all, normals) = match pose {
+        Some(pose) => {
+            let (p, n) = pose.apply(primitive, buffers, (&all, normals.as_deref().map(Vec::as_slice)), what)?;
+            (Rc::new(p), n.map(Rc::new))
+        }
+        None => (all, normals),
+    };
     let used = decoded.compact(&mut order, count);
     let used = used.as_deref();
     let positions: Vec<Vec3> = kept(&all, used).into_iter().map(Vec4::truncate).collect();
     let p = Polyhedron { positions, triangles: triangles(mode, &order) };
     checked(&p, what)?;
-    let normals = match primitive.get(&gltf::Semantic::Normals) {
-        Some(n) => {
-            let all = decoded.get(n.index(), As::Normal, || {
-                check(&n, buffers, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
-                let read: Vec<Vec4> =
-                    reader.read_normals().into_iter().flatten().map(|n| Vec3::from(n).extend(0.0)).collect();
-                read_all(read.len(), &n, what, "NORMAL")?;
-                Ok(read)
-            })?;
-            let normals: Vec<Vec3> = kept(&all, used).into_iter().map(Vec4::truncate).collect();
-            let usable = normals.iter().all(|n| n.is_finite() && n.length() > 1e-6);
-            *bad_normals |= !usable;
-            usable.then_some(normals)
-        }
-        None => None,
-    };
+    let normals = normals.and_then(|all| {
+        let normals: Vec<Vec3> = kept(&all, used).into_iter().map(Vec4::truncate).collect();
+        let usable = normals.iter().all(|n| n.is_finite() && n.length() > 1e-6);
+        *bad_normals |= !usable;
+        usable.then_some(normals)
+    });
     let attributes = attributes(primitive, buffers, decoded, (count, used), what)?;
     let flat = normals.is_none();
     let mesh = match normals {
@@ -200,109 +207,6 @@ fn triangles(mode: Mode, order: &[u32]) -> Vec<[u32; 3]> {
         Mode::TriangleFan => (2..order.len()).map(|i| [order[i - 1], order[i], order[0]]).collect(),
         _ => order.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect(),
     }
-}
-
-/// An accessor of a type `semantic` allows, with a count twinray takes, whose every element
-/// lies within its buffer view at a stride no shorter than the element and an offset its
-/// components align to, whose view lies within its buffer, and whose sparse indices (if any)
-/// rise strictly within its count: all that the glTF spec asks of an accessor and the `gltf`
-/// crate's reader assumes (it panics on a stride shorter than the element).
-pub(super) fn check(
-    a: &gltf::Accessor,
-    buffers: &[Vec<u8>],
-    what: &str,
-    semantic: &str,
-    dimensions: &[Dimensions],
-    types: &[DataType],
-) -> Result<(), String> {
-    let name = format!("{what}: {semantic} (accessor {})", a.index());
-    if !dimensions.contains(&a.dimensions()) || !types.contains(&a.data_type()) {
-        return Err(format!("{name} is {:?} of {:?}, which glTF does not allow there", a.dimensions(), a.data_type()));
-    }
-    if a.count() == 0 || a.count() > MAX_ELEMENTS {
-        return Err(format!("{name} has {} elements (1 to {MAX_ELEMENTS})", a.count()));
-    }
-    let component = a.data_type().size();
-    if let Some(sparse) = a.sparse() {
-        let count = sparse.count();
-        if count == 0 || count > a.count() {
-            return Err(format!("{name} has {count} sparse elements (1 to its {} elements)", a.count()));
-        }
-        let (indices, values) = (sparse.indices(), sparse.values());
-        let index_size = indices.index_type().size();
-        within(&indices.view(), (indices.offset(), index_size), count, index_size, &name)?;
-        within(&values.view(), (values.offset(), component), count, a.size(), &name)?;
-        sparse_indices_rise(&indices, buffers, (count, a.count()), &name)?;
-    }
-    match a.view() {
-        Some(view) => within(&view, (a.offset(), component), a.count(), a.size(), &name),
-        None => Ok(()), // all zeros, or sparse only
-    }
-}
-
-/// That `count` elements of `size` bytes from `offset` in `view` (at its stride, which is
-/// no shorter than an element) lie within the view, and the view within its buffer; and that
-/// the offset, in the view and in the buffer, is a multiple of the `align` bytes of a
-/// component.
-fn within(
-    view: &gltf::buffer::View,
-    (offset, align): (usize, usize),
-    count: usize,
-    size: usize,
-    name: &str,
-) -> Result<(), String> {
-    let stride = view.stride().unwrap_or(size);
-    if stride < size {
-        return Err(format!(
-            "{name}: buffer view {} has a byteStride of {stride}, less than its {size}-byte elements",
-            view.index()
-        ));
-    }
-    if !offset.is_multiple_of(align) || !view.offset().wrapping_add(offset).is_multiple_of(align) {
-        let at = view.offset().wrapping_add(offset);
-        return Err(format!(
-            "{name} starts at byte {offset} of buffer view {} (byte {at} of its buffer), not a multiple of its {align}-byte components",
-            view.index()
-        ));
-    }
-    let end = (count - 1).checked_mul(stride).and_then(|n| n.checked_add(offset)).and_then(|n| n.checked_add(size));
-    if end.is_none_or(|end| end > view.length()) {
-        return Err(format!("{name} reaches past the end of its buffer view {}", view.index()));
-    }
-    if view.offset().checked_add(view.length()).is_none_or(|end| end > view.buffer().length()) {
-        return Err(format!("{name}: buffer view {} reaches past the end of its buffer", view.index()));
-    }
-    Ok(())
-}
-
-/// That the `count` sparse indices of an accessor of `elements` elements rise strictly and
-/// stay below `elements`, as the glTF spec asks (the reader would write past the accessor or
-/// substitute in an order the file did not mean). They lie within their view (`within`).
-fn sparse_indices_rise(
-    indices: &gltf::accessor::sparse::Indices,
-    buffers: &[Vec<u8>],
-    (count, elements): (usize, usize),
-    name: &str,
-) -> Result<(), String> {
-    let view = indices.view();
-    let size = indices.index_type().size();
-    let start = view.offset() + indices.offset();
-    let bytes = buffers.get(view.buffer().index()).and_then(|b| b.get(start..start + count * size));
-    let bytes = bytes.ok_or_else(|| format!("{name}: its sparse indices lie past its buffer"))?;
-    let mut last = None;
-    for (k, chunk) in bytes.chunks_exact(size).enumerate() {
-        let index = chunk.iter().rev().fold(0usize, |v, &b| (v << 8) | usize::from(b));
-        if index >= elements {
-            return Err(format!("{name}: sparse index {k} is {index}, past its {elements} elements"));
-        }
-        if last.is_some_and(|last| index <= last) {
-            return Err(format!(
-                "{name}: sparse index {k} is {index}, not above the one before (they must rise strictly)"
-            ));
-        }
-        last = Some(index);
-    }
-    Ok(())
 }
 
 /// That `read` elements came out of accessor `a`: all of them, or the data was not there.

@@ -3,7 +3,7 @@
 //! applied before the node's world transform. Each copy becomes an object of its own (a TLAS
 //! instance sharing the mesh's BLAS), as the extension means it.
 
-use super::geometry::check;
+use super::accessors::check;
 use glam::{Mat4, Quat, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 

@@ -1,5 +1,5 @@
-//! glTF animations sampled at a time: each channel's translation, rotation or scale of its
-//! node, by the sampler's interpolation (`STEP`, `LINEAR` with rotations by spherical
+//! glTF animations sampled at a time: each channel's translation, rotation, scale or morph
+//! target weights of its node, by the sampler's interpolation (`STEP`, `LINEAR` with rotations by spherical
 //! interpolation, `CUBICSPLINE` by Hermite splines of its tangents), integers normalized as
 //! glTF says. Before the first key a channel holds the first key's value, after the last the
 //! last's. The file's rules (keys rising, output counts and types) are `rules`'; every
@@ -30,12 +30,20 @@ impl Trs {
     }
 }
 
-/// The local matrix of every node animation `index` of `doc` moves, at `time` seconds: its
-/// rest transform with the channels' values in place of what they drive. Morph target
-/// weights are not posed (twinray does not morph yet).
-pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], index: usize, time: f32) -> BTreeMap<usize, Mat4> {
-    let mut posed: BTreeMap<usize, Trs> = BTreeMap::new();
-    let Some(animation) = doc.animations().nth(index) else { return BTreeMap::new() };
+/// What an animation sets at a time: the local matrix of every node it moves, and the morph
+/// target weights of every node whose weights it drives.
+#[derive(Default)]
+pub struct Posed {
+    pub matrices: BTreeMap<usize, Mat4>,
+    pub weights: BTreeMap<usize, Vec<f32>>,
+}
+
+/// What animation `index` of `doc` sets at `time` seconds: each node it moves at its rest
+/// transform with the channels' values in place of what they drive, and the weights it drives.
+pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], index: usize, time: f32) -> Posed {
+    let mut moved: BTreeMap<usize, Trs> = BTreeMap::new();
+    let mut weights = BTreeMap::new();
+    let Some(animation) = doc.animations().nth(index) else { return Posed::default() };
     let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
     for channel in animation.channels() {
         let node = channel.target().node();
@@ -43,7 +51,7 @@ pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], index: usize, time: f32) 
         let Some(times) = reader.read_inputs() else { continue };
         let times: Vec<f32> = times.collect();
         let interpolation = channel.sampler().interpolation();
-        let trs = posed.entry(node.index()).or_insert_with(|| Trs::rest(&node));
+        let trs = moved.entry(node.index()).or_insert_with(|| Trs::rest(&node));
         match reader.read_outputs() {
             Some(ReadOutputs::Translations(v)) => {
                 let values: Vec<Vec3> = v.map(Vec3::from).collect();
@@ -58,15 +66,39 @@ pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], index: usize, time: f32) 
                 let q = sample(&times, &values, interpolation, time, |a, b, s| a.slerp(b, s));
                 trs.rotation = q.normalize();
             }
-            Some(ReadOutputs::MorphTargetWeights(_)) | None => {}
+            Some(ReadOutputs::MorphTargetWeights(v)) => {
+                let values: Vec<f32> = v.into_f32().collect();
+                weights.insert(node.index(), sample_weights(&times, &values, interpolation, time));
+            }
+            None => {}
         }
     }
-    posed.into_iter().map(|(node, trs)| (node, trs.matrix())).collect()
+    let matrices = moved.into_iter().map(|(node, trs)| (node, trs.matrix())).collect();
+    Posed { matrices, weights }
+}
+
+/// The weights at `time` of a weights channel: its outputs hold, per key, one weight per
+/// target (for a cubic spline, the in-tangents of every target, then the values, then the
+/// out-tangents), so the targets are the outputs per key; each target's weight is sampled as
+/// a value of its own.
+fn sample_weights(times: &[f32], outputs: &[f32], interpolation: Interpolation, time: f32) -> Vec<f32> {
+    let per_key = if interpolation == Interpolation::CubicSpline { 3 } else { 1 };
+    let targets = outputs.len() / (times.len() * per_key);
+    (0..targets)
+        .map(|i| {
+            // Target i's own keys, in the layout `sample` reads (in, value, out per key when cubic).
+            let own: Vec<f32> = (0..times.len() * per_key)
+                .map(|j| outputs[(j / per_key) * per_key * targets + (j % per_key) * targets + i])
+                .collect();
+            sample(times, &own, interpolation, time, |a, b, s| a + (b - a) * s)
+        })
+        .collect()
 }
 
 /// What a value type needs for a cubic spline: sums and scaling.
 pub trait Spline: Copy + std::ops::Add<Output = Self> + std::ops::Mul<f32, Output = Self> {}
 impl Spline for Vec3 {}
+impl Spline for f32 {}
 impl Spline for Quat {}
 
 /// The value at `time` of keys at `times` (rising) with `values` (one per key, three per key
@@ -139,6 +171,22 @@ mod tests {
         // From 1 at 2 s to 3 at 4 s with slopes 1: the Hermite curve's midpoint is 2.
         assert!((at(3.0) - Vec3::X * 2.0).length() < 1e-6, "{}", at(3.0));
         assert_eq!(at(5.0), Vec3::X * 3.0);
+    }
+
+    /// Two targets' weights, one key per time: each target follows its own keys, and a
+    /// cubic spline's in-tangents, values and out-tangents are each a run of all targets.
+    #[test]
+    fn each_target_weight_is_sampled_from_its_own_keys() {
+        let outputs = [0.0, 1.0, 1.0, 0.0, 0.5, 0.5];
+        assert_eq!(sample_weights(&TIMES, &outputs, Interpolation::Linear, 1.5), [0.5, 0.5]);
+        assert_eq!(sample_weights(&TIMES, &outputs, Interpolation::Step, 3.0), [1.0, 0.0]);
+        assert_eq!(sample_weights(&TIMES, &outputs, Interpolation::Linear, 9.0), [0.5, 0.5]);
+        // Keys at 1 s and 2 s; target 0 from 0 to 1, target 1 from 1 to 0, every tangent 0.
+        let cubic = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0];
+        let mid = sample_weights(&TIMES[..2], &cubic, Interpolation::CubicSpline, 1.5);
+        assert!((mid[0] - 0.5).abs() < 1e-6 && (mid[1] - 0.5).abs() < 1e-6, "{mid:?}");
+        let early = sample_weights(&TIMES[..2], &cubic, Interpolation::CubicSpline, 1.25);
+        assert!(early[0] < 0.25 && early[1] > 0.75, "flat tangents ease out of the keys: {early:?}");
     }
 
     #[test]

@@ -1,14 +1,17 @@
 //! glTF 2.0 models (`.gltf` with separate or embedded buffers, `.glb`) as twinray scenes: one
 //! more way to fill the scene model TOML fills. Each triangle primitive of a mesh becomes a
-//! mesh shape (one BLAS, shared by every node that uses the mesh), each node that holds a mesh
-//! an object per primitive, placed by the node's world matrix; each material a diffuse
+//! mesh shape (one BLAS, shared by every node that uses the mesh; a node that morphs or skins
+//! it poses one of its own, `deform`), each node that holds a mesh an object per primitive,
+//! placed by the node's world matrix; each material a diffuse
 //! material of its base colour factor. The model's first camera is the scene's camera (else
 //! one framing its bounds) and its KHR_lights_punctual lights its lights (else one key light
 //! over the camera's shoulder): see docs/gltf.md. What the model has that twinray does not
 //! model is named in one notice per model; an extension the model requires and twinray lacks
 //! refuses it.
 
+mod accessors;
 mod buffers;
+mod deform;
 mod textures;
 pub use super::framing::{notice, Model};
 pub use buffers::SUPPORTED_EXTENSIONS;
@@ -111,10 +114,19 @@ fn model(loaded: buffers::Loaded, (scene, time): (Option<usize>, f32), name: &st
     let posed = keyframes::pose(doc, &buffers, 0, time);
     let mut placed = Vec::new();
     for node in scene.nodes() {
-        walk(node, (Mat4::IDENTITY, 0), &posed, &mut placed)?;
+        walk(node, (Mat4::IDENTITY, 0), &posed.matrices, &mut placed)?;
     }
 
-    let meshes = meshes(doc, &buffers, &mut ignored)?;
+    let mut meshes = meshes(doc, &buffers, &mut ignored)?;
+    let worlds: BTreeMap<usize, Mat4> = placed.iter().map(|(node, world)| (node.index(), *world)).collect();
+    let mut poses = BTreeMap::new();
+    let mut decoded = shared::Decoded::default();
+    for (node, _) in &placed {
+        if let Some(pose) = deform::Pose::of(node, &posed.weights, &worlds, &buffers)? {
+            posed_shapes(node, &pose, (&buffers, &mut decoded), &mut meshes)?;
+            poses.insert(node.index(), pose.joints.is_some());
+        }
+    }
     let mut objects = Vec::new();
     let mut materials = BTreeMap::new();
     let mut images = textures::Images::new();
@@ -122,14 +134,26 @@ fn model(loaded: buffers::Loaded, (scene, time): (Option<usize>, f32), name: &st
     let mut read = Read { files, images: &mut images, source: name };
     for (node, world) in &placed {
         let copies = instancing::copies(node, doc, &buffers, *world)?;
-        let placing = Placing { node, world: *world, copies: copies.as_deref(), meshes: &meshes };
+        let posed = poses.get(&node.index()).copied();
+        // A skinned mesh is placed by its joints alone (`deform`), once.
+        let (world, copies) = match posed {
+            Some(true) => {
+                if copies.is_some() {
+                    ignored.insert("EXT_mesh_gpu_instancing copies of a skinned node (drawn once)".into());
+                }
+                (Mat4::IDENTITY, None)
+            }
+            _ => (*world, copies),
+        };
+        let placing = Placing { node, world, copies: copies.as_deref(), meshes: &meshes, posed: posed.is_some() };
         objects.extend(placing.objects(&mut read, &mut materials, &mut ignored)?);
-        ignored.extend(node.skin().map(|_| "skins".to_string()));
-        ignored.extend(node.weights().map(|_| "morph target weights".to_string()));
     }
     if objects.is_empty() {
         return Err(format!("its scene places no triangles (ignored: {})", listed(&ignored)));
     }
+    // A mesh only its posing nodes use is not built at rest.
+    let used: BTreeSet<&str> = objects.iter().map(|o| o.shape.as_str()).collect();
+    meshes.retain(|name, _| used.contains(name.as_str()));
     let clips = doc.animations().len();
     ignored.extend((clips > 0).then(|| format!("animation over time (the first posed at {time} s)")));
     ignored.extend((clips > 1).then(|| format!("animations after the first ({})", clips - 1)));
@@ -161,12 +185,13 @@ fn walk<'a>(
 }
 
 /// A node to place: its world matrix, its copies' (`EXT_mesh_gpu_instancing`) where it has
-/// them, and the model's meshes.
+/// them, the model's meshes, and whether it poses its mesh (`posed_shapes`).
 struct Placing<'a, 'd> {
     node: &'a gltf::Node<'d>,
     world: Mat4,
     copies: Option<&'a [Mat4]>,
     meshes: &'a BTreeMap<String, MeshData>,
+    posed: bool,
 }
 
 impl Placing<'_, '_> {
@@ -191,7 +216,10 @@ impl Placing<'_, '_> {
                 continue;
             }
             for primitive in mesh.primitives() {
-                let shape = shape_name(&mesh, primitive.index());
+                let mut shape = shape_name(&mesh, primitive.index());
+                if self.posed {
+                    shape = posed_name(&shape, self.node);
+                }
                 if !self.meshes.contains_key(&shape) {
                     continue; // not triangles
                 }
@@ -209,6 +237,33 @@ impl Placing<'_, '_> {
     }
 }
 
+/// The triangle primitives of `node`'s mesh posed by `pose`, added to `meshes` under their
+/// names for the node (`posed_name`): a node's weights and joints are its own, so its posed
+/// mesh is too.
+fn posed_shapes(
+    node: &gltf::Node,
+    pose: &deform::Pose,
+    (buffers, decoded): (&[Vec<u8>], &mut shared::Decoded),
+    meshes: &mut BTreeMap<String, MeshData>,
+) -> Result<(), String> {
+    let Some(mesh) = node.mesh() else { return Ok(()) };
+    for primitive in mesh.primitives() {
+        let name = posed_name(&shape_name(&mesh, primitive.index()), node);
+        let mut bad_normals = false;
+        if let geometry::Outcome::Mesh(data) =
+            geometry::primitive(&primitive, buffers, (decoded, Some(pose)), &name, &mut bad_normals)?
+        {
+            meshes.insert(name, data);
+        }
+    }
+    Ok(())
+}
+
+/// The shape `shape` as node `node` poses it.
+fn posed_name(shape: &str, node: &gltf::Node) -> String {
+    format!("{shape} posed by node {}", node.index())
+}
+
 /// The triangle primitives of every mesh, by shape name.
 fn meshes(
     doc: &gltf::Document,
@@ -224,16 +279,17 @@ fn meshes(
         }
         for primitive in mesh.primitives() {
             let name = shape_name(&mesh, primitive.index());
-            match geometry::primitive(&primitive, buffers, &mut decoded, &name, &mut bad_normals)? {
+            match geometry::primitive(&primitive, buffers, (&mut decoded, None), &name, &mut bad_normals)? {
                 geometry::Outcome::Mesh(data) => drop(out.insert(name, data)),
                 geometry::Outcome::NotTriangles(mode) => drop(ignored.insert(format!("{mode:?} primitives"))),
             }
-            if primitive.morph_targets().len() > 0 {
-                ignored.insert("morph targets".into());
-            }
             for (semantic, _) in primitive.attributes() {
                 use gltf::Semantic as S;
-                if !matches!(semantic, S::Positions | S::Normals | S::TexCoords(0 | 1) | S::Colors(0)) {
+                let modelled = matches!(
+                    semantic,
+                    S::Positions | S::Normals | S::TexCoords(0 | 1) | S::Colors(0) | S::Joints(_) | S::Weights(_)
+                );
+                if !modelled {
                     ignored.insert(format!("attribute {}", semantic.to_string()));
                 }
             }

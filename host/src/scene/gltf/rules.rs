@@ -5,7 +5,7 @@
 //! a joint that is not there go?), so it is refused in one line naming the object, before
 //! anything is placed, whether or not twinray models the part that breaks the rule.
 
-use super::geometry::check as check_accessor;
+use super::accessors::check as check_accessor;
 use gltf::accessor::{DataType, Dimensions};
 use gltf::animation::{Interpolation, Property};
 use gltf::camera::Projection;

@@ -6,6 +6,7 @@ use base64::Engine as _;
 
 mod instancing;
 mod posed;
+mod rigs;
 pub(crate) mod rules;
 
 /// A square of two triangles in z = 0, four vertices.
