@@ -9,8 +9,13 @@ use base64::Engine as _;
 use std::path::Path;
 
 /// Extensions twinray reads, so a model may require them.
-pub const SUPPORTED_EXTENSIONS: [&str; 4] =
-    ["KHR_lights_punctual", "KHR_texture_transform", "KHR_materials_emissive_strength", super::instancing::EXTENSION];
+pub const SUPPORTED_EXTENSIONS: [&str; 5] = [
+    "KHR_lights_punctual",
+    "KHR_texture_transform",
+    "KHR_materials_emissive_strength",
+    "KHR_materials_unlit",
+    super::instancing::EXTENSION,
+];
 
 /// The parsed document and its buffers' bytes, in buffer order.
 pub struct Loaded {

@@ -347,10 +347,15 @@ fn material(
         info.map(|i| textures::read(i, &mut read.files, read.images, read.source, ignored).map(Box::new)).transpose()
     };
     let base = texture(pbr.base_color_texture())?;
-    let emissive = texture(m.emissive_texture())?;
-    let emission = emission(m, emissive, base.as_deref(), ignored);
+    let (color, emission) = if m.unlit() {
+        // KHR_materials_unlit: the base colour whatever lights the surface, which is a black
+        // surface emitting it (it still casts shadows and keeps its alpha).
+        ([0.0; 3], Some(Box::new(EmissionDesc { color: [r, g, b], intensity: 1.0, texture: base.clone() })))
+    } else {
+        let emissive = texture(m.emissive_texture())?;
+        ([r, g, b], emission(m, emissive, base.as_deref(), ignored))
+    };
     let texture = base;
-    let color = [r, g, b];
     // MASK: alpha-tested at the cutoff. BLEND is drawn the same way at 0.5 (a surface is
     // there where it is at least half opaque): twinray traces no transparency.
     let cutoff = match m.alpha_mode() {
@@ -377,7 +382,7 @@ fn material(
     };
     materials.insert(name.clone(), material);
     let found = [
-        (true, "metallic-roughness (shaded as diffuse)"),
+        (!m.unlit(), "metallic-roughness (shaded as diffuse)"),
         (m.normal_texture().is_some(), "normal maps"),
         (m.occlusion_texture().is_some(), "occlusion maps"),
     ];

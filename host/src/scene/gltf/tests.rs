@@ -202,6 +202,32 @@ fn emissive_factors_become_emission() {
     assert!(emission(with("{}")).is_none());
 }
 
+/// KHR_materials_unlit shows the base colour and texture whatever the lights: a black
+/// surface that emits them, alpha-tested as any other.
+#[test]
+fn unlit_materials_emit_their_base_colour() {
+    let text = square(None, ONE_NODE, r#", "material": 0"#).replacen(
+        r#""scenes""#,
+        r#""materials": [{"pbrMetallicRoughness": {"baseColorFactor": [0.2, 0.4, 0.6, 0.5]}, "emissiveFactor": [1, 1, 1],
+            "alphaMode": "MASK", "extensions": {"KHR_materials_unlit": {}}}],
+          "extensionsUsed": ["KHR_materials_unlit"], "extensionsRequired": ["KHR_materials_unlit"], "scenes""#,
+        1,
+    );
+    let model = load_text(&text).expect("an unlit material");
+    let MaterialDesc::Cutout { color, emission: Some(emission), opacity, .. } =
+        model.file.materials.into_values().next().unwrap()
+    else {
+        panic!("not an alpha-tested material with emission")
+    };
+    assert_eq!((color, opacity), ([0.0; 3], 0.5));
+    assert_eq!(
+        (emission.color, emission.intensity),
+        ([0.2, 0.4, 0.6], 1.0),
+        "the base colour, not the emissive factor"
+    );
+    assert!(!model.ignored.iter().any(|i| i.contains("unlit") || i.contains("metallic")), "{:?}", model.ignored);
+}
+
 /// `load` refuses `text`, saying `why`.
 fn refused(text: &str, why: &str) {
     match load_text(text) {
