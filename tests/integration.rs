@@ -13,6 +13,7 @@ mod crosscheck;
 mod cutout;
 mod docs;
 mod explain;
+mod gltf_clips;
 mod gltf_copies;
 mod layout;
 mod libraries;

@@ -40,14 +40,14 @@ fn modes(text: &str, rebuild_every: u32) -> Result<Vec<TlasMode>, Error> {
 
 pub fn animate_bench(global: &GlobalArgs, args: AnimateBenchArgs) -> Result<ExitCode> {
     let modes = modes(&args.modes, args.rebuild_every)?;
-    let (text, source, mesh_files) = Scene::read(Some(&args.scene))?;
-    let scenes = instance_counts(&args.instances)?
-        .into_iter()
-        .map(|n| Scene::parse(&resize_grid(&text, n)?, &source, mesh_files.clone()))
-        .collect::<Result<Vec<_>, _>>()?;
+    let scenes = scenes(&args)?;
     let first = &scenes[0];
     if first.animation.is_none() {
-        return Err(Error::Input(format!("{}: a still scene; animate-bench needs an [animation]", args.scene)).into());
+        return Err(Error::Input(format!(
+            "{}: a still scene; animate-bench needs an [animation], or a glTF model's animation",
+            args.scene
+        ))
+        .into());
     }
     let frames = args.frames.unwrap_or(first.frame_count());
     twinray_host::render::frames::check_frames(first, &(0..frames))?;
@@ -80,14 +80,37 @@ pub fn animate_bench(global: &GlobalArgs, args: AnimateBenchArgs) -> Result<Exit
     Ok(ExitCode::SUCCESS)
 }
 
+/// The scene at each instance count; a glTF model as it is (its clip is what moves).
+fn scenes(args: &AnimateBenchArgs) -> Result<Vec<Scene>, Error> {
+    if twinray_host::scene::gltf::is_gltf(std::path::Path::new(&args.scene)) {
+        if args.instances.is_some() {
+            return Err(Error::Input(format!(
+                "{}: --instances resizes a scene file's grid; a glTF model is measured as it is",
+                args.scene
+            )));
+        }
+        return Ok(vec![Scene::load(Some(&args.scene))?]);
+    }
+    let (text, source, mesh_files) = Scene::read(Some(&args.scene))?;
+    instance_counts(args.instances.as_deref().unwrap_or(DEFAULT_INSTANCES))?
+        .into_iter()
+        .map(|n| Scene::parse(&resize_grid(&text, n)?, &source, mesh_files.clone()))
+        .collect()
+}
+
+const DEFAULT_INSTANCES: &str = "1000,10000,100000";
+
 #[derive(Args)]
 pub struct AnimateBenchArgs {
-    /// A moving scene with a [[grids]] table (its first grid is resized) [default: swarm].
+    /// A moving scene with a [[grids]] table (its first grid is resized), or a glTF model with
+    /// an animation, measured as it is: a skinned or morphed one refits its meshes' BLASes
+    /// where the TLAS is updated and rebuilds them where it is rebuilt [default: swarm].
     #[arg(default_value = "swarm")]
     pub scene: String,
-    /// Instance counts, comma-separated (each made an n x n grid, n the nearest square root).
-    #[arg(long, default_value = "1000,10000,100000")]
-    pub instances: String,
+    /// Instance counts, comma-separated (each made an n x n grid, n the nearest square root)
+    /// [default: 1000,10000,100000]; not for a glTF model.
+    #[arg(long)]
+    pub instances: Option<String>,
     /// TLAS modes, comma-separated: rebuild, fast-build, update.
     #[arg(long, default_value = "rebuild,fast-build,update")]
     pub modes: String,

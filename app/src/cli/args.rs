@@ -71,6 +71,11 @@ pub struct GlobalArgs {
     /// moves placed where its keys put it then [default: 0, the animation's start].
     #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_time)]
     pub time: Option<f32>,
+    /// Frames per second at which a glTF model's first animation is played over frames
+    /// (`--frames`): frame k shows it at --time plus k / FPS seconds, up to its last key
+    /// [default: 24].
+    #[arg(long, global = true, value_name = "FPS", value_parser = parse_fps)]
+    pub fps: Option<f32>,
     /// What PNGs of radiance do with values above 1 before the sRGB encoding: clip each
     /// channel, or map it by c / (1 + c) (reinhard). EXR output and every metric stay linear.
     #[arg(long, global = true, value_enum, value_name = "MAP", default_value_t = twinray_host::util::srgb::ToneMap::Clip)]
@@ -150,6 +155,15 @@ fn parse_time(text: &str) -> Result<f32, String> {
         return Err(format!("{seconds} is not a time in seconds (0 or more)"));
     }
     Ok(seconds)
+}
+
+fn parse_fps(text: &str) -> Result<f32, String> {
+    let fps: f32 = text.trim().parse().map_err(|_| format!("{text:?} is not a number of frames per second"))?;
+    let most = twinray_host::scene::animation::MAX_FPS;
+    if !(fps.is_finite() && fps > 0.0 && fps <= most) {
+        return Err(format!("{fps} frames per second is not in (0, {most}]"));
+    }
+    Ok(fps)
 }
 
 fn parse_timeout(text: &str) -> Result<std::time::Duration, String> {

@@ -175,7 +175,10 @@ fn main() -> ExitCode {
     crash::quiet_caught_panics();
     let _command = activity::doing(format!("twinray {}", matches.subcommand_name().unwrap_or_default()));
     twinray_host::util::srgb::set_tone_map(cli.global.tone_map);
-    twinray_host::scene::gltf::set_pose_time(cli.global.time.unwrap_or(0.0));
+    twinray_host::scene::gltf::set_playing(twinray_host::scene::gltf::Playing {
+        time: cli.global.time.unwrap_or(0.0),
+        fps: cli.global.fps.unwrap_or(twinray_host::scene::gltf::DEFAULT_FPS),
+    });
     if let Some(Err(e)) = cli.global.asset_root.as_deref().map(twinray_host::util::input::set_asset_root) {
         eprintln!("error: {e}");
         return ExitCode::from(2);

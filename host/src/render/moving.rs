@@ -12,7 +12,7 @@ use super::upload::{upload_moving, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::animation::Moves;
 use crate::scene::file::SceneFile;
-use crate::scene::{check_size, frame_data, Aabb, Scene};
+use crate::scene::{check_size, frame_data, Aabb, BlasDesc, Scene};
 use crate::sets::ShaderSet;
 use crate::util::activity;
 use crate::vk::accel::InstanceRecord;
@@ -58,7 +58,13 @@ impl<'a> FrameRenderer<'a> {
         check_size(opts.width, opts.height).map_err(Error::Input)?;
         check_device_limits(ctx, opts)?;
         let start = scene.at_frame(first);
-        let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags())?;
+        let moves = scene.animation.as_ref().map(|a| a.moves()).unwrap_or_default();
+        // The meshes a clip poses (skins, morph targets): their BLASes follow their vertices.
+        let posed: Vec<String> = match (&scene.animation, moves.meshes) {
+            (Some(a), true) => a.meshes(first).into_iter().map(|(shape, _)| shape).collect(),
+            _ => Vec::new(),
+        };
+        let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags(), &posed)?;
         let outputs = SharedOutputs::new(ctx, opts)?;
         // One place per set: the pipelines in SBT order (`super::layout`).
         let made = made_as_context_says(ctx, sets);
@@ -75,7 +81,7 @@ impl<'a> FrameRenderer<'a> {
             uploaded,
             one_shot: OneShot::new(ctx)?,
             timer: Timestamps::new(ctx, 1)?,
-            moves: scene.animation.as_ref().map(|a| a.moves()).unwrap_or_default(),
+            moves,
             posed: start.file,
             warm: Vec::new(),
             done: 0,
@@ -89,7 +95,8 @@ impl<'a> FrameRenderer<'a> {
     pub fn render(&mut self, frame: u32, warm_each: bool) -> Result<Frame> {
         let i = self.done;
         self.done += 1;
-        let work = if i == 0 || self.moves.objects { self.mode.work(i) } else { AsWork::None };
+        let moved = self.moves.objects || self.moves.meshes;
+        let work = if i == 0 || moved { self.mode.work(i) } else { AsWork::None };
         self.rewrite(frame, i, work)?;
         let ctx = &self.ctx;
         let _doing = activity::doing(format!("frame {frame}"));
@@ -149,6 +156,9 @@ impl<'a> FrameRenderer<'a> {
         if work != AsWork::None {
             resources.place(&mut self.records, &self.uploaded.data.instances, &data.transforms)?;
         }
+        if self.moves.meshes {
+            self.rewrite_meshes(frame)?;
+        }
         // Moving objects move the scene's bounds, and with them the rays' reach.
         if self.moves.camera || self.moves.objects {
             resources.write(b::BINDING_FRAME, bytemuck::bytes_of(&data.uniform))?;
@@ -160,7 +170,29 @@ impl<'a> FrameRenderer<'a> {
         Ok(())
     }
 
-    /// The warm-up traces `warm`, then the TLAS work between timestamps: its GPU milliseconds.
+    /// Writes the vertices of the meshes the clip poses at `frame` over theirs, for their
+    /// BLASes to follow (`tlas_work`).
+    fn rewrite_meshes(&self, frame: u32) -> Result<()> {
+        let animation = self.scene.animation.as_ref().expect("meshes move only in an animation");
+        let resources = &self.uploaded.resources;
+        for (shape, mesh) in animation.meshes(frame) {
+            let Some((_, base, blas, _)) = resources.moving.iter().find(|m| m.0 == shape) else {
+                return Err(Error::Input(format!("frame {frame}: {shape} is posed but was not at the first frame")));
+            };
+            let BlasDesc::Triangles { vertex_count, .. } = self.uploaded.data.blases[*blas] else { continue };
+            if mesh.vertices.len() != vertex_count as usize {
+                return Err(Error::Input(format!(
+                    "frame {frame}: {shape} has {} vertices posed, {vertex_count} at the first frame",
+                    mesh.vertices.len()
+                )));
+            }
+            resources.write_vertices(*base, &mesh.vertices)?;
+        }
+        Ok(())
+    }
+
+    /// The warm-up traces `warm`, then the acceleration structures' work between timestamps
+    /// (the posed meshes' BLASes, then the TLAS over them): its GPU milliseconds.
     fn tlas_work(&self, work: AsWork, warm: &[Trace]) -> Result<Option<f64>> {
         if work == AsWork::None && warm.is_empty() {
             return Ok(None);
@@ -173,6 +205,9 @@ impl<'a> FrameRenderer<'a> {
                 if let Some(t) = timer {
                     t.reset(cmd);
                     t.begin(cmd, 0);
+                }
+                for (.., blas) in &self.uploaded.resources.moving {
+                    blas.record(&self.ctx, cmd, work == AsWork::Update);
                 }
                 tlas.record(&self.ctx, cmd, work == AsWork::Update);
                 if let Some(t) = timer {

@@ -10,6 +10,7 @@ use crate::vk::accel::{
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
+use crate::vk::refit::MovingBlas;
 use crate::vk::texture::Texture;
 use ash::vk;
 use glam::Mat4;
@@ -26,6 +27,9 @@ const VERTEX_BYTES: u64 = size_of::<twinray_shared::layout::Vertex>() as u64;
 /// can be rewritten between submissions (moving scenes), never during one.
 pub(crate) struct SceneResources {
     _blases: Vec<AccelStruct>,
+    /// The BLASes of meshes whose vertices move: shape name, first vertex, BLAS index among
+    /// the scene's, and the structure.
+    pub moving: Vec<(String, u32, usize, MovingBlas)>,
     /// The texture array's slots, slot 0 first (`textures::upload_textures`).
     pub textures: Vec<Texture>,
     pub tlas: RefCell<Tlas>,
@@ -45,6 +49,16 @@ impl SceneResources {
 }
 
 impl SceneResources {
+    /// Rewrites the vertices from vertex `base` on (a posed mesh's), for its BLAS to be
+    /// refitted or rebuilt (`MovingBlas::record`).
+    pub fn write_vertices(&self, base: u32, vertices: &[twinray_shared::layout::Vertex]) -> Result<()> {
+        let mut buffers = self.buffers.borrow_mut();
+        let Some((.., buffer)) = buffers.iter_mut().find(|(b, ..)| *b == b::BINDING_VERTICES) else {
+            return Err(crate::error::Error::Unsupported("the scene has no vertex buffer".into()));
+        };
+        buffer.write_at(base as usize * VERTEX_BYTES as usize, bytemuck::cast_slice(vertices))
+    }
+
     /// Writes each instance's transform, `transforms[object]` for its object, into `records` and
     /// the TLAS's instances, for the caller to rebuild or update (`Tlas::record`).
     pub fn place(&self, records: &mut [InstanceRecord], instances: &[InstanceDesc], transforms: &[Mat4]) -> Result<()> {
@@ -108,21 +122,23 @@ pub(crate) fn upload_shared(ctx: &Arc<Context>, scene: &Scene, frame: (u32, u32)
 }
 
 /// As `upload_shared`, with a TLAS made with `flags` but not built: the caller builds it,
-/// frame after frame, with `Tlas::record`.
+/// frame after frame, with `Tlas::record`. The BLASes of the mesh shapes named in `moving`
+/// are made with `flags` too, for the caller to refit or rebuild (`SceneResources::moving`).
 pub(crate) fn upload_moving(
     ctx: &Arc<Context>,
     scene: &Scene,
     frame: (u32, u32),
     flags: TlasFlags,
+    moving: &[String],
 ) -> Result<UploadedScene> {
-    upload_scene(ctx, scene, frame, Some(flags))
+    upload_scene(ctx, scene, frame, Some((flags, moving)))
 }
 
 fn upload_scene(
     ctx: &Arc<Context>,
     scene: &Scene,
     (width, height): (u32, u32),
-    moving: Option<TlasFlags>,
+    moving: Option<(TlasFlags, &[String])>,
 ) -> Result<UploadedScene> {
     let _doing = crate::util::activity::doing(format!("building the acceleration structures of {}", scene.name()));
     let started = std::time::Instant::now();
@@ -138,10 +154,27 @@ fn upload_scene(
     let vertices = upload_parts(ctx, "vertices", data.vertices.parts().map(bytemuck::cast_slice), mesh_usage)?;
     let indices = upload_parts(ctx, "indices", data.indices.parts().map(bytemuck::cast_slice), mesh_usage)?;
     let (vertex_address, index_address) = (vertices.device_address(), indices.device_address());
+    let (flags, moving_shapes) = moving.unwrap_or((TlasFlags::FastTrace, &[]));
+    let mut moving_blases = Vec::new();
+    for shape in moving_shapes {
+        let Some(object) = scene.file.objects.iter().position(|o| o.shape == *shape) else { continue };
+        let i = data.instances[object].blas;
+        let BlasDesc::Triangles { vertex_base, vertex_count, index_base, index_count } = data.blases[i] else {
+            continue;
+        };
+        let vertices = (vertex_address + u64::from(vertex_base) * VERTEX_BYTES, VERTEX_BYTES, vertex_count);
+        let indices = (index_address + u64::from(index_base) * 4, index_count);
+        let blas = MovingBlas::new(ctx, one_shot, vertices, indices, flags)?;
+        moving_blases.push((shape.clone(), vertex_base, i, blas));
+    }
+    let moving_indices: Vec<usize> = moving_blases.iter().map(|m| m.2).collect();
     let blases = data
         .blases
         .iter()
-        .map(|blas| match blas {
+        .enumerate()
+        .map(|(i, blas)| match blas {
+            // A moving mesh's BLAS is its `MovingBlas`.
+            _ if moving_indices.contains(&i) => Ok(None),
             BlasDesc::Aabbs(aabbs) => {
                 let boxes: Vec<_> = aabbs
                     .iter()
@@ -154,7 +187,7 @@ fn upload_scene(
                         max_z: b.max.z,
                     })
                     .collect();
-                build_aabb_blas(ctx, one_shot, &boxes)
+                build_aabb_blas(ctx, one_shot, &boxes).map(Some)
             }
             BlasDesc::Triangles { vertex_base, vertex_count, index_base, index_count } => build_triangle_blas(
                 ctx,
@@ -164,9 +197,14 @@ fn upload_scene(
                 *vertex_count,
                 index_address + u64::from(*index_base) * 4,
                 *index_count,
-            ),
+            )
+            .map(Some),
         })
         .collect::<Result<Vec<_>>>()?;
+    let address = |i: usize| match &blases[i] {
+        Some(blas) => blas.address,
+        None => moving_blases.iter().find(|m| m.2 == i).map_or(0, |m| m.3.accel.address),
+    };
     let instances: Vec<_> = data
         .instances
         .iter()
@@ -177,11 +215,11 @@ fn upload_scene(
             sbt_offset: i.hit_group,
             opaque: !data.plan.hit_groups.get(i.hit_group as usize).is_some_and(|g| g.cutout),
             single_sided: i.single_sided,
-            blas_address: blases[i.blas].address,
+            blas_address: address(i.blas),
         })
         .collect();
     let tlas = match moving {
-        Some(flags) => Tlas::new(ctx, &instances, flags)?,
+        Some((flags, _)) => Tlas::new(ctx, &instances, flags)?,
         None => build_tlas(ctx, one_shot, &instances)?,
     };
     let frame = crate::scene::frame_uniform(&scene.file, width, height, &built.world_boxes());
@@ -195,6 +233,7 @@ fn upload_scene(
         (b::BINDING_VERTICES, storage, vertices),
         (b::BINDING_INDICES, storage, indices),
     ];
+    let all_blases = || blases.iter().flatten().chain(moving_blases.iter().map(|m| &m.3.accel));
     let accel = AccelStats {
         blases: blases.len(),
         triangles: data.indices.len() as u64 / 3,
@@ -208,15 +247,20 @@ fn upload_scene(
             .sum(),
         procedural_primitives: data.primitives.len() as u64,
         instances: instances.len(),
-        blas_built_bytes: blases.iter().map(|b| b.built_bytes).sum(),
-        blas_bytes: blases.iter().map(|b| b.bytes).sum(),
+        blas_built_bytes: all_blases().map(|b| b.built_bytes).sum(),
+        blas_bytes: all_blases().map(|b| b.bytes).sum(),
         tlas_bytes: tlas.accel.bytes,
         build_ms: started.elapsed().as_secs_f64() * 1e3,
     };
     log::info!("scene {}: {accel}", scene.name());
     let textures = upload_textures(ctx, one_shot, &data.textures)?;
-    let resources =
-        SceneResources { _blases: blases, textures, tlas: RefCell::new(tlas), buffers: RefCell::new(buffers) };
+    let resources = SceneResources {
+        _blases: blases.into_iter().flatten().collect(),
+        moving: moving_blases,
+        textures,
+        tlas: RefCell::new(tlas),
+        buffers: RefCell::new(buffers),
+    };
     Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel, object_bounds: OnceCell::new() })
 }
 

@@ -16,6 +16,8 @@ pub struct Model {
     pub file: SceneFile,
     pub meshes: BTreeMap<String, MeshData>,
     pub ignored: BTreeSet<String>,
+    /// Its own animation, played over frames (a glTF clip); `None` for a still model.
+    pub clip: Option<std::sync::Arc<dyn super::animation::Clip>>,
 }
 
 /// Height of the image of a model whose camera gives no aspect ratio; width from 4:3.

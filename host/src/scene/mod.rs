@@ -109,7 +109,9 @@ impl Scene {
 
     /// The scene of a glTF model read from `source`, checked as a scene file is.
     pub fn from_model(model: gltf::Model, source: &str) -> Result<Scene> {
-        Scene::from_file(model.file, source, MeshFiles::Given(model.meshes), &[])
+        let mut scene = Scene::from_file(model.file, source, MeshFiles::Given(model.meshes), &[])?;
+        scene.animation = model.clip.map(|clip| Animation::playing(clip, &scene.file));
+        Ok(scene)
     }
 
     /// The text of the scene `load` would load, the name it goes by in errors, and where its
@@ -338,6 +340,9 @@ impl Scene {
     pub fn at_frame(&self, frame: u32) -> Scene {
         let mut still = self.clone();
         self.pose(frame, &mut still.file);
+        for (shape, mesh) in self.animation.iter().flat_map(|a| a.meshes(frame)) {
+            still.meshes.insert(shape, Arc::new(mesh));
+        }
         still.file.animation = None;
         still.animation = None;
         still

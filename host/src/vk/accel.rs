@@ -80,6 +80,18 @@ pub fn build_triangle_blas(
     indices: vk::DeviceAddress,
     index_count: u32,
 ) -> Result<AccelStruct> {
+    let geometry = triangles(vertices, vertex_stride, vertex_count, indices);
+    build(ctx, one_shot, geometry, index_count / 3, "mesh blas")
+}
+
+/// The geometry of one opaque mesh: `vertex_count` vertices of `vertex_stride` bytes (an f32
+/// position at offset 0) from `vertices`, u32 indices from `indices` (device addresses).
+pub(super) fn triangles(
+    vertices: vk::DeviceAddress,
+    vertex_stride: u64,
+    vertex_count: u32,
+    indices: vk::DeviceAddress,
+) -> vk::AccelerationStructureGeometryKHR<'static> {
     let data = vk::AccelerationStructureGeometryTrianglesDataKHR::default()
         .vertex_format(vk::Format::R32G32B32_SFLOAT)
         .vertex_data(vk::DeviceOrHostAddressConstKHR { device_address: vertices })
@@ -87,11 +99,10 @@ pub fn build_triangle_blas(
         .max_vertex(vertex_count.saturating_sub(1))
         .index_type(vk::IndexType::UINT32)
         .index_data(vk::DeviceOrHostAddressConstKHR { device_address: indices });
-    let geometry = vk::AccelerationStructureGeometryKHR::default()
+    vk::AccelerationStructureGeometryKHR::default()
         .geometry_type(vk::GeometryTypeKHR::TRIANGLES)
         .geometry(vk::AccelerationStructureGeometryDataKHR { triangles: data })
-        .flags(vk::GeometryFlagsKHR::OPAQUE);
-    build(ctx, one_shot, geometry, index_count / 3, "mesh blas")
+        .flags(vk::GeometryFlagsKHR::OPAQUE)
 }
 
 /// How a TLAS is built: the `VkBuildAccelerationStructureFlagsKHR` it is built with.
@@ -106,7 +117,7 @@ pub enum TlasFlags {
 }
 
 impl TlasFlags {
-    fn raw(self) -> vk::BuildAccelerationStructureFlagsKHR {
+    pub(super) fn raw(self) -> vk::BuildAccelerationStructureFlagsKHR {
         type F = vk::BuildAccelerationStructureFlagsKHR;
         match self {
             TlasFlags::FastTrace => F::PREFER_FAST_TRACE,
@@ -183,21 +194,36 @@ impl Tlas {
         if mode == vk::BuildAccelerationStructureModeKHR::UPDATE {
             info = info.src_acceleration_structure(self.accel.raw);
         }
-        // Earlier traces read the structure and earlier builds wrote it and the scratch.
-        let earlier = (
-            TRACING_STAGES | vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
-            vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR | vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
-        );
-        let build = (
-            vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
-            vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR | vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
-        );
-        memory_barrier(&ctx.device, cmd, earlier, build);
-        let range = [vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(self.count)];
         // SAFETY: the instance, storage and scratch buffers live as long as self.
-        unsafe { ctx.accel.cmd_build_acceleration_structures(cmd, &[info], &[&range]) };
-        memory_barrier(&ctx.device, cmd, build, built_for_reading());
+        unsafe { record_between_barriers(ctx, cmd, info, self.count) };
     }
+}
+
+/// Records the build or update `info` of `count` primitives between barriers: after every
+/// earlier trace and build, before every later one.
+///
+/// # Safety
+/// Every buffer `info` names must live until the command buffer has completed.
+pub(super) unsafe fn record_between_barriers(
+    ctx: &Context,
+    cmd: vk::CommandBuffer,
+    info: vk::AccelerationStructureBuildGeometryInfoKHR<'_>,
+    count: u32,
+) {
+    // Earlier traces read the structure and earlier builds wrote it and the scratch.
+    let earlier = (
+        TRACING_STAGES | vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
+        vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR | vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
+    );
+    let build = (
+        vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR,
+        vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR | vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR,
+    );
+    memory_barrier(&ctx.device, cmd, earlier, build);
+    let range = [vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(count)];
+    // SAFETY: the caller keeps every buffer alive.
+    unsafe { ctx.accel.cmd_build_acceleration_structures(cmd, &[info], &[&range]) };
+    memory_barrier(&ctx.device, cmd, build, built_for_reading());
 }
 
 /// A TLAS over `instances`, built once.
@@ -219,7 +245,7 @@ fn instances_geometry(instances: &Buffer) -> [vk::AccelerationStructureGeometryK
         .geometry(vk::AccelerationStructureGeometryDataKHR { instances: data })]
 }
 
-fn build_info<'a>(
+pub(super) fn build_info<'a>(
     ty: vk::AccelerationStructureTypeKHR,
     flags: vk::BuildAccelerationStructureFlagsKHR,
     geometries: &'a [vk::AccelerationStructureGeometryKHR<'a>],
@@ -240,7 +266,7 @@ fn built_for_reading() -> (vk::PipelineStageFlags, vk::AccessFlags) {
 }
 
 /// An acceleration structure of the size `info` over `primitive_count` needs, and the sizes.
-fn allocate(
+pub(super) fn allocate(
     ctx: &Arc<Context>,
     info: &vk::AccelerationStructureBuildGeometryInfoKHR<'_>,
     primitive_count: u32,
@@ -285,7 +311,7 @@ fn allocate_sized(
 
 /// A scratch buffer of `size` bytes and its address, aligned to
 /// minAccelerationStructureScratchOffsetAlignment (over-allocated, then rounded up).
-fn scratch(ctx: &Arc<Context>, size: u64) -> Result<(Buffer, vk::DeviceAddress)> {
+pub(super) fn scratch(ctx: &Arc<Context>, size: u64) -> Result<(Buffer, vk::DeviceAddress)> {
     let align = u64::from(ctx.info.min_scratch_offset_alignment.max(1));
     let buffer = Buffer::new(
         ctx,

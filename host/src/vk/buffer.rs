@@ -51,6 +51,18 @@ impl Buffer {
         self.write_parts(std::iter::once(data))
     }
 
+    /// Copies `data` into a host-visible buffer at byte `offset`; the GPU must not be using
+    /// that range.
+    pub fn write_at(&mut self, offset: usize, data: &[u8]) -> Result<()> {
+        let mapped = self.mapped_mut()?;
+        let capacity = mapped.len();
+        let target = mapped.get_mut(offset..offset + data.len()).ok_or_else(|| {
+            Error::Unsupported(format!("writing {} bytes at {offset} into a buffer of {capacity}", data.len()))
+        })?;
+        target.copy_from_slice(data);
+        Ok(())
+    }
+
     /// Copies `parts` end to end from the start of a host-visible buffer large enough for
     /// them all.
     pub fn write_parts<'a>(&mut self, parts: impl Iterator<Item = &'a [u8]>) -> Result<()> {

@@ -13,6 +13,7 @@ pub mod image;
 pub mod kept;
 pub mod pipeline;
 pub mod pipeline_cache;
+pub mod refit;
 pub mod sbt;
 pub mod texture;
 pub mod timing;

@@ -7,7 +7,7 @@ pub mod format;
 mod pose;
 mod resolve;
 
-pub use pose::{Animation, Cycle, Motion, MotionKind, Moves, Property, Target, Track};
+pub use pose::{Animation, Clip, Cycle, Motion, MotionKind, Moves, Property, Target, Track};
 pub use resolve::{resolve, MAX_FPS, MAX_FRAMES};
 
 #[cfg(test)]

@@ -3,8 +3,10 @@
 
 use super::format::Interpolation;
 use crate::scene::file::{LightDesc, Scale, SceneFile};
+use crate::scene::mesh::MeshData;
 use glam::{EulerRot, Quat, Vec3};
 use std::ops::Range;
+use std::sync::Arc;
 
 /// What a track or motion moves.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -98,6 +100,8 @@ pub struct Moves {
     pub objects: bool,
     pub lights: bool,
     pub camera: bool,
+    /// Meshes: their vertices change (skins, morph targets), and their BLASes with them.
+    pub meshes: bool,
 }
 
 /// A checked `[animation]`.
@@ -114,21 +118,42 @@ pub struct Animation {
     /// rotation and scale it takes, so that a model's parts move as one. `None`: the
     /// objects are `rest`'s.
     pub owners: Option<Vec<usize>>,
+    /// What poses the scene where a model's own animation moves it (a glTF clip) rather than
+    /// `[animation]`'s tracks and motions, which are then empty.
+    pub clip: Option<Arc<dyn Clip>>,
+}
+
+/// A model's own animation: it poses the scene at a time, as its file says.
+pub trait Clip: std::fmt::Debug + Send + Sync {
+    /// Seconds at frame 0.
+    fn start(&self) -> f32;
+    fn fps(&self) -> f32;
+    fn frames(&self) -> u32;
+    /// What it moves.
+    fn moves(&self) -> Moves;
+    /// Writes the values at `time` seconds of what it moves into `out`, a copy of the scene.
+    fn pose(&self, time: f32, out: &mut SceneFile);
+    /// The meshes it poses (skins, morph targets) at `time` seconds, by shape name.
+    fn meshes(&self, time: f32) -> Vec<(String, MeshData)>;
 }
 
 impl Animation {
     /// Seconds at frame `frame`.
     pub fn time(&self, frame: u32) -> f32 {
-        frame as f32 / self.fps
+        self.clip.as_ref().map_or(0.0, |c| c.start()) + frame as f32 / self.fps
     }
 
     /// What changes from frame to frame: only that is rewritten on the GPU.
     pub fn moves(&self) -> Moves {
+        if let Some(clip) = &self.clip {
+            return clip.moves();
+        }
         let any = |f: fn(&Target) -> bool| self.targets().any(f);
         Moves {
             objects: any(|t| matches!(t, Target::Objects(_))),
             lights: any(|t| matches!(t, Target::Light(_))),
             camera: any(|t| matches!(t, Target::Camera)),
+            meshes: false,
         }
     }
 
@@ -141,6 +166,9 @@ impl Animation {
     /// applied in file order; with `owners`, on the objects as written, whose placement
     /// each part then takes.
     pub fn pose(&self, frame: u32, out: &mut SceneFile) {
+        if let Some(clip) = &self.clip {
+            return clip.pose(self.time(frame), out);
+        }
         let Some(owners) = &self.owners else { return self.pose_written(frame, out) };
         let mut written = (*self.rest).clone();
         self.pose_written(frame, &mut written);
@@ -149,6 +177,18 @@ impl Animation {
             let o = &written.objects[owner];
             (part.translate, part.rotate, part.scale) = (o.translate, o.rotate, o.scale);
         }
+    }
+
+    /// The meshes posed at frame `frame` (a clip's skins and morph targets), by shape name.
+    pub fn meshes(&self, frame: u32) -> Vec<(String, MeshData)> {
+        self.clip.as_ref().map_or_else(Vec::new, |c| c.meshes(self.time(frame)))
+    }
+
+    /// An animation that plays `clip`, a model's own, over the scene `rest`.
+    pub fn playing(clip: Arc<dyn Clip>, rest: &SceneFile) -> Animation {
+        let (frames, fps) = (clip.frames(), clip.fps());
+        let rest = Box::new(rest.clone());
+        Animation { frames, fps, tracks: Vec::new(), motions: Vec::new(), rest, owners: None, clip: Some(clip) }
     }
 
     /// `pose` of a scene whose objects are `rest`'s.

@@ -55,7 +55,7 @@ pub fn resolve(desc: &AnimationDesc, scene: &SceneFile, grids: &[std::ops::Range
         ));
     }
     let rest = Box::new(scene.clone());
-    let animation = Animation { frames: desc.frames, fps: desc.fps, tracks, motions, rest, owners: None };
+    let animation = Animation { frames: desc.frames, fps: desc.fps, tracks, motions, rest, owners: None, clip: None };
     check_frames(&animation, scene)?;
     Ok(animation)
 }

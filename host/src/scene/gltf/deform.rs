@@ -23,7 +23,8 @@ pub struct Pose {
 }
 
 impl Pose {
-    /// The pose of `node`'s mesh, or `None` where nothing moves (no skin, every weight 0).
+    /// The pose of `node`'s mesh, or `None` where nothing moves (no skin, no animated weights,
+    /// every weight 0).
     /// Its weights are those the animation set (`animated`), else the node's, else the
     /// mesh's, else 0; its joints' world matrices are in `worlds`.
     pub fn of(
@@ -42,7 +43,9 @@ impl Pose {
         };
         let weights = (0..targets).map(|i| weights.get(i).copied().unwrap_or(0.0)).collect::<Vec<_>>();
         let joints = node.skin().map(|skin| joint_matrices(&skin, worlds, buffers)).transpose()?;
-        let moves = joints.is_some() || weights.iter().any(|&w| w != 0.0);
+        // Weights an animation drives pose the mesh even where they are all 0 now: a clip
+        // poses it again at other times (`clip`).
+        let moves = joints.is_some() || animated.contains_key(&node.index()) || weights.iter().any(|&w| w != 0.0);
         Ok(moves.then_some(Pose { weights, joints }))
     }
 

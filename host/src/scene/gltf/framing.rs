@@ -36,7 +36,7 @@ pub fn view(
 }
 
 /// A glTF camera node: it looks down its -z with +y up, from its origin.
-fn from_node(world: Mat4, yfov: f32, center: Vec3) -> Result<CameraDesc, String> {
+pub(super) fn from_node(world: Mat4, yfov: f32, center: Vec3) -> Result<CameraDesc, String> {
     let eye = world.transform_point3(Vec3::ZERO);
     let forward = world.transform_vector3(-Vec3::Z).normalize_or_zero();
     let up = world.transform_vector3(Vec3::Y);
@@ -49,7 +49,7 @@ fn from_node(world: Mat4, yfov: f32, center: Vec3) -> Result<CameraDesc, String>
 }
 
 /// The model's KHR_lights_punctual lights at their nodes; spot lights become point lights.
-fn punctual(placed: &[(gltf::Node, Mat4)], ignored: &mut BTreeSet<String>) -> Vec<LightDesc> {
+pub(super) fn punctual(placed: &[(gltf::Node, Mat4)], ignored: &mut BTreeSet<String>) -> Vec<LightDesc> {
     use gltf::khr_lights_punctual::Kind;
     let mut lights = Vec::new();
     for (node, world) in placed {

@@ -11,6 +11,8 @@
 
 mod accessors;
 mod buffers;
+mod clip;
+pub use clip::{DEFAULT_FPS, MAX_CLIP_WORK};
 mod deform;
 mod textures;
 pub use super::framing::{notice, Model};
@@ -21,6 +23,8 @@ mod geometry;
 mod graph;
 mod instancing;
 mod keyframes;
+mod nodes;
+use nodes::{posed_name, posed_shapes, shape_name, walk};
 mod rules;
 mod shared;
 
@@ -34,8 +38,6 @@ use gltf::material::AlphaMode;
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::Path;
 
-/// Nodes deeper than this are refused: a hierarchy this deep is a cycle or an attack.
-const MAX_DEPTH: usize = 256;
 /// Material of primitives that name none: glTF's default (white, here a light grey).
 pub const DEFAULT_MATERIAL: &str = "default";
 
@@ -65,38 +67,53 @@ pub fn models_under(dir: &Path) -> Vec<std::path::PathBuf> {
     out
 }
 
-static POSE_TIME: std::sync::OnceLock<f32> = std::sync::OnceLock::new();
-
-/// Sets the time, in seconds, at which every model this process reads shows its first
-/// animation (the global `--time`); the first call wins.
-pub fn set_pose_time(seconds: f32) {
-    let _ = POSE_TIME.set(seconds);
+/// When a model is shown: the time of its first animation at frame 0, in seconds, and the
+/// frames per second it is played at over frames.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Playing {
+    pub time: f32,
+    pub fps: f32,
 }
 
-/// The time set by [`set_pose_time`]; 0 s if none was.
-pub fn pose_time() -> f32 {
-    POSE_TIME.get().copied().unwrap_or(0.0)
+impl Default for Playing {
+    fn default() -> Self {
+        Playing { time: 0.0, fps: DEFAULT_FPS }
+    }
+}
+
+static PLAYING: std::sync::OnceLock<Playing> = std::sync::OnceLock::new();
+
+/// Sets when every model this process reads is shown (the global `--time` and `--fps`); the
+/// first call wins.
+pub fn set_playing(playing: Playing) {
+    let _ = PLAYING.set(playing);
+}
+
+/// What [`set_playing`] set; 0 s at 24 frames a second if nothing did.
+pub fn playing() -> Playing {
+    PLAYING.get().copied().unwrap_or_default()
 }
 
 /// Reads the model at `path` (its scene `scene`, else its default one), its first animation
-/// at [`pose_time`]; the error says what in it is wrong.
+/// played as [`playing`] says; the error says what in it is wrong.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<Model, String> {
-    load_at(path, scene, pose_time())
+    load_at(path, scene, playing())
 }
 
-/// [`load`] with the first animation at `time` seconds.
-pub fn load_at(path: &Path, scene: Option<usize>, time: f32) -> Result<Model, String> {
+/// [`load`] with the first animation played as `playing` says.
+pub fn load_at(path: &Path, scene: Option<usize>, playing: Playing) -> Result<Model, String> {
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
-    model(buffers::load(path)?, (scene, time), &name)
+    model(buffers::load(path)?, (scene, playing), &name)
 }
 
 /// The model of a glTF file's `bytes`, its buffer files (if any) relative to `folder`: what
 /// the fuzz target feeds.
 pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
-    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, (None, 0.0), "model")
+    model(buffers::parse(bytes, folder, super::mesh::max_mesh_bytes()?)?, (None, Playing::default()), "model")
 }
 
-fn model(loaded: buffers::Loaded, (scene, time): (Option<usize>, f32), name: &str) -> Result<Model, String> {
+fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), name: &str) -> Result<Model, String> {
+    let time = playing.time;
     let buffers::Loaded { gltf, buffers, folder, mut budget } = loaded;
     let doc = &gltf.document;
     let mut ignored = BTreeSet::new();
@@ -127,7 +144,7 @@ fn model(loaded: buffers::Loaded, (scene, time): (Option<usize>, f32), name: &st
             poses.insert(node.index(), pose.joints.is_some());
         }
     }
-    let mut objects = Vec::new();
+    let (mut objects, mut parts) = (Vec::new(), Vec::new());
     let mut materials = BTreeMap::new();
     let mut images = textures::Images::new();
     let files = textures::Files { buffers: &buffers, folder: &folder, budget: &mut budget };
@@ -146,7 +163,10 @@ fn model(loaded: buffers::Loaded, (scene, time): (Option<usize>, f32), name: &st
             _ => (*world, copies),
         };
         let placing = Placing { node, world, copies: copies.as_deref(), meshes: &meshes, posed: posed.is_some() };
-        objects.extend(placing.objects(&mut read, &mut materials, &mut ignored)?);
+        for (copy, object) in placing.objects(&mut read, &mut materials, &mut ignored)? {
+            parts.push(clip::Part { node: node.index(), copy, skinned: posed == Some(true) });
+            objects.push(object);
+        }
     }
     if objects.is_empty() {
         return Err(format!("its scene places no triangles (ignored: {})", listed(&ignored)));
@@ -155,33 +175,25 @@ fn model(loaded: buffers::Loaded, (scene, time): (Option<usize>, f32), name: &st
     let used: BTreeSet<&str> = objects.iter().map(|o| o.shape.as_str()).collect();
     meshes.retain(|name, _| used.contains(name.as_str()));
     let clips = doc.animations().len();
-    ignored.extend((clips > 0).then(|| format!("animation over time (the first posed at {time} s)")));
     ignored.extend((clips > 1).then(|| format!("animations after the first ({})", clips - 1)));
     let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
+    let setup = clip::Setup {
+        scene: scene.index(),
+        start: time,
+        fps: playing.fps,
+        parts,
+        posing: poses.keys().copied().collect(),
+        camera: clip::camera(&placed, &objects, &meshes),
+        own_lights: !framing::punctual(&placed, &mut BTreeSet::new()).is_empty(),
+    };
     let view = framing::view(doc, &placed, &objects, &meshes, &mut ignored)?;
     let file = super::framing::scene_file("a glTF 2.0 model", view, shapes, materials, objects);
-    Ok(Model { file, meshes, ignored })
-}
-
-/// Every node under `node` (itself included) with its world matrix, depth first: its parent's
-/// world matrix times its own local one, or the one `posed` gives it.
-fn walk<'a>(
-    node: gltf::Node<'a>,
-    (parent, depth): (Mat4, usize),
-    posed: &BTreeMap<usize, Mat4>,
-    out: &mut Vec<(gltf::Node<'a>, Mat4)>,
-) -> Result<(), String> {
-    if depth > MAX_DEPTH {
-        return Err(format!("node {} is {MAX_DEPTH} levels deep: its hierarchy has a cycle", node.index()));
-    }
-    let local =
-        posed.get(&node.index()).copied().unwrap_or_else(|| Mat4::from_cols_array_2d(&node.transform().matrix()));
-    let world = parent * local;
-    for child in node.children() {
-        walk(child, (world, depth + 1), posed, out)?;
-    }
-    out.push((node, world));
-    Ok(())
+    let clip = match clips {
+        0 => None,
+        _ => clip::GltfClip::new(gltf.document, buffers, setup, &mut ignored)?,
+    };
+    let clip = clip.map(|c| std::sync::Arc::new(c) as std::sync::Arc<dyn super::animation::Clip>);
+    Ok(Model { file, meshes, ignored, clip })
 }
 
 /// A node to place: its world matrix, its copies' (`EXT_mesh_gpu_instancing`) where it has
@@ -195,13 +207,14 @@ struct Placing<'a, 'd> {
 }
 
 impl Placing<'_, '_> {
-    /// An object per triangle primitive of the node's mesh, per copy of the node.
+    /// An object per triangle primitive of the node's mesh, per copy of the node (with the
+    /// copy's index where the node has copies).
     fn objects(
         &self,
         read: &mut Read,
         materials: &mut BTreeMap<String, MaterialDesc>,
         ignored: &mut BTreeSet<String>,
-    ) -> Result<Vec<ObjectDesc>, String> {
+    ) -> Result<Vec<(Option<usize>, ObjectDesc)>, String> {
         let mut objects = Vec::new();
         let Some(mesh) = self.node.mesh() else { return Ok(objects) };
         let node_name = match self.node.name() {
@@ -230,38 +243,11 @@ impl Placing<'_, '_> {
                     Some(_) => format!("{node_name} copy {copy}"),
                     None => node_name.clone(),
                 });
-                objects.push(object);
+                objects.push((self.copies.map(|_| copy), object));
             }
         }
         Ok(objects)
     }
-}
-
-/// The triangle primitives of `node`'s mesh posed by `pose`, added to `meshes` under their
-/// names for the node (`posed_name`): a node's weights and joints are its own, so its posed
-/// mesh is too.
-fn posed_shapes(
-    node: &gltf::Node,
-    pose: &deform::Pose,
-    (buffers, decoded): (&[Vec<u8>], &mut shared::Decoded),
-    meshes: &mut BTreeMap<String, MeshData>,
-) -> Result<(), String> {
-    let Some(mesh) = node.mesh() else { return Ok(()) };
-    for primitive in mesh.primitives() {
-        let name = posed_name(&shape_name(&mesh, primitive.index()), node);
-        let mut bad_normals = false;
-        if let geometry::Outcome::Mesh(data) =
-            geometry::primitive(&primitive, buffers, (decoded, Some(pose)), &name, &mut bad_normals)?
-        {
-            meshes.insert(name, data);
-        }
-    }
-    Ok(())
-}
-
-/// The shape `shape` as node `node` poses it.
-fn posed_name(shape: &str, node: &gltf::Node) -> String {
-    format!("{shape} posed by node {}", node.index())
 }
 
 /// The triangle primitives of every mesh, by shape name.
@@ -299,14 +285,6 @@ fn meshes(
         ignored.insert("NORMALs that are not finite or have no length (flat normals used)".into());
     }
     Ok(out)
-}
-
-/// The shape of primitive `p` of `mesh`.
-fn shape_name(mesh: &gltf::Mesh, p: usize) -> String {
-    match mesh.name() {
-        Some(name) => format!("mesh {} {name:?} primitive {p}", mesh.index()),
-        None => format!("mesh {} primitive {p}", mesh.index()),
-    }
 }
 
 /// A mesh shape whose triangles are given, under `name`, rather than read from a file.

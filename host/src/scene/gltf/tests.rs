@@ -4,6 +4,7 @@
 use super::*;
 use base64::Engine as _;
 
+mod clips;
 mod instancing;
 mod posed;
 mod rigs;

@@ -92,7 +92,7 @@ pub fn load(path: &Path) -> Result<Model, String> {
     let view = View::framed(&objects, &meshes);
     let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
     let file = framing::scene_file("an OBJ model", view, shapes, described, objects);
-    Ok(Model { file, meshes, ignored })
+    Ok(Model { file, meshes, ignored, clip: None })
 }
 
 /// A path an MTL file gives (`.\wood.jpg` from Windows tools) as one relative to its folder.

@@ -3,13 +3,13 @@
 //! included; a node with a matrix cannot be animated.
 
 use super::{document, floats, load_text, refused, SQUARE};
-use crate::scene::gltf::load_at;
+use crate::scene::gltf::{load_at, Playing};
 use glam::{Mat4, Vec3};
 
 /// The square (accessor 0) in a node at rest at x = 5 with a child node (the square again,
 /// one unit up); one animation (accessors 1 and 2: keys at 0.5 s and 1.5 s) moving the
 /// parent's translation by `interpolation`, and with `node` the parent's extra members.
-fn animated(interpolation: &str, parent: &str) -> String {
+pub(super) fn animated(interpolation: &str, parent: &str) -> String {
     let mut bytes = floats(&SQUARE);
     bytes.extend([0.5f32, 1.5].iter().flat_map(|t| t.to_le_bytes()));
     bytes.extend(floats(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]));
@@ -40,7 +40,9 @@ fn a_still_picture_poses_the_first_animation_at_zero_seconds() {
             let k = names.iter().position(|n| n == name).unwrap();
             assert!(placed[k].abs_diff_eq(want, 1e-6), "{interpolation}, {name}: {} against {want}", placed[k]);
         }
-        assert!(model.ignored.iter().any(|i| i.contains("posed at 0 s")), "{:?}", model.ignored);
+        // Keys to 1.5 s at 24 frames a second: a clip of 37 frames from 0 s.
+        assert_eq!(model.clip.as_ref().map(|c| (c.start(), c.frames())), Some((0.0, 37)), "{interpolation}");
+        assert!(model.ignored.is_empty(), "{:?}", model.ignored);
     }
     let matrix = r#", "matrix": [1,0,0,0, 0,1,0,0, 0,0,1,0, 5,0,0,1]"#;
     refused(&animated("LINEAR", matrix), "animation 0 channel 0 drives node 0, which has a matrix");
@@ -55,11 +57,12 @@ fn a_later_time_poses_the_node_between_or_after_its_keys() {
     let cases = [("LINEAR", 1.0, [2.5, 3.5, 4.5]), ("STEP", 1.0, [1.0, 2.0, 3.0]), ("LINEAR", 7.0, [4.0, 5.0, 6.0])];
     for (interpolation, time, want) in cases {
         std::fs::write(&path, animated(interpolation, "")).unwrap();
-        let model = load_at(&path, None, time).expect("an animated model");
+        let model = load_at(&path, None, Playing { time, ..Playing::default() }).expect("an animated model");
         let parent = model.file.objects.iter().find(|o| o.name.as_deref() == Some("node 0")).unwrap();
         let at = Mat4::from_cols_array(&parent.matrix.unwrap()).w_axis.truncate();
         assert!(at.abs_diff_eq(Vec3::from(want), 1e-6), "{interpolation} at {time} s: {at}");
-        let notice = format!("posed at {time} s");
-        assert!(model.ignored.iter().any(|i| i.contains(&notice)), "{:?}", model.ignored);
+        // From 1 s to the last key at 1.5 s: 13 frames; from 7 s, a still.
+        let frames = model.clip.as_ref().map(|c| c.frames());
+        assert_eq!(frames, (time < 1.5).then_some(13), "{interpolation} at {time} s");
     }
 }

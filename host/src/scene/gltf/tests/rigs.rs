@@ -5,7 +5,7 @@
 //! formulas.
 
 use super::{document, floats, load_text, SQUARE};
-use crate::scene::gltf::{load_at, ASSIMP_TEST_MODELS};
+use crate::scene::gltf::{load_at, Playing, ASSIMP_TEST_MODELS};
 use glam::{Mat4, Vec3};
 
 /// The square (accessor 0) with one morph target lifting every corner by 2 in z (accessor 1);
@@ -74,7 +74,7 @@ fn an_animated_weight_is_posed_at_the_time_drawn() {
     let path = dir.path().join("model.gltf");
     std::fs::write(&path, morphed("", r#"{"mesh": 0, "weights": [0.5]}"#, animations)).unwrap();
     for (time, z) in [(0.0, 0.0), (0.25, 0.5), (1.0, 2.0), (3.0, 2.0)] {
-        let model = load_at(&path, None, time).expect("an animated morph");
+        let model = load_at(&path, None, Playing { time, ..Playing::default() }).expect("an animated morph");
         let got = heights(&model, "node 0");
         assert!(got.iter().all(|&h| (h - z).abs() < 1e-6), "at {time} s: {got:?}, want {z}");
     }
@@ -119,7 +119,7 @@ fn a_skin_moves_each_vertex_by_its_weighted_joints_and_ignores_its_node() {
 fn simple_skin_bends_where_its_joints_turn() {
     let path = std::path::Path::new(ASSIMP_TEST_MODELS).join("simple_skin/simple_skin.gltf");
     let at = |time: f32| {
-        let model = load_at(&path, None, time).expect("SimpleSkin");
+        let model = load_at(&path, None, Playing { time, ..Playing::default() }).expect("SimpleSkin");
         points(&model.meshes[&model.file.objects[0].shape])
     };
     // Each of the strip's vertices posed, as a point of the mesh within `tolerance`.

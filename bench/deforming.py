@@ -1,0 +1,102 @@
+#!/usr/bin/env python3
+"""A sheet of N x N vertices as a glTF model whose mesh deforms over a 2-second clip, for
+`twinray animate-bench` and `twinray render --frames`: with `skin`, its upper half bends a
+quarter turn about the x axis on a second joint and back (weights blended over a band across
+the middle); with `morph`, one morph target raises a bump pattern whose weight goes 0, 1, 0.
+Writes NAME.gltf and NAME.bin.
+
+    python3 bench/deforming.py skin 1024 out/skin-1024
+"""
+
+import json
+import math
+import struct
+import sys
+
+
+def sheet(n):
+    """Positions and normals of an n x n grid over [-1, 1]^2 at z = 0, and its triangles."""
+    positions, normals, indices = [], [], []
+    for j in range(n):
+        for i in range(n):
+            positions.append((2.0 * i / (n - 1) - 1.0, 2.0 * j / (n - 1) - 1.0, 0.0))
+            normals.append((0.0, 0.0, 1.0))
+    for j in range(n - 1):
+        for i in range(n - 1):
+            a = j * n + i
+            indices += [a, a + 1, a + n + 1, a, a + n + 1, a + n]
+    return positions, normals, indices
+
+
+class Blob:
+    """One buffer; each view 4-byte aligned."""
+
+    def __init__(self):
+        self.data, self.views, self.accessors = bytearray(), [], []
+
+    def add(self, fmt, values, count, kind, component, **extra):
+        while len(self.data) % 4:
+            self.data.append(0)
+        start = len(self.data)
+        self.data += struct.pack("<" + fmt * len(values), *[x for v in values for x in (v if isinstance(v, tuple) else (v,))])
+        self.views.append({"buffer": 0, "byteOffset": start, "byteLength": len(self.data) - start})
+        self.accessors.append({"bufferView": len(self.views) - 1, "componentType": component, "count": count, "type": kind, **extra})
+        return len(self.accessors) - 1
+
+
+def main(kind, n, stem):
+    positions, normals, indices = sheet(n)
+    blob = Blob()
+    attributes = {
+        "POSITION": blob.add("3f", positions, len(positions), "VEC3", 5126, min=[-1, -1, 0], max=[1, 1, 0]),
+        "NORMAL": blob.add("3f", normals, len(normals), "VEC3", 5126),
+    }
+    index = blob.add("I", indices, len(indices), "SCALAR", 5125)
+    times = blob.add("f", [0.0, 1.0, 2.0], 3, "SCALAR", 5126, min=[0.0], max=[2.0])
+    primitive = {"attributes": attributes, "indices": index}
+    nodes, extra = [{"mesh": 0}], {}
+    if kind == "skin":
+        # Joint 1 takes the upper half: weight 0 below y = -0.1, 1 above y = 0.1.
+        up = [min(1.0, max(0.0, (p[1] + 0.1) / 0.2)) for p in positions]
+        attributes["JOINTS_0"] = blob.add("4B", [(0, 1, 0, 0)] * len(positions), len(positions), "VEC4", 5121)
+        attributes["WEIGHTS_0"] = blob.add("4f", [(1 - w, w, 0.0, 0.0) for w in up], len(positions), "VEC4", 5126)
+        identity = (1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0)
+        binds = blob.add("16f", [identity, identity], 2, "MAT4", 5126)
+        s = math.sin(math.pi / 4)
+        turns = blob.add("4f", [(0.0, 0.0, 0.0, 1.0), (s, 0.0, 0.0, s), (0.0, 0.0, 0.0, 1.0)], 3, "VEC4", 5126)
+        nodes = [{"mesh": 0, "skin": 0}, {"children": [2]}, {}]
+        extra["skins"] = [{"joints": [1, 2], "inverseBindMatrices": binds}]
+        channel = {"sampler": 0, "target": {"node": 2, "path": "rotation"}}
+        sampler = {"input": times, "output": turns}
+    else:
+        bump = [(0.0, 0.0, 0.3 * math.sin(3 * math.pi * p[0]) * math.sin(3 * math.pi * p[1])) for p in positions]
+        lo = [min(b[k] for b in bump) for k in range(3)]
+        hi = [max(b[k] for b in bump) for k in range(3)]
+        primitive["targets"] = [{"POSITION": blob.add("3f", bump, len(bump), "VEC3", 5126, min=lo, max=hi)}]
+        weights = blob.add("f", [0.0, 1.0, 0.0], 3, "SCALAR", 5126)
+        channel = {"sampler": 0, "target": {"node": 0, "path": "weights"}}
+        sampler = {"input": times, "output": weights}
+    name = stem.rsplit("/", 1)[-1]
+    doc = {
+        "asset": {"version": "2.0", "generator": "bench/deforming.py"},
+        "buffers": [{"byteLength": len(blob.data), "uri": name + ".bin"}],
+        "bufferViews": blob.views,
+        "accessors": blob.accessors,
+        "meshes": [{"primitives": [primitive], **({"weights": [0.0]} if kind == "morph" else {})}],
+        "nodes": nodes,
+        "scenes": [{"nodes": [0, 1] if kind == "skin" else [0]}],
+        "scene": 0,
+        "animations": [{"samplers": [sampler], "channels": [channel]}],
+        **extra,
+    }
+    with open(stem + ".bin", "wb") as f:
+        f.write(blob.data)
+    with open(stem + ".gltf", "w") as f:
+        json.dump(doc, f)
+    print(f"{stem}.gltf: {kind}, {len(positions)} vertices, {len(indices) // 3} triangles")
+
+
+if __name__ == "__main__":
+    if len(sys.argv) != 4 or sys.argv[1] not in ("skin", "morph"):
+        sys.exit(__doc__)
+    main(sys.argv[1], int(sys.argv[2]), sys.argv[3])

@@ -1,0 +1,28 @@
+#!/bin/sh
+# Refit against rebuild for meshes that deform (skins, morph targets): `bench/deforming.py`'s
+# sheets of 724 x 724 vertices (1.04 million triangles), bent by a joint or raised by a morph
+# target over 25 frames (to the clip's widest pose, 1 s), each frame's BLAS refitted in place
+# (update) or built afresh (rebuild), with the trace time of each; then both sets compared on
+# every frame of assimp's simple_skin and AnimatedMorphCube. Run from the repository root with
+# `cargo xtask bundle --out target/dev/clip`'s target/dev/clip.tar.gz (and the two models under
+# target/dev/models) carried; results under $OUT.
+set -u
+[ -x /tmp/clip/bin/twinray ] || tar xzf target/dev/clip.tar.gz -C /tmp
+export LD_LIBRARY_PATH=/tmp/clip/lib
+T=/tmp/clip/bin/twinray
+mkdir -p $OUT/deforming /tmp/sheets
+$T info > $OUT/deforming/info.txt 2>&1
+for kind in skin morph; do
+  python3 bench/deforming.py $kind 724 /tmp/sheets/$kind-724
+  s=$(date +%s)
+  $T animate-bench /tmp/sheets/$kind-724.gltf --modes rebuild,update --frames 25 --width 1920 --height 1080 \
+    --runs 5 --placements 3 --out $OUT/deforming/$kind > $OUT/deforming/$kind.log 2>&1
+  echo "== $kind: exit $?, $(( $(date +%s) - s )) s"
+  grep '^|' $OUT/deforming/$kind.log
+done
+for model in simple_skin AnimatedMorphCube; do
+  $T compare target/dev/models/$model.gltf --frames all --width 1920 --height 1080 --out /tmp/cmp-$model \
+    > $OUT/deforming/compare-$model.log 2>&1
+  echo "== compare $model: exit $?"; tail -3 $OUT/deforming/compare-$model.log
+done
+cd $OUT && tar czf deforming.tgz deforming && rm -rf deforming
