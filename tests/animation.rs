@@ -9,14 +9,14 @@ use twinray_host::scene::MeshFiles;
 use twinray_host::{Context, RenderOptions, RenderOutput, Scene};
 use twinray_tests::{set, validated_context};
 
-const SIZE: (u32, u32) = (128, 96);
+pub(crate) const SIZE: (u32, u32) = (128, 96);
 
-fn opts() -> RenderOptions {
+pub(crate) fn opts() -> RenderOptions {
     RenderOptions::once(SIZE.0, SIZE.1, 0, 1)
 }
 
 /// Every frame of `frames`, each as one output per set.
-fn frames(
+pub(crate) fn frames(
     ctx: &Arc<Context>,
     scene: &Scene,
     sets: &[&str],
@@ -33,7 +33,7 @@ fn frames(
     out
 }
 
-fn same(a: &RenderOutput, b: &RenderOutput) -> bool {
+pub(crate) fn same(a: &RenderOutput, b: &RenderOutput) -> bool {
     a.rgba == b.rgba && a.hit_ids == b.hit_ids
 }
 

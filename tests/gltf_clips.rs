@@ -4,19 +4,15 @@
 //! picture of that time shows (the BLAS built afresh); both sets agree on every frame, and
 //! refitting hits what rebuilding hits.
 
+use super::animation::{frames, opts, same, SIZE};
 use std::sync::Arc;
 use twinray_host::compare::{diff, verdict};
-use twinray_host::render::{render_frames, AsWork, TlasKind, TlasMode};
+use twinray_host::render::{AsWork, TlasKind, TlasMode};
 use twinray_host::scene::gltf::{load_at, Playing};
-use twinray_host::{Context, RenderOptions, RenderOutput, Scene};
+use twinray_host::{Context, Scene};
 use twinray_tests::{set, validated_context};
 
-const SIZE: (u32, u32) = (96, 72);
 const MODELS: &str = "/usr/share/assimp/models/glTF2";
-
-fn opts() -> RenderOptions {
-    RenderOptions::once(SIZE.0, SIZE.1, 0, 1)
-}
 
 /// The model at `path` played from 0 s at `fps`.
 fn clip(path: &str, fps: f32) -> Scene {
@@ -27,28 +23,13 @@ fn clip(path: &str, fps: f32) -> Scene {
     Scene::from_model(model, &path.display().to_string()).unwrap_or_else(|e| panic!("{e}"))
 }
 
-fn frames(ctx: &Arc<Context>, scene: &Scene, kind: TlasKind) -> Vec<(AsWork, Vec<RenderOutput>)> {
-    let sets = [set("rust"), set("glsl")];
-    let mut out = Vec::new();
-    let mode = TlasMode { kind, rebuild_every: 0 };
-    render_frames(ctx, scene, &sets, &opts(), 0..scene.frame_count(), mode, |f| {
-        out.push((f.as_work, f.outputs));
-        Ok(())
-    })
-    .unwrap_or_else(|e| panic!("rendering the frames of {}: {e}", scene.name()));
-    out
-}
-
-fn same(a: &RenderOutput, b: &RenderOutput) -> bool {
-    a.rgba == b.rgba && a.hit_ids == b.hit_ids
-}
-
 fn check_clip(ctx: &Arc<Context>, scene: &Scene) {
     let name = scene.name().to_string();
     let animation = scene.animation.as_ref().unwrap_or_else(|| panic!("{name}: no clip"));
     assert!(animation.moves().meshes, "{name}: its meshes do not move");
-    let updated = frames(ctx, scene, TlasKind::Update);
-    let rebuilt = frames(ctx, scene, TlasKind::Rebuild);
+    let all = 0..scene.frame_count();
+    let run = |kind| frames(ctx, scene, &["rust", "glsl"], all.clone(), TlasMode { kind, rebuild_every: 0 });
+    let (updated, rebuilt) = (run(TlasKind::Update), run(TlasKind::Rebuild));
     let pixels = u64::from(SIZE.0 * SIZE.1);
     let mut failures = Vec::new();
     for (k, ((work, outputs), (_, again))) in updated.iter().zip(&rebuilt).enumerate() {

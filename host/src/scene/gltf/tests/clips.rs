@@ -2,7 +2,6 @@
 //! (`--time` plus k / fps), objects, camera and posed meshes alike, up to the last key; a
 //! node hidden (scaled to zero) in some frame is refused with its time named.
 
-use super::{document, floats, SQUARE};
 use crate::scene::gltf::{load_at, Playing, ASSIMP_TEST_MODELS};
 use crate::scene::Scene;
 use glam::{Mat4, Vec3};
@@ -10,22 +9,9 @@ use glam::{Mat4, Vec3};
 /// The square in node 0, whose `path` two keys (0.5 s and 1.5 s, LINEAR) take from `from`
 /// to `to`; node 1, its child, holds a perspective camera looking down -z from 5 up z.
 fn keyed(path: &str, from: [f32; 3], to: [f32; 3]) -> String {
-    let mut bytes = floats(&SQUARE);
-    bytes.extend([0.5f32, 1.5].iter().flat_map(|t| t.to_le_bytes()));
-    bytes.extend(floats(&[from, to]));
-    let rest = format!(
-        r#""bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 8}}, {{"buffer": 0, "byteOffset": 56, "byteLength": 24}}],
-        "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
-                      {{"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0.5], "max": [1.5]}},
-                      {{"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC3"}}],
-        "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
-        "cameras": [{{"type": "perspective", "perspective": {{"yfov": 0.8, "znear": 0.1}}}}],
-        "nodes": [{{"mesh": 0, "children": [1]}}, {{"camera": 0, "translation": [0.5, 0.5, 5]}}],
-        "animations": [{{"samplers": [{{"input": 1, "output": 2}}],
-                         "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "{path}"}}}}]}}],
-        "scenes": [{{"nodes": [0]}}]"#
-    );
-    document(&bytes, &rest)
+    let nodes = r#"{"mesh": 0, "children": [1]}, {"camera": 0, "translation": [0.5, 0.5, 5]}"#;
+    let camera = r#", "cameras": [{"type": "perspective", "perspective": {"yfov": 0.8, "znear": 0.1}}]"#;
+    super::posed::keyed("LINEAR", path, [from, to], nodes, camera)
 }
 
 fn played(text: &str, playing: Playing) -> Result<Scene, String> {

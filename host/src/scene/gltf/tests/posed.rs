@@ -9,20 +9,28 @@ use glam::{Mat4, Vec3};
 /// The square (accessor 0) in a node at rest at x = 5 with a child node (the square again,
 /// one unit up); one animation (accessors 1 and 2: keys at 0.5 s and 1.5 s) moving the
 /// parent's translation by `interpolation`, and with `node` the parent's extra members.
-pub(super) fn animated(interpolation: &str, parent: &str) -> String {
+fn animated(interpolation: &str, parent: &str) -> String {
+    let nodes = format!(r#"{{"mesh": 0, "children": [1]{parent}}}, {{"mesh": 0, "translation": [0, 1, 0]}}"#);
+    keyed(interpolation, "translation", [[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]], &nodes, "")
+}
+
+/// The square (accessor 0) in `nodes`, node 0 animated: its `path` taken by two keys (0.5 s
+/// and 1.5 s, accessors 1 and 2) through `values` by `interpolation`; `extra` are more
+/// members of the document (cameras, ...).
+pub(super) fn keyed(interpolation: &str, path: &str, values: [[f32; 3]; 2], nodes: &str, extra: &str) -> String {
     let mut bytes = floats(&SQUARE);
     bytes.extend([0.5f32, 1.5].iter().flat_map(|t| t.to_le_bytes()));
-    bytes.extend(floats(&[[1.0, 2.0, 3.0], [4.0, 5.0, 6.0]]));
+    bytes.extend(floats(&values));
     let rest = format!(
         r#""bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 8}}, {{"buffer": 0, "byteOffset": 56, "byteLength": 24}}],
         "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
                       {{"bufferView": 1, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0.5], "max": [1.5]}},
                       {{"bufferView": 2, "componentType": 5126, "count": 2, "type": "VEC3"}}],
         "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
-        "nodes": [{{"mesh": 0, "children": [1]{parent}}}, {{"mesh": 0, "translation": [0, 1, 0]}}],
+        "nodes": [{nodes}],
         "animations": [{{"samplers": [{{"input": 1, "output": 2, "interpolation": "{interpolation}"}}],
-                         "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "translation"}}}}]}}],
-        "scenes": [{{"nodes": [0]}}]"#
+                         "channels": [{{"sampler": 0, "target": {{"node": 0, "path": "{path}"}}}}]}}],
+        "scenes": [{{"nodes": [0]}}]{extra}"#
     );
     document(&bytes, &rest)
 }
