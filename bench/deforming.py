@@ -2,7 +2,8 @@
 """A sheet of N x N vertices as a glTF model whose mesh deforms over a 2-second clip, for
 `twinray animate-bench` and `twinray render --frames`: with `skin`, its upper half bends a
 quarter turn about the x axis on a second joint and back (weights blended over a band across
-the middle); with `morph`, one morph target raises a bump pattern whose weight goes 0, 1, 0.
+the middle); with `morph`, one morph target raises a bump pattern whose weight goes 0, 1, 0;
+`still` is the sheet alone, unanimated (for load time and memory).
 Writes NAME.gltf and NAME.bin.
 
     python3 bench/deforming.py skin 1024 out/skin-1024
@@ -68,7 +69,7 @@ def main(kind, n, stem):
         extra["skins"] = [{"joints": [1, 2], "inverseBindMatrices": binds}]
         channel = {"sampler": 0, "target": {"node": 2, "path": "rotation"}}
         sampler = {"input": times, "output": turns}
-    else:
+    elif kind == "morph":
         bump = [(0.0, 0.0, 0.3 * math.sin(3 * math.pi * p[0]) * math.sin(3 * math.pi * p[1])) for p in positions]
         lo = [min(b[k] for b in bump) for k in range(3)]
         hi = [max(b[k] for b in bump) for k in range(3)]
@@ -77,6 +78,7 @@ def main(kind, n, stem):
         channel = {"sampler": 0, "target": {"node": 0, "path": "weights"}}
         sampler = {"input": times, "output": weights}
     name = stem.rsplit("/", 1)[-1]
+    animations = {"animations": [{"samplers": [sampler], "channels": [channel]}]} if kind != "still" else {}
     doc = {
         "asset": {"version": "2.0", "generator": "bench/deforming.py"},
         "buffers": [{"byteLength": len(blob.data), "uri": name + ".bin"}],
@@ -86,7 +88,7 @@ def main(kind, n, stem):
         "nodes": nodes,
         "scenes": [{"nodes": [0, 1] if kind == "skin" else [0]}],
         "scene": 0,
-        "animations": [{"samplers": [sampler], "channels": [channel]}],
+        **animations,
         **extra,
     }
     with open(stem + ".bin", "wb") as f:
@@ -97,6 +99,6 @@ def main(kind, n, stem):
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 4 or sys.argv[1] not in ("skin", "morph"):
+    if len(sys.argv) != 4 or sys.argv[1] not in ("skin", "morph", "still"):
         sys.exit(__doc__)
     main(sys.argv[1], int(sys.argv[2]), sys.argv[3])

@@ -147,6 +147,7 @@ fn upload_scene(
     let scene = &*scene.on_gpu();
     let built = scene.build();
     let data = &built;
+    check_primitive_counts(ctx, data)?;
     // Meshes are read by the BLAS builds and by the triangle closest-hit stage.
     let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
         | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
@@ -264,6 +265,28 @@ fn upload_scene(
     Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel, object_bounds: OnceCell::new() })
 }
 
+/// Every BLAS within the device's `maxPrimitiveCount`: past it a build is undefined, so the
+/// scene is refused before any is made.
+fn check_primitive_counts(ctx: &Context, data: &SceneData) -> Result<()> {
+    let most = ctx.info.max_primitive_count;
+    match primitives_past(&data.blases, most) {
+        Some(count) => Err(crate::error::Error::Input(format!(
+            "a shape of {count} primitives is more than {} takes in one acceleration structure ({most})",
+            ctx.info.name
+        ))),
+        None => Ok(()),
+    }
+}
+
+/// The primitives of the first of `blases` that has more than `most`.
+fn primitives_past(blases: &[BlasDesc], most: u64) -> Option<u64> {
+    let count = |blas: &BlasDesc| match blas {
+        BlasDesc::Triangles { index_count, .. } => u64::from(*index_count / 3),
+        BlasDesc::Aabbs(boxes) => boxes.len() as u64,
+    };
+    blases.iter().map(count).find(|&n| n > most)
+}
+
 /// What a scene's acceleration structures hold and took: counts, device memory (bottom-level
 /// structures as built and once compacted), and the host's wall time to build them all
 /// (uploads, builds, compaction, each waited for).
@@ -335,6 +358,20 @@ fn upload_with(ctx: &Arc<Context>, name: &str, bytes: &[u8], usage: vk::BufferUs
 mod tests {
     use super::*;
     use bytemuck::Zeroable;
+
+    #[test]
+    fn a_blas_past_the_device_limit_is_found() {
+        let mesh = |triangles: u32| BlasDesc::Triangles {
+            vertex_base: 0,
+            vertex_count: 3,
+            index_base: 0,
+            index_count: 3 * triangles,
+        };
+        let boxes = BlasDesc::Aabbs(vec![Aabb { min: glam::Vec3::ZERO, max: glam::Vec3::ONE }; 5]);
+        assert_eq!(primitives_past(&[mesh(4), boxes.clone()], 5), None);
+        assert_eq!(primitives_past(&[mesh(4), mesh(6), boxes.clone()], 5), Some(6));
+        assert_eq!(primitives_past(&[boxes, mesh(2)], 4), Some(5));
+    }
 
     #[test]
     fn lights_buffer_holds_the_scene_lights_then_zeros_to_max_lights() {

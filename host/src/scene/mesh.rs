@@ -9,7 +9,7 @@ use crate::util::input::read_bounded;
 use glam::{Vec3, Vec4};
 use std::path::Path;
 use twinray_shared::layout::Vertex;
-use twinray_shared::shapes::spec::{MAX_LENGTH, MAX_PRIMITIVES};
+use twinray_shared::shapes::spec::MAX_LENGTH;
 
 /// A mesh ready to upload: vertices and three indices per triangle.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -40,6 +40,11 @@ pub(super) const OBJ_OPTIONS: tobj::LoadOptions =
 
 /// Largest mesh file read, in bytes, unless `TWINRAY_MAX_MESH_BYTES` says otherwise.
 pub const DEFAULT_MAX_MESH_BYTES: u64 = 64 << 20;
+
+/// Most triangles of one mesh (a glTF primitive, an OBJ file): 2^24. A procedural shape's
+/// primitives are bounded by `MAX_PRIMITIVES`, a device's by its `maxPrimitiveCount`
+/// (checked when a scene is uploaded); the bytes a mesh may take, by `max_mesh_bytes`.
+pub const MAX_MESH_TRIANGLES: usize = 1 << 24;
 
 /// The mesh file size limit: `TWINRAY_MAX_MESH_BYTES` if set (a byte count), else the default.
 pub fn max_mesh_bytes() -> Result<u64, String> {
@@ -141,8 +146,8 @@ pub(super) fn checked(p: &Polyhedron, what: &str) -> Result<(), String> {
     if p.triangles.is_empty() {
         return Err(format!("{what} has no triangles"));
     }
-    if p.triangles.len() > MAX_PRIMITIVES as usize {
-        return Err(format!("{what} has {} triangles (at most {MAX_PRIMITIVES})", p.triangles.len()));
+    if p.triangles.len() > MAX_MESH_TRIANGLES {
+        return Err(format!("{what} has {} triangles (at most {MAX_MESH_TRIANGLES})", p.triangles.len()));
     }
     let far = p.positions.iter().find(|v| !v.is_finite() || v.abs().max_element() > MAX_LENGTH);
     if let Some(v) = far {

@@ -186,6 +186,7 @@ mod tests {
             max_ray_dispatch_invocation_count: 1 << 30,
             max_image_dimension_2d: 16384,
             min_scratch_offset_alignment: 128,
+            max_primitive_count: 1 << 29,
             timestamp_period_ns: 1.0,
             timestamp_valid_bits: 64,
             cpu_threads: None,

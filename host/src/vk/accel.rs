@@ -338,7 +338,7 @@ fn build(
     type F = vk::BuildAccelerationStructureFlagsKHR;
     let info = build_info(ty, F::PREFER_FAST_TRACE | F::ALLOW_COMPACTION, &geometries);
     let (accel, sizes) = allocate(ctx, &info, primitive_count, name)?;
-    let (_scratch, scratch_address) = scratch(ctx, sizes.build_scratch_size)?;
+    let (scratch, scratch_address) = scratch(ctx, sizes.build_scratch_size)?;
     let info = info
         .dst_acceleration_structure(accel.raw)
         .scratch_data(vk::DeviceOrHostAddressKHR { device_address: scratch_address });
@@ -352,14 +352,18 @@ fn build(
         size.write(cmd, accel.raw);
         Ok(())
     })?;
+    // The scratch is done with: freed before the compacted copy is made, not beside it.
+    drop(scratch);
     compacted(ctx, one_shot, accel, size.read()?, name)
 }
 
 /// `built` copied into a structure of `size` bytes, its compacted size; the built one is freed
-/// once the copy has completed. An equal size is copied too (lavapipe reports the size as
-/// built), so that what every driver traces is the copy, in CI under validation as well.
+/// once the copy has completed. An equal size (lavapipe reports the size as built) is copied
+/// too up to `COPIED_WHEN_EQUAL` bytes, so that what every driver traces is a copy, in CI under
+/// validation as well; a larger one is kept as built, as the copy would double it at the
+/// scene's peak memory for nothing.
 fn compacted(ctx: &Arc<Context>, one_shot: &OneShot, built: AccelStruct, size: u64, name: &str) -> Result<AccelStruct> {
-    if size == 0 || size > built.bytes {
+    if size == 0 || size > built.bytes || (size == built.bytes && size > COPIED_WHEN_EQUAL) {
         return Ok(built);
     }
     let mut small = allocate_sized(ctx, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, size, name)?;
@@ -371,6 +375,9 @@ fn compacted(ctx: &Arc<Context>, one_shot: &OneShot, built: AccelStruct, size: u
     small.built_bytes = built.bytes;
     Ok(small)
 }
+
+/// Largest BLAS copied when compaction would not make it smaller (see `compacted`).
+const COPIED_WHEN_EQUAL: u64 = 16 << 20;
 
 /// A barrier after an acceleration structure is written: a later build, copy, query or trace
 /// reads what was written.

@@ -3,11 +3,11 @@
 //! `gltf` crate's reader assumes all that (and panics on a stride shorter than an element), so
 //! a malformed file is refused with the accessor named, never read out of bounds.
 
+use crate::scene::mesh::MAX_MESH_TRIANGLES;
 use gltf::accessor::{DataType, Dimensions};
-use twinray_shared::shapes::spec::MAX_PRIMITIVES;
 
 /// Most elements one accessor may have: three vertices per triangle of the largest mesh.
-const MAX_ELEMENTS: usize = 3 * MAX_PRIMITIVES as usize;
+const MAX_ELEMENTS: usize = 3 * MAX_MESH_TRIANGLES;
 
 /// An accessor of a type `semantic` allows, with a count twinray takes, whose every element
 /// lies within its buffer view at a stride no shorter than the element and an offset its

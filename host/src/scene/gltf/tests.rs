@@ -9,6 +9,7 @@ mod instancing;
 mod posed;
 mod rigs;
 pub(crate) mod rules;
+mod scale;
 
 /// A square of two triangles in z = 0, four vertices.
 const SQUARE: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
