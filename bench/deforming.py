@@ -10,22 +10,26 @@ Writes NAME.gltf and NAME.bin.
 """
 
 import json
+from array import array
 import math
 import struct
 import sys
 
 
 def sheet(n):
-    """Positions and normals of an n x n grid over [-1, 1]^2 at z = 0, and its triangles."""
-    positions, normals, indices = [], [], []
+    """Positions and normals of an n x n grid over [-1, 1]^2 at z = 0 (flat float arrays, three
+    per vertex), and its triangles' indices."""
+    positions, normals, indices = array("f"), array("f"), array("I")
+    step = 2.0 / (n - 1)
     for j in range(n):
+        y = j * step - 1.0
         for i in range(n):
-            positions.append((2.0 * i / (n - 1) - 1.0, 2.0 * j / (n - 1) - 1.0, 0.0))
-            normals.append((0.0, 0.0, 1.0))
+            positions.extend((i * step - 1.0, y, 0.0))
+    normals.extend((0.0, 0.0, 1.0) * (n * n))
     for j in range(n - 1):
-        for i in range(n - 1):
-            a = j * n + i
-            indices += [a, a + 1, a + n + 1, a, a + n + 1, a + n]
+        row = j * n
+        for a in range(row, row + n - 1):
+            indices.extend((a, a + 1, a + n + 1, a, a + n + 1, a + n))
     return positions, normals, indices
 
 
@@ -36,10 +40,15 @@ class Blob:
         self.data, self.views, self.accessors = bytearray(), [], []
 
     def add(self, fmt, values, count, kind, component, **extra):
+        """`values`: an array (written as it is) or tuples and numbers packed by `fmt`."""
         while len(self.data) % 4:
             self.data.append(0)
         start = len(self.data)
-        self.data += struct.pack("<" + fmt * len(values), *[x for v in values for x in (v if isinstance(v, tuple) else (v,))])
+        if isinstance(values, array):
+            self.data += values.tobytes()
+        else:
+            flat = [x for v in values for x in (v if isinstance(v, tuple) else (v,))]
+            self.data += struct.pack("<" + fmt * len(values), *flat)
         self.views.append({"buffer": 0, "byteOffset": start, "byteLength": len(self.data) - start})
         self.accessors.append({"bufferView": len(self.views) - 1, "componentType": component, "count": count, "type": kind, **extra})
         return len(self.accessors) - 1
@@ -47,10 +56,11 @@ class Blob:
 
 def main(kind, n, stem):
     positions, normals, indices = sheet(n)
+    vertices = n * n
     blob = Blob()
     attributes = {
-        "POSITION": blob.add("3f", positions, len(positions), "VEC3", 5126, min=[-1, -1, 0], max=[1, 1, 0]),
-        "NORMAL": blob.add("3f", normals, len(normals), "VEC3", 5126),
+        "POSITION": blob.add("3f", positions, vertices, "VEC3", 5126, min=[-1, -1, 0], max=[1, 1, 0]),
+        "NORMAL": blob.add("3f", normals, vertices, "VEC3", 5126),
     }
     index = blob.add("I", indices, len(indices), "SCALAR", 5125)
     times = blob.add("f", [0.0, 1.0, 2.0], 3, "SCALAR", 5126, min=[0.0], max=[2.0])
@@ -58,9 +68,9 @@ def main(kind, n, stem):
     nodes, extra = [{"mesh": 0}], {}
     if kind == "skin":
         # Joint 1 takes the upper half: weight 0 below y = -0.1, 1 above y = 0.1.
-        up = [min(1.0, max(0.0, (p[1] + 0.1) / 0.2)) for p in positions]
-        attributes["JOINTS_0"] = blob.add("4B", [(0, 1, 0, 0)] * len(positions), len(positions), "VEC4", 5121)
-        attributes["WEIGHTS_0"] = blob.add("4f", [(1 - w, w, 0.0, 0.0) for w in up], len(positions), "VEC4", 5126)
+        up = [min(1.0, max(0.0, (y + 0.1) / 0.2)) for y in positions[1::3]]
+        attributes["JOINTS_0"] = blob.add("4B", [(0, 1, 0, 0)] * vertices, vertices, "VEC4", 5121)
+        attributes["WEIGHTS_0"] = blob.add("4f", [(1 - w, w, 0.0, 0.0) for w in up], vertices, "VEC4", 5126)
         identity = (1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0, 0, 0, 0, 0, 1.0)
         binds = blob.add("16f", [identity, identity], 2, "MAT4", 5126)
         s = math.sin(math.pi / 4)
@@ -70,7 +80,8 @@ def main(kind, n, stem):
         channel = {"sampler": 0, "target": {"node": 2, "path": "rotation"}}
         sampler = {"input": times, "output": turns}
     elif kind == "morph":
-        bump = [(0.0, 0.0, 0.3 * math.sin(3 * math.pi * p[0]) * math.sin(3 * math.pi * p[1])) for p in positions]
+        xy = zip(positions[0::3], positions[1::3])
+        bump = [(0.0, 0.0, 0.3 * math.sin(3 * math.pi * x) * math.sin(3 * math.pi * y)) for x, y in xy]
         lo = [min(b[k] for b in bump) for k in range(3)]
         hi = [max(b[k] for b in bump) for k in range(3)]
         primitive["targets"] = [{"POSITION": blob.add("3f", bump, len(bump), "VEC3", 5126, min=lo, max=hi)}]
@@ -95,7 +106,7 @@ def main(kind, n, stem):
         f.write(blob.data)
     with open(stem + ".gltf", "w") as f:
         json.dump(doc, f)
-    print(f"{stem}.gltf: {kind}, {len(positions)} vertices, {len(indices) // 3} triangles")
+    print(f"{stem}.gltf: {kind}, {vertices} vertices, {len(indices) // 3} triangles")
 
 
 if __name__ == "__main__":

@@ -3,7 +3,8 @@
 # sheets of 724 x 724 vertices (1.04 million triangles), bent by a joint or raised by a morph
 # target over 25 frames (to the clip's widest pose, 1 s), each frame's BLAS refitted in place
 # (update) or built afresh (rebuild), with the trace time of each; then both sets compared on
-# every frame of assimp's simple_skin and AnimatedMorphCube. Run from the repository root with
+# every frame of assimp's simple_skin and AnimatedMorphCube, and a still sheet of ten million
+# triangles rendered once. Run from the repository root with
 # `cargo xtask bundle --out target/dev/clip`'s target/dev/clip.tar.gz (and the two models under
 # target/dev/models) carried; results under $OUT.
 set -u
@@ -25,4 +26,11 @@ for model in simple_skin AnimatedMorphCube; do
     > $OUT/deforming/compare-$model.log 2>&1
   echo "== compare $model: exit $?"; tail -3 $OUT/deforming/compare-$model.log
 done
+# Ten million triangles in one primitive (2238 x 2238 vertices with normals, 240 MB of buffer):
+# load and build time, BLAS memory, and the process's peak.
+python3 bench/deforming.py still 2238 /tmp/sheets/still-2238
+TIME=$(command -v /usr/bin/time >/dev/null && echo "/usr/bin/time -v" || echo "")
+TWINRAY_MAX_MESH_BYTES=400000000 $TIME $T render /tmp/sheets/still-2238.gltf --width 1920 --height 1080 \
+  --out /tmp/still.png > $OUT/deforming/still-2238.log 2>&1
+echo "== still-2238: exit $?"; grep -i "loaded\|Maximum resident\|Elapsed" $OUT/deforming/still-2238.log
 cd $OUT && tar czf deforming.tgz deforming && rm -rf deforming
