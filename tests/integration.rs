@@ -19,6 +19,7 @@ mod layout;
 mod libraries;
 mod modules;
 mod origin;
+mod orthographic;
 mod parity;
 mod pipeline;
 mod probe;

@@ -67,6 +67,12 @@ fn impossible_values_in_scene_file_are_named() {
         ),
         ("shape = \"field\"", "shape = \"feild\"", "", "objects[0] (shape \"feild\"): unknown shape"),
         ("fov_y_degrees = 45.0", "fov_y_degrees = 180.0", "", "camera.fov_y_degrees must be in (0, 180)"),
+        (
+            "fov_y_degrees = 45.0",
+            "orthographic_height = 0.0",
+            "",
+            "camera.orthographic_height must be a height above 0",
+        ),
         ("material = \"white\"", "material = \"white\"\nscale = [1.0, 0.0, 1.0]", "", "scale must not be zero"),
         ("name = \"spheres\"", "name = \"spheres\"", rect, "lights[1]: u and v span no area (zero-area light)"),
         ("name = \"spheres\"", "name = \"spheres\"", mesh, "shape \"pot\": cannot read mesh file"),

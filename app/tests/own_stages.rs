@@ -6,6 +6,7 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 use std::process::Output;
+use twinray_shared::contract::{parse_version, CONTRACT_VERSION};
 use twinray_tests::cli::twinray;
 use twinray_tests::repo_root as repo;
 use twinray_tests::scratch::seed_crate_target;
@@ -92,7 +93,7 @@ fn a_new_crate_is_the_rust_set_until_edited() {
     let written = files(&krate);
     seed_crate_target(&krate);
     let built = ok(&["build", "mine"], dir);
-    assert!(built.contains("mine: built, 30 modules (twinray-shared 0.1.0)"), "{built}");
+    assert!(built.contains(&format!("mine: built, 30 modules (twinray-shared {CONTRACT_VERSION})")), "{built}");
     assert!(!built.contains("warning"), "the starter's own code warns of nothing: {built}");
     same_modules(&krate.join("target/twinray/set"), "rust");
     // Named relatively, as here, the crate still builds in its own target/twinray/.
@@ -193,8 +194,14 @@ fn bad_crates_are_refused_in_one_line_and_leave_the_crate_as_it_was() {
     seed_crate_target(&krate);
     let manifest = krate.join("twinray-shared/Cargo.toml");
     let original = std::fs::read_to_string(&manifest).unwrap();
-    std::fs::write(&manifest, original.replacen("version = \"0.1.0\"", "version = \"0.2.0\"", 1)).unwrap();
-    refused(&["build", "c"], dir, &krate, &["twinray-shared 0.2.0", "speaks twinray-shared 0.1.0"]);
+    // The next minor version, which this host cannot read (before 1.0 every minor version is
+    // a contract of its own).
+    let (major, minor, _) = parse_version(CONTRACT_VERSION).unwrap();
+    let next = format!("{major}.{}.0", minor + 1);
+    let ours = format!("version = \"{CONTRACT_VERSION}\"");
+    std::fs::write(&manifest, original.replacen(&ours, &format!("version = \"{next}\""), 1)).unwrap();
+    let speaks = format!("speaks twinray-shared {CONTRACT_VERSION}");
+    refused(&["build", "c"], dir, &krate, &[&format!("twinray-shared {next}"), &speaks]);
     std::fs::write(&manifest, &original).unwrap();
 
     let cargo = krate.join("Cargo.toml");
@@ -386,7 +393,7 @@ fn a_crate_written_from_scratch_builds_shows_its_warnings_and_lends_its_one_stag
     std::fs::write(sky.join("src/lib.rs"), SKY_LIB).unwrap();
     seed_crate_target(&sky);
     let built = ok(&["build", "sky"], dir);
-    assert!(built.contains("sky: built, 1 modules (twinray-shared 0.1.0)"), "{built}");
+    assert!(built.contains(&format!("sky: built, 1 modules (twinray-shared {CONTRACT_VERSION})")), "{built}");
     // A warning of the crate's own is shown, and does not fail its build.
     assert!(built.contains("warning: unused variable: `unused`"), "{built}");
     assert!(!built.contains("--no-spirv-opt"), "twinray's own choice is not the crate's warning: {built}");

@@ -81,6 +81,12 @@ pub fn convert(scene: &Scene, (width, height): (u32, u32), spp: u32) -> Result<M
             placed.push(Placed { shape, reflectance, emissive });
         }
     }
+    if scene.file.camera.orthographic_height.is_some() {
+        return Err(Error::Input(format!(
+            "{}: an orthographic camera, which the cross-check does not hand to Mitsuba yet",
+            scene.name()
+        )));
+    }
     let sensor = sensor(scene, (width, height), spp);
     let mut passes = Vec::new();
     for (l, light) in file.lights.iter().enumerate() {

@@ -282,9 +282,11 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32, boxes: &[Aabb])
     let aspect = width as f32 / height as f32;
     // Its near and far planes set no reach (`reach` does): rays take only their direction from it.
     let proj = glam::camera::rh::proj::vulkan::perspective(c.fov_y_degrees.to_radians(), aspect, 0.1, 1000.0);
-    FrameUniform {
+    // An orthographic camera's maps the image (y down) onto its plane, `height` high.
+    let ortho = |height: f32| Mat4::from_diagonal(Vec4::new(height / 2.0 * aspect, -height / 2.0, 1.0, 1.0));
+    let mut uniform = FrameUniform {
         view_inverse: view.inverse(),
-        proj_inverse: proj.inverse(),
+        proj_inverse: c.orthographic_height.map_or_else(|| proj.inverse(), ortho),
         background: Vec3::from(scene.background).extend(1.0),
         reach: reach::reach(boxes, c.eye.into()),
         light_count: scene.lights.len() as u32,
@@ -298,7 +300,12 @@ pub fn frame_uniform(scene: &SceneFile, width: u32, height: u32, boxes: &[Aabb])
             }
             TextureLod::Zero => glam::Vec4::ZERO,
         },
+    };
+    if c.orthographic_height.is_some() {
+        // Parallel rays: no cone spreads (texture level 0), and the stages' camera told so.
+        uniform.cone = Vec4::Y;
     }
+    uniform
 }
 
 /// The hit group of an object of `shape` and `material` in `scene`.

@@ -179,7 +179,12 @@ pub(super) fn check_camera(c: &CameraDesc) -> Checked {
     if !(c.fov_y_degrees > 0.0 && c.fov_y_degrees < 180.0) {
         return Err(format!("camera.fov_y_degrees must be in (0, 180) (got {})", c.fov_y_degrees));
     }
-    Ok(())
+    match c.orthographic_height {
+        Some(h) if !(h.is_finite() && h > 0.0 && h <= MAX_LENGTH) => {
+            Err(format!("camera.orthographic_height must be a height above 0, at most {MAX_LENGTH:e} (got {h})"))
+        }
+        _ => Ok(()),
+    }
 }
 
 fn check_material(m: &MaterialDesc) -> Checked {

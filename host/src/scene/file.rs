@@ -2,6 +2,7 @@
 //! field; `check.rs` rejects impossible values; `build.rs` turns a scene into GPU data.
 
 use super::animation::format::AnimationDesc;
+pub use super::camera::CameraDesc;
 use super::material::OwnMaterialDesc;
 use super::shape::ShapeDesc;
 use serde::de::Error as _;
@@ -124,16 +125,6 @@ pub enum TextureLod {
     #[default]
     Cones,
     Zero,
-}
-
-/// `[camera]`: where it is, where it looks, and its vertical field of view.
-#[derive(Clone, Copy, Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct CameraDesc {
-    pub eye: [f32; 3],
-    pub target: [f32; 3],
-    pub up: [f32; 3],
-    pub fov_y_degrees: f32,
 }
 
 /// A material, by `kind`.

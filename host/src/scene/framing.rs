@@ -111,7 +111,7 @@ pub fn framing(center: Vec3, radius: f32) -> CameraDesc {
     let half = (FRAMING_FOV_DEGREES / 2.0).to_radians();
     let distance = radius / half.sin() * 1.05;
     let eye = center + FRAMING_DIRECTION.normalize() * distance;
-    CameraDesc { eye: eye.into(), target: center.into(), up: [0.0, 1.0, 0.0], fov_y_degrees: FRAMING_FOV_DEGREES }
+    CameraDesc::perspective(eye.into(), center.into(), [0.0, 1.0, 0.0], FRAMING_FOV_DEGREES)
 }
 
 /// Two directional lights, white, set by the camera: a key light from above it and to its

@@ -4,6 +4,7 @@
 pub mod animation;
 mod build;
 mod builtin;
+pub mod camera;
 mod check;
 pub mod file;
 mod framing;

@@ -27,8 +27,13 @@ pub const RECORD_PREFIX: &str = "twinray-shared ";
 
 /// What changed in the contract, by the version that changed it, oldest first. A version that
 /// changed nothing a module can see is not listed.
-pub const CHANGES: &[(&str, &str)] =
-    &[("0.1.0", "the first recorded contract: the layouts, bindings, payloads and catalog of twinray 0.1")];
+pub const CHANGES: &[(&str, &str)] = &[
+    ("0.1.0", "the first recorded contract: the layouts, bindings, payloads and catalog of twinray 0.1"),
+    (
+        "0.2.0",
+        "orthographic cameras: FrameUniform.cone.y is 1 for one (camera::primary_ray then starts each ray on the camera's plane, where proj_inverse maps its pixel, and sends it down the camera's -z), 0 for a perspective camera",
+    ),
+];
 
 /// The record a module built against this contract carries.
 #[cfg(not(target_arch = "spirv"))]

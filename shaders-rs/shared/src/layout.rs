@@ -33,7 +33,10 @@ pub struct FrameUniform {
     pub height: u32,
     /// Texture level of detail by ray cones ([`crate::texture`]): x, the spread angle of a
     /// primary ray's cone in radians (a pixel's angle at the image centre, over the samples per
-    /// side), or 0 for level 0 everywhere (`textures.lod = "zero"`); yzw: unused.
+    /// side), or 0 for level 0 everywhere (`textures.lod = "zero"`, and orthographic cameras);
+    /// y, 1 for an orthographic camera (parallel rays from the camera's plane, which
+    /// `proj_inverse` maps the image onto: [`crate::camera::primary_ray`]), 0 for a perspective
+    /// one; zw: unused.
     pub cone: Vec4,
 }
 const _: () = assert!(core::mem::size_of::<FrameUniform>() == 192);

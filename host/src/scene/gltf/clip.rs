@@ -44,9 +44,9 @@ pub struct Setup {
     pub parts: Vec<Part>,
     /// The nodes that pose a mesh of their own (`posed_shapes`).
     pub posing: Vec<usize>,
-    /// The camera's node and vertical field of view, and the point its target is found
-    /// from (the model's centre); `None` for a framing camera, which stays where it is.
-    pub camera: Option<(usize, f32, Vec3)>,
+    /// The camera's node, and the point its target is found from (the model's centre);
+    /// `None` for a framing camera, which stays where it is.
+    pub camera: Option<(usize, Vec3)>,
     /// Whether the lights are the model's own (they move with their nodes).
     pub own_lights: bool,
 }
@@ -184,7 +184,10 @@ impl GltfClip {
             });
         }
         let camera = match self.setup.camera {
-            Some((node, yfov, center)) => Some(framing::from_node(world(node)?, yfov, center)?),
+            Some((node, center)) => {
+                let lens = self.document.nodes().nth(node).and_then(|n| n.camera()).ok_or("a camera is gone")?;
+                Some(framing::from_node(world(node)?, &lens, center)?)
+            }
             None => None,
         };
         let lights = self.setup.own_lights.then(|| framing::punctual(&placed, &mut BTreeSet::new()));
@@ -210,17 +213,16 @@ impl GltfClip {
     }
 }
 
-/// The camera a clip moves: the first camera's node where it is a perspective one, its
-/// vertical field of view, and the centre of `objects` (as `framing::view` finds them).
+/// The camera a clip moves: the first camera's node, and the centre of `objects` (as
+/// `framing::view` finds them).
 pub fn camera(
     placed: &[(gltf::Node, Mat4)],
     objects: &[ObjectDesc],
     meshes: &BTreeMap<String, MeshData>,
-) -> Option<(usize, f32, Vec3)> {
-    let (node, camera) = placed.iter().find_map(|(node, _)| node.camera().map(|c| (node.index(), c)))?;
-    let gltf::camera::Projection::Perspective(p) = camera.projection() else { return None };
+) -> Option<(usize, Vec3)> {
+    let node = placed.iter().find(|(node, _)| node.camera().is_some())?.0.index();
     let (lo, hi) = super::super::framing::bounds(objects, meshes);
-    Some((node, p.yfov(), (lo + hi) / 2.0))
+    Some((node, (lo + hi) / 2.0))
 }
 
 /// The vertices of the primitives of `node`'s mesh (read in full by each posing).

@@ -2,7 +2,7 @@
 //! KHR_lights_punctual lights, else the key and fill lights (`scene::framing`).
 
 use super::super::file::{CameraDesc, LightDesc, ObjectDesc};
-use super::super::framing::{bounds, framing, View};
+use super::super::framing::{bounds, framing, View, FRAMING_FOV_DEGREES};
 use super::super::mesh::MeshData;
 use glam::{Mat4, Vec3};
 use std::collections::{BTreeMap, BTreeSet};
@@ -20,13 +20,7 @@ pub fn view(
     let (center, radius) = ((lo + hi) / 2.0, ((hi - lo).length() / 2.0).max(1e-6));
     let first_camera = placed.iter().find_map(|(node, world)| node.camera().map(|c| (c, *world)));
     let (camera, aspect) = match first_camera {
-        Some((c, world)) => match c.projection() {
-            gltf::camera::Projection::Perspective(p) => (from_node(world, p.yfov(), center)?, p.aspect_ratio()),
-            gltf::camera::Projection::Orthographic(_) => {
-                ignored.insert("orthographic cameras (the view is framed instead)".into());
-                (framing(center, radius), None)
-            }
-        },
+        Some((c, world)) => (from_node(world, &c, center)?, aspect_of(&c)),
         None => (framing(center, radius), None),
     };
     if doc.cameras().len() > 1 {
@@ -35,8 +29,22 @@ pub fn view(
     Ok(View::new(camera, aspect, punctual(placed, ignored)))
 }
 
-/// A glTF camera node: it looks down its -z with +y up, from its origin.
-pub(super) fn from_node(world: Mat4, yfov: f32, center: Vec3) -> Result<CameraDesc, String> {
+/// The width over the height of what `camera` sees, where it says.
+fn aspect_of(camera: &gltf::Camera) -> Option<f32> {
+    match camera.projection() {
+        gltf::camera::Projection::Perspective(p) => p.aspect_ratio(),
+        gltf::camera::Projection::Orthographic(o) => Some(o.xmag() / o.ymag()),
+    }
+}
+
+/// A glTF camera node: it looks down its -z with +y up, from its origin; a perspective camera
+/// by its vertical field of view, an orthographic one seeing `2 ymag` high (`ymag` is half the
+/// height, as glTF has it).
+pub(super) fn from_node(world: Mat4, camera: &gltf::Camera, center: Vec3) -> Result<CameraDesc, String> {
+    let (yfov, height) = match camera.projection() {
+        gltf::camera::Projection::Perspective(p) => (p.yfov(), None),
+        gltf::camera::Projection::Orthographic(o) => (FRAMING_FOV_DEGREES.to_radians(), Some(2.0 * o.ymag())),
+    };
     let eye = world.transform_point3(Vec3::ZERO);
     let forward = world.transform_vector3(-Vec3::Z).normalize_or_zero();
     let up = world.transform_vector3(Vec3::Y);
@@ -45,7 +53,8 @@ pub(super) fn from_node(world: Mat4, yfov: f32, center: Vec3) -> Result<CameraDe
     }
     let distance = (center - eye).dot(forward).max(1e-3 * (center - eye).length()).max(1e-6);
     let target = eye + forward * distance;
-    Ok(CameraDesc { eye: eye.into(), target: target.into(), up: up.into(), fov_y_degrees: yfov.to_degrees() })
+    let perspective = CameraDesc::perspective(eye.into(), target.into(), up.into(), yfov.to_degrees());
+    Ok(CameraDesc { orthographic_height: height, ..perspective })
 }
 
 /// The model's KHR_lights_punctual lights at their nodes; spot lights become point lights.
