@@ -22,7 +22,7 @@ for kind in skin morph; do
   grep '^|' $OUT/deforming/$kind.log
 done
 for model in simple_skin AnimatedMorphCube; do
-  $T compare target/dev/models/$model.gltf --frames all --width 1920 --height 1080 --out /tmp/cmp-$model \
+  $T compare target/dev/models/$model.gltf --frames all --width 1920 --height 1080 --out-dir /tmp/cmp-$model \
     > $OUT/deforming/compare-$model.log 2>&1
   echo "== compare $model: exit $?"; tail -3 $OUT/deforming/compare-$model.log
 done
