@@ -71,9 +71,9 @@ pub struct GlobalArgs {
     /// moves placed where its keys put it then [default: 0, the animation's start].
     #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_time)]
     pub time: Option<f32>,
-    /// Frames per second at which a glTF model's first animation is played over frames
-    /// (`--frames`): frame k shows it at --time plus k / FPS seconds, up to its last key
-    /// [default: 24].
+    /// Frames per second at which a glTF model's first animation is played as a moving scene
+    /// (`--frames`, and `--frame K` where a command takes one): frame k shows it at --time
+    /// plus k / FPS seconds, up to its last key [default: 24].
     #[arg(long, global = true, value_name = "FPS", value_parser = parse_fps)]
     pub fps: Option<f32>,
     /// What PNGs of radiance do with values above 1 before the sRGB encoding: clip each
