@@ -173,7 +173,7 @@ fn the_orbit_scene_agrees_across_tlas_modes_sets_and_its_still_frames() {
     }
     assert!(failures.is_empty(), "{failures:#?}");
     let k = count - 3;
-    let still = twinray_host::render(&ctx, &scene.at_frame(k), &set("rust"), &opts()).unwrap();
+    let still = twinray_host::render(&ctx, &scene.at_frame(k).unwrap(), &set("rust"), &opts()).unwrap();
     assert!(same(&updated[k as usize].1[0], &still), "frame {k} differs from Scene::at_frame({k})");
     ctx.close().unwrap();
 }
@@ -236,7 +236,7 @@ degrees_per_second = [0.0, 0.0, 20.0]
     let scene = Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"));
     let parts = scene.file.objects.len() / 3;
     assert!(parts >= 12 && scene.file.objects.len() == 3 * parts, "{} objects", scene.file.objects.len());
-    let (first, last) = (scene.at_frame(0), scene.at_frame(3));
+    let (first, last) = (scene.at_frame(0).unwrap(), scene.at_frame(3).unwrap());
     for model in 0..3 {
         let at = |s: &Scene, k: usize| s.file.objects[model * parts + k].transform();
         let moved = (at(&first, 0).w_axis - at(&last, 0).w_axis).length();

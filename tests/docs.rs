@@ -37,7 +37,7 @@ fn the_documented_animation_loads_with_the_example() {
     let scene = Scene::parse(&text, "docs/scene-format.md", MeshFiles::Folder(repo_root().join("scenes")))
         .unwrap_or_else(|e| panic!("the documented animation does not load: {e}"));
     assert_eq!(scene.frame_count(), 48);
-    let (first, later) = (scene.at_frame(0), scene.at_frame(12));
+    let (first, later) = (scene.at_frame(0).unwrap(), scene.at_frame(12).unwrap());
     assert_ne!(first.file.objects[1].translate, later.file.objects[1].translate, "the sphere bounces");
     assert_ne!(first.file.camera.eye, later.file.camera.eye, "the camera rises");
 }

@@ -40,7 +40,8 @@ pub fn render(global: &GlobalArgs, args: RenderArgs, range: FrameRange) -> Resul
         let out = &frame.outputs[0];
         let mut found = out.written.problems(&set, "pixels");
         if !out.no_payload.is_empty() {
-            found.extend(twinray_host::explain::no_payload::render_lines(&scene.at_frame(frame.index), out, &set));
+            let posed = scene.at_frame(frame.index)?;
+            found.extend(twinray_host::explain::no_payload::render_lines(&posed, out, &set));
         }
         problems.extend(found.into_iter().map(|p| format!("frame {}: {p}", frame.index)));
         let png = numbered(&args.out, frame.index);

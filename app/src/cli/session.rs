@@ -47,7 +47,7 @@ pub fn load_still(arg: Option<&str>, viewpoint: &ViewpointArgs, sets: &[&ShaderS
             scene.name()
         )));
     }
-    let scene = if scene.animation.is_some() { scene.at_frame(frame) } else { scene };
+    let scene = if scene.animation.is_some() { scene.at_frame(frame)? } else { scene };
     scene.with_camera(viewpoint.eye, viewpoint.look_at)
 }
 

@@ -96,14 +96,14 @@ pub fn compare_frames(
     let mut worst: Option<(f64, u32)> = None;
     render_frames(ctx, scene, &[set_a.clone(), set_b.clone()], opts, frames, mode, |frame: Frame| {
         let [a, b] = &frame.outputs[..] else { return Ok(()) };
-        let d = scene_diff(&scene.at_frame(frame.index), a, b);
+        let posed = scene.at_frame(frame.index)?;
+        let d = scene_diff(&posed, a, b);
         let bad = badness(&d, &parity, pixels);
         if worst.is_none_or(|(w, _)| bad > w) {
             worst = Some((bad, frame.index));
         }
         let mut failures = verdict(&d, &parity, pixels);
         if !(a.no_payload.is_empty() && b.no_payload.is_empty()) {
-            let posed = scene.at_frame(frame.index);
             failures.extend(no_payload::render_lines(&posed, a, "set a"));
             failures.extend(no_payload::render_lines(&posed, b, "set b"));
         }

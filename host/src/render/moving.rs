@@ -57,12 +57,18 @@ impl<'a> FrameRenderer<'a> {
     ) -> Result<Self> {
         check_size(opts.width, opts.height).map_err(Error::Input)?;
         check_device_limits(ctx, opts)?;
-        let start = scene.at_frame(first);
+        let start = scene.at_frame(first)?;
         let moves = scene.animation.as_ref().map(|a| a.moves()).unwrap_or_default();
-        // The meshes a clip poses (skins, morph targets): their BLASes follow their vertices.
-        let posed: Vec<String> = match (&scene.animation, moves.meshes) {
-            (Some(a), true) => a.meshes(first).into_iter().map(|(shape, _)| shape).collect(),
-            _ => Vec::new(),
+        // The meshes a clip poses (skins, morph targets), the ones `at_frame` made anew: their
+        // BLASes follow their vertices.
+        let posed: Vec<String> = match moves.meshes {
+            true => start
+                .meshes
+                .iter()
+                .filter(|(shape, mesh)| !scene.meshes.get(*shape).is_some_and(|m| Arc::ptr_eq(m, mesh)))
+                .map(|(shape, _)| shape.clone())
+                .collect(),
+            false => Vec::new(),
         };
         let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags(), &posed)?;
         let outputs = SharedOutputs::new(ctx, opts)?;
@@ -175,7 +181,7 @@ impl<'a> FrameRenderer<'a> {
     fn rewrite_meshes(&self, frame: u32) -> Result<()> {
         let animation = self.scene.animation.as_ref().expect("meshes move only in an animation");
         let resources = &self.uploaded.resources;
-        for (shape, mesh) in animation.meshes(frame) {
+        for (shape, mesh) in animation.meshes(frame).map_err(Error::Input)? {
             let Some((_, base, blas, _)) = resources.moving.iter().find(|m| m.0 == shape) else {
                 return Err(Error::Input(format!("frame {frame}: {shape} is posed but was not at the first frame")));
             };

@@ -337,16 +337,19 @@ impl Scene {
         }
     }
 
-    /// The still scene with everything placed as at frame `frame`.
-    pub fn at_frame(&self, frame: u32) -> Scene {
+    /// The still scene with everything placed as at frame `frame`, its posed meshes (a glTF
+    /// clip's skins and morph targets) posed then; an error says what could not be posed.
+    pub fn at_frame(&self, frame: u32) -> Result<Scene> {
         let mut still = self.clone();
         self.pose(frame, &mut still.file);
-        for (shape, mesh) in self.animation.iter().flat_map(|a| a.meshes(frame)) {
+        let posed = self.animation.as_ref().map(|a| a.meshes(frame)).transpose();
+        let posed = posed.map_err(|message| Error::Scene { path: self.source.clone(), message })?;
+        for (shape, mesh) in posed.into_iter().flatten() {
             still.meshes.insert(shape, Arc::new(mesh));
         }
         still.file.animation = None;
         still.animation = None;
-        still
+        Ok(still)
     }
 
     /// The scene seen from `eye` towards `target` (either left as the scene has it when

@@ -133,8 +133,9 @@ pub trait Clip: std::fmt::Debug + Send + Sync {
     fn moves(&self) -> Moves;
     /// Writes the values at `time` seconds of what it moves into `out`, a copy of the scene.
     fn pose(&self, time: f32, out: &mut SceneFile);
-    /// The meshes it poses (skins, morph targets) at `time` seconds, by shape name.
-    fn meshes(&self, time: f32) -> Vec<(String, MeshData)>;
+    /// The meshes it poses (skins, morph targets) at `time` seconds, by shape name; an error
+    /// says what could not be posed then.
+    fn meshes(&self, time: f32) -> Result<Vec<(String, MeshData)>, String>;
 }
 
 impl Animation {
@@ -180,8 +181,10 @@ impl Animation {
     }
 
     /// The meshes posed at frame `frame` (a clip's skins and morph targets), by shape name.
-    pub fn meshes(&self, frame: u32) -> Vec<(String, MeshData)> {
-        self.clip.as_ref().map_or_else(Vec::new, |c| c.meshes(self.time(frame)))
+    pub fn meshes(&self, frame: u32) -> Result<Vec<(String, MeshData)>, String> {
+        let Some(clip) = &self.clip else { return Ok(Vec::new()) };
+        let time = self.time(frame);
+        clip.meshes(time).map_err(|e| format!("frame {frame} (t = {time} s): {e}"))
     }
 
     /// An animation that plays `clip`, a model's own, over the scene `rest`.

@@ -47,7 +47,7 @@ fn scene(animation: &str) -> Result<Scene, String> {
 }
 
 fn posed(animation: &str, frame: u32) -> Scene {
-    scene(animation).unwrap_or_else(|e| panic!("{e}")).at_frame(frame)
+    scene(animation).unwrap_or_else(|e| panic!("{e}")).at_frame(frame).unwrap()
 }
 
 fn close(a: [f32; 3], b: [f32; 3]) -> bool {
@@ -91,7 +91,7 @@ fn frame_zero_is_what_the_scene_holds() {
         "file is posed at frame 0 (key value, not the written [1, 0, 0])"
     );
     assert_eq!(s.frame_count(), 5);
-    let still = s.at_frame(2);
+    let still = s.at_frame(2).unwrap();
     assert!(still.animation.is_none() && still.file.animation.is_none());
 }
 
@@ -228,9 +228,46 @@ fn every_builtin_moving_scene_poses_every_frame() {
         let s = Scene::load(Some(name)).unwrap();
         if let Some(a) = &s.animation {
             assert!(a.frames > 1, "{name}");
-            let (first, last) = (s.at_frame(0), s.at_frame(a.frames - 1));
+            let (first, last) = (s.at_frame(0).unwrap(), s.at_frame(a.frames - 1).unwrap());
             let moved = first.file.objects.iter().zip(&last.file.objects).any(|(a, b)| a.translate != b.translate);
             assert!(moved, "{name}: nothing moved between the first and the last frame");
         }
     }
+}
+
+/// A clip that cannot pose its meshes after 1 s (as a skin whose posed vertices overflow f32).
+#[derive(Debug)]
+struct FailsLate;
+
+impl super::Clip for FailsLate {
+    fn start(&self) -> f32 {
+        0.5
+    }
+    fn fps(&self) -> f32 {
+        2.0
+    }
+    fn frames(&self) -> u32 {
+        4
+    }
+    fn moves(&self) -> super::Moves {
+        super::Moves { meshes: true, ..Default::default() }
+    }
+    fn pose(&self, _: f32, _: &mut crate::scene::file::SceneFile) {}
+    fn meshes(&self, time: f32) -> Result<Vec<(String, crate::scene::mesh::MeshData)>, String> {
+        if time > 1.0 {
+            return Err("mesh 0 posed by node 0: a posed vertex is not finite".into());
+        }
+        Ok(Vec::new())
+    }
+}
+
+/// A frame whose meshes cannot be posed is an error naming the frame, its time and the mesh,
+/// not a still of stale meshes; the frames before it pose.
+#[test]
+fn a_frame_whose_meshes_cannot_be_posed_is_refused_with_its_time() {
+    let mut s = scene("").unwrap();
+    s.animation = Some(super::Animation::playing(std::sync::Arc::new(FailsLate), &s.file));
+    assert!(s.at_frame(1).is_ok());
+    let e = s.at_frame(2).expect_err("frame 2 posed").to_string();
+    assert!(e.contains("frame 2 (t = 1.5 s): mesh 0 posed by node 0: a posed vertex is not finite"), "{e}");
 }

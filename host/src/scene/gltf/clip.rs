@@ -5,10 +5,13 @@
 //! [`Moves`], so a renderer updates the TLAS, or refits the posed meshes' BLASes, only where
 //! something did.
 //!
-//! Every frame is posed and checked when the model loads, as a scene file's `[animation]` is:
-//! a node scaled to zero (glTF's way to hide one) in some frame, or a camera that degenerates,
-//! is refused there with the time named, since an object of a moving scene is drawn in every
-//! frame. A clip too long to check (`MAX_CLIP_WORK`) is played as a still, said in the notice.
+//! Every frame's nodes are posed and checked when the model loads, as a scene file's
+//! `[animation]` is: a node scaled to zero (glTF's way to hide one) in some frame, or a camera
+//! that degenerates, is refused there with the time named, since an object of a moving scene
+//! is drawn in every frame. A clip too long to check (`MAX_CLIP_WORK`) is played as a still,
+//! said in the notice. Meshes are posed only for the frames drawn (a still picture of a large
+//! skinned model would otherwise pose every frame of its clip to load): a posed vertex that is
+//! not finite is refused when its frame is drawn, the frame and time named.
 
 use super::super::animation::{Clip, Moves, MAX_FRAMES};
 use super::super::check::{check_camera, check_light, check_placement};
@@ -21,9 +24,8 @@ use std::collections::{BTreeMap, BTreeSet};
 
 /// Frames per second of a clip unless `--fps` says otherwise (a scene file's default too).
 pub const DEFAULT_FPS: f32 = 24.0;
-/// Most work checking a clip's frames may take: frames times (objects, lights, posed vertices
-/// and keys). Beyond it the model is a still picture at its time: at a million a second or
-/// so, this is a minute.
+/// Most work checking a clip's frames may take: frames times (objects and keys). Beyond it
+/// the model is a still picture at its time.
 pub const MAX_CLIP_WORK: u64 = 50_000_000;
 
 /// The object of a model that a node places: the node, which of its copies
@@ -100,11 +102,10 @@ impl GltfClip {
         if frames == 1 {
             return Ok(None);
         }
-        let vertices: u64 = setup.posing.iter().map(|&n| posed_vertices(&document, n)).sum();
-        let work = u64::from(frames) * (setup.parts.len() as u64 + vertices + keys + 1);
+        let work = u64::from(frames) * (setup.parts.len() as u64 + keys + 1);
         if work > MAX_CLIP_WORK {
             why_still.insert(format!(
-                "animation over time ({frames} frames of {} objects, {vertices} posed vertices and {keys} keys are more than {MAX_CLIP_WORK} to check: a still at {} s; lower --fps to play it)",
+                "animation over time ({frames} frames of {} objects and {keys} keys are more than {MAX_CLIP_WORK} to check: a still at {} s; lower --fps to play it)",
                 setup.parts.len(),
                 setup.start
             ));
@@ -141,11 +142,6 @@ impl GltfClip {
             }
             for light in posed.lights.iter().flatten() {
                 check_light(light).map_err(|e| at(format!("a light: {e}")))?;
-            }
-            for (shape, mesh) in self.meshes_at(time).map_err(at)? {
-                if mesh.vertices.iter().any(|v| !v.position.is_finite() || !v.normal.is_finite()) {
-                    return Err(at(format!("{shape}: a posed vertex is not finite")));
-                }
             }
         }
         Ok(())
@@ -209,6 +205,11 @@ impl GltfClip {
                 .ok_or(format!("node {index} no longer poses its mesh"))?;
             posed_shapes(&node, &pose, (&self.buffers, &mut decoded), &mut meshes)?;
         }
+        if let Some((shape, _)) =
+            meshes.iter().find(|(_, m)| m.vertices.iter().any(|v| !v.position.is_finite() || !v.normal.is_finite()))
+        {
+            return Err(format!("{shape}: a posed vertex is not finite"));
+        }
         Ok(meshes.into_iter().collect())
     }
 }
@@ -223,13 +224,6 @@ pub fn camera(
     let node = placed.iter().find(|(node, _)| node.camera().is_some())?.0.index();
     let (lo, hi) = super::super::framing::bounds(objects, meshes);
     Some((node, (lo + hi) / 2.0))
-}
-
-/// The vertices of the primitives of `node`'s mesh (read in full by each posing).
-fn posed_vertices(document: &gltf::Document, node: usize) -> u64 {
-    let mesh = document.nodes().nth(node).and_then(|n| n.mesh());
-    let primitives = mesh.iter().flat_map(|m| m.primitives());
-    primitives.filter_map(|p| p.get(&gltf::Semantic::Positions)).map(|a| a.count() as u64).sum()
 }
 
 impl Clip for GltfClip {
@@ -263,8 +257,7 @@ impl Clip for GltfClip {
         }
     }
 
-    fn meshes(&self, time: f32) -> Vec<(String, MeshData)> {
-        // Checked at load as `pose` is.
-        self.meshes_at(time).unwrap_or_default()
+    fn meshes(&self, time: f32) -> Result<Vec<(String, MeshData)>, String> {
+        self.meshes_at(time)
     }
 }

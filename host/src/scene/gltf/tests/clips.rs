@@ -40,7 +40,7 @@ fn each_frame_is_the_still_picture_of_its_time() {
             let time = start + k as f32 / 4.0;
             assert_eq!(animation.time(k), time);
             let still = played(&text, Playing { time, fps: 4.0 }).unwrap();
-            let frame = scene.at_frame(k);
+            let frame = scene.at_frame(k).unwrap();
             assert_eq!(placed(&frame), placed(&still), "frame {k} from {start} s");
             assert_eq!(frame.file.camera.eye, still.file.camera.eye, "frame {k} from {start} s");
             // Linear from x = 0 at 0.5 s to x = 4 at 1.5 s; the camera rides on its child.
@@ -84,7 +84,7 @@ fn a_clip_poses_its_meshes_at_every_frame() {
     let corners = |s: &Scene| s.meshes[shape].vertices.iter().map(|v| v.position.truncate()).collect::<Vec<Vec3>>();
     let mut moved = false;
     for k in 0..scene.frame_count() {
-        let frame = corners(&scene.at_frame(k));
+        let frame = corners(&scene.at_frame(k).unwrap());
         assert_eq!(frame, corners(&load(k as f32 / 2.0)), "frame {k}");
         moved |= frame != corners(&scene);
     }
