@@ -31,8 +31,9 @@ void main() {
         // (transform.glsl's triangle_t): the ray brought near the triangle and the t measured on
         // it, or, where the ray was not moved, the driver's ray.
         ray = StageRay(gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, 0.0);
-        if (HAS_FEATURE_FAR_INSTANCES && uint(gl_InstanceID) < uint(objects.length())) {
-            ObjectData data = objects[gl_InstanceID];
+        uint mesh = gl_InstanceID + gl_GeometryIndexEXT;
+        if (HAS_FEATURE_FAR_INSTANCES && mesh < uint(objects.length())) {
+            ObjectData data = objects[mesh];
             uint first = data.index_base + 3u * uint(gl_PrimitiveID);
             vec3 p0 = vertices[data.vertex_base + indices[first]].position.xyz;
             vec3 p1 = vertices[data.vertex_base + indices[first + 1u]].position.xyz;

@@ -16,7 +16,9 @@
 // in a hole: of their pattern, or on meshes of their own alpha, as triangle_cutout_any_hit
 // decides. normal: a procedural hit's object-space normal.
 float candidate_hit(rayQueryEXT query, float t_min, float t_max, out vec3 normal) {
-    ObjectData data = objects[rayQueryGetIntersectionInstanceIdEXT(query, false)];
+    // The object: instance id plus geometry index (twinray_shared::bindings::mesh_object).
+    ObjectData data = objects[rayQueryGetIntersectionInstanceIdEXT(query, false) +
+                              rayQueryGetIntersectionGeometryIndexEXT(query, false)];
     vec3 o = rayQueryGetIntersectionObjectRayOriginEXT(query, false);
     vec3 d = rayQueryGetIntersectionObjectRayDirectionEXT(query, false);
     float t = -1.0;
@@ -113,7 +115,7 @@ void trace_query(vec3 origin, float t_min, vec3 direction, float t_max, vec4 bac
         payload.ids = uvec4(NO_HIT);
         return;
     }
-    uint object = rayQueryGetIntersectionInstanceIdEXT(query, true);
+    uint object = rayQueryGetIntersectionInstanceIdEXT(query, true) + rayQueryGetIntersectionGeometryIndexEXT(query, true);
     uint primitive_id = rayQueryGetIntersectionPrimitiveIndexEXT(query, true);
     vec3 object_origin = rayQueryGetIntersectionObjectRayOriginEXT(query, true);
     vec3 object_direction = rayQueryGetIntersectionObjectRayDirectionEXT(query, true);

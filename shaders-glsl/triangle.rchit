@@ -21,7 +21,8 @@ hitAttributeEXT vec2 barycentrics;
 #include "triangle_hit.glsl"
 
 void main() {
-    triangle_hit(gl_InstanceID, gl_PrimitiveID, gl_HitKindEXT, gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT,
+    // The object: instance id plus geometry index (twinray_shared::bindings::mesh_object).
+    triangle_hit(gl_InstanceID + gl_GeometryIndexEXT, gl_PrimitiveID, gl_HitKindEXT, gl_WorldRayOriginEXT, gl_WorldRayDirectionEXT,
                  gl_ObjectRayOriginEXT, gl_ObjectRayDirectionEXT, gl_RayTmaxEXT, mat3(gl_WorldToObjectEXT),
                  gl_ObjectToWorldEXT, barycentrics, frame.cone.x);
 }

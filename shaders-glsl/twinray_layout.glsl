@@ -1,4 +1,4 @@
-// Generated from twinray-shared 0.2.0 by `cargo xtask shaders`; do not edit.
+// Generated from twinray-shared 0.3.0 by `cargo xtask shaders`; do not edit.
 #ifndef TWINRAY_LAYOUT_GLSL
 #define TWINRAY_LAYOUT_GLSL
 

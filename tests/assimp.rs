@@ -58,10 +58,12 @@ fn renders_alike(ctx: &std::sync::Arc<twinray_host::Context>, scene: &Scene, nam
     eprintln!("{name}: rmse {:.6}, {} hit mismatches", d.color.rmse, d.hit_mismatches);
     assert!(failures.is_empty(), "{name}: rust against glsl: {failures:?}");
     assert!(twinray_host::compare::hit_count(&rust) > 0, "{name}: the model is not in the picture");
-    // Every mesh in one BLAS each, kept no larger than built (compacted where the driver can).
+    // Every mesh built once, in a BLAS of its own or with the other primitives its node places
+    // alike (`scene::merge`), kept no larger than built (compacted where the driver can).
     let a = rust.accel;
     let triangles: usize = scene.meshes.values().map(|m| m.indices.len() / 3).sum();
-    assert_eq!((a.blases, a.triangles), (scene.meshes.len(), triangles as u64), "{name}: {a}");
+    assert_eq!(a.triangles, triangles as u64, "{name}: {a}");
+    assert!((1..=scene.meshes.len()).contains(&a.blases), "{name}: {a}");
     assert!(a.blas_bytes > 0 && a.blas_bytes <= a.blas_built_bytes && a.tlas_bytes > 0, "{name}: {a}");
 }
 
@@ -224,7 +226,8 @@ fn a_million_triangles_of_a_real_model_render_alike_instanced_and_not() {
             })
             .collect::<String>(),
     );
-    for (label, scene, blases) in [("instanced", &instanced, 34), ("separate", &separate, 14 * 34)] {
+    // The model's 34 primitives make 29 BLASes: a node's primitives placed alike share one.
+    for (label, scene, blases) in [("instanced", &instanced, 29), ("separate", &separate, 14 * 29)] {
         let out = render_scene(&ctx, scene, "rust");
         let a = out.accel;
         eprintln!("{label}: {a}");

@@ -17,6 +17,7 @@ mod gltf_clips;
 mod gltf_copies;
 mod layout;
 mod libraries;
+mod merged_meshes;
 mod modules;
 mod origin;
 mod orthographic;

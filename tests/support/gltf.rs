@@ -80,3 +80,47 @@ impl Quad<'_> {
 
 /// The unit square's texture coordinates at the quad's corners.
 pub const UNIT_UV: [[f32; 2]; 4] = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+
+/// Writes `strip.gltf` and `strip.bin` into `dir`: one mesh of one primitive per colour, each
+/// a unit quad in the z = 0 plane (primitive `p` over x in [1.2 p, 1.2 p + 1], y in [0, 1]),
+/// double-sided, of a material of that base colour, placed by one node per translation of
+/// `nodes`; its path.
+pub fn strip(dir: &Path, colors: &[[f32; 3]], nodes: &[[f32; 3]]) -> PathBuf {
+    let mut bytes: Vec<u8> = [0u8, 1, 2, 0, 2, 3].iter().flat_map(|i| u16::from(*i).to_le_bytes()).collect();
+    let (mut views, mut accessors) = (vec![r#"{"buffer": 0, "byteLength": 12}"#.to_string()], Vec::new());
+    accessors.push(r#"{"bufferView": 0, "componentType": 5123, "count": 6, "type": "SCALAR"}"#.to_string());
+    let (mut primitives, mut materials) = (Vec::new(), Vec::new());
+    for (p, [r, g, b]) in colors.iter().enumerate() {
+        let x = 1.2 * p as f32;
+        let corners = [x, 0.0, 0.0, x + 1.0, 0.0, 0.0, x + 1.0, 1.0, 0.0, x, 1.0, 0.0];
+        views.push(format!(r#"{{"buffer": 0, "byteOffset": {}, "byteLength": 48}}"#, bytes.len()));
+        bytes.extend(corners.iter().flat_map(|v| v.to_le_bytes()));
+        accessors.push(format!(
+            r#"{{"bufferView": {}, "componentType": 5126, "count": 4, "type": "VEC3", "min": [{x}, 0, 0], "max": [{}, 1, 0]}}"#,
+            views.len() - 1,
+            x + 1.0
+        ));
+        primitives.push(format!(r#"{{"attributes": {{"POSITION": {}}}, "indices": 0, "material": {p}}}"#, p + 1));
+        materials.push(format!(
+            r#"{{"doubleSided": true, "pbrMetallicRoughness": {{"baseColorFactor": [{r}, {g}, {b}, 1]}}}}"#
+        ));
+    }
+    std::fs::write(dir.join("strip.bin"), &bytes).unwrap();
+    let nodes: Vec<String> =
+        nodes.iter().map(|[x, y, z]| format!(r#"{{"mesh": 0, "translation": [{x}, {y}, {z}]}}"#)).collect();
+    let gltf = format!(
+        r#"{{"asset": {{"version": "2.0"}}, "buffers": [{{"byteLength": {}, "uri": "strip.bin"}}],
+        "bufferViews": [{}], "accessors": [{}], "materials": [{}], "meshes": [{{"primitives": [{}]}}],
+        "nodes": [{}], "scenes": [{{"nodes": [{}]}}], "scene": 0}}"#,
+        bytes.len(),
+        views.join(", "),
+        accessors.join(", "),
+        materials.join(", "),
+        primitives.join(", "),
+        nodes.join(", "),
+        (0..nodes.len()).map(|i| i.to_string()).collect::<Vec<_>>().join(", "),
+    );
+    let path = dir.join("strip.gltf");
+    std::fs::write(&path, gltf).unwrap();
+    path
+}

@@ -8,7 +8,7 @@ use super::layout::LayoutDraw;
 use super::output::RenderOptions;
 use super::sets::{check_device_limits, made_as_context_says, SetRender, SharedOutputs};
 use super::tracing::{self, Trace};
-use super::upload::{upload_moving, UploadedScene};
+use super::upload::{upload_moving, Movement, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::animation::Moves;
 use crate::scene::file::SceneFile;
@@ -70,7 +70,8 @@ impl<'a> FrameRenderer<'a> {
                 .collect(),
             false => Vec::new(),
         };
-        let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), mode.flags(), &posed)?;
+        let movement = Movement { flags: mode.flags(), posed: &posed, objects: moves.objects };
+        let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), movement)?;
         let outputs = SharedOutputs::new(ctx, opts)?;
         // One place per set: the pipelines in SBT order (`super::layout`).
         let made = made_as_context_says(ctx, sets);

@@ -3,10 +3,10 @@
 
 use super::textures::upload_textures;
 use crate::error::Result;
+use crate::scene::merge::{self, BlasLimits, Run};
 use crate::scene::{frame_data, Aabb, BlasDesc, InstanceDesc, Scene, SceneData};
-use crate::vk::accel::{
-    build_aabb_blas, build_tlas, build_triangle_blas, AccelStruct, InstanceRecord, Tlas, TlasFlags,
-};
+use crate::vk::accel::{build_tlas, AccelStruct, InstanceRecord, Tlas, TlasFlags};
+use crate::vk::blas::{build_blases, BlasInput, MeshGeometry};
 use crate::vk::buffer::Buffer;
 use crate::vk::commands::OneShot;
 use crate::vk::context::Context;
@@ -121,24 +121,33 @@ pub(crate) fn upload_shared(ctx: &Arc<Context>, scene: &Scene, frame: (u32, u32)
     upload_scene(ctx, scene, frame, None)
 }
 
-/// As `upload_shared`, with a TLAS made with `flags` but not built: the caller builds it,
-/// frame after frame, with `Tlas::record`. The BLASes of the mesh shapes named in `moving`
-/// are made with `flags` too, for the caller to refit or rebuild (`SceneResources::moving`).
+/// What changes in a moving scene from frame to frame.
+pub(crate) struct Movement<'a> {
+    /// How its TLAS is made.
+    pub flags: TlasFlags,
+    /// The mesh shapes whose vertices move (skins, morph targets).
+    pub posed: &'a [String],
+    /// Whether objects move: then no two share an instance (`scene::merge`).
+    pub objects: bool,
+}
+
+/// As `upload_shared`, with a TLAS made with `movement.flags` but not built: the caller builds
+/// it, frame after frame, with `Tlas::record`. The BLASes of the posed mesh shapes are made
+/// with those flags too, for the caller to refit or rebuild (`SceneResources::moving`).
 pub(crate) fn upload_moving(
     ctx: &Arc<Context>,
     scene: &Scene,
     frame: (u32, u32),
-    flags: TlasFlags,
-    moving: &[String],
+    movement: Movement,
 ) -> Result<UploadedScene> {
-    upload_scene(ctx, scene, frame, Some((flags, moving)))
+    upload_scene(ctx, scene, frame, Some(movement))
 }
 
 fn upload_scene(
     ctx: &Arc<Context>,
     scene: &Scene,
     (width, height): (u32, u32),
-    moving: Option<(TlasFlags, &[String])>,
+    moving: Option<Movement>,
 ) -> Result<UploadedScene> {
     let _doing = crate::util::activity::doing(format!("building the acceleration structures of {}", scene.name()));
     let started = std::time::Instant::now();
@@ -147,7 +156,7 @@ fn upload_scene(
     let scene = &*scene.on_gpu();
     let built = scene.build();
     let data = &built;
-    check_primitive_counts(ctx, data)?;
+    check_structure_limits(ctx, data)?;
     // Meshes are read by the BLAS builds and by the triangle closest-hit stage.
     let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
         | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
@@ -155,7 +164,7 @@ fn upload_scene(
     let vertices = upload_parts(ctx, "vertices", data.vertices.parts().map(bytemuck::cast_slice), mesh_usage)?;
     let indices = upload_parts(ctx, "indices", data.indices.parts().map(bytemuck::cast_slice), mesh_usage)?;
     let (vertex_address, index_address) = (vertices.device_address(), indices.device_address());
-    let (flags, moving_shapes) = moving.unwrap_or((TlasFlags::FastTrace, &[]));
+    let (flags, moving_shapes) = moving.as_ref().map_or((TlasFlags::FastTrace, &[][..]), |m| (m.flags, m.posed));
     let mut moving_blases = Vec::new();
     for shape in moving_shapes {
         let Some(object) = scene.file.objects.iter().position(|o| o.shape == *shape) else { continue };
@@ -168,45 +177,13 @@ fn upload_scene(
         let blas = MovingBlas::new(ctx, one_shot, vertices, indices, flags)?;
         moving_blases.push((shape.clone(), vertex_base, i, blas));
     }
-    let moving_indices: Vec<usize> = moving_blases.iter().map(|m| m.2).collect();
-    let blases = data
-        .blases
-        .iter()
-        .enumerate()
-        .map(|(i, blas)| match blas {
-            // A moving mesh's BLAS is its `MovingBlas`.
-            _ if moving_indices.contains(&i) => Ok(None),
-            BlasDesc::Aabbs(aabbs) => {
-                let boxes: Vec<_> = aabbs
-                    .iter()
-                    .map(|b| vk::AabbPositionsKHR {
-                        min_x: b.min.x,
-                        min_y: b.min.y,
-                        min_z: b.min.z,
-                        max_x: b.max.x,
-                        max_y: b.max.y,
-                        max_z: b.max.z,
-                    })
-                    .collect();
-                build_aabb_blas(ctx, one_shot, &boxes).map(Some)
-            }
-            BlasDesc::Triangles { vertex_base, vertex_count, index_base, index_count } => build_triangle_blas(
-                ctx,
-                one_shot,
-                vertex_address + u64::from(*vertex_base) * VERTEX_BYTES,
-                VERTEX_BYTES,
-                *vertex_count,
-                index_address + u64::from(*index_base) * 4,
-                *index_count,
-            )
-            .map(Some),
-        })
-        .collect::<Result<Vec<_>>>()?;
-    let address = |i: usize| match &blases[i] {
-        Some(blas) => blas.address,
-        None => moving_blases.iter().find(|m| m.2 == i).map_or(0, |m| m.3.accel.address),
-    };
-    let instances: Vec<_> = data
+    let posed = |object: usize| moving_blases.iter().any(|m| m.2 == data.instances[object].blas);
+    let objects_move = moving.as_ref().is_some_and(|m| m.objects);
+    let limits = BlasLimits { geometries: ctx.info.max_geometry_count, primitives: ctx.info.max_primitive_count };
+    let runs = merge::runs(data, |object| objects_move || posed(object), limits);
+    let (inputs, of_run) = blas_inputs(data, &runs, |run| posed(run.first), (vertex_address, index_address));
+    let blases = build_blases(ctx, one_shot, &inputs)?;
+    let mut instances: Vec<_> = data
         .instances
         .iter()
         .map(|i| InstanceRecord {
@@ -216,11 +193,18 @@ fn upload_scene(
             sbt_offset: i.hit_group,
             opaque: !data.plan.hit_groups.get(i.hit_group as usize).is_some_and(|g| g.cutout),
             single_sided: i.single_sided,
-            blas_address: address(i.blas),
+            // Inactive until its run places it: objects after a run's first are its geometries.
+            blas_address: 0,
         })
         .collect();
+    for (run, built) in runs.iter().zip(&of_run) {
+        instances[run.first].blas_address = match built {
+            Some(k) => blases[*k].address,
+            None => moving_blases.iter().find(|m| m.2 == run.blases[0]).map_or(0, |m| m.3.accel.address),
+        };
+    }
     let tlas = match moving {
-        Some((flags, _)) => Tlas::new(ctx, &instances, flags)?,
+        Some(m) => Tlas::new(ctx, &instances, m.flags)?,
         None => build_tlas(ctx, one_shot, &instances)?,
     };
     let frame = crate::scene::frame_uniform(&scene.file, width, height, &built.world_boxes());
@@ -234,10 +218,11 @@ fn upload_scene(
         (b::BINDING_VERTICES, storage, vertices),
         (b::BINDING_INDICES, storage, indices),
     ];
-    let all_blases = || blases.iter().flatten().chain(moving_blases.iter().map(|m| &m.3.accel));
+    let all_blases = || blases.iter().chain(moving_blases.iter().map(|m| &m.3.accel));
     let accel = AccelStats {
-        blases: blases.len(),
-        triangles: data.indices.len() as u64 / 3,
+        blases: blases.len() + moving_blases.len(),
+        triangles: inputs.iter().map(BlasInput::triangles).sum::<u64>()
+            + moving_blases.iter().map(|m| u64::from(m.3.triangles())).sum::<u64>(),
         instanced_triangles: data
             .instances
             .iter()
@@ -247,7 +232,7 @@ fn upload_scene(
             })
             .sum(),
         procedural_primitives: data.primitives.len() as u64,
-        instances: instances.len(),
+        instances: instances.iter().filter(|i| i.blas_address != 0).count(),
         blas_built_bytes: all_blases().map(|b| b.built_bytes).sum(),
         blas_bytes: all_blases().map(|b| b.bytes).sum(),
         tlas_bytes: tlas.accel.bytes,
@@ -256,7 +241,7 @@ fn upload_scene(
     log::info!("scene {}: {accel}", scene.name());
     let textures = upload_textures(ctx, one_shot, &data.textures)?;
     let resources = SceneResources {
-        _blases: blases.into_iter().flatten().collect(),
+        _blases: blases,
         moving: moving_blases,
         textures,
         tlas: RefCell::new(tlas),
@@ -265,16 +250,86 @@ fn upload_scene(
     Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel, object_bounds: OnceCell::new() })
 }
 
-/// Every BLAS within the device's `maxPrimitiveCount`: past it a build is undefined, so the
-/// scene is refused before any is made.
-fn check_primitive_counts(ctx: &Context, data: &SceneData) -> Result<()> {
+/// Every shape's BLAS within the device's `maxPrimitiveCount`, and the objects within its
+/// `maxInstanceCount`: past either a build is undefined, so the scene is refused before any
+/// structure is made.
+fn check_structure_limits(ctx: &Context, data: &SceneData) -> Result<()> {
     let most = ctx.info.max_primitive_count;
-    match primitives_past(&data.blases, most) {
-        Some(count) => Err(crate::error::Error::Input(format!(
+    if let Some(count) = primitives_past(&data.blases, most) {
+        return Err(crate::error::Error::Input(format!(
             "a shape of {count} primitives is more than {} takes in one acceleration structure ({most})",
             ctx.info.name
-        ))),
-        None => Ok(()),
+        )));
+    }
+    if data.instances.len() as u64 > ctx.info.max_instance_count {
+        return Err(crate::error::Error::Input(format!(
+            "{} objects are more than {} takes in one acceleration structure ({})",
+            data.instances.len(),
+            ctx.info.name,
+            ctx.info.max_instance_count
+        )));
+    }
+    Ok(())
+}
+
+/// What each BLAS to build is made of: one per distinct run (instances of a mesh share it),
+/// none for a run `skip` keeps out (a posed mesh's, built apart); for each run, the index of
+/// its BLAS among them.
+fn blas_inputs(
+    data: &SceneData,
+    runs: &[Run],
+    skip: impl Fn(&Run) -> bool,
+    (vertices, indices): (vk::DeviceAddress, vk::DeviceAddress),
+) -> (Vec<BlasInput>, Vec<Option<usize>>) {
+    let mut inputs = Vec::new();
+    let mut index: std::collections::HashMap<&[usize], usize> = std::collections::HashMap::new();
+    let of_run = runs
+        .iter()
+        .map(|run| {
+            if skip(run) {
+                return None;
+            }
+            let next = inputs.len();
+            let k = *index.entry(run.blases.as_slice()).or_insert(next);
+            if k == next {
+                inputs.push(blas_input(data, &run.blases, (vertices, indices)));
+            }
+            Some(k)
+        })
+        .collect();
+    (inputs, of_run)
+}
+
+/// The BLAS over `blases` (a procedural shape's boxes, or meshes each a geometry).
+fn blas_input(
+    data: &SceneData,
+    blases: &[usize],
+    (vertices, indices): (vk::DeviceAddress, vk::DeviceAddress),
+) -> BlasInput {
+    let mesh = |blas: &BlasDesc| match *blas {
+        BlasDesc::Triangles { vertex_base, vertex_count, index_base, index_count } => Some(MeshGeometry {
+            vertices: vertices + u64::from(vertex_base) * VERTEX_BYTES,
+            stride: VERTEX_BYTES,
+            vertex_count,
+            indices: indices + u64::from(index_base) * 4,
+            index_count,
+        }),
+        BlasDesc::Aabbs(_) => None,
+    };
+    match &data.blases[blases[0]] {
+        BlasDesc::Aabbs(boxes) => BlasInput::Aabbs(boxes.iter().map(aabb_positions).collect()),
+        BlasDesc::Triangles { .. } => BlasInput::Meshes(blases.iter().filter_map(|&b| mesh(&data.blases[b])).collect()),
+    }
+}
+
+fn aabb_positions(b: &Aabb) -> vk::AabbPositionsKHR {
+    vk::AabbPositionsKHR {
+        min_x: b.min.x,
+        min_y: b.min.y,
+        min_z: b.min.z,
+        max_x: b.max.x,
+        max_y: b.max.y,
+        max_z: b.max.z,
     }
 }
 

@@ -16,8 +16,6 @@ pub const MAX_OBJECTS: usize = 1 << 20;
 /// Most lights in a scene: every hit shades every light (and traces its shadow rays), and
 /// the lights buffer holds this many.
 pub const MAX_LIGHTS: usize = twinray_shared::bindings::MAX_LIGHTS as usize;
-/// Most shapes in a scene: each becomes one BLAS (instances share them).
-pub const MAX_SHAPES: usize = 4096;
 /// Largest M (M x M primary samples) and N (N x N shadow samples per rect light).
 pub const MAX_SAMPLES_PER_SIDE: u32 = 16;
 
@@ -109,12 +107,6 @@ pub fn check(scene: &SceneFile) -> Checked {
     }
     for (i, light) in scene.lights.iter().enumerate() {
         check_light(light).map_err(|e| format!("lights[{i}]: {e}"))?;
-    }
-    if scene.shapes.len() > MAX_SHAPES {
-        return Err(format!(
-            "a scene has at most {MAX_SHAPES} shapes (got {}): each is an acceleration structure",
-            scene.shapes.len()
-        ));
     }
     let mut primitives = 0u64;
     for (name, shape) in &scene.shapes {

@@ -11,6 +11,7 @@ mod framing;
 pub mod gltf;
 pub mod launches;
 pub mod material;
+pub mod merge;
 pub mod mesh;
 mod models;
 pub mod obj;

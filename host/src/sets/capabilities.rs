@@ -187,6 +187,8 @@ mod tests {
             max_image_dimension_2d: 16384,
             min_scratch_offset_alignment: 128,
             max_primitive_count: 1 << 29,
+            max_geometry_count: 1 << 24,
+            max_instance_count: 1 << 24,
             timestamp_period_ns: 1.0,
             timestamp_valid_bits: 64,
             cpu_threads: None,

@@ -3,7 +3,6 @@
 
 use super::buffer::Buffer;
 use super::commands::{memory_barrier, OneShot, TRACING_STAGES};
-use super::compact;
 use super::context::Context;
 use crate::error::{Result, VkContext};
 use ash::vk;
@@ -51,37 +50,6 @@ pub struct InstanceRecord {
     /// [`facing_flags`].
     pub single_sided: bool,
     pub blas_address: vk::DeviceAddress,
-}
-
-/// A BLAS over axis-aligned boxes, one procedural primitive each, all opaque.
-pub fn build_aabb_blas(ctx: &Arc<Context>, one_shot: &OneShot, aabbs: &[vk::AabbPositionsKHR]) -> Result<AccelStruct> {
-    let bytes: Vec<u8> = aabbs.iter().flat_map(aabb_bytes).collect();
-    let usage = vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
-        | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
-    let aabb_buffer = Buffer::with_data(ctx, "aabbs", &bytes, usage)?;
-    let data = vk::AccelerationStructureGeometryAabbsDataKHR::default()
-        .data(vk::DeviceOrHostAddressConstKHR { device_address: aabb_buffer.device_address() })
-        .stride(size_of::<vk::AabbPositionsKHR>() as u64);
-    let geometry = vk::AccelerationStructureGeometryKHR::default()
-        .geometry_type(vk::GeometryTypeKHR::AABBS)
-        .geometry(vk::AccelerationStructureGeometryDataKHR { aabbs: data })
-        .flags(vk::GeometryFlagsKHR::OPAQUE);
-    build(ctx, one_shot, geometry, aabbs.len() as u32, "blas")
-}
-
-/// A BLAS over one mesh: `vertex_count` vertices of `vertex_stride` bytes (an f32 position at
-/// offset 0) from `vertices`, `index_count` u32 indices from `indices` (device addresses), all opaque.
-pub fn build_triangle_blas(
-    ctx: &Arc<Context>,
-    one_shot: &OneShot,
-    vertices: vk::DeviceAddress,
-    vertex_stride: u64,
-    vertex_count: u32,
-    indices: vk::DeviceAddress,
-    index_count: u32,
-) -> Result<AccelStruct> {
-    let geometry = triangles(vertices, vertex_stride, vertex_count, indices);
-    build(ctx, one_shot, geometry, index_count / 3, "mesh blas")
 }
 
 /// The geometry of one opaque mesh: `vertex_count` vertices of `vertex_stride` bytes (an f32
@@ -258,7 +226,7 @@ pub(super) fn build_info<'a>(
 }
 
 /// What reads a built structure: later builds (a TLAS over a BLAS) and traces.
-fn built_for_reading() -> (vk::PipelineStageFlags, vk::AccessFlags) {
+pub(super) fn built_for_reading() -> (vk::PipelineStageFlags, vk::AccessFlags) {
     (
         vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR | TRACING_STAGES,
         vk::AccessFlags::ACCELERATION_STRUCTURE_READ_KHR,
@@ -286,7 +254,7 @@ pub(super) fn allocate(
 }
 
 /// An acceleration structure of type `ty` in `bytes` of new storage, not built yet.
-fn allocate_sized(
+pub(super) fn allocate_sized(
     ctx: &Arc<Context>,
     ty: vk::AccelerationStructureTypeKHR,
     bytes: u64,
@@ -322,74 +290,6 @@ pub(super) fn scratch(ctx: &Arc<Context>, size: u64) -> Result<(Buffer, vk::Devi
     )?;
     let address = buffer.device_address().next_multiple_of(align);
     Ok((buffer, address))
-}
-
-/// A bottom-level structure over one geometry, built, waited for and compacted (see
-/// `compact`): a BLAS is built once and traced many times, so its memory is what stays.
-fn build(
-    ctx: &Arc<Context>,
-    one_shot: &OneShot,
-    geometry: vk::AccelerationStructureGeometryKHR<'_>,
-    primitive_count: u32,
-    name: &str,
-) -> Result<AccelStruct> {
-    let geometries = [geometry];
-    let ty = vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL;
-    type F = vk::BuildAccelerationStructureFlagsKHR;
-    let info = build_info(ty, F::PREFER_FAST_TRACE | F::ALLOW_COMPACTION, &geometries);
-    let (accel, sizes) = allocate(ctx, &info, primitive_count, name)?;
-    let (scratch, scratch_address) = scratch(ctx, sizes.build_scratch_size)?;
-    let info = info
-        .dst_acceleration_structure(accel.raw)
-        .scratch_data(vk::DeviceOrHostAddressKHR { device_address: scratch_address });
-    let range = [vk::AccelerationStructureBuildRangeInfoKHR::default().primitive_count(primitive_count)];
-    let size = compact::CompactedSize::new(ctx)?;
-    one_shot.run(|device, cmd| {
-        size.reset(cmd);
-        // SAFETY: every buffer referenced by `info` is alive until run() has waited.
-        unsafe { ctx.accel.cmd_build_acceleration_structures(cmd, &[info], &[&range]) };
-        written_for_reading(device, cmd);
-        size.write(cmd, accel.raw);
-        Ok(())
-    })?;
-    // The scratch is done with: freed before the compacted copy is made, not beside it.
-    drop(scratch);
-    compacted(ctx, one_shot, accel, size.read()?, name)
-}
-
-/// `built` copied into a structure of `size` bytes, its compacted size; the built one is freed
-/// once the copy has completed. An equal size (lavapipe reports the size as built) is copied
-/// too up to `COPIED_WHEN_EQUAL` bytes, so that what every driver traces is a copy, in CI under
-/// validation as well; a larger one is kept as built, as the copy would double it at the
-/// scene's peak memory for nothing.
-fn compacted(ctx: &Arc<Context>, one_shot: &OneShot, built: AccelStruct, size: u64, name: &str) -> Result<AccelStruct> {
-    if size == 0 || size > built.bytes || (size == built.bytes && size > COPIED_WHEN_EQUAL) {
-        return Ok(built);
-    }
-    let mut small = allocate_sized(ctx, vk::AccelerationStructureTypeKHR::BOTTOM_LEVEL, size, name)?;
-    one_shot.run(|device, cmd| {
-        compact::record_copy(ctx, cmd, built.raw, small.raw);
-        written_for_reading(device, cmd);
-        Ok(())
-    })?;
-    small.built_bytes = built.bytes;
-    Ok(small)
-}
-
-/// Largest BLAS copied when compaction would not make it smaller (see `compacted`).
-const COPIED_WHEN_EQUAL: u64 = 16 << 20;
-
-/// A barrier after an acceleration structure is written: a later build, copy, query or trace
-/// reads what was written.
-fn written_for_reading(device: &ash::Device, cmd: vk::CommandBuffer) {
-    let written =
-        (vk::PipelineStageFlags::ACCELERATION_STRUCTURE_BUILD_KHR, vk::AccessFlags::ACCELERATION_STRUCTURE_WRITE_KHR);
-    memory_barrier(device, cmd, written, built_for_reading());
-}
-
-/// VkAabbPositionsKHR as bytes.
-fn aabb_bytes(b: &vk::AabbPositionsKHR) -> Vec<u8> {
-    [b.min_x, b.min_y, b.min_z, b.max_x, b.max_y, b.max_z].iter().flat_map(|v| v.to_le_bytes()).collect()
 }
 
 /// The facing flags of an instance: culling off where it is double-sided, else none. Vulkan

@@ -8,36 +8,38 @@ use crate::error::{Result, VkContext};
 use ash::vk;
 use std::sync::Arc;
 
-/// A query pool of one compacted-size query.
-pub struct CompactedSize {
+/// A query pool of compacted-size queries, one per structure of a batch.
+pub struct CompactedSizes {
     ctx: Arc<Context>,
     pool: vk::QueryPool,
+    count: u32,
 }
 
-impl CompactedSize {
-    pub fn new(ctx: &Arc<Context>) -> Result<Self> {
+impl CompactedSizes {
+    pub fn new(ctx: &Arc<Context>, count: u32) -> Result<Self> {
         let info = vk::QueryPoolCreateInfo::default()
             .query_type(vk::QueryType::ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR)
-            .query_count(1);
+            .query_count(count.max(1));
         // SAFETY: valid create info; destroyed in Drop.
         let pool = unsafe { ctx.device.create_query_pool(&info, None) }.call("vkCreateQueryPool")?;
-        Ok(CompactedSize { ctx: ctx.clone(), pool })
+        Ok(CompactedSizes { ctx: ctx.clone(), pool, count: count.max(1) })
     }
 
-    /// Resets the query, before the build it measures (in the same command buffer).
+    /// Resets the queries, before the builds they measure (in the same command buffer).
     pub fn reset(&self, cmd: vk::CommandBuffer) {
         // SAFETY: cmd is recording; the pool is live.
-        unsafe { self.ctx.device.cmd_reset_query_pool(cmd, self.pool, 0, 1) };
+        unsafe { self.ctx.device.cmd_reset_query_pool(cmd, self.pool, 0, self.count) };
     }
 
-    /// Writes the compacted size of `accel`, built with ALLOW_COMPACTION, after a barrier that
-    /// makes its build visible.
-    pub fn write(&self, cmd: vk::CommandBuffer, accel: vk::AccelerationStructureKHR) {
-        // SAFETY: cmd is recording; accel is built before this in the same command buffer.
+    /// Writes the compacted size of each of `accels` (at most the pool's count), built with
+    /// ALLOW_COMPACTION, after a barrier that makes their builds visible.
+    pub fn write(&self, cmd: vk::CommandBuffer, accels: &[vk::AccelerationStructureKHR]) {
+        // SAFETY: cmd is recording; the structures are built before this in the same command
+        // buffer, and no more of them than the pool has queries.
         unsafe {
             self.ctx.accel.cmd_write_acceleration_structures_properties(
                 cmd,
-                &[accel],
+                &accels[..accels.len().min(self.count as usize)],
                 vk::QueryType::ACCELERATION_STRUCTURE_COMPACTED_SIZE_KHR,
                 self.pool,
                 0,
@@ -45,24 +47,27 @@ impl CompactedSize {
         };
     }
 
-    /// The size written, once the command buffer that wrote it has completed.
-    pub fn read(&self) -> Result<u64> {
-        let mut size = [0u64];
-        // SAFETY: the query was written by completed work; one u64 result.
+    /// The first `n` sizes written, once the command buffer that wrote them has completed.
+    pub fn read(&self, n: usize) -> Result<Vec<u64>> {
+        let mut sizes = vec![0u64; n.min(self.count as usize)];
+        if sizes.is_empty() {
+            return Ok(sizes);
+        }
+        // SAFETY: the queries were written by completed work; one u64 result each.
         unsafe {
             self.ctx.device.get_query_pool_results(
                 self.pool,
                 0,
-                &mut size,
+                &mut sizes,
                 vk::QueryResultFlags::TYPE_64 | vk::QueryResultFlags::WAIT,
             )
         }
         .call("vkGetQueryPoolResults")?;
-        Ok(size[0])
+        Ok(sizes)
     }
 }
 
-impl Drop for CompactedSize {
+impl Drop for CompactedSizes {
     fn drop(&mut self) {
         if self.ctx.abandoned() {
             return;

@@ -27,6 +27,10 @@ pub struct DeviceInfo {
     pub min_scratch_offset_alignment: u32,
     /// Most triangles or boxes in one bottom-level structure (`maxPrimitiveCount`).
     pub max_primitive_count: u64,
+    /// Most geometries in one bottom-level structure (`maxGeometryCount`).
+    pub max_geometry_count: u64,
+    /// Most instances in one top-level structure (`maxInstanceCount`).
+    pub max_instance_count: u64,
     /// Nanoseconds per timestamp tick.
     pub timestamp_period_ns: f32,
     /// Valid bits of timestamps on the queue used; 0 means no GPU timing.
@@ -162,6 +166,8 @@ pub(super) fn device_info(
         max_image_dimension_2d: props.limits.max_image_dimension2_d,
         min_scratch_offset_alignment: accel.min_acceleration_structure_scratch_offset_alignment,
         max_primitive_count: accel.max_primitive_count,
+        max_geometry_count: accel.max_geometry_count,
+        max_instance_count: accel.max_instance_count,
         timestamp_period_ns: props.limits.timestamp_period,
         timestamp_valid_bits: families.get(queue_family as usize).map_or(0, |f| f.timestamp_valid_bits),
     }

@@ -1,6 +1,7 @@
 //! Thin, self-releasing wrappers over the Vulkan objects twinray uses.
 
 pub mod accel;
+pub mod blas;
 pub mod buffer;
 pub mod commands;
 pub mod compact;

@@ -47,6 +47,11 @@ impl MovingBlas {
         Ok(blas)
     }
 
+    /// Its mesh's triangles.
+    pub fn triangles(&self) -> u32 {
+        self.mesh.4 / 3
+    }
+
     /// Records a full build (`update` false) or, where it was made updatable, a refit of the
     /// built structure to its vertices as they are now.
     pub fn record(&self, ctx: &Context, cmd: vk::CommandBuffer, update: bool) {

@@ -160,3 +160,14 @@ pub const UNWRITTEN: u32 = 0x7fa5_dead;
 /// stage left the payload poisoned: the record was written (so it is not [`UNWRITTEN`]), the
 /// payload was not. No object, primitive or hit kind a scene reaches.
 pub const PROBE_NO_PAYLOAD: u32 = 0x7fa5_0bad;
+
+/// The object (the index into the objects buffer, `layout::ObjectData`) that a hit on a mesh
+/// belongs to: its instance id plus its geometry index. The host places consecutive objects
+/// that share a transform, a hit group and a mask (a glTF mesh's primitives) as one TLAS
+/// instance of one BLAS, object `k` of them its geometry `k`, and leaves the instance slots
+/// of the others inactive; every other instance has one geometry, so this is its instance id.
+/// A procedural BLAS has one geometry: its stages read the instance id alone.
+#[inline(always)]
+pub fn mesh_object(instance: u32, geometry: u32) -> u32 {
+    instance + geometry
+}

@@ -33,6 +33,10 @@ pub const CHANGES: &[(&str, &str)] = &[
         "0.2.0",
         "orthographic cameras: FrameUniform.cone.y is 1 for one (camera::primary_ray then starts each ray on the camera's plane, where proj_inverse maps its pixel, and sends it down the camera's -z), 0 for a perspective camera",
     ),
+    (
+        "0.3.0",
+        "a mesh hit's object is its instance id plus its geometry index (bindings::mesh_object): a BLAS may hold several meshes, each a geometry, the instance slots of the objects after its first inactive",
+    ),
 ];
 
 /// The record a module built against this contract carries.

@@ -41,7 +41,8 @@ pub struct FrameUniform {
 }
 const _: () = assert!(core::mem::size_of::<FrameUniform>() == 192);
 
-/// Per object (TLAS instance), indexed by the instance index.
+/// Per object, indexed by the object: its TLAS instance's index, plus the geometry index of a
+/// hit on a mesh ([`crate::bindings::mesh_object`]).
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]

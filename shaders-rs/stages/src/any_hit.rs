@@ -15,7 +15,8 @@ use twinray_shared::shading;
 #[spirv(any_hit)]
 #[allow(clippy::too_many_arguments)]
 pub fn triangle_cutout_any_hit(
-    #[spirv(instance_id)] object: u32,
+    #[spirv(instance_id)] instance: u32,
+    #[spirv(ray_geometry_index)] geometry: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(object_ray_origin)] object_origin: Vec3,
     #[spirv(object_ray_direction)] object_direction: Vec3,
@@ -28,11 +29,12 @@ pub fn triangle_cutout_any_hit(
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
+    let object = twinray_shared::bindings::mesh_object(instance, geometry);
     // Not bounds-checked, as the closest hits and GLSL's twin are not: this stage runs on
     // every candidate hit of a masked mesh, and its checks cost up to 1.8% of a frame on an
     // H200.
-    // SAFETY: the instance id and the object's material are the host's, from the lists
-    // it uploads; robust access reads zeros where a stage from disk strays.
+    // SAFETY: the object (instance id plus geometry index) and its material are the host's,
+    // from the lists it uploads; robust access reads zeros where a stage from disk strays.
     let data = unsafe { *objects.get_unchecked(object as usize) };
     let material = unsafe { *materials.get_unchecked(data.material as usize) };
     let mut alpha = shading::cutout_alpha(&material, object_origin + object_direction * t);

@@ -141,7 +141,8 @@ pub fn procedural_closest_hit_callable(
 #[spirv(closest_hit)]
 #[allow(clippy::too_many_arguments)]
 pub fn triangle_closest_hit(
-    #[spirv(instance_id)] object: u32,
+    #[spirv(instance_id)] instance: u32,
+    #[spirv(ray_geometry_index)] geometry: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(hit_kind)] hit_kind: u32,
     #[spirv(world_ray_origin)] origin: Vec3,
@@ -162,6 +163,7 @@ pub fn triangle_closest_hit(
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
+    let object = twinray_shared::bindings::mesh_object(instance, geometry);
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let features = Features::new(features);
     hit::triangle_surface(
@@ -185,7 +187,8 @@ pub fn triangle_closest_hit(
 #[spirv(closest_hit)]
 #[allow(clippy::too_many_arguments)]
 pub fn triangle_closest_hit_flat(
-    #[spirv(instance_id)] object: u32,
+    #[spirv(instance_id)] instance: u32,
+    #[spirv(ray_geometry_index)] geometry: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(hit_kind)] hit_kind: u32,
     #[spirv(world_ray_origin)] origin: Vec3,
@@ -206,6 +209,7 @@ pub fn triangle_closest_hit_flat(
     #[spirv(spec_constant(id = 3, default = 31))] features: u32,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
+    let object = twinray_shared::bindings::mesh_object(instance, geometry);
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let features = Features::new(features);
     hit::triangle_surface(
@@ -228,7 +232,8 @@ pub fn triangle_closest_hit_flat(
 #[spirv(closest_hit)]
 #[allow(clippy::too_many_arguments)]
 pub fn triangle_closest_hit_callable(
-    #[spirv(instance_id)] object: u32,
+    #[spirv(instance_id)] instance: u32,
+    #[spirv(ray_geometry_index)] geometry: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(hit_kind)] hit_kind: u32,
     #[spirv(world_ray_origin)] origin: Vec3,
@@ -250,6 +255,7 @@ pub fn triangle_closest_hit_callable(
     #[spirv(callable_data)] call: &mut MaterialCall,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
+    let object = twinray_shared::bindings::mesh_object(instance, geometry);
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
     let features = Features::new(features);
     hit::triangle_surface(
@@ -283,6 +289,7 @@ pub fn triangle_closest_hit_callable(
 #[allow(clippy::too_many_arguments)]
 pub fn probe_witness(
     #[spirv(instance_id)] object: u32,
+    #[spirv(ray_geometry_index)] geometry: u32,
     #[spirv(instance_custom_index)] primitive_base: u32,
     #[spirv(primitive_id)] primitive_id: u32,
     #[spirv(hit_kind)] hit_kind: u32,
@@ -307,9 +314,10 @@ pub fn probe_witness(
     if (hit_kind == HIT_KIND_TRIANGLE_FRONT) | (hit_kind == HIT_KIND_TRIANGLE_BACK) {
         let mut ray =
             twinray_shared::transform::StageRay { origin: object_origin, direction: object_direction, shift: 0.0 };
-        if Features::new(features).has::<FAR_INSTANCES>() & ((object as usize) < objects.len()) {
+        let mesh = twinray_shared::bindings::mesh_object(object, geometry);
+        if Features::new(features).has::<FAR_INSTANCES>() & ((mesh as usize) < objects.len()) {
             // SAFETY: the index checked above; the vertices and indices are the host's.
-            let data = unsafe { *objects.get_unchecked(object as usize) };
+            let data = unsafe { *objects.get_unchecked(mesh as usize) };
             let v = hit::triangle_vertices(&data, primitive_id, vertices, indices);
             let p = [v[0].position.xyz(), v[1].position.xyz(), v[2].position.xyz()];
             let near = twinray_shared::transform::triangle_ray(world, placed, p);

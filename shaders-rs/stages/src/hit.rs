@@ -103,8 +103,8 @@ pub fn triangle_surface(
 ) {
     // Not bounds-checked, as the procedural closest hit and GLSL's twin are not: the eight
     // checks cost Rust 2.5% to 5.1% on a textured model at 1 spp on the H200.
-    // SAFETY: the instance id and the object's material are the host's, from the lists it
-    // uploads; robust access reads zeros where a stage from disk strays.
+    // SAFETY: the object (instance id plus geometry index) and its material are the host's,
+    // from the lists it uploads; robust access reads zeros where a stage from disk strays.
     let data = unsafe { *objects.get_unchecked(hit.object as usize) };
     let material = unsafe { *materials.get_unchecked(data.material as usize) };
     let v = triangle_vertices(&data, hit.primitive_id, vertices, indices);
@@ -138,7 +138,8 @@ pub fn call_material(call: &mut MaterialCall, material: &Material, point: Vec3, 
 /// compute renderer from its ray query's committed intersection.
 #[derive(Clone, Copy)]
 pub struct SurfaceHit {
-    /// The instance id (the object's index).
+    /// The object's index: the instance id, plus the geometry index on a mesh
+    /// (`twinray_shared::bindings::mesh_object`).
     pub object: u32,
     pub primitive_id: u32,
     pub hit_kind: u32,

@@ -13,6 +13,7 @@ use spirv_std::glam::{UVec4, Vec2, Vec3, Vec4};
 use spirv_std::matrix::Matrix4x3;
 use spirv_std::ray_tracing::{AccelerationStructure, CandidateIntersection, CommittedIntersection, RayFlags, RayQuery};
 use spirv_std::RuntimeArray;
+use twinray_shared::bindings::mesh_object;
 use twinray_shared::bindings::{
     CUTOUT_TEXTURE, HIT_KIND_TRIANGLE_BACK, HIT_KIND_TRIANGLE_FRONT, MASK_OCCLUDER, NO_HIT,
 };
@@ -39,7 +40,8 @@ unsafe fn candidate_hit(
     (t_min, t_max): (f32, f32),
     features: Features,
 ) -> (f32, Vec3) {
-    let object = query.get_candidate_intersection_instance_id() as usize;
+    let instance = query.get_candidate_intersection_instance_id();
+    let object = mesh_object(instance, query.get_candidate_intersection_geometry_index()) as usize;
     let primitive_id = query.get_candidate_intersection_primitive_index();
     let primitive = (query.get_candidate_intersection_instance_custom_index() + primitive_id) as usize;
     let (mut t, mut normal) = (-1.0, Vec3::ZERO);
@@ -205,7 +207,8 @@ pub fn trace_query(
                 query.get_committed_intersection_object_ray_direction(),
             ),
         );
-        let object = query.get_committed_intersection_instance_id();
+        let instance = query.get_committed_intersection_instance_id();
+        let object = mesh_object(instance, query.get_committed_intersection_geometry_index());
         let primitive_id = query.get_committed_intersection_primitive_index();
         let t = query.get_committed_intersection_t();
         let world_to_object = committed_transform::<true>(query).to_mat3();
