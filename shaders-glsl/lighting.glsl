@@ -9,6 +9,16 @@ struct LightSample {
     vec3 irradiance;
 };
 
+// Twin of twinray_shared::lighting::falloff: what a point light's range and cone leave of its
+// inverse-square light at `distance` along `direction` (from the point to the light).
+float light_falloff(Light light, vec3 direction, float distance) {
+    float x = distance * light.position.w;
+    float x2 = x * x;
+    float window = min(max(1.0 - x2 * x2, 0.0), 1.0);
+    float cone = min(max(dot(light.u.xyz, -direction) * light.v.x + light.v.y, 0.0), 1.0);
+    return window * (cone * cone);
+}
+
 // A directional light's shadow ray reaches `across` (frame.reach.y: across the whole scene).
 LightSample light_sample(Light light, vec3 point, uint i, uint j, float r1, float r2, float across) {
     vec3 radiance = light.radiance.xyz;
@@ -30,7 +40,10 @@ LightSample light_sample(Light light, vec3 point, uint i, uint j, float r1, floa
     vec3 direction = to_light / distance;
     vec3 irradiance;
     if (light.kind == LIGHT_POINT) {
-        irradiance = radiance / distance_sq;
+        // Times the falloff first: a plain point light (falloff 1) gives radiance / d^2 exactly.
+        // Dimmed only where the scene has a range or a cone (HAS_FEATURE_LIGHT_CONES).
+        vec3 dimmed = HAS_FEATURE_LIGHT_CONES ? radiance * light_falloff(light, direction, distance) : radiance;
+        irradiance = dimmed / distance_sq;
     } else {
         // Area light, two-sided: radiance x cosine at the light x solid angle of one stratum.
         vec3 area_normal = cross(light.u.xyz, light.v.xyz);

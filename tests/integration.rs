@@ -25,6 +25,7 @@ mod parity;
 mod pipeline;
 mod probe;
 mod properties;
+mod punctual_lights;
 mod ray_query;
 mod rays;
 mod reach;

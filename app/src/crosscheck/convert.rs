@@ -305,6 +305,13 @@ fn light_parts(light: &LightDesc, l: usize) -> Result<Vec<Value>> {
     if !shadows {
         return Err(Error::Input(format!("light {l} has shadows = false, which Mitsuba cannot render")));
     }
+    if let LightDesc::Point { range, spot, .. } = light {
+        if range.is_some() || spot.is_some() {
+            return Err(Error::Input(format!(
+                "light {l} has a range or a spot cone, whose glTF falloff Mitsuba's point and spot lights do not have"
+            )));
+        }
+    }
     Ok(match *light {
         LightDesc::Directional { direction, color, intensity, .. } => vec![json!({
             "type": "directional",

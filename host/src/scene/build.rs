@@ -429,26 +429,38 @@ fn set_transform(gpu: &mut Material, t: &TextureDesc) {
     gpu.uv_v = Vec3::from(v).extend(0.0);
 }
 
+/// A point light's axis and the scale and offset that turn the cosine to it into its cone's
+/// falloff (`twinray_shared::lighting::falloff`): no axis, 0 and 1 for a light without a cone.
+fn spot_cone(spot: Option<&super::light::SpotDesc>) -> (Vec3, Vec3) {
+    let Some(spot) = spot else { return (Vec3::ZERO, Vec3::new(0.0, 1.0, 0.0)) };
+    let (inner, outer) = (spot.inner_cone_degrees.to_radians().cos(), spot.outer_cone_degrees.to_radians().cos());
+    // glTF's sample viewer divides by the difference, and its spec guards it so.
+    let scale = 1.0 / (inner - outer).max(1e-3);
+    (Vec3::from(spot.direction).normalize(), Vec3::new(scale, -outer * scale, 0.0))
+}
+
 fn light(l: &LightDesc, default_samples: u32) -> Light {
     let (kind, samples, shadows, position, color, intensity, u, v) = match *l {
         LightDesc::Directional { direction, color, intensity, shadows } => (
             b::LIGHT_DIRECTIONAL,
             1,
             shadows,
-            Vec3::from(direction).normalize(),
+            Vec3::from(direction).normalize().extend(1.0),
             color,
             intensity,
             Vec3::ZERO,
             Vec3::ZERO,
         ),
-        LightDesc::Point { position, color, intensity, shadows } => {
-            (b::LIGHT_POINT, 1, shadows, position.into(), color, intensity, Vec3::ZERO, Vec3::ZERO)
+        LightDesc::Point { position, color, intensity, shadows, range, spot } => {
+            let (axis, cone) = spot_cone(spot.as_ref());
+            let reach = range.map_or(0.0, |r| 1.0 / r);
+            (b::LIGHT_POINT, 1, shadows, Vec3::from(position).extend(reach), color, intensity, axis, cone)
         }
         LightDesc::Rect { center, u, v, color, intensity, samples, shadows } => (
             b::LIGHT_RECT,
             samples.unwrap_or(default_samples),
             shadows,
-            center.into(),
+            Vec3::from(center).extend(1.0),
             color,
             intensity,
             u.into(),
@@ -460,7 +472,7 @@ fn light(l: &LightDesc, default_samples: u32) -> Light {
         samples,
         shadows: u32::from(shadows),
         _pad0: 0,
-        position: position.extend(1.0),
+        position,
         radiance: (Vec3::from(color) * intensity).extend(1.0),
         u: u.extend(0.0),
         v: v.extend(0.0),

@@ -251,10 +251,12 @@ pub(super) fn check_light(light: &LightDesc) -> Checked {
             color("color", *c)?;
             positive("intensity", *intensity)
         }
-        LightDesc::Point { position, color: c, intensity, .. } => {
+        LightDesc::Point { position, color: c, intensity, range, spot, .. } => {
             finite("position", position)?;
             color("color", *c)?;
-            positive("intensity", *intensity)
+            positive("intensity", *intensity)?;
+            range.map_or(Ok(()), |r| positive("range", r))?;
+            spot.as_ref().map_or(Ok(()), check_spot)
         }
         LightDesc::Rect { center, u, v, color: c, intensity, samples: n, .. } => {
             finite("center", center)?;
@@ -268,6 +270,21 @@ pub(super) fn check_light(light: &LightDesc) -> Checked {
             n.map_or(Ok(()), |n| samples("samples", n))
         }
     }
+}
+
+/// A cone along a direction, its inner angle below its outer one, within a quarter turn.
+fn check_spot(spot: &super::light::SpotDesc) -> Checked {
+    finite("spot.direction", &spot.direction)?;
+    if Vec3::from(spot.direction).length_squared() == 0.0 {
+        return Err("spot.direction must not be zero".into());
+    }
+    let (inner, outer) = (spot.inner_cone_degrees, spot.outer_cone_degrees);
+    if !((0.0..90.0).contains(&inner) && inner < outer && outer <= 90.0) {
+        return Err(format!(
+            "spot cone of inner_cone_degrees {inner} and outer_cone_degrees {outer}: 0 <= inner < outer <= 90"
+        ));
+    }
+    Ok(())
 }
 
 /// Each key against its rule, then the kind's relations between keys.

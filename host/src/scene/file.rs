@@ -3,6 +3,7 @@
 
 use super::animation::format::AnimationDesc;
 pub use super::camera::CameraDesc;
+pub use super::light::{LightDesc, SpotDesc};
 use super::material::OwnMaterialDesc;
 use super::shape::ShapeDesc;
 use serde::de::Error as _;
@@ -94,10 +95,6 @@ fn one() -> u32 {
 
 fn unit() -> f32 {
     1.0
-}
-
-fn yes() -> bool {
-    true
 }
 
 /// `[image]`: size, samples and seed.
@@ -231,39 +228,6 @@ pub enum CutoutPattern {
     Discs,
     /// The surface's own alpha (meshes, through their texture coordinates and colours).
     Alpha,
-}
-
-/// A light, by `kind`.
-#[derive(Clone, Debug, Deserialize)]
-#[serde(tag = "kind", rename_all = "snake_case", deny_unknown_fields)]
-pub enum LightDesc {
-    /// `direction` points towards the light.
-    Directional {
-        direction: [f32; 3],
-        color: [f32; 3],
-        intensity: f32,
-        #[serde(default = "yes")]
-        shadows: bool,
-    },
-    /// A point light, falling off with the square of the distance.
-    Point {
-        position: [f32; 3],
-        color: [f32; 3],
-        intensity: f32,
-        #[serde(default = "yes")]
-        shadows: bool,
-    },
-    /// A rectangle centred at `center` with edge vectors `u` and `v`, emitting from both faces.
-    Rect {
-        center: [f32; 3],
-        u: [f32; 3],
-        v: [f32; 3],
-        color: [f32; 3],
-        intensity: f32,
-        samples: Option<u32>,
-        #[serde(default = "yes")]
-        shadows: bool,
-    },
 }
 
 /// One placed shape: a TLAS instance.

@@ -10,6 +10,7 @@ pub mod file;
 mod framing;
 pub mod gltf;
 pub mod launches;
+pub mod light;
 pub mod material;
 pub mod merge;
 pub mod mesh;

@@ -3,7 +3,7 @@
 
 use crate::sets::own::OwnShapeRef;
 use twinray_shared::bindings::{
-    CUTOUT_NONE, LIGHT_RECT, MATERIAL_CHECKER, MATERIAL_CUTOUT, MATERIAL_EMISSIVE, MATERIAL_KINDS,
+    CUTOUT_NONE, LIGHT_POINT, LIGHT_RECT, MATERIAL_CHECKER, MATERIAL_CUTOUT, MATERIAL_EMISSIVE, MATERIAL_KINDS,
 };
 use twinray_shared::features;
 use twinray_shared::layout::{Light, Material};
@@ -166,6 +166,12 @@ pub fn scene_features(materials: &[Material], lights: &[Light]) -> u32 {
         | any(lights.iter().any(|l| l.kind == LIGHT_RECT), features::AREA_LIGHTS)
         | any(masked, features::ALPHA_MASKS)
         | any(emits, features::EMISSION)
+        | any(lights.iter().any(dimmed), features::LIGHT_CONES)
+}
+
+/// Whether a light is a point light with a range or a cone (`build::spot_cone` writes them).
+fn dimmed(light: &Light) -> bool {
+    light.kind == LIGHT_POINT && (light.position.w != 0.0 || light.u.truncate() != glam::Vec3::ZERO)
 }
 
 /// `names` without repeats, each where it first appears.

@@ -35,7 +35,7 @@ pub const CHANGES: &[(&str, &str)] = &[
     ),
     (
         "0.3.0",
-        "a mesh hit's object is its instance id plus its geometry index (bindings::mesh_object): a BLAS may hold several meshes, each a geometry, the instance slots of the objects after its first inactive",
+        "a mesh hit's object is its instance id plus its geometry index (bindings::mesh_object): a BLAS may hold several meshes, each a geometry, the instance slots of the objects after its first inactive; a point light's range and cone (Light.position.w, u and v: lighting::falloff) dim it",
     ),
 ];
 

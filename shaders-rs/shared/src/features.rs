@@ -34,18 +34,21 @@ pub const EMISSION: u32 = 1 << 3;
 /// intersection stages compute their object-space ray themselves, the translation taken off
 /// first (`crate::transform`); elsewhere they take the driver's, which costs nothing.
 pub const FAR_INSTANCES: u32 = 1 << 4;
+/// Light cones: a point light with a range or a spot cone (`crate::lighting::falloff`).
+pub const LIGHT_CONES: u32 = 1 << 5;
 
 /// Every feature, in bit order.
-pub const FEATURES: [Feature; 5] = [
+pub const FEATURES: [Feature; 6] = [
     Feature { bit: TEXTURES, name: "textures", used_by: "a material with a texture" },
     Feature { bit: AREA_LIGHTS, name: "area-lights", used_by: "a rect light" },
     Feature { bit: ALPHA_MASKS, name: "alpha-masks", used_by: "a cutout material" },
     Feature { bit: EMISSION, name: "emission", used_by: "an emissive material or one with emission" },
     Feature { bit: FAR_INSTANCES, name: "far-instances", used_by: "an object far from the origin for its size" },
+    Feature { bit: LIGHT_CONES, name: "light-cones", used_by: "a point light with a range or a spot cone" },
 ];
 
 /// Every feature's bit: what a stage assumes when nothing specialises it.
-pub const ALL: u32 = TEXTURES | AREA_LIGHTS | ALPHA_MASKS | EMISSION | FAR_INSTANCES;
+pub const ALL: u32 = TEXTURES | AREA_LIGHTS | ALPHA_MASKS | EMISSION | FAR_INSTANCES | LIGHT_CONES;
 
 /// The features whose code this build of the crate holds: all but those its cargo features
 /// `without-NAME` leave out (only a baseline set for measuring is built so).
@@ -54,7 +57,8 @@ pub const BUILT: u32 = ALL
     & !(if cfg!(feature = "without-area-lights") { AREA_LIGHTS } else { 0 })
     & !(if cfg!(feature = "without-alpha-masks") { ALPHA_MASKS } else { 0 })
     & !(if cfg!(feature = "without-emission") { EMISSION } else { 0 })
-    & !(if cfg!(feature = "without-far-instances") { FAR_INSTANCES } else { 0 });
+    & !(if cfg!(feature = "without-far-instances") { FAR_INSTANCES } else { 0 })
+    & !(if cfg!(feature = "without-light-cones") { LIGHT_CONES } else { 0 });
 
 /// The features a stage may use: the bits of its `SPEC_FEATURES` that this build holds code for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]

@@ -179,7 +179,8 @@ impl Default for Material {
 }
 
 /// A light. Directional: `position` holds the unit direction towards the light. Point: the
-/// position. Rect: the centre, with edge vectors `u` and `v`, sampled `samples` x `samples`.
+/// position, with its range and cone (a spot light) in `position.w`, `u` and `v`. Rect: the
+/// centre, with edge vectors `u` and `v`, sampled `samples` x `samples`.
 #[repr(C)]
 #[derive(Clone, Copy)]
 #[cfg_attr(not(target_arch = "spirv"), derive(Debug, PartialEq))]
@@ -194,13 +195,15 @@ pub struct Light {
     /// Padding to the 16-byte alignment of `position`.
     pub _pad0: u32,
     /// xyz: the position (point light, rect light's centre), or the unit direction towards a
-    /// directional light; w: unused.
+    /// directional light; w: a point light's 1 / range, 0 for none ([`crate::lighting`]).
     pub position: Vec4,
     /// rgb: colour times intensity.
     pub radiance: Vec4,
-    /// xyz: a rect light's first edge vector; w: unused.
+    /// xyz: a rect light's first edge vector, or a point light's unit axis (the way a spot
+    /// light shines; zero for none); w: unused.
     pub u: Vec4,
-    /// xyz: a rect light's second edge vector; w: unused.
+    /// xyz: a rect light's second edge vector; for a point light, x and y scale and offset
+    /// the cosine to its axis into its cone's falloff (0 and 1 for no cone); w: unused.
     pub v: Vec4,
 }
 const _: () = assert!(core::mem::size_of::<Light>() == 80);

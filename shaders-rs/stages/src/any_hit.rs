@@ -27,7 +27,7 @@ pub fn triangle_cutout_any_hit(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let object = twinray_shared::bindings::mesh_object(instance, geometry);
     // Not bounds-checked, as the closest hits and GLSL's twin are not: this stage runs on

@@ -33,7 +33,7 @@ pub fn procedural_closest_hit(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
@@ -75,7 +75,7 @@ pub fn procedural_closest_hit_flat(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let hit = SurfaceHit::new(object, primitive_id, hit_kind, rays, t, world_to_object.to_mat3());
@@ -116,7 +116,7 @@ pub fn procedural_closest_hit_callable(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 5)] materials: &[Material],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
     #[spirv(callable_data)] call: &mut MaterialCall,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
@@ -160,7 +160,7 @@ pub fn triangle_closest_hit(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let object = twinray_shared::bindings::mesh_object(instance, geometry);
@@ -206,7 +206,7 @@ pub fn triangle_closest_hit_flat(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
     let object = twinray_shared::bindings::mesh_object(instance, geometry);
@@ -251,7 +251,7 @@ pub fn triangle_closest_hit_callable(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
     #[spirv(callable_data)] call: &mut MaterialCall,
 ) {
     let rays = ((origin, direction), (object_origin, object_direction));
@@ -305,7 +305,7 @@ pub fn probe_witness(
     #[spirv(storage_buffer, descriptor_set = 0, binding = 8)] vertices: &[Vertex],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 9)] indices: &[u32],
     #[spirv(incoming_ray_payload)] payload: &mut HitPayload,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let world = (world_origin, world_direction);
     let placed = (object_to_world.w_axis, world_to_object.to_mat3());

@@ -33,7 +33,7 @@ pub fn render_compute(
     #[spirv(spec_constant(id = 0, default = 0))] shadows: u32,
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
     #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
     #[spirv(spec_constant(id = 4, default = 0))] shaded_hits: u32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
@@ -105,7 +105,7 @@ pub fn explain_query(
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ExplainRay],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ExplainResult],
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let features = Features::new(features);
     let i = id.x as usize;
@@ -146,7 +146,7 @@ pub fn probe_query(
     #[spirv(descriptor_set = 0, binding = 12)] textures: &RuntimeArray<Texture>,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 10)] rays: &[ProbeRay],
     #[spirv(storage_buffer, descriptor_set = 0, binding = 11)] results: &mut [ProbeResult],
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let i = id.x as usize;
     // Whole workgroups cover the rays.

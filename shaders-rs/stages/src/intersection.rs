@@ -58,7 +58,7 @@ pub fn sphere_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -91,7 +91,7 @@ pub fn sphere_naive_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -124,7 +124,7 @@ pub fn plane_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -157,7 +157,7 @@ pub fn box_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -190,7 +190,7 @@ pub fn cylinder_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -223,7 +223,7 @@ pub fn cylinder_naive_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -256,7 +256,7 @@ pub fn cone_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -289,7 +289,7 @@ pub fn torus_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near
@@ -322,7 +322,7 @@ pub fn torus_naive_intersection(
     #[spirv(ray_tmax)] t_max: f32,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 4)] primitives: &[Primitive],
     #[spirv(hit_attribute)] normal: &mut Vec3,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
 ) {
     let p = primitive(primitives, primitive_base + primitive_id);
     // Where the scene has far instances, the object-space ray from the world ray, brought near

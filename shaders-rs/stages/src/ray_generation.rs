@@ -36,7 +36,7 @@ pub fn raygen(
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
     #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
     // The scene's features (twinray_shared::features; 31 is `ALL`, for a host that sets none).
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
     #[spirv(spec_constant(id = 4, default = 0))] shaded_hits: u32,
     #[spirv(ray_payload)] payload: &mut HitPayload,
     #[spirv(ray_payload)] shadow: &mut ShadowPayload,
@@ -85,7 +85,7 @@ pub fn raygen_query(
     #[spirv(spec_constant(id = 0, default = 0))] shadows: u32,
     #[spirv(spec_constant(id = 1, default = 1))] samples_per_side: u32,
     #[spirv(spec_constant(id = 2, default = 0))] shadow_sampler: u32,
-    #[spirv(spec_constant(id = 3, default = 31))] features: u32,
+    #[spirv(spec_constant(id = 3, default = 63))] features: u32,
     #[spirv(spec_constant(id = 4, default = 0))] shaded_hits: u32,
     #[spirv(ray_payload)] payload: &mut HitPayload,
     #[spirv(storage_buffer, descriptor_set = 0, binding = 3)] objects: &[ObjectData],

@@ -14,7 +14,7 @@ use twinray_shared::bindings::{
     LIGHT_RECT, MASK_OCCLUDER, MATERIAL_EMISSIVE, MATERIAL_SHADED, MAX_LIGHTS, MISS_PRIMARY, MISS_SHADOW, NO_HIT,
 };
 use twinray_shared::camera::Ray;
-use twinray_shared::features::{Features, AREA_LIGHTS, EMISSION};
+use twinray_shared::features::{Features, AREA_LIGHTS, EMISSION, LIGHT_CONES};
 use twinray_shared::layout::{FrameUniform, HitPayload, Light, ShadowPayload};
 use twinray_shared::{lighting, offset, random};
 
@@ -85,6 +85,7 @@ pub fn $name(
     }
     // Without area lights every light takes one sample at a fixed place.
     let area = features.has::<AREA_LIGHTS>();
+    let cones = features.has::<LIGHT_CONES>();
     let point = hit.position.xyz();
     let normal = hit.shading_normal.xyz();
     let origin = offset::offset_hit(point, hit.geometric_normal.xyz(), hit.position.w);
@@ -127,7 +128,7 @@ pub fn $name(
             // Independent samples: cell (0, 0) stretched over the whole light.
             let nf = n as f32;
             let (si, sj, r1, r2) = if stratified { (i, j, r1, r2) } else { (0, 0, r1 * nf, r2 * nf) };
-            let s = lighting::sample(light, point, (si, sj), (r1, r2), frame.reach.y);
+            let s = lighting::sample(light, point, (si, sj), (r1, r2), frame.reach.y, cones);
             let cosine = normal.dot(s.direction);
             if cosine > 0.0 {
                 let lit = if casts {

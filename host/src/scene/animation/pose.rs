@@ -334,8 +334,13 @@ fn apply(out: &mut SceneFile, motion: &Motion, t: f32) {
 
 fn move_light(light: &mut LightDesc, kind: &MotionKind, t: f32) {
     match (light, kind) {
-        (LightDesc::Point { position: p, .. }, &MotionKind::Orbit { center, axis, cycle }) => {
-            orbit_point(cycle.orbit(axis, t, 0, 1), center, p)
+        (LightDesc::Point { position: p, spot, .. }, &MotionKind::Orbit { center, axis, cycle }) => {
+            // A spot light orbits rigidly, as a rect light does: its cone turns with it.
+            let q = cycle.orbit(axis, t, 0, 1);
+            orbit_point(q, center, p);
+            if let Some(spot) = spot {
+                turn(q, &mut spot.direction);
+            }
         }
         (LightDesc::Rect { center: c, u, v, .. }, &MotionKind::Orbit { center, axis, cycle }) => {
             // A rect light orbits rigidly: it keeps facing the axis as it goes round.

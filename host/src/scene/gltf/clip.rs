@@ -186,7 +186,7 @@ impl GltfClip {
             }
             None => None,
         };
-        let lights = self.setup.own_lights.then(|| framing::punctual(&placed, &mut BTreeSet::new()));
+        let lights = self.setup.own_lights.then(|| framing::punctual(&placed));
         Ok(At { objects, camera, lights })
     }
 

@@ -1,7 +1,7 @@
 //! How a glTF model is seen and lit: its first camera, else one framing its bounds; its
 //! KHR_lights_punctual lights, else the key and fill lights (`scene::framing`).
 
-use super::super::file::{CameraDesc, LightDesc, ObjectDesc};
+use super::super::file::{CameraDesc, LightDesc, ObjectDesc, SpotDesc};
 use super::super::framing::{bounds, framing, View, FRAMING_FOV_DEGREES};
 use super::super::mesh::MeshData;
 use glam::{Mat4, Vec3};
@@ -26,7 +26,7 @@ pub fn view(
     if doc.cameras().len() > 1 {
         ignored.insert("cameras after the first".into());
     }
-    Ok(View::new(camera, aspect, punctual(placed, ignored)))
+    Ok(View::new(camera, aspect, punctual(placed)))
 }
 
 /// The width over the height of what `camera` sees, where it says.
@@ -57,8 +57,9 @@ pub(super) fn from_node(world: Mat4, camera: &gltf::Camera, center: Vec3) -> Res
     Ok(CameraDesc { orthographic_height: height, ..perspective })
 }
 
-/// The model's KHR_lights_punctual lights at their nodes; spot lights become point lights.
-pub(super) fn punctual(placed: &[(gltf::Node, Mat4)], ignored: &mut BTreeSet<String>) -> Vec<LightDesc> {
+/// The model's KHR_lights_punctual lights at their nodes, with their ranges; a spot light is a
+/// point light with a cone about its node's -z.
+pub(super) fn punctual(placed: &[(gltf::Node, Mat4)]) -> Vec<LightDesc> {
     use gltf::khr_lights_punctual::Kind;
     let mut lights = Vec::new();
     for (node, world) in placed {
@@ -73,15 +74,19 @@ pub(super) fn punctual(placed: &[(gltf::Node, Mat4)], ignored: &mut BTreeSet<Str
                 let direction = world.transform_vector3(Vec3::Z).normalize_or_zero();
                 LightDesc::Directional { direction: direction.into(), color, intensity, shadows: true }
             }
-            Kind::Point => LightDesc::Point { position: position.into(), color, intensity, shadows: true },
-            Kind::Spot { .. } => {
-                ignored.insert("spot light cones (spot lights shine as point lights)".into());
-                LightDesc::Point { position: position.into(), color, intensity, shadows: true }
+            Kind::Point | Kind::Spot { .. } => {
+                let spot = match light.kind() {
+                    Kind::Spot { inner_cone_angle, outer_cone_angle } => Some(SpotDesc {
+                        direction: world.transform_vector3(-Vec3::Z).normalize_or_zero().into(),
+                        inner_cone_degrees: inner_cone_angle.to_degrees(),
+                        outer_cone_degrees: outer_cone_angle.to_degrees().min(90.0),
+                    }),
+                    _ => None,
+                };
+                let (position, range) = (position.into(), light.range());
+                LightDesc::Point { position, color, intensity, shadows: true, range, spot }
             }
         });
-        if light.range().is_some() {
-            ignored.insert("light ranges".into());
-        }
     }
     lights
 }

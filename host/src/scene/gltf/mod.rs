@@ -184,7 +184,7 @@ fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), na
         parts,
         posing: poses.keys().copied().collect(),
         camera: clip::camera(&placed, &objects, &meshes),
-        own_lights: !framing::punctual(&placed, &mut BTreeSet::new()).is_empty(),
+        own_lights: !framing::punctual(&placed).is_empty(),
     };
     let view = framing::view(doc, &placed, &objects, &meshes, &mut ignored)?;
     let file = super::framing::scene_file("a glTF 2.0 model", view, shapes, materials, objects);

@@ -16,6 +16,7 @@ pub fn check(doc: &gltf::Document) -> Result<(), String> {
     channel_targets(doc.as_json())?;
     accessors(doc)?;
     cameras(doc)?;
+    lights(doc)?;
     meshes(doc)?;
     nodes(doc)?;
     skins(doc)?;
@@ -156,6 +157,26 @@ fn cameras(doc: &gltf::Document) -> Result<(), String> {
         };
         if let Some(wrong) = wrong {
             return Err(format!("{name} {wrong}"));
+        }
+    }
+    Ok(())
+}
+
+/// A KHR_lights_punctual light's range is above 0, and a spot light's cone opens from an
+/// innerConeAngle of 0 or more to an outerConeAngle beyond it, at most a quarter turn.
+fn lights(doc: &gltf::Document) -> Result<(), String> {
+    use gltf::khr_lights_punctual::Kind;
+    for light in doc.lights().into_iter().flatten() {
+        let name = format!("KHR_lights_punctual light {}", light.index());
+        if let Some(range) = light.range().filter(|r| !(*r > 0.0 && r.is_finite())) {
+            return Err(format!("{name} has a range of {range} (above 0)"));
+        }
+        if let Kind::Spot { inner_cone_angle: inner, outer_cone_angle: outer } = light.kind() {
+            if !(inner >= 0.0 && inner < outer && outer <= std::f32::consts::FRAC_PI_2) {
+                return Err(format!(
+                    "{name} is a spot light of innerConeAngle {inner} and outerConeAngle {outer} (0 <= inner < outer <= pi / 2)"
+                ));
+            }
         }
     }
     Ok(())

@@ -6,6 +6,7 @@ use base64::Engine as _;
 
 mod clips;
 mod instancing;
+mod lights;
 mod posed;
 mod rigs;
 pub(crate) mod rules;
