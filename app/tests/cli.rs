@@ -41,6 +41,13 @@ fn edited_scene(dir: &Path, from: &str, to: &str, extra: &str) -> String {
 #[test]
 fn impossible_values_in_scene_file_are_named() {
     let mesh = "\n[shapes.pot]\nkind = \"mesh\"\nfile = \"no-such-pot.obj\"\n";
+    let spot = |keys: &str| {
+        format!("\n[[lights]]\nkind = \"point\"\nposition = [0.0, 9.0, 0.0]\ncolor = [1.0, 1.0, 1.0]\nintensity = 1.0\n{keys}\n")
+    };
+    let (wide, short) = (
+        spot("spot = { direction = [0.0, -1.0, 0.0], inner_cone_degrees = 40.0, outer_cone_degrees = 30.0 }"),
+        spot("range = 0.0"),
+    );
     let rect = "\n[[lights]]\nkind = \"rect\"\ncenter = [0.0, 9.0, 0.0]\nu = [1.0, 0.0, 0.0]\nv = [2.0, 0.0, 0.0]\ncolor = [1.0, 1.0, 1.0]\nintensity = 1.0\n";
     let glow = |emission: &str| {
         format!("\n[materials.glow]\nkind = \"diffuse\"\ncolor = [1.0, 1.0, 1.0]\ntexture = {{ file = \"a.png\" }}\nemission = {emission}\n")
@@ -51,6 +58,8 @@ fn impossible_values_in_scene_file_are_named() {
     );
     let cases = [
         ("radius_min = 0.5", "radius_min = -1.0", "", "shape \"field\": radius_min must be > 0"),
+        ("name = \"spheres\"", "name = \"spheres\"", wide.as_str(), "lights[1]: spot cone of inner_cone_degrees 40 and outer_cone_degrees 30: 0 <= inner < outer <= 90"),
+        ("name = \"spheres\"", "name = \"spheres\"", short.as_str(), "lights[1]: range must be > 0 (got 0)"),
         ("name = \"spheres\"", "name = \"spheres\"", dim.as_str(), "material \"glow\": emission.intensity must be finite and not negative"),
         ("name = \"spheres\"", "name = \"spheres\"", turned.as_str(), "material \"glow\": emission.texture.transform [[0.0, 1.0, 0.0], [1.0, 0.0, 0.0]] differs from texture.transform"),
         (
