@@ -17,7 +17,7 @@ pub enum LightDesc {
     },
     /// A point light, falling off with the square of the distance, to nothing at `range`
     /// (none: it reaches everywhere), and with `spot`, only inside a cone (glTF's
-    /// KHR_lights_punctual point and spot lights: [`crate::scene::build`] writes how).
+    /// KHR_lights_punctual point and spot lights: `scene::build` writes how).
     Point {
         position: [f32; 3],
         color: [f32; 3],
