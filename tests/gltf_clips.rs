@@ -2,7 +2,8 @@
 //! (assimp's test models): a morph target clip and a skinned clip, their meshes posed on the
 //! host every frame and their BLASes refitted in place, show at each frame what a still
 //! picture of that time shows (the BLAS built afresh); both sets agree on every frame, and
-//! refitting hits what rebuilding hits.
+//! refitting hits what rebuilding hits. A node the clip moves keeps its mesh's primitives in
+//! one BLAS, one instance, frame after frame.
 
 use super::animation::{frames, opts, same, SIZE};
 use std::sync::Arc;
@@ -66,4 +67,32 @@ fn morphed_and_skinned_clips_refit_to_what_a_still_picture_shows() {
     check_clip(&ctx, &clip("glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf", 2.0));
     check_clip(&ctx, &clip("simple_skin/simple_skin.gltf", 2.0));
     ctx.close().unwrap();
+}
+
+#[test]
+fn a_moving_nodes_primitives_share_one_blas_on_every_frame() {
+    let ctx = validated_context();
+    let dir = tempfile::tempdir().unwrap();
+    let colors = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let path = twinray_tests::gltf::moving_strip(dir.path(), &colors, [0.0, 1.5, 0.0], 2.0);
+    let model = load_at(&path, None, Playing { time: 0.0, fps: 2.0 }).unwrap_or_else(|e| panic!("{e}"));
+    let scene = Scene::from_model(model, &path.display().to_string()).unwrap_or_else(|e| panic!("{e}"));
+    let animation = scene.animation.as_ref().expect("a clip");
+    assert!(animation.moves().objects && !animation.moves().meshes);
+    let mode = TlasMode { kind: TlasKind::Update, rebuild_every: 0 };
+    let out = frames(&ctx, &scene, &["rust", "glsl"], 0..scene.frame_count(), mode);
+    assert_eq!(out.len(), 5, "0 to 2 s at 2 fps");
+    for (k, (_, outputs)) in out.iter().enumerate() {
+        let a = outputs[0].accel;
+        assert_eq!((a.blases, a.instances), (1, 1), "frame {k}: {a}");
+        assert_eq!(outputs[0].hit_ids, outputs[1].hit_ids, "frame {k}: the sets hit different ids");
+        let objects: std::collections::BTreeSet<u64> =
+            outputs[0].hit_ids.iter().filter(|id| **id != twinray_host::render::NO_HIT_ID).map(|id| id >> 32).collect();
+        assert_eq!(objects.len(), colors.len(), "frame {k}: the objects seen");
+    }
+    for k in [2, 4] {
+        let still = twinray_host::render(&ctx, &scene.at_frame(k).unwrap(), &set("rust"), &opts()).unwrap();
+        assert!(same(&out[k as usize].1[0], &still), "frame {k} differs from a still picture of its time");
+    }
+    assert!(!same(&out[0].1[0], &out[4].1[0]), "nothing moved on screen");
 }

@@ -124,3 +124,46 @@ pub fn strip(dir: &Path, colors: &[[f32; 3]], nodes: &[[f32; 3]]) -> PathBuf {
     std::fs::write(&path, gltf).unwrap();
     path
 }
+
+/// As [`strip`], placed by one node that a clip moves from the origin to `to` over `seconds`
+/// (a LINEAR translation, its keys in the same buffer); its path.
+pub fn moving_strip(dir: &Path, colors: &[[f32; 3]], to: [f32; 3], seconds: f32) -> PathBuf {
+    let path = strip(dir, colors, &[[0.0; 3]]);
+    let mut bytes = std::fs::read(dir.join("strip.bin")).unwrap();
+    let at = bytes.len();
+    let keys = [0.0, seconds, 0.0, 0.0, 0.0, to[0], to[1], to[2]];
+    bytes.extend(keys.iter().flat_map(|v: &f32| v.to_le_bytes()));
+    std::fs::write(dir.join("strip.bin"), &bytes).unwrap();
+    let (view, accessor) = (colors.len() + 1, colors.len() + 1);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let text = text
+        .replacen(&format!(r#""byteLength": {at}, "uri""#), &format!(r#""byteLength": {}, "uri""#, bytes.len()), 1)
+        .replacen(
+            r#"], "accessors": ["#,
+            &format!(
+                r#", {{"buffer": 0, "byteOffset": {at}, "byteLength": 8}}, {{"buffer": 0, "byteOffset": {}, "byteLength": 24}}], "accessors": ["#,
+                at + 8
+            ),
+            1,
+        )
+        .replacen(
+            r#"], "materials": ["#,
+            &format!(
+                r#", {{"bufferView": {view}, "componentType": 5126, "count": 2, "type": "SCALAR", "min": [0], "max": [{seconds}]}},
+                {{"bufferView": {}, "componentType": 5126, "count": 2, "type": "VEC3"}}], "materials": ["#,
+                view + 1
+            ),
+            1,
+        )
+        .replacen(
+            r#""nodes": ["#,
+            &format!(
+                r#""animations": [{{"channels": [{{"sampler": 0, "target": {{"node": 0, "path": "translation"}}}}],
+                "samplers": [{{"input": {accessor}, "output": {}}}]}}], "nodes": ["#,
+                accessor + 1
+            ),
+            1,
+        );
+    std::fs::write(&path, text).unwrap();
+    path
+}

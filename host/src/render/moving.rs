@@ -70,7 +70,8 @@ impl<'a> FrameRenderer<'a> {
                 .collect(),
             false => Vec::new(),
         };
-        let movement = Movement { flags: mode.flags(), posed: &posed, objects: moves.objects };
+        let bodies = scene.animation.as_ref().and_then(|a| a.bodies());
+        let movement = Movement { flags: mode.flags(), posed: &posed, objects: moves.objects, bodies };
         let uploaded = upload_moving(ctx, &start, (opts.width, opts.height), movement)?;
         let outputs = SharedOutputs::new(ctx, opts)?;
         // One place per set: the pipelines in SBT order (`super::layout`).

@@ -127,8 +127,20 @@ pub(crate) struct Movement<'a> {
     pub flags: TlasFlags,
     /// The mesh shapes whose vertices move (skins, morph targets).
     pub posed: &'a [String],
-    /// Whether objects move: then no two share an instance (`scene::merge`).
+    /// Whether objects move: then only objects of one body share an instance
+    /// (`scene::merge`).
     pub objects: bool,
+    /// Each object's rigid body, where the animation knows them (`Animation::bodies`); with
+    /// objects moving and none known, no two objects share an instance.
+    pub bodies: Option<Vec<usize>>,
+}
+
+impl Movement<'_> {
+    /// Whether objects `a` and `b` stay placed alike from frame to frame.
+    fn together(&self, a: usize, b: usize) -> bool {
+        !self.objects
+            || self.bodies.as_ref().is_some_and(|bodies| bodies.get(a).is_some_and(|x| bodies.get(b) == Some(x)))
+    }
 }
 
 /// As `upload_shared`, with a TLAS made with `movement.flags` but not built: the caller builds
@@ -178,9 +190,9 @@ fn upload_scene(
         moving_blases.push((shape.clone(), vertex_base, i, blas));
     }
     let posed = |object: usize| moving_blases.iter().any(|m| m.2 == data.instances[object].blas);
-    let objects_move = moving.as_ref().is_some_and(|m| m.objects);
+    let together = |a: usize, b: usize| moving.as_ref().is_none_or(|m| m.together(a, b));
     let limits = BlasLimits { geometries: ctx.info.max_geometry_count, primitives: ctx.info.max_primitive_count };
-    let runs = merge::runs(data, |object| objects_move || posed(object), limits);
+    let runs = merge::runs(data, |a, b| !posed(a) && !posed(b) && together(a, b), limits);
     let (inputs, of_run) = blas_inputs(data, &runs, |run| posed(run.first), (vertex_address, index_address));
     let blases = build_blases(ctx, one_shot, &inputs)?;
     let mut instances: Vec<_> = data

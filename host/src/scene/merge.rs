@@ -25,14 +25,16 @@ pub struct BlasLimits {
     pub primitives: u64,
 }
 
-/// The runs of `data`'s objects, in order, each object in one. `alone(object)` keeps an
-/// object out of every run of more (one that moves on its own, or whose mesh is posed).
-pub fn runs(data: &SceneData, alone: impl Fn(usize) -> bool, limits: BlasLimits) -> Vec<Run> {
+/// The runs of `data`'s objects, in order, each object in one. `share(first, object)` says
+/// whether `object` may join the run `first` starts, beyond being placed alike: not where
+/// either moves on its own (a moving scene's objects of different bodies) or has its mesh
+/// posed, which `share(object, object)` false keeps alone.
+pub fn runs(data: &SceneData, share: impl Fn(usize, usize) -> bool, limits: BlasLimits) -> Vec<Run> {
     // Each run, with its primitives where it is a run of meshes that may take more.
     let mut runs: Vec<(Run, Option<u64>)> = Vec::new();
     for (object, instance) in data.instances.iter().enumerate() {
         let mesh = match &data.blases[instance.blas] {
-            BlasDesc::Triangles { index_count, .. } if !alone(object) => Some(u64::from(*index_count / 3)),
+            BlasDesc::Triangles { index_count, .. } if share(object, object) => Some(u64::from(*index_count / 3)),
             _ => None,
         };
         if let (Some(count), Some((run, Some(primitives)))) = (mesh, runs.last_mut()) {
@@ -41,7 +43,7 @@ pub fn runs(data: &SceneData, alone: impl Fn(usize) -> bool, limits: BlasLimits)
                 && (first.mask, first.hit_group, first.single_sided)
                     == (instance.mask, instance.hit_group, instance.single_sided);
             let fits = (run.blases.len() as u64) < limits.geometries && *primitives + count <= limits.primitives;
-            if alike && fits {
+            if alike && fits && share(run.first, object) {
                 run.blases.push(instance.blas);
                 *primitives += count;
                 continue;
@@ -94,7 +96,7 @@ mod tests {
             // Another mask (an emitter): apart.
             "shape = \"a\"\nmaterial = \"glow\"\ntranslate = [2.0, 0.0, 0.0]",
         ]);
-        let runs = runs(&data, |_| false, WIDE);
+        let runs = runs(&data, |_, _| true, WIDE);
         assert_eq!(firsts(&runs), [(0, 3), (3, 2), (5, 1), (6, 1), (7, 1)]);
         // Geometry k of a run is object first + k's shape.
         for run in &runs {
@@ -108,13 +110,13 @@ mod tests {
     fn objects_kept_alone_and_the_device_limits_split_runs() {
         let objects = ["shape = \"a\"\nmaterial = \"m\""; 5];
         let data = scene(&objects);
-        assert_eq!(firsts(&runs(&data, |_| false, WIDE)), [(0, 5)]);
-        assert_eq!(firsts(&runs(&data, |o| o == 2, WIDE)), [(0, 2), (2, 1), (3, 2)]);
-        assert_eq!(firsts(&runs(&data, |_| true, WIDE)), [(0, 1), (1, 1), (2, 1), (3, 1), (4, 1)]);
+        assert_eq!(firsts(&runs(&data, |_, _| true, WIDE)), [(0, 5)]);
+        assert_eq!(firsts(&runs(&data, |a, b| a != 2 && b != 2, WIDE)), [(0, 2), (2, 1), (3, 2)]);
+        assert_eq!(firsts(&runs(&data, |_, _| false, WIDE)), [(0, 1), (1, 1), (2, 1), (3, 1), (4, 1)]);
         let two = BlasLimits { geometries: 2, ..WIDE };
-        assert_eq!(firsts(&runs(&data, |_| false, two)), [(0, 2), (2, 2), (4, 1)]);
+        assert_eq!(firsts(&runs(&data, |_, _| true, two)), [(0, 2), (2, 2), (4, 1)]);
         // A box is 12 triangles: 30 take two boxes a BLAS.
         let thirty = BlasLimits { primitives: 30, ..WIDE };
-        assert_eq!(firsts(&runs(&data, |_| false, thirty)), [(0, 2), (2, 2), (4, 1)]);
+        assert_eq!(firsts(&runs(&data, |_, _| true, thirty)), [(0, 2), (2, 2), (4, 1)]);
     }
 }

@@ -136,6 +136,9 @@ pub trait Clip: std::fmt::Debug + Send + Sync {
     /// The meshes it poses (skins, morph targets) at `time` seconds, by shape name; an error
     /// says what could not be posed then.
     fn meshes(&self, time: f32) -> Result<Vec<(String, MeshData)>, String>;
+    /// For each object of the scene, the rigid body it belongs to: objects of one body are
+    /// placed alike at every time (a node's primitives), so they may share a TLAS instance.
+    fn bodies(&self) -> Vec<usize>;
 }
 
 impl Animation {
@@ -178,6 +181,12 @@ impl Animation {
             let o = &written.objects[owner];
             (part.translate, part.rotate, part.scale) = (o.translate, o.rotate, o.scale);
         }
+    }
+
+    /// Which objects move as one, each object's body (`Clip::bodies`), where the animation
+    /// knows: a clip does, `[animation]` does not (every object then moves on its own).
+    pub fn bodies(&self) -> Option<Vec<usize>> {
+        self.clip.as_ref().map(|c| c.bodies())
     }
 
     /// The meshes posed at frame `frame` (a clip's skins and morph targets), by shape name.

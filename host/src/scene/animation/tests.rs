@@ -259,6 +259,9 @@ impl super::Clip for FailsLate {
         }
         Ok(Vec::new())
     }
+    fn bodies(&self) -> Vec<usize> {
+        Vec::new()
+    }
 }
 
 /// A frame whose meshes cannot be posed is an error naming the frame, its time and the mesh,

@@ -260,4 +260,16 @@ impl Clip for GltfClip {
     fn meshes(&self, time: f32) -> Result<Vec<(String, MeshData)>, String> {
         self.meshes_at(time)
     }
+
+    /// A part's node and copy (`EXT_mesh_gpu_instancing`) place it at every time.
+    fn bodies(&self) -> Vec<usize> {
+        let mut ids: std::collections::HashMap<(usize, Option<usize>), usize> = Default::default();
+        let parts = self.setup.parts.iter();
+        parts
+            .map(|p| {
+                let next = ids.len();
+                *ids.entry((p.node, p.copy)).or_insert(next)
+            })
+            .collect()
+    }
 }
