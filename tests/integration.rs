@@ -33,6 +33,7 @@ mod references;
 mod render_sets;
 mod retrace;
 mod scenes;
+mod shared_blases;
 mod single_sided;
 mod stability;
 mod textures;

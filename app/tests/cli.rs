@@ -155,6 +155,29 @@ fn render_writes_png_and_json() {
     assert_eq!((png.width(), png.height()), (64, 48));
 }
 
+/// `--no-shared-blases`: a glTF mesh of four primitives is four structures and four instances,
+/// not one of each, and the image is the same, byte for byte.
+#[test]
+fn without_shared_blases_a_mesh_is_a_structure_per_primitive_and_the_same_image() {
+    let dir = tempfile::tempdir().unwrap();
+    let colors = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0], [1.0, 1.0, 0.0]];
+    let model = twinray_tests::gltf::strip(dir.path(), &colors, &[[0.0; 3]]);
+    let render = |flags: &[&str], png: &str| {
+        let args =
+            ["--validate", "render", model.to_str().unwrap(), "--width", "64", "--height", "48", "--warmup", "0"];
+        let out = twinray(&[&args[..], flags, &["--runs", "1", "--out", png, "--json"]].concat(), dir.path());
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("render --json prints JSON");
+        let accel = &json["acceleration_structures"];
+        (accel["blases"].as_u64(), accel["instances"].as_u64(), std::fs::read(dir.path().join(png)).unwrap())
+    };
+    let shared = render(&[], "shared.png");
+    let alone = render(&["--no-shared-blases"], "alone.png");
+    assert_eq!((shared.0, shared.1), (Some(1), Some(1)));
+    assert_eq!((alone.0, alone.1), (Some(4), Some(4)));
+    assert!(shared.2 == alone.2, "the images differ");
+}
+
 /// `--frame`, `--eye` and `--look-at` choose the still image; the camera moves the picture.
 #[test]
 fn a_still_image_from_another_camera_or_frame() {

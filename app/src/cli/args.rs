@@ -59,6 +59,11 @@ pub struct GlobalArgs {
     /// device has it].
     #[arg(long, global = true)]
     pub no_robust_access: bool,
+    /// Give every mesh a bottom-level acceleration structure of its own: no consecutive meshes
+    /// placed alike (a glTF mesh's primitives) share one, each a geometry of it. The same
+    /// image and hit ids, more structures: a check on the sharing.
+    #[arg(long, global = true)]
+    pub no_shared_blases: bool,
     /// More log output (-v info, -vv debug); RUST_LOG overrides.
     #[arg(short, long, global = true, action = clap::ArgAction::Count)]
     pub verbose: u8,
@@ -125,7 +130,11 @@ impl GlobalArgs {
         pair("--asset-root", self.asset_root.as_ref().map(|p| p.display().to_string()));
         pair("--time", self.time.map(|t| t.to_string()));
         pair("--tone-map", clap::ValueEnum::to_possible_value(&self.tone_map).map(|v| v.get_name().to_string()));
-        let switches = [(self.no_pipeline_cache, "--no-pipeline-cache"), (self.no_robust_access, "--no-robust-access")];
+        let switches = [
+            (self.no_pipeline_cache, "--no-pipeline-cache"),
+            (self.no_robust_access, "--no-robust-access"),
+            (self.no_shared_blases, "--no-shared-blases"),
+        ];
         args.extend(switches.into_iter().filter(|(on, _)| *on).map(|(_, flag)| flag.to_string()));
         args
     }

@@ -30,6 +30,7 @@ pub fn options(global: &GlobalArgs) -> ContextOptions {
         pipeline_threads: global.threads.map(|n| n as usize),
         gpu_timeout: global.gpu_timeout.unwrap_or(twinray_host::vk::context::DEFAULT_GPU_TIMEOUT),
         robust_access: !global.no_robust_access,
+        shared_blases: !global.no_shared_blases,
     }
 }
 

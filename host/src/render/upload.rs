@@ -191,7 +191,7 @@ fn upload_scene(
     }
     let posed = |object: usize| moving_blases.iter().any(|m| m.2 == data.instances[object].blas);
     let together = |a: usize, b: usize| moving.as_ref().is_none_or(|m| m.together(a, b));
-    let limits = BlasLimits { geometries: ctx.info.max_geometry_count, primitives: ctx.info.max_primitive_count };
+    let limits = BlasLimits { geometries: ctx.geometries_per_blas(), primitives: ctx.info.max_primitive_count };
     let runs = merge::runs(data, |a, b| !posed(a) && !posed(b) && together(a, b), limits);
     let (inputs, of_run) = blas_inputs(data, &runs, |run| posed(run.first), (vertex_address, index_address));
     let blases = build_blases(ctx, one_shot, &inputs)?;

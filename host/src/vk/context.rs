@@ -37,11 +37,16 @@ pub struct ContextOptions {
     /// Turn on robust buffer and image access where the device has VK_EXT_robustness2 (see
     /// `device::Robustness`); off, a stray read gives whatever the driver gives.
     pub robust_access: bool,
+    /// Let consecutive meshes placed alike share one bottom-level structure, each a geometry
+    /// of it (`scene::merge`); off, every mesh is a structure of its own, as a check on the
+    /// sharing or to bisect a difference to it.
+    pub shared_blases: bool,
 }
 
 impl Default for ContextOptions {
     /// No validation, the first capable device, no pipeline cache, pipelines made as the
-    /// device allows, one creation thread per core, [`DEFAULT_GPU_TIMEOUT`].
+    /// device allows, one creation thread per core, [`DEFAULT_GPU_TIMEOUT`], robust access and
+    /// shared BLASes on.
     fn default() -> Self {
         ContextOptions {
             validation: Validation::Off,
@@ -51,6 +56,7 @@ impl Default for ContextOptions {
             pipeline_threads: None,
             gpu_timeout: DEFAULT_GPU_TIMEOUT,
             robust_access: true,
+            shared_blases: true,
         }
     }
 }
@@ -94,6 +100,7 @@ pub struct Context {
     pipelines: PipelineKind,
     pipeline_threads: usize,
     gpu_timeout: Duration,
+    shared_blases: bool,
     /// Set when GPU work did not finish: the device may still be running it, so nothing made
     /// from it may be destroyed (each owner's `Drop` leaks instead).
     abandoned: AtomicBool,
@@ -201,6 +208,7 @@ impl Context {
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
                 .max(1),
             gpu_timeout: options.gpu_timeout,
+            shared_blases: options.shared_blases,
             kept: KeptPipelines::default(),
             abandoned: AtomicBool::new(false),
         }))
@@ -262,6 +270,16 @@ impl Context {
     /// Whether [`Context::abandon`] was called: `Drop`s leak their objects.
     pub fn abandoned(&self) -> bool {
         self.abandoned.load(Ordering::SeqCst)
+    }
+
+    /// Most geometries one bottom-level structure of this context holds: the device's
+    /// `maxGeometryCount`, or 1 where [`ContextOptions::shared_blases`] is off.
+    pub fn geometries_per_blas(&self) -> u64 {
+        if self.shared_blases {
+            self.info.max_geometry_count
+        } else {
+            1
+        }
     }
 
     /// How this context makes ray tracing pipelines.
