@@ -72,12 +72,12 @@ impl Decoded {
     }
 }
 
-/// The elements of `all` that `used` keeps (all of them where it is `None`).
-pub fn kept(all: &[Vec4], used: Option<&[u32]>) -> Vec<Vec4> {
-    match used {
-        Some(used) => used.iter().map(|&i| all[i as usize]).collect(),
-        None => all.to_vec(),
-    }
+/// The elements of `all` that `used` keeps (all of them where it is `None`), in turn, with no
+/// copy of the list made.
+pub fn kept<'a>(all: &'a [Vec4], used: Option<&'a [u32]>) -> impl Iterator<Item = Vec4> + 'a {
+    let picked = used.map(|used| used.iter().map(|&i| all[i as usize]));
+    let whole = used.is_none().then(|| all.iter().copied());
+    picked.into_iter().flatten().chain(whole.into_iter().flatten())
 }
 
 #[cfg(test)]
