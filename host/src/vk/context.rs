@@ -100,7 +100,7 @@ pub struct Context {
     pipelines: PipelineKind,
     pipeline_threads: usize,
     gpu_timeout: Duration,
-    shared_blases: bool,
+    shared_blases: AtomicBool,
     /// Set when GPU work did not finish: the device may still be running it, so nothing made
     /// from it may be destroyed (each owner's `Drop` leaks instead).
     abandoned: AtomicBool,
@@ -208,7 +208,7 @@ impl Context {
                 .unwrap_or_else(|| std::thread::available_parallelism().map_or(1, |n| n.get()))
                 .max(1),
             gpu_timeout: options.gpu_timeout,
-            shared_blases: options.shared_blases,
+            shared_blases: AtomicBool::new(options.shared_blases),
             kept: KeptPipelines::default(),
             abandoned: AtomicBool::new(false),
         }))
@@ -275,11 +275,17 @@ impl Context {
     /// Most geometries one bottom-level structure of this context holds: the device's
     /// `maxGeometryCount`, or 1 where [`ContextOptions::shared_blases`] is off.
     pub fn geometries_per_blas(&self) -> u64 {
-        if self.shared_blases {
+        if self.shared_blases.load(Ordering::Relaxed) {
             self.info.max_geometry_count
         } else {
             1
         }
+    }
+
+    /// Turns [`ContextOptions::shared_blases`] on or off for the scenes uploaded from now on:
+    /// a comparison of the two renders both on one context's pipelines.
+    pub fn share_blases(&self, on: bool) {
+        self.shared_blases.store(on, Ordering::Relaxed);
     }
 
     /// How this context makes ray tracing pipelines.
