@@ -9,8 +9,9 @@ use base64::Engine as _;
 use std::path::Path;
 
 /// Extensions twinray reads, so a model may require them.
-pub const SUPPORTED_EXTENSIONS: [&str; 5] = [
+pub const SUPPORTED_EXTENSIONS: [&str; 6] = [
     "KHR_lights_punctual",
+    super::quantized::EXTENSION,
     "KHR_texture_transform",
     "KHR_materials_emissive_strength",
     "KHR_materials_unlit",
@@ -115,7 +116,10 @@ fn with_buffers(mut gltf: gltf::Gltf, size: u64, folder: &Path, limit: u64) -> R
     if let Some(ext) = gltf.extensions_required().find(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
         return Err(format!("it requires the extension {ext}, which twinray does not support"));
     }
-    let json = gltf.document.into_json();
+    let mut json = gltf.document.into_json();
+    // The crate's validation refuses a required extension it has no feature for, even one
+    // twinray reads itself (quantized attributes, instancing): checked above, then left out.
+    json.extensions_required.retain(|e| gltf::json::extensions::ENABLED_EXTENSIONS.contains(&e.as_str()));
     unchecked_by_the_crate(&json)?;
     gltf.document = gltf::Document::from_json(json).map_err(invalid)?;
     let mut budget = limit.saturating_sub(size);

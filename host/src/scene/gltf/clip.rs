@@ -198,7 +198,7 @@ impl GltfClip {
         let (placed, posed) = self.placed(time)?;
         let worlds: BTreeMap<usize, Mat4> = placed.iter().map(|(node, world)| (node.index(), *world)).collect();
         let mut meshes = BTreeMap::new();
-        let mut decoded = shared::Decoded::default();
+        let mut decoded = shared::Decoded::of(&self.document);
         for &index in &self.setup.posing {
             let node = self.document.nodes().nth(index).ok_or("a node is gone")?;
             let pose = deform::Pose::of(&node, &posed.weights, &worlds, &self.buffers)?

@@ -11,6 +11,7 @@
 //! transform ignored, as the specification says.
 
 use super::accessors::check;
+use super::quantized::{self, check_attribute, Attribute};
 use glam::{DMat3, DMat4, DVec3, Mat4, Vec4};
 use gltf::accessor::{DataType, Dimensions};
 use std::collections::BTreeMap;
@@ -54,14 +55,14 @@ impl Pose {
     pub fn apply(
         &self,
         primitive: &gltf::Primitive,
-        buffers: &[Vec<u8>],
+        (buffers, quantized): (&[Vec<u8>], bool),
         (positions, normals): (&[Vec4], Option<&[Vec4]>),
         what: &str,
     ) -> Result<(Vec<Vec4>, Option<Vec<Vec4>>), String> {
         let wide = |v: &[Vec4]| v.iter().map(|p| p.truncate().as_dvec3()).collect::<Vec<DVec3>>();
         let mut p = wide(positions);
         let mut n = normals.map(wide);
-        self.morph(primitive, buffers, (&mut p, n.as_mut()), what)?;
+        self.morph(primitive, (buffers, quantized), (&mut p, n.as_mut()), what)?;
         if let Some(joints) = &self.joints {
             skin(primitive, buffers, joints, (&mut p, n.as_mut()), what)?;
         }
@@ -73,29 +74,31 @@ impl Pose {
     fn morph(
         &self,
         primitive: &gltf::Primitive,
-        buffers: &[Vec<u8>],
+        (buffers, quantized): (&[Vec<u8>], bool),
         (positions, mut normals): (&mut [DVec3], Option<&mut Vec<DVec3>>),
         what: &str,
     ) -> Result<(), String> {
         let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
         // Each displacement accessor read alone, after its check: the `gltf` crate's reader of
         // morph targets opens every attribute of a target, `TANGENT` too, which is not checked.
-        let read = |a: &gltf::Accessor| {
-            gltf::accessor::Iter::<[f32; 3]>::new(a.clone(), get)
-                .into_iter()
-                .flatten()
-                .map(|d| DVec3::from(d.map(f64::from)))
-        };
+        let read =
+            |a: &gltf::Accessor| quantized::read::<3, _>(a, get).into_iter().map(|d| DVec3::from(d.map(f64::from)));
         for (t, (target, &w)) in primitive.morph_targets().zip(&self.weights).enumerate() {
             if w == 0.0 {
                 continue;
             }
             if let Some(a) = target.positions() {
-                check(&a, buffers, what, &format!("target {t} POSITION"), &[Dimensions::Vec3], &[DataType::F32])?;
+                check_attribute(
+                    &a,
+                    buffers,
+                    (what, &format!("target {t} POSITION")),
+                    Attribute::Displacement,
+                    quantized,
+                )?;
                 add(positions, read(&a), w, (&a, what))?;
             }
             if let (Some(a), Some(normals)) = (target.normals(), normals.as_deref_mut()) {
-                check(&a, buffers, what, &format!("target {t} NORMAL"), &[Dimensions::Vec3], &[DataType::F32])?;
+                check_attribute(&a, buffers, (what, &format!("target {t} NORMAL")), Attribute::Normal, quantized)?;
                 add(normals, read(&a), w, (&a, what))?;
             }
         }

@@ -6,6 +6,7 @@ use super::super::mesh::{checked, with_attributes, with_normals, MeshData, Polyh
 use super::super::shape::Normals;
 use super::accessors::check;
 use super::deform::Pose;
+use super::quantized::{self, check_attribute, Attribute};
 use super::shared::{kept, As, Decoded};
 use glam::{Vec3, Vec4};
 use gltf::accessor::{DataType, Dimensions};
@@ -38,13 +39,15 @@ pub fn primitive(
     }
     let reader = primitive.reader(|b| buffers.get(b.index()).map(Vec::as_slice));
     let position = primitive.get(&gltf::Semantic::Positions).ok_or_else(|| format!("{what} has no POSITION"))?;
-    let all = decoded.get(position.index(), As::Position, || {
-        check(&position, buffers, what, "POSITION", &[Dimensions::Vec3], &[DataType::F32])?;
-        let read: Vec<Vec4> =
-            reader.read_positions().into_iter().flatten().map(|p| Vec3::from(p).extend(0.0)).collect();
-        read_all(read.len(), &position, what, "POSITION")?;
+    let quantized = decoded.quantized;
+    let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
+    let vec3s = |a: &gltf::Accessor, semantic: &str, attribute| {
+        check_attribute(a, buffers, (what, semantic), attribute, quantized)?;
+        let read: Vec<Vec4> = quantized::read::<3, _>(a, get).into_iter().map(|p| Vec3::from(p).extend(0.0)).collect();
+        read_all(read.len(), a, what, semantic)?;
         Ok(read)
-    })?;
+    };
+    let all = decoded.get(position.index(), As::Position, || vec3s(&position, "POSITION", Attribute::Position))?;
     let count = all.len();
     let mut order = indices(primitive, &reader, buffers, count, what)?;
     // Every attribute, modelled or not, has one element per vertex (the glTF validator's rule):
@@ -53,18 +56,13 @@ pub fn primitive(
         same_count(accessor.count(), count, what, &semantic.to_string())?;
     }
     let normals = match primitive.get(&gltf::Semantic::Normals) {
-        Some(n) => Some(decoded.get(n.index(), As::Normal, || {
-            check(&n, buffers, what, "NORMAL", &[Dimensions::Vec3], &[DataType::F32])?;
-            let read: Vec<Vec4> =
-                reader.read_normals().into_iter().flatten().map(|n| Vec3::from(n).extend(0.0)).collect();
-            read_all(read.len(), &n, what, "NORMAL")?;
-            Ok(read)
-        })?),
+        Some(n) => Some(decoded.get(n.index(), As::Normal, || vec3s(&n, "NORMAL", Attribute::Normal))?),
         None => None,
     };
     let (all, normals) = match pose {
         Some(pose) => {
-            let (p, n) = pose.apply(primitive, buffers, (&all, normals.as_deref().map(Vec::as_slice)), what)?;
+            let (p, n) =
+                pose.apply(primitive, (buffers, quantized), (&all, normals.as_deref().map(Vec::as_slice)), what)?;
             (Rc::new(p), n.map(Rc::new))
         }
         None => (all, normals),
@@ -168,12 +166,14 @@ fn attributes(
     for set in 0..2u32 {
         let semantic = format!("TEXCOORD_{set}");
         let Some(a) = primitive.get(&gltf::Semantic::TexCoords(set)) else { continue };
+        let quantized = decoded.quantized;
         let all = decoded.get(a.index(), As::TexCoord, || {
-            check(&a, buffers, what, &semantic, &[Dimensions::Vec2], &normalized)?;
-            let uv: Vec<Vec4> = reader
-                .read_tex_coords(set)
-                .map(|t| t.into_f32().map(|[u, v]| Vec4::new(finite(u), finite(v), 0.0, 0.0)).collect())
-                .unwrap_or_default();
+            check_attribute(&a, buffers, (what, &semantic), Attribute::TexCoord, quantized)?;
+            let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
+            let uv: Vec<Vec4> = quantized::read::<2, _>(&a, get)
+                .into_iter()
+                .map(|[u, v]| Vec4::new(finite(u), finite(v), 0.0, 0.0))
+                .collect();
             read_all(uv.len(), &a, what, &semantic)?;
             Ok(uv)
         })?;

@@ -25,6 +25,7 @@ mod instancing;
 mod keyframes;
 mod nodes;
 use nodes::{posed_name, posed_shapes, shape_name, walk};
+mod quantized;
 mod rules;
 mod shared;
 
@@ -137,7 +138,7 @@ fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), na
     let mut meshes = meshes(doc, &buffers, &mut ignored)?;
     let worlds: BTreeMap<usize, Mat4> = placed.iter().map(|(node, world)| (node.index(), *world)).collect();
     let mut poses = BTreeMap::new();
-    let mut decoded = shared::Decoded::default();
+    let mut decoded = shared::Decoded::of(doc);
     for (node, _) in &placed {
         if let Some(pose) = deform::Pose::of(node, &posed.weights, &worlds, &buffers)? {
             posed_shapes(node, &pose, (&buffers, &mut decoded), &mut meshes)?;
@@ -258,7 +259,7 @@ fn meshes(
 ) -> Result<BTreeMap<String, MeshData>, String> {
     let mut out = BTreeMap::new();
     let mut bad_normals = false;
-    let mut decoded = shared::Decoded::default();
+    let mut decoded = shared::Decoded::of(doc);
     for mesh in doc.meshes() {
         if mesh.primitives().len() == 0 {
             return Err(format!("mesh {} has no primitives (glTF asks for at least one)", mesh.index()));

@@ -21,6 +21,9 @@ pub enum As {
 /// The accessors read so far, and a scratch list for [`Decoded::compact`].
 #[derive(Default)]
 pub struct Decoded {
+    /// Whether the file declares KHR_mesh_quantization (`quantized`): which types its vertex
+    /// accessors may have.
+    pub quantized: bool,
     read: HashMap<(usize, As), Rc<Vec<Vec4>>>,
     /// For each vertex of the accessor being compacted, its new index (`u32::MAX`: not yet
     /// named); only the entries a primitive names are set, and reset after it.
@@ -28,6 +31,11 @@ pub struct Decoded {
 }
 
 impl Decoded {
+    /// Nothing read yet of `doc`'s accessors.
+    pub fn of(doc: &gltf::Document) -> Decoded {
+        Decoded { quantized: doc.extensions_used().any(|e| e == super::quantized::EXTENSION), ..Decoded::default() }
+    }
+
     /// Accessor `index` read `as_`, by `read` the first time.
     pub fn get(
         &mut self,

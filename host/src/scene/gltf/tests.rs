@@ -8,6 +8,7 @@ mod clips;
 mod instancing;
 mod lights;
 mod posed;
+mod quantized;
 mod rigs;
 pub(crate) mod rules;
 mod scale;

@@ -44,6 +44,15 @@ fn each_copy_is_an_object_placed_by_its_own_transform_then_the_nodes() {
         assert_eq!(model.file.objects[k].name.as_deref(), Some(format!("node 0 copy {k}").as_str()));
     }
     assert!(model.ignored.iter().all(|i| !i.contains("EXT_mesh_gpu_instancing")), "{:?}", model.ignored);
+    // Required as well as used: the same copies (the `gltf` crate's validation alone refuses
+    // a required extension it has no feature for).
+    let required = copies(r#"{"TRANSLATION": 1, "ROTATION": 2}"#).replacen(
+        r#""extensionsUsed": ["EXT_mesh_gpu_instancing"],"#,
+        r#""extensionsUsed": ["EXT_mesh_gpu_instancing"], "extensionsRequired": ["EXT_mesh_gpu_instancing"],"#,
+        1,
+    );
+    let again = load_text(&required).expect("instancing required");
+    assert_eq!(again.file.objects.len(), 3);
 }
 
 #[test]
