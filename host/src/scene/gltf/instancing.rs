@@ -4,6 +4,7 @@
 //! instance sharing the mesh's BLAS), as the extension means it.
 
 use super::accessors::check;
+use super::quantized::{self, check_attribute, Attribute};
 use glam::{Mat4, Quat, Vec3};
 use gltf::accessor::{DataType, Dimensions};
 
@@ -32,7 +33,13 @@ pub fn copies(
     };
     let (t, r, s) = (accessor("TRANSLATION")?, accessor("ROTATION")?, accessor("SCALE")?);
     let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
-    let f32s = [DataType::F32];
+    // With KHR_mesh_quantization, translations and scales may be signed bytes or shorts,
+    // normalized or not: the types of a morph target's displacements.
+    let quantized = doc.extensions_used().any(|e| e == super::quantized::EXTENSION);
+    let vec3s = |a: &gltf::Accessor, semantic: &str| -> Result<Vec<Vec3>, String> {
+        check_attribute(a, buffers, (&what, semantic), Attribute::Displacement, quantized)?;
+        Ok(all_read(quantized::read::<3, _>(a, get), a, &what)?.into_iter().map(Vec3::from).collect())
+    };
     let count = [&t, &r, &s].into_iter().flatten().map(|a| a.count()).next();
     let Some(count) = count else { return Err(format!("{what} has none of TRANSLATION, ROTATION and SCALE")) };
     if let Some(a) = [&t, &r, &s].into_iter().flatten().find(|a| a.count() != count) {
@@ -44,13 +51,11 @@ pub fn copies(
     }
     let mut translations = vec![Vec3::ZERO; count];
     if let Some(a) = &t {
-        check(a, buffers, &what, "TRANSLATION", &[Dimensions::Vec3], &f32s)?;
-        translations = read(a, get, &what)?.into_iter().map(Vec3::from).collect();
+        translations = vec3s(a, "TRANSLATION")?;
     }
     let mut scales = vec![Vec3::ONE; count];
     if let Some(a) = &s {
-        check(a, buffers, &what, "SCALE", &[Dimensions::Vec3], &f32s)?;
-        scales = read(a, get, &what)?.into_iter().map(Vec3::from).collect();
+        scales = vec3s(a, "SCALE")?;
     }
     let mut rotations = vec![Quat::IDENTITY; count];
     if let Some(a) = &r {
@@ -61,15 +66,6 @@ pub fn copies(
         .map(|i| world * Mat4::from_scale_rotation_translation(scales[i], rotations[i], translations[i]))
         .collect();
     Ok(Some(copies))
-}
-
-/// Accessor `a`'s elements as float triples; all of them, or an error naming it.
-fn read<'a, 's, F>(a: &gltf::Accessor<'a>, get: F, what: &str) -> Result<Vec<[f32; 3]>, String>
-where
-    F: Clone + Fn(gltf::Buffer<'a>) -> Option<&'s [u8]>,
-{
-    let read: Vec<[f32; 3]> = gltf::accessor::Iter::new(a.clone(), get).into_iter().flatten().collect();
-    all_read(read, a, what)
 }
 
 /// Unit quaternions from `a`: floats, or normalized signed bytes or shorts (the extension's

@@ -68,3 +68,32 @@ fn instancing_accessors_that_break_the_extensions_rules_are_refused() {
     refused(&copies(r#"{"_ID": 1}"#), "has none of TRANSLATION, ROTATION and SCALE");
     refused(&copies(r#"{"ROTATION": 9}"#), "ROTATION names accessor 9, past the list");
 }
+
+/// With KHR_mesh_quantization listed, translations may be shorts (here unnormalized, padded
+/// to 8 bytes each): the copies land where float translations put them; without it listed,
+/// the shorts are refused.
+#[test]
+fn quantized_translations_place_the_copies_where_the_extension_is_listed() {
+    let mut bytes = floats(&SQUARE);
+    let shorts: [[i16; 4]; 2] = [[0, 0, 0, 0], [2, 0, 5, 0]];
+    bytes.extend(shorts.iter().flatten().flat_map(|c| c.to_le_bytes()));
+    let with = |used: &str| {
+        document(
+            &bytes,
+            &format!(
+                r#"{used} "bufferViews": [{{"buffer": 0, "byteLength": 48}}, {{"buffer": 0, "byteOffset": 48, "byteLength": 16, "byteStride": 8}}],
+                "accessors": [{{"bufferView": 0, "componentType": 5126, "count": 4, "type": "VEC3", "min": [0, 0, 0], "max": [1, 1, 0]}},
+                              {{"bufferView": 1, "componentType": 5122, "count": 2, "type": "VEC3"}}],
+                "meshes": [{{"primitives": [{{"attributes": {{"POSITION": 0}}}}]}}],
+                "nodes": [{{"mesh": 0, "extensions": {{"EXT_mesh_gpu_instancing": {{"attributes": {{"TRANSLATION": 1}}}}}}}}],
+                "scenes": [{{"nodes": [0]}}]"#
+            ),
+        )
+    };
+    let listed = r#""extensionsUsed": ["EXT_mesh_gpu_instancing", "KHR_mesh_quantization"], "extensionsRequired": ["KHR_mesh_quantization"],"#;
+    let model = load_text(&with(listed)).expect("quantized translations");
+    let placed: Vec<Vec3> =
+        model.file.objects.iter().map(|o| Mat4::from_cols_array(&o.matrix.unwrap()).w_axis.truncate()).collect();
+    assert_eq!(placed, [Vec3::ZERO, Vec3::new(2.0, 0.0, 5.0)]);
+    refused(&with(r#""extensionsUsed": ["EXT_mesh_gpu_instancing"],"#), "TRANSLATION (accessor 1) is Vec3 of I16");
+}
