@@ -31,7 +31,8 @@ fn a_model_is_posed_at_the_time_asked_for() {
 
 /// With `--frames`, a model plays from `--time` at `--fps` to its last key (4.17 s): from 1.5 s
 /// at 2 frames a second, frames at 1.5, 2, 2.5, 3, 3.5 and 4 s, each written; a rate that is
-/// not one is refused, and `animate-bench` takes the model as it is.
+/// not one is refused, and `animate-bench` takes the model as it is. From past its last key it
+/// is a still, whose one frame is at the time asked for.
 #[test]
 fn a_model_plays_from_its_time_at_its_rate() {
     let model = cube();
@@ -52,6 +53,13 @@ fn a_model_plays_from_its_time_at_its_rate() {
         );
     }
     assert_bad_input(&["animate-bench", &model, "--instances", "10"], &["--instances", "glTF"]);
+    // Past its last key the model is a still at that time: one frame, shown at 5 s.
+    let args = ["--time", "5", "render", &model, "--frames", "all", "--width", "16", "--height", "16", "--json"];
+    let out = twinray(&[&args[..], &["--out", "still.png"]].concat(), dir.path());
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).expect("render --frames --json prints JSON");
+    let times: Vec<f64> = json["frames"].as_array().unwrap().iter().filter_map(|f| f["time"].as_f64()).collect();
+    assert_eq!(times, [5.0], "{json}");
 }
 
 fn cube() -> String {

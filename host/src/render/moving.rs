@@ -140,7 +140,7 @@ impl<'a> FrameRenderer<'a> {
             .zip(&traces)
             .map(|(r, t)| r.output(self.scene, &self.opts, t.warmup, self.uploaded.accel))
             .collect::<Result<_>>()?;
-        let time = self.scene.animation.as_ref().map_or(0.0, |a| a.time(frame));
+        let time = self.scene.time(frame);
         Ok(Frame { index: frame, time, as_work: work, as_ms, outputs })
     }
 

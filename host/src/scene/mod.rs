@@ -332,6 +332,12 @@ impl Scene {
         self.animation.as_ref().map_or(1, |a| a.frames)
     }
 
+    /// Seconds into the animation at frame `frame`; a still scene's, the time its glTF models
+    /// were posed at (`gltf::playing`, `--time`).
+    pub fn time(&self, frame: u32) -> f32 {
+        self.animation.as_ref().map_or_else(|| gltf::playing().time, |a| a.time(frame))
+    }
+
     /// Writes frame `frame`'s values of what moves into `out`, a copy of `self.file`.
     pub fn pose(&self, frame: u32, out: &mut SceneFile) {
         if let Some(animation) = &self.animation {
