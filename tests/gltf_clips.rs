@@ -96,3 +96,106 @@ fn a_moving_nodes_primitives_share_one_blas_on_every_frame() {
     }
     assert!(!same(&out[0].1[0], &out[4].1[0]), "nothing moved on screen");
 }
+
+/// A scene file that places `model` (its file name in `dir`) as shape `NAME` by an object and
+/// by a grid of two, lit and seen from in front.
+fn placing(dir: &std::path::Path, model: &str) -> Scene {
+    let text = format!(
+        r#"
+[image]
+width = 128
+height = 96
+[camera]
+eye = [0.5, 0.0, 9.0]
+target = [0.5, 0.0, 0.0]
+up = [0.0, 1.0, 0.0]
+fov_y_degrees = 60.0
+[[lights]]
+kind = "directional"
+direction = [0.2, 0.5, 1.0]
+color = [1.0, 1.0, 1.0]
+intensity = 1.0
+[shapes.model]
+kind = "gltf"
+file = "{model}"
+[[objects]]
+shape = "model"
+translate = [-3.0, 0.0, 0.0]
+scale = 0.5
+[[grids]]
+shape = "model"
+materials = [""]
+count = [2, 1, 1]
+origin = [0.0, -2.5, 0.0]
+spacing = [3.0, 0.0, 0.0]
+"#
+    );
+    let path = dir.join("placing.toml");
+    std::fs::write(&path, text).unwrap();
+    Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// A scene file that places an animated model by an object and a grid plays the model's clip
+/// where each places it: at every frame each part is its placing object's transform after the
+/// part's pose in the model alone (the placing the same on every frame, the pose not), and
+/// frames render in both sets alike and as the still pictures of their times.
+#[test]
+fn a_placed_models_clip_plays_where_the_scene_places_it() {
+    let dir = tempfile::tempdir().unwrap();
+    let colors = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let path = twinray_tests::gltf::moving_strip(dir.path(), &colors, [0.0, 1.5, 0.0], 2.0);
+    let scene = placing(dir.path(), "strip.gltf");
+    let fps = twinray_host::scene::gltf::playing().fps;
+    let alone = load_at(&path, None, Playing { time: 0.0, fps }).unwrap_or_else(|e| panic!("{e}"));
+    let alone = Scene::from_model(alone, "strip").unwrap_or_else(|e| panic!("{e}"));
+    let animation = scene.animation.as_ref().expect("the model's clip, played");
+    assert!(animation.moves().objects && !animation.moves().camera && !animation.moves().lights);
+    assert_eq!(scene.frame_count(), alone.frame_count());
+    let parts = alone.file.objects.len();
+    assert_eq!(scene.file.objects.len(), 3 * parts);
+    let last = scene.frame_count() - 1;
+    let placings = |k: u32| {
+        let (placed, posed) = (scene.at_frame(k).unwrap(), alone.at_frame(k).unwrap());
+        let of = |i: usize| placed.file.objects[i].transform() * posed.file.objects[i % parts].transform().inverse();
+        (0..3 * parts).map(of).collect::<Vec<_>>()
+    };
+    let (first, end) = (placings(0), placings(last));
+    for (i, (a, b)) in first.iter().zip(&end).enumerate() {
+        assert!(a.abs_diff_eq(*b, 1e-5), "object {i}: placed otherwise at frame {last}: {a} against {b}");
+        assert!(a.abs_diff_eq(first[i - i % parts], 1e-5), "object {i}: its model's parts placed apart");
+    }
+    let moved = |s: &Scene| s.file.objects[0].transform().w_axis;
+    assert!((moved(&scene.at_frame(0).unwrap()) - moved(&scene.at_frame(last).unwrap())).length() > 0.5);
+    let ctx = validated_context();
+    let mode = TlasMode { kind: TlasKind::Update, rebuild_every: 0 };
+    let out = frames(&ctx, &scene, &["rust", "glsl"], last - 2..last + 1, mode);
+    for (k, (_, outputs)) in out.iter().enumerate() {
+        assert_eq!(outputs[0].hit_ids, outputs[1].hit_ids, "frame {}: the sets hit different ids", last - 2 + k as u32);
+    }
+    let still = twinray_host::render(&ctx, &scene.at_frame(last).unwrap(), &set("rust"), &opts()).unwrap();
+    assert!(same(&out[2].1[0], &still), "the last frame differs from a still picture of its time");
+}
+
+/// A placed skinned model (assimp's simple_skin) poses its mesh under the scene's name for it:
+/// frame k's mesh is the model's own at frame k.
+#[test]
+fn a_placed_skinned_model_poses_its_mesh_on_every_frame() {
+    twinray_tests::allow_installed_models();
+    let dir = tempfile::tempdir().unwrap();
+    let model = std::path::Path::new(MODELS).join("simple_skin/simple_skin.gltf");
+    assert!(model.exists(), "{}: run `cargo xtask setup`", model.display());
+    std::fs::copy(&model, dir.path().join("skin.gltf")).unwrap();
+    let scene = placing(dir.path(), "skin.gltf");
+    let animation = scene.animation.as_ref().expect("the model's clip, played");
+    assert!(animation.moves().meshes);
+    let alone = clip("simple_skin/simple_skin.gltf", twinray_host::scene::gltf::playing().fps);
+    let k = scene.frame_count() / 2;
+    let (placed, posed) = (scene.at_frame(k).unwrap(), alone.at_frame(k).unwrap());
+    let mut matched = 0;
+    for (shape, mesh) in &posed.meshes {
+        let theirs = placed.meshes.get(&format!("model/{shape}")).unwrap_or_else(|| panic!("no model/{shape}"));
+        assert_eq!(theirs.vertices, mesh.vertices, "{shape} at frame {k}");
+        matched += usize::from(!Arc::ptr_eq(&alone.meshes[shape], mesh));
+    }
+    assert!(matched > 0, "no mesh posed at frame {k}");
+}

@@ -17,6 +17,7 @@ pub mod mesh;
 mod models;
 pub mod obj;
 pub mod origin;
+mod placed_clip;
 pub mod plan;
 pub mod pool;
 pub mod reach;
@@ -195,14 +196,19 @@ impl Scene {
         file.objects.extend(grid_objects);
         // Animations move objects as written: a placed glTF model's parts follow their object.
         let written = file.animation.is_some().then(|| file.clone());
-        let models::Placed { meshes: mut placed, owners } =
+        let models::Placed { meshes: mut placed, owners, clip } =
             models::place(&mut file, mesh_files.folder()).map_err(scene_error)?;
         load_textures(&mut file, mesh_files.folder()).map_err(scene_error)?;
         let animation = match (&file.animation, &written) {
             (Some(a), Some(written)) => {
+                if clip.is_some() {
+                    log::warn!(
+                        "{source}: a placed glTF model's animation is shown at --time: the scene's [animation] plays"
+                    );
+                }
                 Some(Animation { owners, ..animation::resolve(a, written, &grids).map_err(scene_error)? })
             }
-            _ => None,
+            _ => clip.map(|c| Animation::playing(Arc::new(c), &file)),
         };
         // Whatever reads `file` (a still render, the reference, a probe) sees frame 0.
         if let Some(a) = &animation {

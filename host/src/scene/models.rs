@@ -8,18 +8,24 @@ use super::check;
 use super::file::{ObjectDesc, SceneFile};
 use super::gltf::{load, mesh_shape, notice};
 use super::mesh::MeshData;
+use super::placed_clip::{Part, PlacedClip};
 use super::shape::ShapeDesc;
 use crate::util::input::confined;
 use std::collections::BTreeMap;
 use std::path::Path;
 
-/// What placing the models made: their meshes by the names of their shapes in the scene, and
-/// for each object of the scene the index of the object it came from (`None`: no models, the
-/// objects are as written).
+/// What placing the models made: their meshes by the names of their shapes in the scene, for
+/// each object of the scene the index of the object it came from (`None`: no models, the
+/// objects are as written), and the clip of the one animated model, played where it is placed
+/// (`None` where no model is animated, or several are: each is then posed at `--time`).
 pub struct Placed {
     pub meshes: BTreeMap<String, MeshData>,
     pub owners: Option<Vec<usize>>,
+    pub clip: Option<PlacedClip>,
 }
+
+/// An animated model met while placing: its shape's name, clip and own objects.
+type Animated = (String, std::sync::Arc<dyn super::animation::Clip>, SceneFile);
 
 /// Places every glTF shape's model in `file` (files relative to `folder`).
 pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, String> {
@@ -33,14 +39,21 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
         .collect();
     let mut meshes = BTreeMap::new();
     if models.is_empty() {
-        return Ok(Placed { meshes, owners: None });
+        return Ok(Placed { meshes, owners: None, clip: None });
     }
     let folder = folder.ok_or("a built-in scene places no glTF files")?;
     let mut owners: Vec<usize> = (0..file.objects.len()).collect();
+    // Each object's part of an animated model: the model's index among `animated`, and where.
+    let mut parts: Vec<Option<(usize, Part)>> = vec![None; file.objects.len()];
+    let (mut animated, mut placements): (Vec<Animated>, usize) = (Vec::new(), 0);
     for (name, desc) in models {
         let path = confined(folder, &desc.file).map_err(|e| format!("shape {name:?}: cannot read {e}"))?;
         let model = load(&path, desc.scene).map_err(|e| format!("shape {name:?}: {}: {e}", desc.file))?;
         notice(&path.display().to_string(), &model.ignored);
+        let clip = model.clip.clone().map(|clip| {
+            animated.push((name.clone(), clip, model.file.clone()));
+            animated.len() - 1
+        });
         file.shapes.remove(&name);
         // Its grids are objects by now, and name a shape that is gone.
         file.grids.retain(|g| g.shape != name);
@@ -53,15 +66,20 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
             file.materials.insert(part(&material), desc);
         }
         let objects = std::mem::take(&mut file.objects);
-        let mut parts_of = Vec::with_capacity(objects.len());
-        for (object, owner) in objects.into_iter().zip(std::mem::take(&mut owners)) {
+        let (mut parts_of, mut animated_of) = (Vec::with_capacity(objects.len()), Vec::new());
+        let was = objects.into_iter().zip(std::mem::take(&mut owners)).zip(std::mem::take(&mut parts));
+        for ((object, owner), was_part) in was {
             if object.shape != name {
                 file.objects.push(object);
                 parts_of.push(owner);
+                animated_of.push(was_part);
                 continue;
             }
             parts_of.extend(std::iter::repeat_n(owner, model.file.objects.len()));
             let own = object.matrix.map_or(glam::Mat4::IDENTITY, |m| glam::Mat4::from_cols_array(&m));
+            let placing = |part| clip.map(|c| (c, Part { placement: placements, part, placing: own }));
+            animated_of.extend((0..model.file.objects.len()).map(placing));
+            placements += 1;
             file.objects.extend(model.file.objects.iter().map(|p| ObjectDesc {
                 name: match (&object.name, &p.name) {
                     (Some(own), Some(node)) => Some(format!("{own}: {node}")),
@@ -76,8 +94,20 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
                 ..object.clone()
             }));
         }
-        owners = parts_of;
+        (owners, parts) = (parts_of, animated_of);
     }
     check::check(file)?;
-    Ok(Placed { meshes, owners: Some(owners) })
+    Ok(Placed { meshes, owners: Some(owners), clip: played(animated, parts) })
+}
+
+/// The clip of the one animated model, its parts where the scene places them; with several,
+/// none (a scene plays one clip), said on the log.
+fn played(mut animated: Vec<Animated>, parts: Vec<Option<(usize, Part)>>) -> Option<PlacedClip> {
+    if animated.len() > 1 {
+        let names: Vec<&str> = animated.iter().map(|a| a.0.as_str()).collect();
+        log::warn!("glTF models {names:?} are each animated: each is shown at --time, none played over frames");
+        return None;
+    }
+    let (name, clip, model) = animated.pop()?;
+    Some(PlacedClip::new(clip, &name, model, parts.into_iter().map(|p| p.map(|(_, part)| part)).collect()))
 }
