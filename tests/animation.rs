@@ -188,7 +188,39 @@ fn placed_gltf_models_move_as_one() {
     twinray_tests::allow_installed_models();
     let model = "/usr/share/assimp/models/glTF2/textureTransform/TextureTransformTest.gltf";
     assert!(std::path::Path::new(model).exists(), "{model}: run `cargo xtask setup`");
-    let text = format!(
+    let text = placed_models(model, MODELS_MOVE);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("models.toml");
+    std::fs::write(&path, text).unwrap();
+    let scene = Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"));
+    let parts = scene.file.objects.len() / 3;
+    assert!(parts >= 12 && scene.file.objects.len() == 3 * parts, "{} objects", scene.file.objects.len());
+    let (first, last) = (scene.at_frame(0).unwrap(), scene.at_frame(3).unwrap());
+    for model in 0..3 {
+        let at = |s: &Scene, k: usize| s.file.objects[model * parts + k].transform();
+        let moved = (at(&first, 0).w_axis - at(&last, 0).w_axis).length();
+        assert!(moved > 0.1, "model {model} did not move ({moved})");
+        for k in 1..parts {
+            let (before, after) = (at(&first, 0).inverse() * at(&first, k), at(&last, 0).inverse() * at(&last, k));
+            assert!(before.abs_diff_eq(after, 1e-4), "model {model}, part {k} moved against part 0");
+        }
+    }
+    let ctx = validated_context();
+    let rendered = frames(&ctx, &scene, &["rust", "glsl"], 0..4, TlasMode { kind: TlasKind::Update, rebuild_every: 0 });
+    for (k, (_, outputs)) in rendered.iter().enumerate() {
+        let d = diff(&outputs[0], &outputs[1], scene.file.parity.pixel_threshold);
+        assert!(verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty(), "frame {k}: {d:?}");
+    }
+    let still = twinray_host::render(&ctx, &last, &set("rust"), &opts()).unwrap();
+    assert!(same(&rendered[3].1[0], &still), "frame 3 differs from Scene::at_frame(3)");
+    assert!(!same(&rendered[0].1[0], &rendered[3].1[0]), "nothing moved on screen");
+    ctx.close().unwrap();
+}
+
+/// A scene file placing the glTF model `model` as shape `test` by an object (scaled by 0.5, at
+/// (-1.5, 1, 0)) and by a grid of two, seen from in front, with `animation` (TOML) after it.
+pub(crate) fn placed_models(model: &str, animation: &str) -> String {
+    format!(
         r#"
 [image]
 width = 128
@@ -217,43 +249,21 @@ count = [2, 1, 1]
 origin = [-1.0, -1.5, 0.0]
 spacing = [2.5, 0.0, 0.0]
 scale = 0.5
-[animation]
+{animation}"#
+    )
+}
+
+/// What moves the placed models in `placed_gltf_models_move_as_one`: object 0 along x, the grid
+/// spinning.
+const MODELS_MOVE: &str = r#"[animation]
 frames = 4
 fps = 1.0
 [[animation.tracks]]
 target = "object 0"
 property = "translate"
-keys = [{{ time = 0.0, value = [-1.5, 1.0, 0.0] }}, {{ time = 3.0, value = [1.5, 1.0, 0.0] }}]
+keys = [{ time = 0.0, value = [-1.5, 1.0, 0.0] }, { time = 3.0, value = [1.5, 1.0, 0.0] }]
 [[animation.motions]]
 kind = "spin"
 target = "grid 0"
 degrees_per_second = [0.0, 0.0, 20.0]
-"#
-    );
-    let dir = tempfile::tempdir().unwrap();
-    let path = dir.path().join("models.toml");
-    std::fs::write(&path, text).unwrap();
-    let scene = Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"));
-    let parts = scene.file.objects.len() / 3;
-    assert!(parts >= 12 && scene.file.objects.len() == 3 * parts, "{} objects", scene.file.objects.len());
-    let (first, last) = (scene.at_frame(0).unwrap(), scene.at_frame(3).unwrap());
-    for model in 0..3 {
-        let at = |s: &Scene, k: usize| s.file.objects[model * parts + k].transform();
-        let moved = (at(&first, 0).w_axis - at(&last, 0).w_axis).length();
-        assert!(moved > 0.1, "model {model} did not move ({moved})");
-        for k in 1..parts {
-            let (before, after) = (at(&first, 0).inverse() * at(&first, k), at(&last, 0).inverse() * at(&last, k));
-            assert!(before.abs_diff_eq(after, 1e-4), "model {model}, part {k} moved against part 0");
-        }
-    }
-    let ctx = validated_context();
-    let rendered = frames(&ctx, &scene, &["rust", "glsl"], 0..4, TlasMode { kind: TlasKind::Update, rebuild_every: 0 });
-    for (k, (_, outputs)) in rendered.iter().enumerate() {
-        let d = diff(&outputs[0], &outputs[1], scene.file.parity.pixel_threshold);
-        assert!(verdict(&d, &scene.file.parity, u64::from(SIZE.0 * SIZE.1)).is_empty(), "frame {k}: {d:?}");
-    }
-    let still = twinray_host::render(&ctx, &last, &set("rust"), &opts()).unwrap();
-    assert!(same(&rendered[3].1[0], &still), "frame 3 differs from Scene::at_frame(3)");
-    assert!(!same(&rendered[0].1[0], &rendered[3].1[0]), "nothing moved on screen");
-    ctx.close().unwrap();
-}
+"#;

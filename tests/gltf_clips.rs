@@ -97,41 +97,11 @@ fn a_moving_nodes_primitives_share_one_blas_on_every_frame() {
     assert!(!same(&out[0].1[0], &out[4].1[0]), "nothing moved on screen");
 }
 
-/// A scene file that places `model` (its file name in `dir`) as shape `NAME` by an object and
-/// by a grid of two, lit and seen from in front.
+/// A scene file that places `model` (its file name in `dir`) by an object and by a grid of
+/// two (`animation::placed_models`), with no `[animation]`.
 fn placing(dir: &std::path::Path, model: &str) -> Scene {
-    let text = format!(
-        r#"
-[image]
-width = 128
-height = 96
-[camera]
-eye = [0.5, 0.0, 9.0]
-target = [0.5, 0.0, 0.0]
-up = [0.0, 1.0, 0.0]
-fov_y_degrees = 60.0
-[[lights]]
-kind = "directional"
-direction = [0.2, 0.5, 1.0]
-color = [1.0, 1.0, 1.0]
-intensity = 1.0
-[shapes.model]
-kind = "gltf"
-file = "{model}"
-[[objects]]
-shape = "model"
-translate = [-3.0, 0.0, 0.0]
-scale = 0.5
-[[grids]]
-shape = "model"
-materials = [""]
-count = [2, 1, 1]
-origin = [0.0, -2.5, 0.0]
-spacing = [3.0, 0.0, 0.0]
-"#
-    );
     let path = dir.join("placing.toml");
-    std::fs::write(&path, text).unwrap();
+    std::fs::write(&path, super::animation::placed_models(model, "")).unwrap();
     Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
 }
 
@@ -193,7 +163,7 @@ fn a_placed_skinned_model_poses_its_mesh_on_every_frame() {
     let (placed, posed) = (scene.at_frame(k).unwrap(), alone.at_frame(k).unwrap());
     let mut matched = 0;
     for (shape, mesh) in &posed.meshes {
-        let theirs = placed.meshes.get(&format!("model/{shape}")).unwrap_or_else(|| panic!("no model/{shape}"));
+        let theirs = placed.meshes.get(&format!("test/{shape}")).unwrap_or_else(|| panic!("no test/{shape}"));
         assert_eq!(theirs.vertices, mesh.vertices, "{shape} at frame {k}");
         matched += usize::from(!Arc::ptr_eq(&alone.meshes[shape], mesh));
     }
