@@ -61,7 +61,8 @@ fn each_library_is_compiled_once() {
 /// On a CPU device the context keeps every library it makes for a render
 /// (`Context::keeps_libraries`): rendering a scene again links the libraries of the first
 /// render, the same bits, where lavapipe finds the code it compiled (which holds each group's
-/// handle); another set adds its own. On a GPU a context keeps none.
+/// handle); another set adds its own, and the compute renderer's pipeline is kept too. On a
+/// GPU a context keeps none.
 #[test]
 fn a_cpu_device_renders_a_scene_again_from_the_libraries_it_kept() {
     let ctx = context(PipelineKind::Libraries);
@@ -76,10 +77,18 @@ fn a_cpu_device_renders_a_scene_again_from_the_libraries_it_kept() {
         assert_eq!(ctx.kept.len(), 10, "the second render made libraries of its own");
         render_scene(&ctx, &scene, "glsl");
         assert_eq!(ctx.kept.len(), 20, "the GLSL set's libraries are its own");
+        // The compute renderer's pipeline is kept the same way: one more, made once.
+        let mut compute = scene.clone();
+        compute.file.renderer = twinray_host::scene::Renderer::Compute;
+        let first = render_scene(&ctx, &compute, "rust");
+        assert_eq!(ctx.kept.len(), 21, "the compute pipeline kept");
+        let again = render_scene(&ctx, &compute, "rust");
+        assert!(first.rgba == again.rgba && first.hit_ids == again.hit_ids, "a second compute render differs");
+        assert_eq!(ctx.kept.len(), 21, "the second compute render made a pipeline of its own");
     } else {
         assert_eq!(kept, 0, "a GPU's context keeps no library");
     }
-    // The kept libraries go with the device: the layer reports any that do not.
+    // The kept pipelines go with the device: the layer reports any that do not.
     ctx.close().unwrap();
 }
 

@@ -112,7 +112,7 @@ impl Libraries {
         if self.in_context {
             let (kept, made) = ctx.kept.get_or_make(key, || make().map(RtPipeline::into_kept))?;
             self.compiled.set(self.compiled.get() + usize::from(made));
-            return Ok((kept, None));
+            return Ok((kept.raw, None));
         }
         let library = Rc::new(make()?);
         self.compiled.set(self.compiled.get() + 1);
@@ -121,12 +121,18 @@ impl Libraries {
     }
 }
 
-/// The identity of a library: its group's shape, each stage's kind, name, entry point and
-/// exact SPIR-V, and the specialisation data.
+/// The identity of a library: its group's shape, its stages and the specialisation data.
 fn key(desc: &LibraryDesc) -> u64 {
     let mut hash = Fnv::default();
     hash.eat(format!("{:?}", desc.group).as_bytes());
-    for s in &desc.stages {
+    eat_stages(&mut hash, &desc.stages, desc.spec_bytes);
+    hash.eat(&desc.depth.to_le_bytes());
+    hash.value()
+}
+
+/// Each stage's kind, name, entry point and exact SPIR-V, and the specialisation data.
+fn eat_stages(hash: &mut Fnv, stages: &[StageDesc], spec_bytes: &[u8]) {
+    for s in stages {
         hash.eat(&s.stage.as_raw().to_le_bytes());
         hash.eat(s.name.as_bytes());
         hash.eat(s.entry.to_bytes_with_nul());
@@ -134,7 +140,26 @@ fn key(desc: &LibraryDesc) -> u64 {
         hash.eat(s.spirv);
         hash.eat(&[u8::from(s.specialization.is_some())]);
     }
-    hash.eat(desc.spec_bytes);
-    hash.eat(&desc.depth.to_le_bytes());
-    hash.value()
+    hash.eat(spec_bytes);
+}
+
+/// The compute pipeline of `stage` (specialised by `spec_bytes`) over `bindings`: on a device
+/// whose context keeps libraries, the one it made before for the same code, made once. Lavapipe
+/// took 1 to 2 s to make a ray-query compute pipeline for each render under the validation
+/// layer, where a ray tracing pipeline's libraries are made once a context.
+pub fn compute(
+    ctx: &Arc<Context>,
+    bindings: &[crate::vk::pipeline::Binding],
+    stage: &StageDesc,
+    spec_bytes: &[u8],
+) -> Result<RtPipeline> {
+    if !ctx.keeps_libraries() {
+        return RtPipeline::compute(ctx, bindings, stage);
+    }
+    let mut hash = Fnv::default();
+    hash.eat(b"compute");
+    eat_stages(&mut hash, std::slice::from_ref(stage), spec_bytes);
+    let make = || RtPipeline::compute(ctx, bindings, stage).map(RtPipeline::into_kept);
+    let (kept, _) = ctx.kept.get_or_make(hash.value(), make)?;
+    Ok(RtPipeline::lent(ctx, kept, vk::PipelineBindPoint::COMPUTE))
 }

@@ -190,7 +190,7 @@ impl ScenePipeline {
         let stages = stage_descs(modules, &spec);
         let (rt, linked, held) = if compute {
             // One stage, no groups, no SBT, nothing to link.
-            (RtPipeline::compute(ctx, &bindings, &stages[0])?, Vec::new(), Vec::new())
+            (super::libraries::compute(ctx, &bindings, &stages[0], spec_bytes)?, Vec::new(), Vec::new())
         } else if let Some(libraries) = libraries {
             let descs: Vec<LibraryDesc> = groups.iter().map(|g| library(&stages, *g, (spec_bytes, depth))).collect();
             let linked = libraries.link(ctx, &bindings, &descs, depth)?;

@@ -1,5 +1,5 @@
 //! Pipelines a context keeps until its device goes, found by a key their maker chose: the
-//! pipeline libraries of a CPU device (see `Context::keeps_libraries`). They are kept as bare
+//! pipeline libraries and compute pipelines of a CPU device (see `Context::keeps_libraries`). They are kept as bare
 //! handles, destroyed by the context itself, because a pipeline that held the context (as every
 //! other Vulkan object here does) would keep it alive from inside it.
 
@@ -23,14 +23,14 @@ pub struct KeptPipelines(Mutex<HashMap<u64, KeptPipeline>>);
 impl KeptPipelines {
     /// The pipeline kept under `key`, made by `make` and kept unless one is (made once however
     /// many threads ask: they wait while it is made); whether `make` made it.
-    pub fn get_or_make(&self, key: u64, make: impl FnOnce() -> Result<KeptPipeline>) -> Result<(vk::Pipeline, bool)> {
+    pub fn get_or_make(&self, key: u64, make: impl FnOnce() -> Result<KeptPipeline>) -> Result<(KeptPipeline, bool)> {
         let mut kept = self.0.lock().unwrap_or_else(|e| e.into_inner());
         if let Some(k) = kept.get(&key) {
-            return Ok((k.raw, false));
+            return Ok((*k, false));
         }
         let made = make()?;
         kept.insert(key, made);
-        Ok((made.raw, true))
+        Ok((made, true))
     }
 
     /// How many are kept.

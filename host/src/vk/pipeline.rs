@@ -77,6 +77,8 @@ pub struct RtPipeline {
     pub raw: vk::Pipeline,
     /// `RAY_TRACING_KHR`, or `COMPUTE` for [`RtPipeline::compute`].
     pub bind_point: vk::PipelineBindPoint,
+    /// The context keeps the handles (`Context::kept`) and destroys them, not this.
+    kept: bool,
 }
 
 impl RtPipeline {
@@ -112,6 +114,13 @@ impl RtPipeline {
             layout: std::mem::take(&mut self.layout),
             raw: std::mem::take(&mut self.raw),
         }
+    }
+
+    /// A pipeline the context keeps (`Context::kept`), lent to its user: dropping it destroys
+    /// nothing.
+    pub fn lent(ctx: &Arc<Context>, kept: KeptPipeline, bind_point: vk::PipelineBindPoint) -> Self {
+        let KeptPipeline { set_layout, layout, raw } = kept;
+        RtPipeline { ctx: ctx.clone(), set_layout, layout, raw, bind_point, kept: true }
     }
 
     /// A compute pipeline of `stage` over a set with `bindings`.
@@ -158,6 +167,7 @@ impl RtPipeline {
             layout: vk::PipelineLayout::null(),
             raw: vk::Pipeline::null(),
             bind_point,
+            kept: false,
         };
         let layouts = [set_layout];
         let info = vk::PipelineLayoutCreateInfo::default().set_layouts(&layouts);
@@ -296,8 +306,8 @@ pub fn pool_sizes(bindings: &[Binding]) -> Vec<vk::DescriptorPoolSize> {
 
 impl Drop for RtPipeline {
     fn drop(&mut self) {
-        if self.ctx.abandoned() {
-            return; // the GPU may still use it: see Context::abandon
+        if self.kept || self.ctx.abandoned() {
+            return; // the context's, or the GPU may still use it: see Context::abandon
         }
         // SAFETY: no command buffer using these is pending; null handles are ignored.
         unsafe {
