@@ -23,6 +23,7 @@ mod inspect_cli;
 mod install;
 mod own_stages;
 mod own_stages_tutorial;
+mod peak_memory;
 mod pipeline_cache;
 mod probe_cli;
 mod reference_ambiguity;

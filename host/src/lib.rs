@@ -61,7 +61,7 @@ pub mod compare;
 pub mod fuzz;
 
 pub use error::{Error, Result};
-pub use render::{render, render_sets, RenderOptions, RenderOutput};
+pub use render::{render, render_owned, render_sets, RenderOptions, RenderOutput};
 pub use scene::Scene;
 pub use sets::{Language, ShaderSet, Stage};
 pub use vk::context::{Context, ContextOptions};

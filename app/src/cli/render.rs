@@ -20,15 +20,22 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
     let load_ms = loading.elapsed().as_secs_f64() * 1e3;
     let opts = render_options(&scene, &args.frame, RENDER_TRACES)?;
     let ctx = context(global)?;
-    let out = twinray_host::render(&ctx, &scene, &shaders, &opts)?;
+    let name = scene.name().to_string();
+    // The scene given up: its meshes are freed once uploaded (a large model's peak memory).
+    let out = twinray_host::render_owned(&ctx, scene, &shaders, &opts)?;
     write_image(&args.out, (out.width, out.height), &out.linear, &out.picture())?;
     let median = out.median_ms();
     let set = shaders.to_string();
     let mut problems = out.written.problems(&set, "pixels");
-    problems.extend(twinray_host::explain::no_payload::render_lines(&scene, &out, &set));
+    if !out.no_payload.is_empty() {
+        // Which stage wrote no payload is told by the f64 reference, which needs the meshes.
+        let scene = load_still(args.scene.as_deref(), &args.viewpoint, &[&shaders])?;
+        problems.extend(twinray_host::explain::no_payload::render_lines(&scene, &out, &set));
+    }
+    let peak = twinray_host::util::memory::peak_bytes();
     if args.frame.json {
         let value = serde_json::json!({
-            "scene": scene.name(),
+            "scene": name,
             "device": ctx.info.name,
             "set": shaders.to_string(),
             "width": out.width,
@@ -44,6 +51,7 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             "hit_pixels": hit_count(&out),
             "written": out.written,
             "load_ms": load_ms,
+            "peak_memory_bytes": peak,
             "acceleration_structures": out.accel,
             "pass": problems.is_empty(),
             "failures": problems,
@@ -54,15 +62,11 @@ pub fn render(global: &GlobalArgs, args: RenderArgs) -> Result<ExitCode> {
             let rate = out.mrays_per_s().map_or(String::new(), |r| format!(", {r:.1} Mrays/s"));
             format!("{:.3} ms (median of {}, IQR {:.3}){rate}", s.median, s.samples, s.iqr())
         });
-        println!(
-            "{} {}x{} with {set} on {}: GPU {ms} of {}",
-            scene.name(),
-            out.width,
-            out.height,
-            ctx.info.name,
-            out.rays
-        );
+        println!("{} {}x{} with {set} on {}: GPU {ms} of {}", name, out.width, out.height, ctx.info.name, out.rays);
         println!("  scene loaded in {load_ms:.0} ms; {}", out.accel);
+        if let Some(bytes) = peak {
+            println!("  host memory at its peak: {:.1} MiB", bytes as f64 / (1u64 << 20) as f64);
+        }
         for problem in &problems {
             println!("FAIL: {problem} (magenta in {})", args.out.display());
         }

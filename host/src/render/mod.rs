@@ -30,5 +30,5 @@ pub use output::{
 pub use placement::{PlacementTimes, DEFAULT_PLACEMENTS};
 pub use prepare::MIN_WARM_MS;
 pub(crate) use prepare::{min_warm_ms, place_warm_ms, prepare, prepare_uploaded, storage_buffer, Prepared};
-pub use sets::{render, render_made, render_sets};
+pub use sets::{render, render_made, render_owned, render_sets};
 pub(crate) use tracing::{submit, Trace};

@@ -85,7 +85,7 @@ impl<'a> FrameRenderer<'a> {
             renders,
             outputs,
             records: uploaded.instances.clone(),
-            object_bounds: uploaded.data.object_bounds(),
+            object_bounds: uploaded.object_bounds.clone(),
             uploaded,
             one_shot: OneShot::new(ctx)?,
             timer: Timestamps::new(ctx, 1)?,

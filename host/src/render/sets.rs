@@ -9,9 +9,9 @@ use super::placement;
 use super::prepare::{min_warm_ms, prepare_on, storage_buffer, Prepared};
 use super::sentinel;
 use super::tracing::{self, Trace};
-use super::upload::{upload_shared, UploadedScene};
+use super::upload::{upload_given, upload_shared, UploadedScene};
 use crate::error::{Error, Result};
-use crate::scene::{check_size, Scene};
+use crate::scene::{check_size, Scene, SceneData};
 use crate::sets::ShaderSet;
 use crate::util::{activity, progress};
 use crate::vk::buffer::Buffer;
@@ -28,6 +28,24 @@ use twinray_shared::bindings as b;
 /// Renders `scene` with one set.
 pub fn render(ctx: &Arc<Context>, scene: &Scene, set: &ShaderSet, opts: &RenderOptions) -> Result<RenderOutput> {
     let mut outputs = render_sets(ctx, scene, std::slice::from_ref(set), opts)?;
+    Ok(outputs.remove(0))
+}
+
+/// [`render`], taking the scene: its meshes are freed as soon as the buffers the stages read
+/// hold them, before the acceleration structures are built, so that a large model is held
+/// once, not twice, at the render's peak memory (on a device whose memory is the host's, as
+/// lavapipe's, three times, with the structures). What needs the meshes afterwards (the f64
+/// reference) loads the scene again.
+pub fn render_owned(
+    ctx: &Arc<Context>,
+    mut scene: Scene,
+    set: &ShaderSet,
+    opts: &RenderOptions,
+) -> Result<RenderOutput> {
+    let data = scene.on_gpu().build();
+    scene.meshes.clear();
+    let made = made_as_context_says(ctx, std::slice::from_ref(set));
+    let mut outputs = render_made_over(ctx, (&scene, Some(data)), &made, opts)?;
     Ok(outputs.remove(0))
 }
 
@@ -69,6 +87,17 @@ pub fn render_made(
     sets: &[(ShaderSet, PipelineKind)],
     opts: &RenderOptions,
 ) -> Result<Vec<RenderOutput>> {
+    render_made_over(ctx, (scene, None), sets, opts)
+}
+
+/// [`render_made`] of `scene`, or of `data` where given (built from `scene` before it gave up its
+/// meshes: see [`render_owned`]).
+fn render_made_over(
+    ctx: &Arc<Context>,
+    (scene, data): (&Scene, Option<SceneData>),
+    sets: &[(ShaderSet, PipelineKind)],
+    opts: &RenderOptions,
+) -> Result<Vec<RenderOutput>> {
     check_size(opts.width, opts.height).map_err(Error::Input)?;
     check_device_limits(ctx, opts)?;
     let orders = placement::orders(sets.len(), opts.first_placement, opts.placements);
@@ -81,7 +110,10 @@ pub fn render_made(
         );
     }
     let size = (opts.width, opts.height);
-    let uploaded = upload_shared(ctx, scene, size)?;
+    let uploaded = match data {
+        Some(data) => upload_given(ctx, scene, data, size)?,
+        None => upload_shared(ctx, scene, size)?,
+    };
     let outputs = SharedOutputs::new(ctx, opts)?;
     // With several rounds, the clocks are brought up first, at a place of its own, unless
     // this GPU ended warmed traces moments ago (the last device's, with `--alone-in devices`).

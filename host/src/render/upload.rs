@@ -15,7 +15,7 @@ use crate::vk::texture::Texture;
 use ash::vk;
 use glam::Mat4;
 use gpu_allocator::MemoryLocation;
-use std::cell::{OnceCell, RefCell};
+use std::cell::RefCell;
 use std::rc::Rc;
 use std::sync::Arc;
 use twinray_shared::bindings as b;
@@ -80,13 +80,15 @@ fn lights_buffer(lights: &[Light]) -> Vec<u8> {
 
 /// A scene's data and GPU resources, which any number of pipelines can trace.
 pub(crate) struct UploadedScene {
+    /// What was uploaded, its meshes let go of once in the buffers (`Pooled::release`): the
+    /// scene holds them, or, where it gave them up, no one.
     pub data: SceneData,
     pub resources: Rc<SceneResources>,
     /// The TLAS instances as uploaded: a moving scene rewrites their transforms.
     pub instances: Vec<InstanceRecord>,
     pub accel: AccelStats,
-    /// Each object's own bounds, once [`UploadedScene::centre`] has needed them.
-    object_bounds: OnceCell<Vec<Aabb>>,
+    /// Each object's own bounds, in object order.
+    pub object_bounds: Vec<Aabb>,
 }
 
 impl UploadedScene {
@@ -102,8 +104,7 @@ impl UploadedScene {
         scene: &Scene,
         (width, height): (u32, u32),
     ) -> Result<()> {
-        let bounds = self.object_bounds.get_or_init(|| self.data.object_bounds());
-        let frame = frame_data(&scene.file_on_gpu(&scene.file), width, height, bounds);
+        let frame = frame_data(&scene.file_on_gpu(&scene.file), width, height, &self.object_bounds);
         self.resources.place(&mut self.instances, &self.data.instances, &frame.transforms)?;
         let tlas = self.resources.tlas.borrow();
         one_shot.run(|_, cmd| {
@@ -118,7 +119,18 @@ impl UploadedScene {
 
 /// Builds the scene's acceleration structures and buffers, frame constants for `frame` pixels.
 pub(crate) fn upload_shared(ctx: &Arc<Context>, scene: &Scene, frame: (u32, u32)) -> Result<UploadedScene> {
-    upload_scene(ctx, scene, frame, None)
+    upload_scene(ctx, (scene, None), frame, None)
+}
+
+/// [`upload_shared`] of `data`, built from `scene` (`Scene::on_gpu`) before it gave its meshes
+/// up: they are freed once the buffers hold them, before the structures are built.
+pub(crate) fn upload_given(
+    ctx: &Arc<Context>,
+    scene: &Scene,
+    data: SceneData,
+    frame: (u32, u32),
+) -> Result<UploadedScene> {
+    upload_scene(ctx, (scene, Some(data)), frame, None)
 }
 
 /// What changes in a moving scene from frame to frame.
@@ -152,12 +164,12 @@ pub(crate) fn upload_moving(
     frame: (u32, u32),
     movement: Movement,
 ) -> Result<UploadedScene> {
-    upload_scene(ctx, scene, frame, Some(movement))
+    upload_scene(ctx, (scene, None), frame, Some(movement))
 }
 
 fn upload_scene(
     ctx: &Arc<Context>,
-    scene: &Scene,
+    (scene, given): (&Scene, Option<SceneData>),
     (width, height): (u32, u32),
     moving: Option<Movement>,
 ) -> Result<UploadedScene> {
@@ -166,15 +178,20 @@ fn upload_scene(
     let one_shot = &OneShot::new(ctx)?;
     // The GPU works around the scene's local origin (`scene::origin`).
     let scene = &*scene.on_gpu();
-    let built = scene.build();
-    let data = &built;
-    check_structure_limits(ctx, data)?;
+    let mut built = given.unwrap_or_else(|| scene.build());
+    check_structure_limits(ctx, &built)?;
+    let object_bounds = built.object_bounds();
     // Meshes are read by the BLAS builds and by the triangle closest-hit stage.
     let mesh_usage = vk::BufferUsageFlags::STORAGE_BUFFER
         | vk::BufferUsageFlags::ACCELERATION_STRUCTURE_BUILD_INPUT_READ_ONLY_KHR
         | vk::BufferUsageFlags::SHADER_DEVICE_ADDRESS;
-    let vertices = upload_parts(ctx, "vertices", data.vertices.parts().map(bytemuck::cast_slice), mesh_usage)?;
-    let indices = upload_parts(ctx, "indices", data.indices.parts().map(bytemuck::cast_slice), mesh_usage)?;
+    let vertices = upload_parts(ctx, "vertices", built.vertices.parts().map(bytemuck::cast_slice), mesh_usage)?;
+    let indices = upload_parts(ctx, "indices", built.indices.parts().map(bytemuck::cast_slice), mesh_usage)?;
+    // Held now by the buffers: on a device whose buffers are host memory, a copy while the
+    // structures are built would double a large model's share of the peak.
+    built.vertices.release();
+    built.indices.release();
+    let data = &built;
     let (vertex_address, index_address) = (vertices.device_address(), indices.device_address());
     let (flags, moving_shapes) = moving.as_ref().map_or((TlasFlags::FastTrace, &[][..]), |m| (m.flags, m.posed));
     let mut moving_blases = Vec::new();
@@ -219,7 +236,7 @@ fn upload_scene(
         Some(m) => Tlas::new(ctx, &instances, m.flags)?,
         None => build_tlas(ctx, one_shot, &instances)?,
     };
-    let frame = crate::scene::frame_uniform(&scene.file, width, height, &built.world_boxes());
+    let frame = crate::scene::frame_uniform(&scene.file, width, height, &data.placed_boxes(&object_bounds));
     let storage = vk::DescriptorType::STORAGE_BUFFER;
     let buffers = vec![
         (b::BINDING_FRAME, vk::DescriptorType::UNIFORM_BUFFER, upload(ctx, "frame", bytemuck::bytes_of(&frame))?),
@@ -259,7 +276,7 @@ fn upload_scene(
         tlas: RefCell::new(tlas),
         buffers: RefCell::new(buffers),
     };
-    Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel, object_bounds: OnceCell::new() })
+    Ok(UploadedScene { data: built, resources: Rc::new(resources), instances, accel, object_bounds })
 }
 
 /// Every shape's BLAS within the device's `maxPrimitiveCount`, and the objects within its

@@ -248,8 +248,13 @@ impl SceneData {
 
     /// Each object's world-space bounds, as built.
     pub fn world_boxes(&self) -> Vec<Aabb> {
+        self.placed_boxes(&self.object_bounds())
+    }
+
+    /// Each object's world-space bounds, its own being `object_bounds`.
+    pub fn placed_boxes(&self, object_bounds: &[Aabb]) -> Vec<Aabb> {
         let transforms: Vec<Mat4> = self.instances.iter().map(|i| i.object_to_world).collect();
-        reach::world_boxes(&self.object_bounds(), &transforms)
+        reach::world_boxes(object_bounds, &transforms)
     }
 
     /// Each object's bounds in its own space, in object (TLAS instance) order.

@@ -54,6 +54,12 @@ impl<T> Pooled<T> {
         (self.part)(&self.meshes[k]).get(base - self.bases[k]..base - self.bases[k] + count)
     }
 
+    /// Lets go of the meshes, leaving the pool empty: an upload does once its buffers hold
+    /// them, so that a scene that gave its meshes up (`render::render_owned`) frees them.
+    pub fn release(&mut self) {
+        *self = Pooled::new(self.part);
+    }
+
     /// Every mesh's elements, in order: what a buffer of the whole holds end to end.
     pub fn parts(&self) -> impl Iterator<Item = &[T]> + Clone {
         self.meshes.iter().map(|m| (self.part)(m))
@@ -93,5 +99,9 @@ mod tests {
         assert_eq!(pool.range(3, 2), Some(&[7, 8][..]));
         assert_eq!(pool.range(1, 3), None, "a range across two meshes");
         assert_eq!(pool.parts().flatten().count(), 5);
+        let held = mesh(&[4]);
+        pool.push(held.clone());
+        pool.release();
+        assert_eq!((pool.len(), pool.parts().count(), Arc::strong_count(&held)), (0, 0, 1));
     }
 }
