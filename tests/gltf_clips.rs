@@ -169,3 +169,64 @@ fn a_placed_skinned_model_poses_its_mesh_on_every_frame() {
     }
     assert!(matched > 0, "no mesh posed at frame {k}");
 }
+
+/// A scene file that places two animated models plays both clips together, as long as the
+/// longer (a strip moving for 2 s, another for 4 s): at every frame each part is its placing
+/// object's transform after the part's pose in its model alone at that time, the shorter
+/// holding its last pose; frames render in both sets alike and as the still picture of their
+/// time.
+#[test]
+fn two_placed_models_play_their_clips_together() {
+    let dir = tempfile::tempdir().unwrap();
+    let colors = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let fps = twinray_host::scene::gltf::playing().fps;
+    let mut alone = Vec::new();
+    for (name, seconds) in [("short", 2.0), ("long", 4.0)] {
+        let folder = dir.path().join(name);
+        std::fs::create_dir(&folder).unwrap();
+        let path = twinray_tests::gltf::moving_strip(&folder, &colors, [0.0, 1.5, 0.0], seconds);
+        let model = load_at(&path, None, Playing { time: 0.0, fps }).unwrap_or_else(|e| panic!("{e}"));
+        alone.push(Scene::from_model(model, name).unwrap_or_else(|e| panic!("{e}")));
+    }
+    let other = "[shapes.other]\nkind = \"gltf\"\nfile = \"long/strip.gltf\"\n[[objects]]\nshape = \"other\"\ntranslate = [1.5, 1.0, 0.0]\nscale = 0.5\n";
+    let path = dir.path().join("placing.toml");
+    std::fs::write(&path, super::animation::placed_models("short/strip.gltf", other)).unwrap();
+    let scene = Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"));
+    let ends = [alone[0].frame_count() - 1, alone[1].frame_count() - 1];
+    assert!(ends[0] < ends[1], "clip lengths {ends:?}");
+    assert_eq!(scene.frame_count(), ends[1] + 1, "the scene plays as long as the longer clip");
+    let parts = alone[0].file.objects.len();
+    // Each object's model (0: short, placed as `test`; 1: long, as `other`) and part.
+    let mut of = Vec::new();
+    for (i, object) in scene.file.objects.iter().enumerate() {
+        let model = usize::from(object.shape.starts_with("other/"));
+        let run = of.iter().rev().take_while(|&&(m, _): &&(usize, usize)| m == model).count();
+        assert!(i == 0 || run > 0 || of.last().is_some_and(|&(_, p)| p == parts - 1), "object {i}");
+        of.push((model, run % parts));
+    }
+    assert_eq!(of.iter().filter(|o| o.0 == 1).count(), parts, "one placing of the long model");
+    let placings = |k: u32| {
+        let placed = scene.at_frame(k).unwrap();
+        let of = of.iter().enumerate().map(|(i, &(model, part))| {
+            let posed = alone[model].at_frame(k.min(ends[model])).unwrap();
+            placed.file.objects[i].transform() * posed.file.objects[part].transform().inverse()
+        });
+        of.collect::<Vec<_>>()
+    };
+    let first = placings(0);
+    for k in [ends[0], ends[0] + 1, ends[1]] {
+        for (i, (a, b)) in first.iter().zip(placings(k)).enumerate() {
+            assert!(a.abs_diff_eq(b, 1e-5), "object {i}: placed otherwise at frame {k}: {a} against {b}");
+        }
+    }
+    let ctx = validated_context();
+    let mode = TlasMode { kind: TlasKind::Update, rebuild_every: 0 };
+    let last = ends[1];
+    let out = frames(&ctx, &scene, &["rust", "glsl"], last - 2..last + 1, mode);
+    for (k, (_, outputs)) in out.iter().enumerate() {
+        assert_eq!(outputs[0].hit_ids, outputs[1].hit_ids, "frame {}: the sets hit different ids", last - 2 + k as u32);
+    }
+    let still = |k: u32| twinray_host::render(&ctx, &scene.at_frame(k).unwrap(), &set("rust"), &opts()).unwrap();
+    assert!(same(&out[2].1[0], &still(last)), "the last frame differs from a still picture of its time");
+    assert!(!same(&still(0), &still(last)), "nothing moved on screen");
+}

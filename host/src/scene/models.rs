@@ -8,7 +8,7 @@ use super::check;
 use super::file::{ObjectDesc, SceneFile};
 use super::gltf::{load, mesh_shape, notice};
 use super::mesh::MeshData;
-use super::placed_clip::{Part, PlacedClip};
+use super::placed_clip::{Model, Part, PlacedClip};
 use super::shape::ShapeDesc;
 use crate::util::input::confined;
 use std::collections::BTreeMap;
@@ -16,16 +16,13 @@ use std::path::Path;
 
 /// What placing the models made: their meshes by the names of their shapes in the scene, for
 /// each object of the scene the index of the object it came from (`None`: no models, the
-/// objects are as written), and the clip of the one animated model, played where it is placed
-/// (`None` where no model is animated, or several are: each is then posed at `--time`).
+/// objects are as written), and the clips of the animated models, played together where they
+/// are placed (`None` where no model is animated).
 pub struct Placed {
     pub meshes: BTreeMap<String, MeshData>,
     pub owners: Option<Vec<usize>>,
     pub clip: Option<PlacedClip>,
 }
-
-/// An animated model met while placing: its shape's name, clip and own objects.
-type Animated = (String, std::sync::Arc<dyn super::animation::Clip>, SceneFile);
 
 /// Places every glTF shape's model in `file` (files relative to `folder`).
 pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, String> {
@@ -43,15 +40,15 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
     }
     let folder = folder.ok_or("a built-in scene places no glTF files")?;
     let mut owners: Vec<usize> = (0..file.objects.len()).collect();
-    // Each object's part of an animated model: the model's index among `animated`, and where.
-    let mut parts: Vec<Option<(usize, Part)>> = vec![None; file.objects.len()];
-    let (mut animated, mut placements): (Vec<Animated>, usize) = (Vec::new(), 0);
+    // Each object's part of an animated model, and where.
+    let mut parts: Vec<Option<Part>> = vec![None; file.objects.len()];
+    let (mut animated, mut placements): (Vec<Model>, usize) = (Vec::new(), 0);
     for (name, desc) in models {
         let path = confined(folder, &desc.file).map_err(|e| format!("shape {name:?}: cannot read {e}"))?;
         let model = load(&path, desc.scene).map_err(|e| format!("shape {name:?}: {}: {e}", desc.file))?;
         notice(&path.display().to_string(), &model.ignored);
         let clip = model.clip.clone().map(|clip| {
-            animated.push((name.clone(), clip, model.file.clone()));
+            animated.push(Model { clip, prefix: format!("{name}/"), objects: model.file.clone() });
             animated.len() - 1
         });
         file.shapes.remove(&name);
@@ -77,7 +74,7 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
             }
             parts_of.extend(std::iter::repeat_n(owner, model.file.objects.len()));
             let own = object.matrix.map_or(glam::Mat4::IDENTITY, |m| glam::Mat4::from_cols_array(&m));
-            let placing = |part| clip.map(|c| (c, Part { placement: placements, part, placing: own }));
+            let placing = |part| clip.map(|model| Part { model, placement: placements, part, placing: own });
             animated_of.extend((0..model.file.objects.len()).map(placing));
             placements += 1;
             file.objects.extend(model.file.objects.iter().map(|p| ObjectDesc {
@@ -97,17 +94,6 @@ pub fn place(file: &mut SceneFile, folder: Option<&Path>) -> Result<Placed, Stri
         (owners, parts) = (parts_of, animated_of);
     }
     check::check(file)?;
-    Ok(Placed { meshes, owners: Some(owners), clip: played(animated, parts) })
-}
-
-/// The clip of the one animated model, its parts where the scene places them; with several,
-/// none (a scene plays one clip), said on the log.
-fn played(mut animated: Vec<Animated>, parts: Vec<Option<(usize, Part)>>) -> Option<PlacedClip> {
-    if animated.len() > 1 {
-        let names: Vec<&str> = animated.iter().map(|a| a.0.as_str()).collect();
-        log::warn!("glTF models {names:?} are each animated: each is shown at --time, none played over frames");
-        return None;
-    }
-    let (name, clip, model) = animated.pop()?;
-    Some(PlacedClip::new(clip, &name, model, parts.into_iter().map(|p| p.map(|(_, part)| part)).collect()))
+    let clip = (!animated.is_empty()).then(|| PlacedClip::new(animated, parts));
+    Ok(Placed { meshes, owners: Some(owners), clip })
 }
