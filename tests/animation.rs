@@ -255,7 +255,7 @@ scale = 0.5
 
 /// What moves the placed models in `placed_gltf_models_move_as_one`: object 0 along x, the grid
 /// spinning.
-const MODELS_MOVE: &str = r#"[animation]
+pub(crate) const MODELS_MOVE: &str = r#"[animation]
 frames = 4
 fps = 1.0
 [[animation.tracks]]

@@ -230,3 +230,50 @@ fn two_placed_models_play_their_clips_together() {
     assert!(same(&out[2].1[0], &still(last)), "the last frame differs from a still picture of its time");
     assert!(!same(&still(0), &still(last)), "nothing moved on screen");
 }
+
+/// A placed model's clip plays under the scene's `[animation]` (object 0 keyframed along x,
+/// the grid spinning, 4 frames at 1 fps): at every frame each part is where the same scene
+/// with the model still puts it, after the part's own pose in the model alone at the frame's
+/// time; frames render in both sets alike and as the still picture of their time.
+#[test]
+fn a_placed_models_clip_plays_under_the_scenes_animation() {
+    let dir = tempfile::tempdir().unwrap();
+    let colors = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0]];
+    let fps = twinray_host::scene::gltf::playing().fps;
+    for folder in ["moving", "still"] {
+        std::fs::create_dir(dir.path().join(folder)).unwrap();
+    }
+    let moving = twinray_tests::gltf::moving_strip(&dir.path().join("moving"), &colors, [0.0, 1.5, 0.0], 2.0);
+    twinray_tests::gltf::strip(&dir.path().join("still"), &colors, &[[0.0; 3]]);
+    let load = |model: &str| {
+        let path = dir.path().join(format!("{}.toml", &model[..5]));
+        std::fs::write(&path, super::animation::placed_models(model, super::animation::MODELS_MOVE)).unwrap();
+        Scene::load(Some(path.to_str().unwrap())).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let (scene, held) = (load("moving/strip.gltf"), load("still/strip.gltf"));
+    assert_eq!(scene.frame_count(), 4, "the scene's [animation] sets the frames");
+    assert!(scene.animation.as_ref().is_some_and(|a| a.moves().objects));
+    let parts = colors.len();
+    for k in 0..4 {
+        let alone = load_at(&moving, None, Playing { time: k as f32, fps }).unwrap_or_else(|e| panic!("{e}"));
+        let alone = Scene::from_model(alone, "strip").unwrap_or_else(|e| panic!("{e}"));
+        let (placed, held) = (scene.at_frame(k).unwrap(), held.at_frame(k).unwrap());
+        assert_eq!(placed.file.objects.len(), 3 * parts);
+        for (i, object) in placed.file.objects.iter().enumerate() {
+            let want = held.file.objects[i].transform() * alone.file.objects[i % parts].transform();
+            assert!(
+                object.transform().abs_diff_eq(want, 1e-5),
+                "frame {k}, object {i}: {} against {want}",
+                object.transform()
+            );
+        }
+    }
+    let ctx = validated_context();
+    let mode = TlasMode { kind: TlasKind::Update, rebuild_every: 0 };
+    let out = frames(&ctx, &scene, &["rust", "glsl"], 0..4, mode);
+    for (k, (_, outputs)) in out.iter().enumerate() {
+        assert_eq!(outputs[0].hit_ids, outputs[1].hit_ids, "frame {k}: the sets hit different ids");
+    }
+    let still = twinray_host::render(&ctx, &scene.at_frame(3).unwrap(), &set("rust"), &opts()).unwrap();
+    assert!(same(&out[3].1[0], &still), "frame 3 differs from a still picture of its time");
+}

@@ -199,16 +199,12 @@ impl Scene {
         let models::Placed { meshes: mut placed, owners, clip } =
             models::place(&mut file, mesh_files.folder()).map_err(scene_error)?;
         load_textures(&mut file, mesh_files.folder()).map_err(scene_error)?;
+        let clip = clip.map(|c| Arc::new(c) as Arc<dyn animation::Clip>);
         let animation = match (&file.animation, &written) {
             (Some(a), Some(written)) => {
-                if clip.is_some() {
-                    log::warn!(
-                        "{source}: a placed glTF model's animation is shown at --time: the scene's [animation] plays"
-                    );
-                }
-                Some(Animation { owners, ..animation::resolve(a, written, &grids).map_err(scene_error)? })
+                Some(Animation { owners, clip, ..animation::resolve(a, written, &grids).map_err(scene_error)? })
             }
-            _ => clip.map(|c| Animation::playing(Arc::new(c), &file)),
+            _ => clip.map(|c| Animation::playing(c, &file)),
         };
         // Whatever reads `file` (a still render, the reference, a probe) sees frame 0.
         if let Some(a) = &animation {

@@ -118,8 +118,10 @@ pub struct Animation {
     /// rotation and scale it takes, so that a model's parts move as one. `None`: the
     /// objects are `rest`'s.
     pub owners: Option<Vec<usize>>,
-    /// What poses the scene where a model's own animation moves it (a glTF clip) rather than
-    /// `[animation]`'s tracks and motions, which are then empty.
+    /// What poses the parts of models that move by their own animation (glTF clips): a
+    /// model given alone, whose scene has no tracks or motions, or models placed by a scene
+    /// file, whose `[animation]` (if any) then places their objects and the clip poses each
+    /// part under its object.
     pub clip: Option<Arc<dyn Clip>>,
 }
 
@@ -149,15 +151,13 @@ impl Animation {
 
     /// What changes from frame to frame: only that is rewritten on the GPU.
     pub fn moves(&self) -> Moves {
-        if let Some(clip) = &self.clip {
-            return clip.moves();
-        }
+        let clip = self.clip.as_ref().map(|c| c.moves()).unwrap_or_default();
         let any = |f: fn(&Target) -> bool| self.targets().any(f);
         Moves {
-            objects: any(|t| matches!(t, Target::Objects(_))),
-            lights: any(|t| matches!(t, Target::Light(_))),
-            camera: any(|t| matches!(t, Target::Camera)),
-            meshes: false,
+            objects: clip.objects || any(|t| matches!(t, Target::Objects(_))),
+            lights: clip.lights || any(|t| matches!(t, Target::Light(_))),
+            camera: clip.camera || any(|t| matches!(t, Target::Camera)),
+            meshes: clip.meshes,
         }
     }
 
@@ -168,18 +168,23 @@ impl Animation {
     /// Writes frame `frame`'s values of everything that moves into `out`, a copy of the scene:
     /// each moving target is reset to its value at rest, its tracks set, then its motions
     /// applied in file order; with `owners`, on the objects as written, whose placement
-    /// each part then takes.
+    /// (translation, rotation, scale) each part then takes. A clip then poses the parts of
+    /// its models (their `matrix`, under that placement) at its time.
     pub fn pose(&self, frame: u32, out: &mut SceneFile) {
-        if let Some(clip) = &self.clip {
-            return clip.pose(self.time(frame), out);
+        match &self.owners {
+            Some(owners) => {
+                let mut written = (*self.rest).clone();
+                self.pose_written(frame, &mut written);
+                (out.camera, out.lights) = (written.camera, written.lights);
+                for (part, &owner) in out.objects.iter_mut().zip(owners) {
+                    let o = &written.objects[owner];
+                    (part.translate, part.rotate, part.scale) = (o.translate, o.rotate, o.scale);
+                }
+            }
+            _ => self.pose_written(frame, out),
         }
-        let Some(owners) = &self.owners else { return self.pose_written(frame, out) };
-        let mut written = (*self.rest).clone();
-        self.pose_written(frame, &mut written);
-        (out.camera, out.lights) = (written.camera, written.lights);
-        for (part, &owner) in out.objects.iter_mut().zip(owners) {
-            let o = &written.objects[owner];
-            (part.translate, part.rotate, part.scale) = (o.translate, o.rotate, o.scale);
+        if let Some(clip) = &self.clip {
+            clip.pose(self.time(frame), out);
         }
     }
 
@@ -203,10 +208,11 @@ impl Animation {
         Animation { frames, fps, tracks: Vec::new(), motions: Vec::new(), rest, owners: None, clip: Some(clip) }
     }
 
-    /// `pose` of a scene whose objects are `rest`'s.
+    /// `pose` of a scene whose objects are `rest`'s, by the tracks and motions, whose times
+    /// start at 0 (a clip's start, `--time`, is the clip's).
     fn pose_written(&self, frame: u32, out: &mut SceneFile) {
         let base = &self.rest;
-        let t = self.time(frame);
+        let t = frame as f32 / self.fps;
         for target in self.targets() {
             reset(base, out, target);
         }
