@@ -3,8 +3,9 @@
 # 2,000,000-triangle primitive (`bench/deforming.py still 1001`) against a 200-triangle one,
 # three renders each, and ten million triangles (`still 2238`) once, now that `render` gives
 # the scene's meshes up once uploaded; (2) both sets compared on every frame of glTF models
-# placed by scene files: AnimatedMorphCube by an object and a grid of two, and simple_skin
-# with AnimatedMorphCube (two animated models playing together), at 8 frames a second;
+# placed by scene files: AnimatedMorphCube by an object and a grid of two, the same moved by
+# the scene's [animation] as well, and simple_skin with AnimatedMorphCube (two animated models
+# playing together), at 8 frames a second;
 # (3) the KHR_mesh_quantization fuzz seed compared. Run from the repository root with
 # target/dev/clip.tar.gz (`cargo xtask bundle --out target/dev/clip`) and target/dev/models
 # (assimp's AnimatedMorphCube.gltf/.bin and simple_skin.gltf) carried; results under $OUT.
@@ -79,7 +80,21 @@ shape = "skin"
 translate = [1.0, -1.0, 0.0]
 scale = 1.0
 TOML
-for s in grid two; do
+# The grid's models moved by the scene's own [animation] while their clips play.
+cat /tmp/placed/grid.toml - > /tmp/placed/anim.toml <<TOML
+[animation]
+frames = 33
+fps = 8.0
+[[animation.tracks]]
+target = "object 0"
+property = "translate"
+keys = [{ time = 0.0, value = [-1.5, 1.0, 0.0] }, { time = 4.0, value = [1.5, 1.0, 0.0] }]
+[[animation.motions]]
+kind = "spin"
+target = "grid 0"
+degrees_per_second = [0.0, 0.0, 20.0]
+TOML
+for s in grid two anim; do
   $T --fps 8 compare /tmp/placed/$s.toml --frames all --out-dir /tmp/cmp-$s > $R/compare-$s.log 2>&1
   echo "== compare $s --frames all: exit $?"; tail -4 $R/compare-$s.log
 done
