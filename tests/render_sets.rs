@@ -83,3 +83,24 @@ fn identical_sets_agree_bit_for_bit_and_an_empty_set_is_judged_on_its_own_pixels
     assert_eq!(outs[2].rays.shadow, 0, "no shadow ray counted from unwritten counts");
     assert_eq!(outs[2].mrays_per_s(), None, "no rate for a set that traced nothing");
 }
+
+/// `render_owned` (what the `render` command calls: the scene's meshes freed once uploaded)
+/// draws what `render` draws with the scene kept, bit for bit, on scenes of meshes, of
+/// procedural shapes, of a glTF model and of a far object whose GPU coordinates are centred
+/// on a local origin.
+#[test]
+fn a_render_that_gives_the_meshes_up_draws_what_one_that_keeps_them_draws() {
+    twinray_tests::allow_installed_models();
+    let ctx = validated_context();
+    let opts = RenderOptions { width: 48, height: 27, warmup: 0, runs: 1, placements: 1, first_placement: 0 };
+    let far = twinray_tests::repo_root().join("tests/bisect/far-sphere.toml");
+    let cube = "/usr/share/assimp/models/glTF2/glTF-Sample-Models/AnimatedMorphCube-glTF/AnimatedMorphCube.gltf";
+    for name in ["meshes", "swarm", far.to_str().unwrap(), cube] {
+        let scene = Scene::load(Some(name)).unwrap_or_else(|e| panic!("{name}: {e}"));
+        assert!(name != far.to_str().unwrap() || scene.origin.is_some(), "{name}: no local origin");
+        let kept = twinray_host::render(&ctx, &scene, &set("rust"), &opts).unwrap();
+        let given = twinray_host::render_owned(&ctx, scene, &set("rust"), &opts).unwrap();
+        assert_eq!(given.hit_ids, kept.hit_ids, "{name}: hit ids");
+        assert!(given.linear == kept.linear, "{name}: the images differ");
+    }
+}
