@@ -140,8 +140,15 @@ pub fn build(
     let mut instances = Vec::new();
     for (i, object) in scene.objects.iter().enumerate() {
         let shape = &scene.shapes[&object.shape];
-        let slot =
-            *slots.entry(object.shape.as_str()).or_insert_with(|| geometry.add(shape, meshes.get(&object.shape)));
+        let mesh = meshes.get(&object.shape);
+        // Loading gives every mesh shape its mesh; only a scene whose meshes were given up
+        // (`render_owned`) lacks one, and building it would trace an empty structure.
+        assert!(
+            mesh.is_some() || !matches!(shape, ShapeDesc::Mesh(_) | ShapeDesc::Gltf(_)),
+            "mesh shape {:?} has no mesh to build: the scene's meshes were given up",
+            object.shape
+        );
+        let slot = *slots.entry(object.shape.as_str()).or_insert_with(|| geometry.add(shape, mesh));
         let material_name = object.material.as_str();
         objects.push(ObjectData {
             material: material_index[material_name],

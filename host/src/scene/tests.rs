@@ -1,4 +1,4 @@
-//! Built-in scenes load, and grids expand into objects.
+//! Built-in scenes load, grids expand into objects, and a scene is never built without its meshes.
 
 use super::*;
 
@@ -19,4 +19,12 @@ fn grids_expand_into_objects() {
     assert_eq!(data.blases.len(), 2, "one BLAS per shape, shared by its instances");
     let groups: Vec<_> = data.plan.hit_groups.iter().map(|g| g.name()).collect();
     assert_eq!(groups, ["triangles", "sphere"]);
+}
+
+#[test]
+#[should_panic(expected = "has no mesh to build: the scene's meshes were given up")]
+fn a_scene_built_without_its_meshes_is_refused() {
+    let mut scene = Scene::load(Some("meshes")).unwrap();
+    scene.meshes.clear();
+    scene.build();
 }
