@@ -23,16 +23,15 @@ pub fn lock_scaffold_target() -> std::fs::File {
     std::fs::create_dir_all(&dir).unwrap();
     let file = std::fs::File::create(dir.join("twinray-test.lock")).expect("creating the scaffold target's lock");
     file.lock().expect("locking the scaffold target");
-    for profile in ["release", "debug"] {
-        seed(&dir, profile);
-    }
+    seed(&dir, "release");
     file
 }
 
 /// Fills an empty scaffold target's `profile` folder with a copy of the libraries, build script
 /// outputs and fingerprints of that profile in the target this test was built in: the release
-/// build the tests belong to, and the debug build of xtask that runs them (`cargo xtask`). The
-/// scratch copy's dependencies are the same crates in the same profiles, so cargo reuses those
+/// build the tests belong to, which also holds the build of xtask that runs them (`cargo xtask`
+/// builds it in the release profile too). The
+/// scratch copy's dependencies are the same crates in the same profile, so cargo reuses those
 /// its fingerprints find unchanged and builds the rest (the copy's own crates at least): on a
 /// cold machine that saves building every dependency of the host and of xtask a second time
 /// (xtask's: 56 s on 2 cores). A copy, not links: cargo rewrites fingerprint files in place.
