@@ -72,13 +72,14 @@ pub struct GlobalArgs {
     /// names it]. A file elsewhere, by an absolute path, `..` or a symbolic link, is refused.
     #[arg(long, global = true, value_name = "DIR")]
     pub asset_root: Option<PathBuf>,
-    /// The time, in seconds, at which a glTF model shows its first animation: each node it
-    /// moves placed where its keys put it then [default: 0, the animation's start].
+    /// The time, in seconds, at which a glTF model shows its animations (each that drives
+    /// nothing an earlier one drives, as glTF-Sample-Viewer plays them): each node they move
+    /// placed where their keys put it then [default: 0, the animations' start].
     #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_time)]
     pub time: Option<f32>,
-    /// Frames per second at which a glTF model's first animation is played as a moving scene
+    /// Frames per second at which a glTF model's animations are played as a moving scene
     /// (`--frames`, and `--frame K` where a command takes one): frame k shows it at --time
-    /// plus k / FPS seconds, up to its last key [default: 24].
+    /// plus k / FPS seconds, up to their last key [default: 24].
     #[arg(long, global = true, value_name = "FPS", value_parser = parse_fps)]
     pub fps: Option<f32>,
     /// What PNGs of radiance do with values above 1 before the sRGB encoding: clip each

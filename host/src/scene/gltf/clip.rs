@@ -1,4 +1,4 @@
-//! A glTF model's first animation played over frames (`--frames`, `--fps`): frame k shows the
+//! A glTF model's animations (those a viewer plays together: `keyframes::playing`) played over frames (`--frames`, `--fps`): frame k shows the
 //! model as a still picture at `--time` plus k / fps seconds would (`load_at`): each object
 //! placed by its node's world matrix then, the camera and the lights by theirs, and every mesh
 //! a node morphs or skins posed then, on the host in f64 (`deform`). What moves is said in
@@ -40,6 +40,8 @@ pub struct Part {
 /// What a model loaded at its start time hands its clip.
 pub struct Setup {
     pub scene: usize,
+    /// The animations played (`keyframes::playing`).
+    pub animations: Vec<usize>,
     pub start: f32,
     pub fps: f32,
     /// The model's objects, in order.
@@ -53,7 +55,7 @@ pub struct Setup {
     pub own_lights: bool,
 }
 
-/// A glTF model's first animation, its file kept to pose each frame from.
+/// A glTF model's animations played together, its file kept to pose each frame from.
 pub struct GltfClip {
     document: gltf::Document,
     buffers: Vec<Vec<u8>>,
@@ -76,7 +78,7 @@ pub struct At {
 }
 
 impl GltfClip {
-    /// The clip of `document`'s first animation from `setup.start` to its last key, checked at
+    /// The clip of `setup.animations` from `setup.start` to their last key, checked at
     /// every frame; `Ok(None)` where it has one frame or is too long to check (`why_still`
     /// then says which).
     pub fn new(
@@ -85,10 +87,10 @@ impl GltfClip {
         setup: Setup,
         why_still: &mut BTreeSet<String>,
     ) -> Result<Option<GltfClip>, String> {
-        let Some(animation) = document.animations().next() else { return Ok(None) };
         let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
         let (mut end, mut keys, mut trs, mut weights) = (0.0f32, 0u64, false, false);
-        for channel in animation.channels() {
+        let played = document.animations().filter(|a| setup.animations.contains(&a.index()));
+        for channel in played.flat_map(|a| a.channels()) {
             let times: Vec<f32> = channel.reader(get).read_inputs().map(Iterator::collect).unwrap_or_default();
             end = end.max(times.last().copied().unwrap_or(0.0));
             keys += times.len() as u64;
@@ -149,7 +151,7 @@ impl GltfClip {
 
     /// The nodes of the model's scene at `time`, each with its world matrix.
     fn placed(&self, time: f32) -> Result<(Vec<(gltf::Node<'_>, Mat4)>, keyframes::Posed), String> {
-        let posed = keyframes::pose(&self.document, &self.buffers, 0, time);
+        let posed = keyframes::pose(&self.document, &self.buffers, &self.setup.animations, time);
         let scene = self.document.scenes().nth(self.setup.scene).ok_or("its scene is gone")?;
         let mut placed = Vec::new();
         for node in scene.nodes() {

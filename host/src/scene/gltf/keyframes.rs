@@ -1,4 +1,5 @@
-//! glTF animations sampled at a time: each channel's translation, rotation, scale or morph
+//! glTF animations sampled at a time, the ones a viewer plays together (`playing`): each
+//! channel's translation, rotation, scale or morph
 //! target weights of its node, by the sampler's interpolation (`STEP`, `LINEAR` with rotations by spherical
 //! interpolation, `CUBICSPLINE` by Hermite splines of its tangents), integers normalized as
 //! glTF says. Before the first key a channel holds the first key's value, after the last the
@@ -8,7 +9,7 @@
 use glam::{Mat4, Quat, Vec3};
 use gltf::animation::util::ReadOutputs;
 use gltf::animation::Interpolation;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, BTreeSet};
 
 /// A node's translation, rotation and scale.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -38,14 +39,34 @@ pub struct Posed {
     pub weights: BTreeMap<usize, Vec<f32>>,
 }
 
-/// What animation `index` of `doc` sets at `time` seconds: each node it moves at its rest
-/// transform with the channels' values in place of what they drive, and the weights it drives.
-pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], index: usize, time: f32) -> Posed {
+/// The animations of `doc` played together, as glTF-Sample-Viewer starts them when it opens a
+/// file: in the file's order, each that drives no property of a node (its translation,
+/// rotation, scale or weights) that an animation already chosen drives. So a file with one
+/// animation per object plays them all, and one whose animations are alternative cycles of one
+/// rig (a walk, a run) plays its first.
+pub fn playing(doc: &gltf::Document) -> Vec<usize> {
+    let mut driven = BTreeSet::new();
+    let mut chosen = Vec::new();
+    for animation in doc.animations() {
+        let own: BTreeSet<(usize, u8)> =
+            animation.channels().map(|c| (c.target().node().index(), c.target().property() as u8)).collect();
+        if own.is_disjoint(&driven) {
+            driven.extend(own);
+            chosen.push(animation.index());
+        }
+    }
+    chosen
+}
+
+/// What `animations` of `doc` (driving no property twice, `playing`) set at `time` seconds:
+/// each node they move at its rest transform with the channels' values in place of what they
+/// drive, and the weights they drive.
+pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], animations: &[usize], time: f32) -> Posed {
     let mut moved: BTreeMap<usize, Trs> = BTreeMap::new();
     let mut weights = BTreeMap::new();
-    let Some(animation) = doc.animations().nth(index) else { return Posed::default() };
     let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
-    for channel in animation.channels() {
+    let played = doc.animations().filter(|a| animations.contains(&a.index()));
+    for channel in played.flat_map(|a| a.channels()) {
         let node = channel.target().node();
         let reader = channel.reader(get);
         let Some(times) = reader.read_inputs() else { continue };

@@ -68,7 +68,7 @@ pub fn models_under(dir: &Path) -> Vec<std::path::PathBuf> {
     out
 }
 
-/// When a model is shown: the time of its first animation at frame 0, in seconds, and the
+/// When a model is shown: the time of its animations at frame 0, in seconds, and the
 /// frames per second it is played at over frames.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Playing {
@@ -95,13 +95,13 @@ pub fn playing() -> Playing {
     PLAYING.get().copied().unwrap_or_default()
 }
 
-/// Reads the model at `path` (its scene `scene`, else its default one), its first animation
-/// played as [`playing`] says; the error says what in it is wrong.
+/// Reads the model at `path` (its scene `scene`, else its default one), its animations
+/// (`keyframes::playing`) played as [`playing`] says; the error says what in it is wrong.
 pub fn load(path: &Path, scene: Option<usize>) -> Result<Model, String> {
     load_at(path, scene, playing())
 }
 
-/// [`load`] with the first animation played as `playing` says.
+/// [`load`] with the animations played as `playing` says.
 pub fn load_at(path: &Path, scene: Option<usize>, playing: Playing) -> Result<Model, String> {
     let name = path.file_name().map_or_else(|| path.display().to_string(), |n| n.to_string_lossy().into_owned());
     model(buffers::load(path)?, (scene, playing), &name)
@@ -127,9 +127,10 @@ fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), na
     graph::check(doc.as_json())?;
     rules::check(doc)?;
     rules::check_data(doc, &buffers)?;
-    // A still picture shows the first animation at `time` (0 s unless asked, as viewers open
-    // a file).
-    let posed = keyframes::pose(doc, &buffers, 0, time);
+    // A still picture shows the animations a viewer plays together at `time` (0 s unless
+    // asked, as viewers open a file).
+    let animations = keyframes::playing(doc);
+    let posed = keyframes::pose(doc, &buffers, &animations, time);
     let mut placed = Vec::new();
     for node in scene.nodes() {
         walk(node, (Mat4::IDENTITY, 0), &posed.matrices, &mut placed)?;
@@ -175,11 +176,17 @@ fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), na
     // A mesh only its posing nodes use is not built at rest.
     let used: BTreeSet<&str> = objects.iter().map(|o| o.shape.as_str()).collect();
     meshes.retain(|name, _| used.contains(name.as_str()));
-    let clips = doc.animations().len();
-    ignored.extend((clips > 1).then(|| format!("animations after the first ({})", clips - 1)));
+    let left: Vec<String> =
+        doc.animations().map(|a| a.index()).filter(|i| !animations.contains(i)).map(|i| i.to_string()).collect();
+    ignored.extend((!left.is_empty()).then(|| {
+        let s = if left.len() > 1 { "s" } else { "" };
+        format!("animation{s} {} (driving what an animation played drives)", left.join(", "))
+    }));
     let shapes = meshes.keys().map(|name| (name.clone(), mesh_shape(name))).collect();
+    let played = !animations.is_empty();
     let setup = clip::Setup {
         scene: scene.index(),
+        animations,
         start: time,
         fps: playing.fps,
         parts,
@@ -189,10 +196,7 @@ fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), na
     };
     let view = framing::view(doc, &placed, &objects, &meshes, &mut ignored)?;
     let file = super::framing::scene_file("a glTF 2.0 model", view, shapes, materials, objects);
-    let clip = match clips {
-        0 => None,
-        _ => clip::GltfClip::new(gltf.document, buffers, setup, &mut ignored)?,
-    };
+    let clip = if played { clip::GltfClip::new(gltf.document, buffers, setup, &mut ignored)? } else { None };
     let clip = clip.map(|c| std::sync::Arc::new(c) as std::sync::Arc<dyn super::animation::Clip>);
     Ok(Model { file, meshes, ignored, clip })
 }

@@ -12,6 +12,7 @@ mod quantized;
 mod rigs;
 pub(crate) mod rules;
 mod scale;
+mod several;
 
 /// A square of two triangles in z = 0, four vertices.
 const SQUARE: [[f32; 3]; 4] = [[0.0, 0.0, 0.0], [1.0, 0.0, 0.0], [1.0, 1.0, 0.0], [0.0, 1.0, 0.0]];
