@@ -1,5 +1,5 @@
-//! Animated glTF models from the command line: `--time` poses a model's first animation for
-//! every command that reads it, and `--frames` plays it from there at `--fps`.
+//! Animated glTF models from the command line: `--time` poses a model's animations for
+//! every command that reads it, and `--frames` plays them from there at `--fps`.
 
 use std::path::Path;
 use twinray_host::scene::gltf::ASSIMP_TEST_MODELS as MODELS;

@@ -1,4 +1,4 @@
-//! A model's first animation played over frames: frame k is the still picture of its time
+//! A model's animation played over frames: frame k is the still picture of its time
 //! (`--time` plus k / fps), objects, camera and posed meshes alike, up to the last key; a
 //! node hidden (scaled to zero) in some frame is refused with its time named.
 

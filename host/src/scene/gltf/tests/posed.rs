@@ -1,4 +1,4 @@
-//! A still picture of an animated model shows its first animation at 0 s: a node the
+//! A still picture of an animated model shows its animation at 0 s: a node the
 //! animation moves is placed where its keys put it then, not at its rest transform, children
 //! included; a node with a matrix cannot be animated.
 
