@@ -36,7 +36,7 @@ pub fn load(path: &Path) -> Result<Loaded, String> {
     let folder = path.parent().unwrap_or(Path::new("."));
     match glb_chunks(path, limit).map_err(|e| format!("cannot read: {}", raise(e)))? {
         Some((json, bin, size)) => {
-            let mut gltf = gltf::Gltf::from_slice_without_validation(&json).map_err(invalid)?;
+            let mut gltf = gltf::Gltf::from_slice_without_validation(&node_channels(&json)?).map_err(invalid)?;
             gltf.blob = bin;
             with_buffers(gltf, size, folder, limit)
         }
@@ -106,8 +106,28 @@ fn glb_chunks(path: &Path, limit: u64) -> Result<Option<Chunks>, String> {
 /// Parses a glTF file's `bytes` and reads every buffer it names, files relative to `folder`,
 /// all of them together at most `limit` bytes.
 pub fn parse(bytes: &[u8], folder: &Path, limit: u64) -> Result<Loaded, String> {
-    let gltf = gltf::Gltf::from_slice_without_validation(bytes).map_err(invalid)?;
+    let gltf = gltf::Gltf::from_slice_without_validation(&node_channels(bytes)?).map_err(invalid)?;
     with_buffers(gltf, bytes.len() as u64, folder, limit)
+}
+
+/// The glTF JSON `json` without the animation channels of `KHR_animation_pointer`, which
+/// target a property by a JSON pointer (a material's colour, a light's intensity) in place of
+/// a node, and which the `gltf` crate cannot read: twinray animates nodes and morph weights
+/// only, and names the extension in the notice as any it does not read, so a file that
+/// animates its materials too plays its nodes' channels rather than being refused whole. Only
+/// a file that names the extension is parsed a second time.
+fn node_channels(json: &[u8]) -> Result<std::borrow::Cow<'_, [u8]>, String> {
+    const POINTER: &[u8] = b"KHR_animation_pointer";
+    if !json.windows(POINTER.len()).any(|w| w == POINTER) {
+        return Ok(std::borrow::Cow::Borrowed(json));
+    }
+    let mut root: serde_json::Value =
+        serde_json::from_slice(json).map_err(|e| format!("not a valid glTF 2.0 file: {e}"))?;
+    let animations = root.get_mut("animations").and_then(|a| a.as_array_mut()).into_iter().flatten();
+    for channels in animations.filter_map(|a| a.get_mut("channels").and_then(|c| c.as_array_mut())) {
+        channels.retain(|c| c.pointer("/target/path").and_then(|p| p.as_str()) != Some("pointer"));
+    }
+    Ok(std::borrow::Cow::Owned(serde_json::to_vec(&root).map_err(|e| e.to_string())?))
 }
 
 /// `gltf` (read from a file of `size` bytes) checked, and every buffer it names read.

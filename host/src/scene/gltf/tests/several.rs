@@ -86,3 +86,23 @@ fn animations_driving_different_properties_play_together_and_a_conflicting_one_i
     assert!(at(&later, 0).w_axis.truncate().abs_diff_eq(2.0 * Vec3::X, 1e-6), "{}", at(&later, 0));
     assert!(at(&later, 1).w_axis.truncate().abs_diff_eq(3.0 * Vec3::Y, 1e-6), "{}", at(&later, 1));
 }
+
+/// `KHR_animation_pointer` channels (a material's colour here) target no node; the `gltf`
+/// crate cannot read them, so they are left out and the extension named: the file is not
+/// refused, and the channels on nodes beside them play.
+#[test]
+fn animation_pointer_channels_are_left_out_and_the_node_channels_play() {
+    let mut root: serde_json::Value = serde_json::from_str(&four_animations()).unwrap();
+    root["extensionsUsed"] = serde_json::json!(["KHR_animation_pointer"]);
+    root["materials"] = serde_json::json!([{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]}}]);
+    let pointer = "/materials/0/pbrMetallicRoughness/baseColorFactor";
+    let channel = serde_json::json!({"sampler": 0, "target": {"path": "pointer", "extensions": {"KHR_animation_pointer": {"pointer": pointer}}}});
+    root["animations"][1]["channels"].as_array_mut().unwrap().insert(0, channel);
+    let dir = tempfile::tempdir().unwrap();
+    let path = dir.path().join("model.gltf");
+    std::fs::write(&path, root.to_string()).unwrap();
+    let model =
+        load_at(&path, None, Playing { time: 1.0, ..Playing::default() }).expect("a model animating a material");
+    assert!(at(&model, 1).w_axis.truncate().abs_diff_eq(Vec3::Y, 1e-6), "{}", at(&model, 1));
+    assert!(model.ignored.contains("extension KHR_animation_pointer"), "{:?}", model.ignored);
+}
