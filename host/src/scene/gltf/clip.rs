@@ -1,9 +1,9 @@
-//! A glTF model's animations (those a viewer plays together: `keyframes::playing`) played over frames (`--frames`, `--fps`): frame k shows the
-//! model as a still picture at `--time` plus k / fps seconds would (`load_at`): each object
-//! placed by its node's world matrix then, the camera and the lights by theirs, and every mesh
-//! a node morphs or skins posed then, on the host in f64 (`deform`). What moves is said in
-//! [`Moves`], so a renderer updates the TLAS, or refits the posed meshes' BLASes, only where
-//! something did.
+//! A glTF model's animations (those a viewer plays together: `keyframes::playing`) played
+//! over frames (`--frames`, `--fps`): frame k shows the model as a still picture at `--time`
+//! plus k / fps seconds would (`load_at`): each object placed by its node's world matrix then,
+//! the camera and the lights by theirs, and every mesh a node morphs or skins posed then, on
+//! the host in f64 (`deform`). What moves is said in [`Moves`], so a renderer updates the
+//! TLAS, or refits the posed meshes' BLASes, only where something did.
 //!
 //! Every frame's nodes are posed and checked when the model loads, as a scene file's
 //! `[animation]` is: a node scaled to zero (glTF's way to hide one) in some frame, or a camera
@@ -89,8 +89,7 @@ impl GltfClip {
     ) -> Result<Option<GltfClip>, String> {
         let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
         let (mut end, mut keys, mut trs, mut weights) = (0.0f32, 0u64, false, false);
-        let played = document.animations().filter(|a| setup.animations.contains(&a.index()));
-        for channel in played.flat_map(|a| a.channels()) {
+        for channel in keyframes::channels(&document, &setup.animations) {
             let times: Vec<f32> = channel.reader(get).read_inputs().map(Iterator::collect).unwrap_or_default();
             end = end.max(times.last().copied().unwrap_or(0.0));
             keys += times.len() as u64;

@@ -1,10 +1,10 @@
 //! glTF animations sampled at a time, the ones a viewer plays together (`playing`): each
-//! channel's translation, rotation, scale or morph
-//! target weights of its node, by the sampler's interpolation (`STEP`, `LINEAR` with rotations by spherical
-//! interpolation, `CUBICSPLINE` by Hermite splines of its tangents), integers normalized as
-//! glTF says. Before the first key a channel holds the first key's value, after the last the
-//! last's. The file's rules (keys rising, output counts and types) are `rules`'; every
-//! accessor is bounds-checked there before this reads it.
+//! channel's translation, rotation, scale or morph target weights of its node, by the
+//! sampler's interpolation (`STEP`, `LINEAR` with rotations by spherical interpolation,
+//! `CUBICSPLINE` by Hermite splines of its tangents), integers normalized as glTF says.
+//! Before the first key a channel holds the first key's value, after the last the last's.
+//! The file's rules (keys rising, output counts and types) are `rules`'; every accessor is
+//! bounds-checked there before this reads it.
 
 use glam::{Mat4, Quat, Vec3};
 use gltf::animation::util::ReadOutputs;
@@ -58,6 +58,14 @@ pub fn playing(doc: &gltf::Document) -> Vec<usize> {
     chosen
 }
 
+/// The channels of `animations` of `doc`, in the file's order.
+pub fn channels<'a>(
+    doc: &'a gltf::Document,
+    animations: &'a [usize],
+) -> impl Iterator<Item = gltf::animation::Channel<'a>> {
+    doc.animations().filter(|a| animations.contains(&a.index())).flat_map(|a| a.channels())
+}
+
 /// What `animations` of `doc` (driving no property twice, `playing`) set at `time` seconds:
 /// each node they move at its rest transform with the channels' values in place of what they
 /// drive, and the weights they drive.
@@ -65,8 +73,7 @@ pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], animations: &[usize], tim
     let mut moved: BTreeMap<usize, Trs> = BTreeMap::new();
     let mut weights = BTreeMap::new();
     let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
-    let played = doc.animations().filter(|a| animations.contains(&a.index()));
-    for channel in played.flat_map(|a| a.channels()) {
+    for channel in channels(doc, animations) {
         let node = channel.target().node();
         let reader = channel.reader(get);
         let Some(times) = reader.read_inputs() else { continue };
