@@ -74,7 +74,8 @@ pub struct GlobalArgs {
     pub asset_root: Option<PathBuf>,
     /// The time, in seconds, at which a glTF model shows its animations (each that drives
     /// nothing an earlier one drives, as glTF-Sample-Viewer plays them): each node they move
-    /// placed where their keys put it then [default: 0, the animations' start].
+    /// placed where their keys put it then, each animation looping over its own length
+    /// [default: 0, the animations' start].
     #[arg(long, global = true, value_name = "SECONDS", value_parser = parse_time)]
     pub time: Option<f32>,
     /// Frames per second at which a glTF model's animations are played as a moving scene

@@ -33,7 +33,7 @@ pub struct Model {
 
 /// The clips of the animated models a scene places, played together as the scene's: each at
 /// the same time (`--time` plus frames at `--fps`), the scene as long as the longest; a model
-/// past its last key holds its last pose.
+/// past its last key loops its animations (`keyframes::pose`).
 #[derive(Debug)]
 pub struct PlacedClip {
     models: Vec<Model>,

@@ -2,7 +2,9 @@
 //! channel's translation, rotation, scale or morph target weights of its node, by the
 //! sampler's interpolation (`STEP`, `LINEAR` with rotations by spherical interpolation,
 //! `CUBICSPLINE` by Hermite splines of its tangents), integers normalized as glTF says.
-//! Before the first key a channel holds the first key's value, after the last the last's.
+//! Each animation loops over its own length (its channels' last key), as glTF-Sample-Viewer
+//! plays it; within that, before a channel's first key it holds the first key's value, after
+//! its last the last's.
 //! The file's rules (keys rising, output counts and types) are `rules`'; every accessor is
 //! bounds-checked there before this reads it.
 
@@ -58,51 +60,81 @@ pub fn playing(doc: &gltf::Document) -> Vec<usize> {
     chosen
 }
 
+/// `animations` of `doc`, in the file's order.
+fn played<'a>(doc: &'a gltf::Document, animations: &'a [usize]) -> impl Iterator<Item = gltf::Animation<'a>> {
+    doc.animations().filter(|a| animations.contains(&a.index()))
+}
+
 /// The channels of `animations` of `doc`, in the file's order.
 pub fn channels<'a>(
     doc: &'a gltf::Document,
     animations: &'a [usize],
 ) -> impl Iterator<Item = gltf::animation::Channel<'a>> {
-    doc.animations().filter(|a| animations.contains(&a.index())).flat_map(|a| a.channels())
+    played(doc, animations).flat_map(|a| a.channels())
 }
 
-/// What `animations` of `doc` (driving no property twice, `playing`) set at `time` seconds:
-/// each node they move at its rest transform with the channels' values in place of what they
-/// drive, and the weights they drive.
+/// What `animations` of `doc` (driving no property twice, `playing`) set at `time` seconds,
+/// each at its own time in its cycle (`within_cycle`): each node they move at its rest
+/// transform with the channels' values in place of what they drive, and the weights they
+/// drive.
 pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], animations: &[usize], time: f32) -> Posed {
     let mut moved: BTreeMap<usize, Trs> = BTreeMap::new();
     let mut weights = BTreeMap::new();
     let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
-    for channel in channels(doc, animations) {
-        let node = channel.target().node();
-        let reader = channel.reader(get);
-        let Some(times) = reader.read_inputs() else { continue };
-        let times: Vec<f32> = times.collect();
-        let interpolation = channel.sampler().interpolation();
-        let trs = moved.entry(node.index()).or_insert_with(|| Trs::rest(&node));
-        match reader.read_outputs() {
-            Some(ReadOutputs::Translations(v)) => {
-                let values: Vec<Vec3> = v.map(Vec3::from).collect();
-                trs.translation = sample(&times, &values, interpolation, time, |a, b, s| a.lerp(b, s));
+    for animation in played(doc, animations) {
+        let keyed: Vec<(gltf::animation::Channel, Vec<f32>)> = animation
+            .channels()
+            .filter_map(|c| Some((c.clone(), c.reader(get).read_inputs()?.collect())))
+            .filter(|(_, times): &(_, Vec<f32>)| !times.is_empty())
+            .collect();
+        let length = keyed.iter().map(|(_, times)| times[times.len() - 1]).fold(0.0, f32::max);
+        let time = within_cycle(time, length);
+        for (channel, times) in keyed {
+            let node = channel.target().node();
+            let interpolation = channel.sampler().interpolation();
+            let trs = moved.entry(node.index()).or_insert_with(|| Trs::rest(&node));
+            match channel.reader(get).read_outputs() {
+                Some(ReadOutputs::Translations(v)) => {
+                    let values: Vec<Vec3> = v.map(Vec3::from).collect();
+                    trs.translation = sample(&times, &values, interpolation, time, |a, b, s| a.lerp(b, s));
+                }
+                Some(ReadOutputs::Scales(v)) => {
+                    let values: Vec<Vec3> = v.map(Vec3::from).collect();
+                    trs.scale = sample(&times, &values, interpolation, time, |a, b, s| a.lerp(b, s));
+                }
+                Some(ReadOutputs::Rotations(v)) => {
+                    let values: Vec<Quat> = v.into_f32().map(Quat::from_array).collect();
+                    let q = sample(&times, &values, interpolation, time, |a, b, s| a.slerp(b, s));
+                    trs.rotation = q.normalize();
+                }
+                Some(ReadOutputs::MorphTargetWeights(v)) => {
+                    let values: Vec<f32> = v.into_f32().collect();
+                    weights.insert(node.index(), sample_weights(&times, &values, interpolation, time));
+                }
+                None => {}
             }
-            Some(ReadOutputs::Scales(v)) => {
-                let values: Vec<Vec3> = v.map(Vec3::from).collect();
-                trs.scale = sample(&times, &values, interpolation, time, |a, b, s| a.lerp(b, s));
-            }
-            Some(ReadOutputs::Rotations(v)) => {
-                let values: Vec<Quat> = v.into_f32().map(Quat::from_array).collect();
-                let q = sample(&times, &values, interpolation, time, |a, b, s| a.slerp(b, s));
-                trs.rotation = q.normalize();
-            }
-            Some(ReadOutputs::MorphTargetWeights(v)) => {
-                let values: Vec<f32> = v.into_f32().collect();
-                weights.insert(node.index(), sample_weights(&times, &values, interpolation, time));
-            }
-            None => {}
         }
     }
     let matrices = moved.into_iter().map(|(node, trs)| (node, trs.matrix())).collect();
     Posed { matrices, weights }
+}
+
+/// `time` as an animation `length` seconds long shows it, looped as glTF-Sample-Viewer loops
+/// it (its time modulo the animation's length): up to `length` the time itself, after it the
+/// time into the current cycle. At a whole number of cycles this gives the cycle's end (its
+/// last key), the value the viewer shows up to that instant, where its modulo gives the next
+/// cycle's start: so the last frame of a clip, and `--time` at an animation's end, show the
+/// last key.
+fn within_cycle(time: f32, length: f32) -> f32 {
+    if length <= 0.0 || time <= length {
+        return time;
+    }
+    let into = time % length;
+    if into == 0.0 {
+        length
+    } else {
+        into
+    }
 }
 
 /// The weights at `time` of a weights channel: its outputs hold, per key, one weight per
@@ -168,6 +200,15 @@ mod tests {
     use super::*;
 
     const TIMES: [f32; 3] = [1.0, 2.0, 4.0];
+
+    #[test]
+    fn past_its_length_an_animation_is_at_its_time_into_the_cycle() {
+        for (time, want) in [(0.0, 0.0), (1.0, 1.0), (4.0, 4.0), (5.0, 1.0), (8.0, 4.0), (9.5, 1.5), (12.0, 4.0)] {
+            assert_eq!(within_cycle(time, 4.0), want, "{time} s");
+        }
+        // An animation of one instant (every key at 0 s) has no cycle: the time is left.
+        assert_eq!(within_cycle(3.0, 0.0), 3.0);
+    }
 
     #[test]
     fn each_interpolation_holds_before_the_first_key_and_after_the_last() {

@@ -57,19 +57,28 @@ fn a_still_picture_poses_the_first_animation_at_zero_seconds() {
 }
 
 /// At a later time each interpolation places the node as its keys say: halfway between the
-/// keys for LINEAR, on the earlier key for STEP, on the last key after it.
+/// keys for LINEAR, on the earlier key for STEP, on the last key at the animation's end (1.5
+/// s) and at the end of a later cycle (3 s); past its end the animation loops as
+/// glTF-Sample-Viewer loops it, so 7 s is 1 s into its fifth cycle.
 #[test]
 fn a_later_time_poses_the_node_between_or_after_its_keys() {
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("model.gltf");
-    let cases = [("LINEAR", 1.0, [2.5, 3.5, 4.5]), ("STEP", 1.0, [1.0, 2.0, 3.0]), ("LINEAR", 7.0, [4.0, 5.0, 6.0])];
+    let cases = [
+        ("LINEAR", 1.0, [2.5, 3.5, 4.5]),
+        ("STEP", 1.0, [1.0, 2.0, 3.0]),
+        ("LINEAR", 1.5, [4.0, 5.0, 6.0]),
+        ("LINEAR", 3.0, [4.0, 5.0, 6.0]),
+        ("LINEAR", 7.0, [2.5, 3.5, 4.5]),
+        ("STEP", 7.0, [1.0, 2.0, 3.0]),
+    ];
     for (interpolation, time, want) in cases {
         std::fs::write(&path, animated(interpolation, "")).unwrap();
         let model = load_at(&path, None, Playing { time, ..Playing::default() }).expect("an animated model");
         let parent = model.file.objects.iter().find(|o| o.name.as_deref() == Some("node 0")).unwrap();
         let at = Mat4::from_cols_array(&parent.matrix.unwrap()).w_axis.truncate();
         assert!(at.abs_diff_eq(Vec3::from(want), 1e-6), "{interpolation} at {time} s: {at}");
-        // From 1 s to the last key at 1.5 s: 13 frames; from 7 s, a still.
+        // From 1 s to the last key at 1.5 s: 13 frames; from 1.5 s on, a still.
         let frames = model.clip.as_ref().map(|c| c.frames());
         assert_eq!(frames, (time < 1.5).then_some(13), "{interpolation} at {time} s");
     }
