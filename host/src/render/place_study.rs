@@ -91,7 +91,7 @@ pub fn study(
     super::sets::check_device_limits(ctx, opts)?;
     let size = (opts.width, opts.height);
     let made: Vec<(ShaderSet, PipelineKind)> = sets.iter().map(|s| (s.clone(), ctx.pipeline_kind())).collect();
-    let fixed = (upload_shared(ctx, scene, size)?, SharedOutputs::new(ctx, opts)?);
+    let fixed = (upload_shared(ctx, scene, None, size)?, SharedOutputs::new(ctx, opts)?);
     let warm = warm_traces(ctx, &fixed, &made[0], opts)?;
     let timed = RenderOptions { warmup: 0, runs: warm + opts.runs.max(1), ..*opts };
     let mut out = Vec::new();
@@ -164,7 +164,7 @@ fn time_at(
     let moved_scene = match at.moved {
         Move::Buffers => {
             let pads = (pad(MemoryLocation::GpuOnly)?, pad(MemoryLocation::CpuToGpu)?);
-            Some((upload_shared(ctx, scene, (opts.width, opts.height))?, SharedOutputs::new(ctx, opts)?, pads))
+            Some((upload_shared(ctx, scene, None, (opts.width, opts.height))?, SharedOutputs::new(ctx, opts)?, pads))
         }
         _ => None,
     };

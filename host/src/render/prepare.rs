@@ -143,7 +143,7 @@ pub(crate) fn prepare_uploaded(
     let image = Rc::new(StorageImage::new(ctx, image_size.0, image_size.1)?);
     let libraries = Libraries::of(ctx);
     let linking = (ctx.pipeline_kind() == PipelineKind::Libraries).then_some(&libraries);
-    let uploaded = upload_shared(ctx, scene, frame)?;
+    let uploaded = upload_shared(ctx, scene, None, frame)?;
     let prepared = prepare_on(ctx, &uploaded, (set, linking), (raygen, LayoutDraw::Sbt), image, extra)?;
     Ok((uploaded, prepared))
 }

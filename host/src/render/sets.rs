@@ -9,7 +9,7 @@ use super::placement;
 use super::prepare::{min_warm_ms, prepare_on, storage_buffer, Prepared};
 use super::sentinel;
 use super::tracing::{self, Trace};
-use super::upload::{upload_given, upload_shared, UploadedScene};
+use super::upload::{upload_shared, UploadedScene};
 use crate::error::{Error, Result};
 use crate::scene::{check_size, Scene, SceneData};
 use crate::sets::ShaderSet;
@@ -110,10 +110,7 @@ fn render_made_over(
         );
     }
     let size = (opts.width, opts.height);
-    let uploaded = match data {
-        Some(data) => upload_given(ctx, scene, data, size)?,
-        None => upload_shared(ctx, scene, size)?,
-    };
+    let uploaded = upload_shared(ctx, scene, data, size)?;
     let outputs = SharedOutputs::new(ctx, opts)?;
     // With several rounds, the clocks are brought up first, at a place of its own, unless
     // this GPU ended warmed traces moments ago (the last device's, with `--alone-in devices`).

@@ -117,20 +117,16 @@ impl UploadedScene {
     }
 }
 
-/// Builds the scene's acceleration structures and buffers, frame constants for `frame` pixels.
-pub(crate) fn upload_shared(ctx: &Arc<Context>, scene: &Scene, frame: (u32, u32)) -> Result<UploadedScene> {
-    upload_scene(ctx, (scene, None), frame, None)
-}
-
-/// [`upload_shared`] of `data`, built from `scene` (`Scene::on_gpu`) before it gave its meshes
-/// up: they are freed once the buffers hold them, before the structures are built.
-pub(crate) fn upload_given(
+/// Builds the scene's acceleration structures and buffers, frame constants for `frame` pixels:
+/// from `data` where given (`Scene::on_gpu`'s, built before the scene gave its meshes up: they
+/// are freed once the buffers hold them, before the structures are built), else from `scene`.
+pub(crate) fn upload_shared(
     ctx: &Arc<Context>,
     scene: &Scene,
-    data: SceneData,
+    data: Option<SceneData>,
     frame: (u32, u32),
 ) -> Result<UploadedScene> {
-    upload_scene(ctx, (scene, Some(data)), frame, None)
+    upload_scene(ctx, (scene, data), frame, None)
 }
 
 /// What changes in a moving scene from frame to frame.
