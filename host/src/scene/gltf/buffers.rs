@@ -22,6 +22,8 @@ pub const SUPPORTED_EXTENSIONS: [&str; 6] = [
 pub struct Loaded {
     pub gltf: gltf::Gltf,
     pub buffers: Vec<Vec<u8>>,
+    /// Per animation, the last key of its channels left out (`node_channels`), 0 for none.
+    pub left_out_ends: Vec<f32>,
     /// Where image files are read from, and how many more bytes may be read.
     pub folder: std::path::PathBuf,
     pub budget: u64,
@@ -36,9 +38,10 @@ pub fn load(path: &Path) -> Result<Loaded, String> {
     let folder = path.parent().unwrap_or(Path::new("."));
     match glb_chunks(path, limit).map_err(|e| format!("cannot read: {}", raise(e)))? {
         Some((json, bin, size)) => {
-            let mut gltf = gltf::Gltf::from_slice_without_validation(&node_channels(&json)?).map_err(invalid)?;
+            let (json, left_out_ends) = node_channels(&json)?;
+            let mut gltf = gltf::Gltf::from_slice_without_validation(&json).map_err(invalid)?;
             gltf.blob = bin;
-            with_buffers(gltf, size, folder, limit)
+            with_buffers((gltf, left_out_ends), size, folder, limit)
         }
         None => {
             let bytes = read_bounded(path, limit).map_err(|e| format!("cannot read: {}", raise(e)))?;
@@ -106,8 +109,9 @@ fn glb_chunks(path: &Path, limit: u64) -> Result<Option<Chunks>, String> {
 /// Parses a glTF file's `bytes` and reads every buffer it names, files relative to `folder`,
 /// all of them together at most `limit` bytes.
 pub fn parse(bytes: &[u8], folder: &Path, limit: u64) -> Result<Loaded, String> {
-    let gltf = gltf::Gltf::from_slice_without_validation(&node_channels(bytes)?).map_err(invalid)?;
-    with_buffers(gltf, bytes.len() as u64, folder, limit)
+    let (json, left_out_ends) = node_channels(bytes)?;
+    let gltf = gltf::Gltf::from_slice_without_validation(&json).map_err(invalid)?;
+    with_buffers((gltf, left_out_ends), bytes.len() as u64, folder, limit)
 }
 
 /// The glTF JSON `json` without the animation channels of `KHR_animation_pointer`, which
@@ -115,23 +119,53 @@ pub fn parse(bytes: &[u8], folder: &Path, limit: u64) -> Result<Loaded, String> 
 /// a node, and which the `gltf` crate cannot read: twinray animates nodes and morph weights
 /// only, and names the extension in the notice as any it does not read, so a file that
 /// animates its materials too plays its nodes' channels rather than being refused whole. Only
-/// a file that names the extension is parsed a second time.
-fn node_channels(json: &[u8]) -> Result<std::borrow::Cow<'_, [u8]>, String> {
+/// a file that names the extension is parsed a second time. Beside it, per animation, the
+/// last key of the channels left out (their input accessor's `max`, as glTF-Sample-Viewer
+/// reads an animation's length; 0 for none), which still count toward the animation's length.
+fn node_channels(json: &[u8]) -> Result<(std::borrow::Cow<'_, [u8]>, Vec<f32>), String> {
     const POINTER: &[u8] = b"KHR_animation_pointer";
     if !json.windows(POINTER.len()).any(|w| w == POINTER) {
-        return Ok(std::borrow::Cow::Borrowed(json));
+        return Ok((std::borrow::Cow::Borrowed(json), Vec::new()));
     }
     let mut root: serde_json::Value =
         serde_json::from_slice(json).map_err(|e| format!("not a valid glTF 2.0 file: {e}"))?;
-    let animations = root.get_mut("animations").and_then(|a| a.as_array_mut()).into_iter().flatten();
-    for channels in animations.filter_map(|a| a.get_mut("channels").and_then(|c| c.as_array_mut())) {
-        channels.retain(|c| c.pointer("/target/path").and_then(|p| p.as_str()) != Some("pointer"));
-    }
-    Ok(std::borrow::Cow::Owned(serde_json::to_vec(&root).map_err(|e| e.to_string())?))
+    // Each accessor's `max`, read where an animation sampler's input names it.
+    let accessors = root.get("accessors").and_then(|a| a.as_array()).map(Vec::as_slice).unwrap_or_default();
+    let key_ends: Vec<f32> =
+        accessors.iter().map(|a| a.pointer("/max/0").and_then(|m| m.as_f64()).unwrap_or(0.0) as f32).collect();
+    let animations = root.get_mut("animations").and_then(|a| a.as_array_mut());
+    let ends = animations.into_iter().flatten().map(|a| without_pointer_channels(a, &key_ends)).collect();
+    Ok((std::borrow::Cow::Owned(serde_json::to_vec(&root).map_err(|e| e.to_string())?), ends))
 }
 
-/// `gltf` (read from a file of `size` bytes) checked, and every buffer it names read.
-fn with_buffers(mut gltf: gltf::Gltf, size: u64, folder: &Path, limit: u64) -> Result<Loaded, String> {
+/// Removes `animation`'s `KHR_animation_pointer` channels and returns their last key (by
+/// `key_ends`, each accessor's `max`), 0 for none or none readable.
+fn without_pointer_channels(animation: &mut serde_json::Value, key_ends: &[f32]) -> f32 {
+    let samplers = animation.get("samplers").and_then(|s| s.as_array()).map(Vec::as_slice).unwrap_or_default();
+    let inputs: Vec<Option<u64>> = samplers.iter().map(|s| s.get("input").and_then(|i| i.as_u64())).collect();
+    let mut end = 0.0f32;
+    if let Some(channels) = animation.get_mut("channels").and_then(|c| c.as_array_mut()) {
+        channels.retain(|c| {
+            let pointer = c.pointer("/target/path").and_then(|p| p.as_str()) == Some("pointer");
+            if pointer {
+                let input = c.get("sampler").and_then(|s| s.as_u64()).and_then(|s| *inputs.get(s as usize)?);
+                let key_end = input.and_then(|i| key_ends.get(i as usize)).copied().unwrap_or(0.0);
+                end = end.max(if key_end.is_finite() { key_end } else { 0.0 });
+            }
+            !pointer
+        });
+    }
+    end
+}
+
+/// `gltf` (read from a file of `size` bytes) checked, and every buffer it names read; the ends
+/// of its animations' channels left out (`node_channels`) kept beside it.
+fn with_buffers(
+    (mut gltf, left_out_ends): (gltf::Gltf, Vec<f32>),
+    size: u64,
+    folder: &Path,
+    limit: u64,
+) -> Result<Loaded, String> {
     // Before validation, which refuses every extension the crate does not know by one message.
     if let Some(ext) = gltf.extensions_required().find(|e| !SUPPORTED_EXTENSIONS.contains(e)) {
         return Err(format!("it requires the extension {ext}, which twinray does not support"));
@@ -159,7 +193,7 @@ fn with_buffers(mut gltf: gltf::Gltf, size: u64, folder: &Path, limit: u64) -> R
         budget = budget.saturating_sub(data.len() as u64);
         buffers.push(data);
     }
-    Ok(Loaded { gltf, buffers, folder: folder.to_path_buf(), budget })
+    Ok(Loaded { gltf, buffers, left_out_ends, folder: folder.to_path_buf(), budget })
 }
 
 /// What the gltf crate assumes without checking, and panics on (each found by the fuzz

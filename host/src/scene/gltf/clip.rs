@@ -41,7 +41,7 @@ pub struct Part {
 pub struct Setup {
     pub scene: usize,
     /// The animations played (`keyframes::playing`).
-    pub animations: Vec<usize>,
+    pub animations: Vec<keyframes::Played>,
     pub start: f32,
     pub fps: f32,
     /// The model's objects, in order.
@@ -88,7 +88,9 @@ impl GltfClip {
         why_still: &mut BTreeSet<String>,
     ) -> Result<Option<GltfClip>, String> {
         let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
-        let (mut end, mut keys, mut trs, mut weights) = (0.0f32, 0u64, false, false);
+        // The animations' lengths, their channels left out included (`keyframes::Played`).
+        let left_out = setup.animations.iter().map(|p| p.left_out_end);
+        let (mut end, mut keys, mut trs, mut weights) = (left_out.fold(0.0f32, f32::max), 0u64, false, false);
         for channel in keyframes::channels(&document, &setup.animations) {
             let times: Vec<f32> = channel.reader(get).read_inputs().map(Iterator::collect).unwrap_or_default();
             end = end.max(times.last().copied().unwrap_or(0.0));

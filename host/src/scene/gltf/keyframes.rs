@@ -41,12 +41,22 @@ pub struct Posed {
     pub weights: BTreeMap<usize, Vec<f32>>,
 }
 
+/// An animation played (`playing`): its index in the file, and the last key of its channels
+/// that twinray leaves out (`KHR_animation_pointer`'s, `buffers::node_channels`), which still
+/// count toward its length as glTF-Sample-Viewer counts them.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Played {
+    pub index: usize,
+    pub left_out_end: f32,
+}
+
 /// The animations of `doc` played together, as glTF-Sample-Viewer starts them when it opens a
 /// file: in the file's order, each that drives no property of a node (its translation,
 /// rotation, scale or weights) that an animation already chosen drives. So a file with one
 /// animation per object plays them all, and one whose animations are alternative cycles of one
-/// rig (a walk, a run) plays its first.
-pub fn playing(doc: &gltf::Document) -> Vec<usize> {
+/// rig (a walk, a run) plays its first. `left_out_ends` are each animation's ends of the
+/// channels left out (`buffers::Loaded`).
+pub fn playing(doc: &gltf::Document, left_out_ends: &[f32]) -> Vec<Played> {
     let mut driven = BTreeSet::new();
     let mut chosen = Vec::new();
     for animation in doc.animations() {
@@ -54,40 +64,45 @@ pub fn playing(doc: &gltf::Document) -> Vec<usize> {
             animation.channels().map(|c| (c.target().node().index(), c.target().property() as u8)).collect();
         if own.is_disjoint(&driven) {
             driven.extend(own);
-            chosen.push(animation.index());
+            let left_out_end = left_out_ends.get(animation.index()).copied().unwrap_or(0.0);
+            chosen.push(Played { index: animation.index(), left_out_end });
         }
     }
     chosen
 }
 
-/// `animations` of `doc`, in the file's order.
-fn played<'a>(doc: &'a gltf::Document, animations: &'a [usize]) -> impl Iterator<Item = gltf::Animation<'a>> {
-    doc.animations().filter(|a| animations.contains(&a.index()))
+/// `animations` of `doc`, in the file's order, each with what `playing` says of it.
+fn played<'a>(
+    doc: &'a gltf::Document,
+    animations: &'a [Played],
+) -> impl Iterator<Item = (gltf::Animation<'a>, &'a Played)> {
+    doc.animations().filter_map(|a| Some((a.clone(), animations.iter().find(|p| p.index == a.index())?)))
 }
 
 /// The channels of `animations` of `doc`, in the file's order.
 pub fn channels<'a>(
     doc: &'a gltf::Document,
-    animations: &'a [usize],
+    animations: &'a [Played],
 ) -> impl Iterator<Item = gltf::animation::Channel<'a>> {
-    played(doc, animations).flat_map(|a| a.channels())
+    played(doc, animations).flat_map(|(a, _)| a.channels())
 }
 
 /// What `animations` of `doc` (driving no property twice, `playing`) set at `time` seconds,
-/// each at its own time in its cycle (`within_cycle`): each node they move at its rest
+/// each at its own time in its cycle (`within_cycle`; its length the last key of its channels,
+/// those left out included): each node they move at its rest
 /// transform with the channels' values in place of what they drive, and the weights they
 /// drive.
-pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], animations: &[usize], time: f32) -> Posed {
+pub fn pose(doc: &gltf::Document, buffers: &[Vec<u8>], animations: &[Played], time: f32) -> Posed {
     let mut moved: BTreeMap<usize, Trs> = BTreeMap::new();
     let mut weights = BTreeMap::new();
     let get = |b: gltf::Buffer| buffers.get(b.index()).map(Vec::as_slice);
-    for animation in played(doc, animations) {
+    for (animation, played) in played(doc, animations) {
         let keyed: Vec<(gltf::animation::Channel, Vec<f32>)> = animation
             .channels()
             .filter_map(|c| Some((c.clone(), c.reader(get).read_inputs()?.collect())))
             .filter(|(_, times): &(_, Vec<f32>)| !times.is_empty())
             .collect();
-        let length = keyed.iter().map(|(_, times)| times[times.len() - 1]).fold(0.0, f32::max);
+        let length = keyed.iter().map(|(_, times)| times[times.len() - 1]).fold(played.left_out_end, f32::max);
         let time = within_cycle(time, length);
         for (channel, times) in keyed {
             let node = channel.target().node();

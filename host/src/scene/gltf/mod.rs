@@ -115,7 +115,7 @@ pub fn parse(bytes: &[u8], folder: &Path) -> Result<Model, String> {
 
 fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), name: &str) -> Result<Model, String> {
     let time = playing.time;
-    let buffers::Loaded { gltf, buffers, folder, mut budget } = loaded;
+    let buffers::Loaded { gltf, buffers, left_out_ends, folder, mut budget } = loaded;
     let doc = &gltf.document;
     let mut ignored = BTreeSet::new();
     ignored
@@ -129,7 +129,7 @@ fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), na
     rules::check_data(doc, &buffers)?;
     // A still picture shows the animations a viewer plays together at `time` (0 s unless
     // asked, as viewers open a file).
-    let animations = keyframes::playing(doc);
+    let animations = keyframes::playing(doc, &left_out_ends);
     let posed = keyframes::pose(doc, &buffers, &animations, time);
     let mut placed = Vec::new();
     for node in scene.nodes() {
@@ -176,8 +176,12 @@ fn model(loaded: buffers::Loaded, (scene, playing): (Option<usize>, Playing), na
     // A mesh only its posing nodes use is not built at rest.
     let used: BTreeSet<&str> = objects.iter().map(|o| o.shape.as_str()).collect();
     meshes.retain(|name, _| used.contains(name.as_str()));
-    let left: Vec<String> =
-        doc.animations().map(|a| a.index()).filter(|i| !animations.contains(i)).map(|i| i.to_string()).collect();
+    let left: Vec<String> = doc
+        .animations()
+        .map(|a| a.index())
+        .filter(|&i| animations.iter().all(|p| p.index != i))
+        .map(|i| i.to_string())
+        .collect();
     ignored.extend((!left.is_empty()).then(|| {
         let s = if left.len() > 1 { "s" } else { "" };
         format!("animation{s} {} (driving what an animation played drives)", left.join(", "))

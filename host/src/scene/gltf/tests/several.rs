@@ -91,7 +91,11 @@ fn animations_driving_different_properties_play_together_and_a_conflicting_one_i
 
 /// `KHR_animation_pointer` channels (a material's colour here) target no node; the `gltf`
 /// crate cannot read them, so they are left out and the extension named: the file is not
-/// refused, and the channels on nodes beside them play.
+/// refused, and the channels on nodes beside them play. Their keys still count toward their
+/// animation's length, as glTF-Sample-Viewer counts them: animation 0, whose node keys end at
+/// 1.5 s, lasts 3 s with a pointer channel keyed to 3 s, so at 2.5 s it holds its last node key
+/// (x = 2) where alone it would be 1 s into its second cycle (x = 1); animation 3 (scale, 1.5
+/// s) is.
 #[test]
 fn animation_pointer_channels_are_left_out_and_the_node_channels_play() {
     let mut root: serde_json::Value = serde_json::from_str(&four_animations()).unwrap();
@@ -99,7 +103,12 @@ fn animation_pointer_channels_are_left_out_and_the_node_channels_play() {
     root["materials"] = serde_json::json!([{"pbrMetallicRoughness": {"baseColorFactor": [1, 1, 1, 1]}}]);
     let pointer = "/materials/0/pbrMetallicRoughness/baseColorFactor";
     let channel = serde_json::json!({"sampler": 0, "target": {"path": "pointer", "extensions": {"KHR_animation_pointer": {"pointer": pointer}}}});
-    root["animations"][1]["channels"].as_array_mut().unwrap().insert(0, channel);
+    root["animations"][1]["channels"].as_array_mut().unwrap().insert(0, channel.clone());
+    // Animation 0's second sampler: accessor 2's keys (0.5 and 3 s), accessor 4's values.
+    root["animations"][0]["samplers"].as_array_mut().unwrap().push(serde_json::json!({"input": 2, "output": 4}));
+    let mut longer = channel;
+    longer["sampler"] = 1.into();
+    root["animations"][0]["channels"].as_array_mut().unwrap().push(longer);
     let dir = tempfile::tempdir().unwrap();
     let path = dir.path().join("model.gltf");
     std::fs::write(&path, root.to_string()).unwrap();
@@ -107,4 +116,7 @@ fn animation_pointer_channels_are_left_out_and_the_node_channels_play() {
         load_at(&path, None, Playing { time: 1.0, ..Playing::default() }).expect("a model animating a material");
     assert!(at(&model, 1).w_axis.truncate().abs_diff_eq(Vec3::Y, 1e-6), "{}", at(&model, 1));
     assert!(model.ignored.contains("extension KHR_animation_pointer"), "{:?}", model.ignored);
+    let later = load_at(&path, None, Playing { time: 2.5, ..Playing::default() }).unwrap();
+    let want = Mat4::from_scale_rotation_translation(Vec3::splat(2.0), glam::Quat::IDENTITY, 2.0 * Vec3::X);
+    assert!(at(&later, 0).abs_diff_eq(want, 1e-6), "{}", at(&later, 0));
 }
